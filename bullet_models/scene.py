@@ -111,12 +111,12 @@ with _c_output_silenced(fds=(1, 2)):
     import pybullet as p
     from pybullet_utils.bullet_client import BulletClient
 
-from analytic.errors import require, require_nonnegative_finite, require_positive_finite
-from analytic.motion import GroundMotion
-from analytic.protocol import run_inputs
-from analytic.system import System
-from analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Trajectory
-from validate.measure import CONTACT_WINDOW, REST_FRACTION, contact_trajectory
+from isorock.analytic.errors import require, require_nonnegative_finite, require_positive_finite
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.protocol import run_inputs
+from isorock.analytic.system import System
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Trajectory
+from isorock.validate.measure import CONTACT_WINDOW, REST_FRACTION, contact_trajectory
 
 ENGINE = "bullet"
 SCENE_SUFFIX = ".sdf"

@@ -57,12 +57,12 @@ import mujoco
 import numpy as np
 from mujoco import rollout
 
-from analytic.errors import InputError, require, require_positive_finite
-from analytic.motion import GroundMotion
-from analytic.protocol import run_inputs
-from analytic.system import System
-from analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Trajectory, counted_sign_changes
-from validate.measure import CONTACT_WINDOW, contact_trajectory
+from isorock.analytic.errors import InputError, require, require_positive_finite
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.protocol import run_inputs
+from isorock.analytic.system import System
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Trajectory, counted_sign_changes
+from isorock.validate.measure import CONTACT_WINDOW, contact_trajectory
 
 TEMPLATE = Path(__file__).with_name("scene.xml")
 SCENE_SUFFIX = ".xml"

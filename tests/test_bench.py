@@ -2,8 +2,8 @@
 reference are small for the analytic engines, and the outputs are written whole."""
 import json
 
-from validate import bench
-from validate.cli import main
+from isorock.validate import bench
+from isorock.validate.cli import main
 
 
 def test_quick_analytic_bench_writes_tables(tmp_path, capsys, monkeypatch):

@@ -14,13 +14,13 @@ import numpy as np
 import pybullet as p
 import pytest
 
-from analytic.coefficients import beta
-from analytic.errors import InputError
-from analytic.hybrid import simulate as analytic_simulate
-from analytic.motion import GroundMotion, Pulse
-from analytic.system import System
-from bullet_models import scene
-from bullet_models.scene import Settings, build, connect, simulate
+from isorock.analytic.coefficients import beta
+from isorock.analytic.errors import InputError
+from isorock.analytic.hybrid import simulate as analytic_simulate
+from isorock.analytic.motion import GroundMotion, Pulse
+from isorock.analytic.system import System
+from isorock.bullet_models import scene
+from isorock.bullet_models.scene import Settings, build, connect, simulate
 
 BETA_RTOL = 0.01
 STAY_DOWN = 1e-4  # × α

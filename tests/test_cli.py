@@ -6,8 +6,8 @@ import sys
 
 import pytest
 
-from analytic import beta, beta2, beta3, beta_housner, no_bounce_slenderness
-from validate.cli import main
+from isorock.analytic import beta, beta2, beta3, beta_housner, no_bounce_slenderness
+from isorock.validate.cli import main
 
 PAPER = ["--height", "2.0", "--width", "0.7", "--mass", "3800", "--base-mass", "3800"]
 
@@ -81,7 +81,7 @@ def test_bad_input_exit_2_one_line_no_file(tmp_path, capsys, args, field):
 
 
 def test_help_names_units():
-    out = subprocess.run([sys.executable, "-m", "validate.cli", "run", "--help"], capture_output=True,
+    out = subprocess.run([sys.executable, "-m", "isorock.validate.cli", "run", "--help"], capture_output=True,
                          text=True, check=True).stdout
     for needle in ("--height", "m", "kg", "--period", "s", "--theta0", "fraction of α", "--motion", "in g"):
         assert needle in out

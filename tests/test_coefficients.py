@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from analytic import System, beta, beta2, beta3, beta_housner, no_bounce_slenderness, InputError
-from analytic.hybrid import impact_map
+from isorock.analytic import System, beta, beta2, beta3, beta_housner, no_bounce_slenderness, InputError
+from isorock.analytic.hybrid import impact_map
 
 
 @pytest.mark.parametrize("lam", [1.5, 2.857, 4.0, 10.0])

@@ -6,8 +6,8 @@ import dataclasses
 import numpy as np
 import pytest
 
-from analytic import InputError, System, Trajectory
-from validate.engines import ALL_ENGINES, ENGINE_NAMES, get_engine
+from isorock.analytic import InputError, System, Trajectory
+from isorock.validate.engines import ALL_ENGINES, ENGINE_NAMES, get_engine
 
 SYSTEM = System.fixed(height=2.0, width=0.7, mass=3800.0)
 FIRST_IMPACT = 0.5014170  # model.md, exact integral, θ0 = α/2

@@ -9,11 +9,11 @@ import sys
 import numpy as np
 import pytest
 
-from analytic import AnalyticSettings, GroundMotion, InputError, Pulse, System, paper_system, simulate
-from analytic.motion import read_at2
-from analytic.trajectory import DEFAULT_IMPACT_THRESHOLD
+from isorock.analytic import AnalyticSettings, GroundMotion, InputError, Pulse, System, paper_system, simulate
+from isorock.analytic.motion import read_at2
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD
 
-fast = pytest.importorskip("analytic.fast", reason="numba is not installed")
+fast = pytest.importorskip("isorock.analytic.fast", reason="numba is not installed")
 
 # (metric, tolerance, why)
 TOL = {
@@ -158,7 +158,7 @@ def test_free_rocking_first_impact_and_beta():
     first = got.impacts[0]
     assert first.t == pytest.approx(0.5014170, abs=5e-7)
     assert first.t == pytest.approx(exact_first_impact(system, system.alpha / 2), abs=1e-9)
-    from analytic.coefficients import beta
+    from isorock.analytic.coefficients import beta
     b = beta(system.slenderness, 0.0)
     assert all(i.beta == pytest.approx(b, rel=1e-12) for i in got.impacts if i.continued)
     assert got.impacts[-1].continued is False  # the Zeno tail ends below the rest floor
@@ -234,7 +234,7 @@ def test_bad_input_names_the_field():
 
 def test_missing_numba_raises_a_clear_import_error(monkeypatch):
     monkeypatch.setitem(sys.modules, "numba", None)
-    spec = importlib.util.spec_from_file_location("analytic._fast_without_numba", fast.__file__)
+    spec = importlib.util.spec_from_file_location("isorock.analytic._fast_without_numba", fast.__file__)
     module = importlib.util.module_from_spec(spec)
     with pytest.raises(ImportError, match="numba"):
         spec.loader.exec_module(module)
@@ -256,7 +256,7 @@ def test_batch_free_rocking_per_case_tilts_and_durations():
 def test_below_no_bounce_slenderness_matches_the_reference():
     """β ≤ 0: every impact ends rocking in both paths (a rule the random draws, λ ≥ 2,
     never reach)."""
-    from analytic import beta, load_motion
+    from isorock.analytic import beta, load_motion
     block = System.isolated(height=1.7, width=2.0, mass=100.0, base_mass=100.0, period=1.5, damping_ratio=0.2)
     assert beta(block.slenderness, block.mu) < 0
     m = load_motion("sine:amp=2.5,freq=1,cycles=2")

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from analytic import AnalyticSettings, GroundMotion, InputError, System, beta, load_motion, paper_system, simulate
-from analytic.trajectory import counted_sign_changes
+from isorock.analytic import AnalyticSettings, GroundMotion, InputError, System, beta, load_motion, paper_system, simulate
+from isorock.analytic.trajectory import counted_sign_changes
 
 FIXED = System.fixed(height=2.0, width=0.7, mass=3800.0)
 ISOLATED_UNDAMPED = System.from_stiffness(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0,
@@ -212,7 +212,7 @@ def test_below_no_bounce_slenderness_rocking_ends_at_first_impact():
 
 
 def test_an_integrator_failure_is_a_status_not_a_traceback(monkeypatch):
-    import analytic.hybrid as hybrid
+    import isorock.analytic.hybrid as hybrid
 
     def broken(*args, **kwargs):
         raise ValueError("f(a) and f(b) must have different signs")

@@ -3,7 +3,7 @@ import math
 import numpy as np
 import pytest
 
-from analytic import GroundMotion, InputError, load_motion, read_at2, read_jma, read_two_column
+from isorock.analytic import GroundMotion, InputError, load_motion, read_at2, read_jma, read_two_column
 
 G = 9.81
 

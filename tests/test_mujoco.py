@@ -10,13 +10,13 @@ import mujoco
 import numpy as np
 import pytest
 
-from analytic import hybrid
-from analytic.coefficients import beta
-from analytic.errors import InputError
-from analytic.motion import GroundMotion, load_motion
-from analytic.system import System
-from mujoco_models import scene
-from validate.measure import beta_errors
+from isorock.analytic import hybrid
+from isorock.analytic.coefficients import beta
+from isorock.analytic.errors import InputError
+from isorock.analytic.motion import GroundMotion, load_motion
+from isorock.analytic.system import System
+from isorock.mujoco_models import scene
+from isorock.validate.measure import beta_errors
 
 #: Tolerances of this engine at its default settings, with the reason for each.
 TOL = {
@@ -343,7 +343,7 @@ def test_progress_reports_simulated_time(monkeypatch):
 
 
 def test_scene_text_compiles_and_cli_writes_it(tmp_path):
-    from validate.cli import main
+    from isorock.validate.cli import main
     out = tmp_path / "scene.xml"
     assert main(["scene", "--engine", "mujoco", "--fixed-base", "--out", str(out)]) == 0
     model = mujoco.MjModel.from_xml_path(str(out))
@@ -352,7 +352,7 @@ def test_scene_text_compiles_and_cli_writes_it(tmp_path):
 
 
 def test_a_timestep_alone_takes_the_contact_parameters_measured_for_it():
-    from validate.engines import get_engine
+    from isorock.validate.engines import get_engine
     engine = get_engine("mujoco")
     tied = engine.settings(timestep=2e-3)
     assert tied == scene.settings_for_timestep(2e-3)

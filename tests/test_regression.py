@@ -3,8 +3,8 @@ the limits of validate/tolerances.py, and against the golden metrics in tests/go
 
 Regenerate the goldens (only after checking that a change of numbers is intended):
 
-    python -m validate.report --regenerate-golden            # all importable engines
-    python -m validate.report --regenerate-golden mujoco     # one engine
+    python -m isorock.validate.report --regenerate-golden            # all importable engines
+    python -m isorock.validate.report --regenerate-golden mujoco     # one engine
 """
 from __future__ import annotations
 
@@ -14,11 +14,11 @@ import math
 
 import pytest
 
-from analytic.coefficients import beta as beta_closed
-from validate.compare import compare, exact_first_impact_time
-from validate.engines import ENGINE_NAMES, get_engine
-from validate.report import GOLDEN_DIR, effective_beta, golden_metrics, golden_scenarios
-from validate.tolerances import GOLDEN_TOLERANCES, TOLERANCES, GoldenTolerance, tolerance
+from isorock.analytic.coefficients import beta as beta_closed
+from isorock.validate.compare import compare, exact_first_impact_time
+from isorock.validate.engines import ENGINE_NAMES, get_engine
+from isorock.validate.report import GOLDEN_DIR, effective_beta, golden_metrics, golden_scenarios
+from isorock.validate.tolerances import GOLDEN_TOLERANCES, TOLERANCES, GoldenTolerance, tolerance
 
 
 def _why_not_importable(name):
@@ -149,12 +149,12 @@ def golden_mismatches(actual: dict, golden: dict, tolerances: dict[str, GoldenTo
 @pytest.mark.parametrize("engine", ALL)
 def test_golden(engine):
     path = GOLDEN_DIR / f"{engine}.json"
-    assert path.is_file(), f"{path} missing: run `python -m validate.report --regenerate-golden {engine}`"
+    assert path.is_file(), f"{path} missing: run `python -m isorock.validate.report --regenerate-golden {engine}`"
     golden = json.loads(path.read_text())["metrics"]
     actual = json.loads(json.dumps(golden_metrics(engine, runs={s: run(engine, s) for s in SCENARIOS})))
     problems = golden_mismatches(actual, golden, GOLDEN_TOLERANCES)
     assert not problems, (f"{engine} differs from {path.name} (if intended, regenerate with "
-                          f"`python -m validate.report --regenerate-golden {engine}`):\n  " + "\n  ".join(problems))
+                          f"`python -m isorock.validate.report --regenerate-golden {engine}`):\n  " + "\n  ".join(problems))
 
 
 def test_golden_comparison_can_fail():

@@ -1,12 +1,12 @@
 """The stress grid's quick subset: every case finite, in time, and (analytic) with
 its energy balance closed to 1e-6 of the input energy."""
 
-from validate.stress import ENERGY_TOLERANCE, StressCase, grid, run_case, run_stress, verdict
-from analytic import System
+from isorock.validate.stress import ENERGY_TOLERANCE, StressCase, grid, run_case, run_stress, verdict
+from isorock.analytic import System
 
 
 def test_quick_subset_passes_on_every_engine():
-    from validate.engines import ALL_ENGINES
+    from isorock.validate.engines import ALL_ENGINES
     results = run_stress(quick=True, time_limit=60, progress=False)
     assert len(results) == len(grid(quick=True)) * len(ALL_ENGINES) and len(grid(quick=True)) >= 10
     bad = [(r["case"], r["status"], r.get("error"), r.get("energy_residual")) for r in results if r["verdict"] != "pass"]

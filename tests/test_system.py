@@ -2,7 +2,7 @@ import math
 
 import pytest
 
-from analytic import InputError, System, paper_system
+from isorock.analytic import InputError, System, paper_system
 
 
 def test_derived_quantities():

@@ -1,8 +1,8 @@
 import numpy as np
 import pytest
 
-from analytic import AnalyticSettings, System, simulate
-from analytic.trajectory import counted_sign_changes, half_cycles, hermite
+from isorock.analytic import AnalyticSettings, System, simulate
+from isorock.analytic.trajectory import counted_sign_changes, half_cycles, hermite
 
 
 def test_hermite_is_exact_for_cubics_and_fourth_order_for_sine():

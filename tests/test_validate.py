@@ -10,16 +10,16 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from analytic import load_motion, paper_system, simulate
-from analytic.errors import InputError
-from analytic.trajectory import Trajectory
-from validate import engines as engine_registry
-from validate import figures
-from validate.cli import main
-from validate.compare import AGREEMENT_FRACTION, agreement, compare, exact_first_impact_time, first_tilt
-from validate.engines import CONTACT_ENGINES, Engine, get_engine
-from validate.ensemble import Ensemble, run_ensemble, scale_factors
-from validate.tolerances import TOLERANCES, check, tolerance
+from isorock.analytic import load_motion, paper_system, simulate
+from isorock.analytic.errors import InputError
+from isorock.analytic.trajectory import Trajectory
+from isorock.validate import engines as engine_registry
+from isorock.validate import figures
+from isorock.validate.cli import main
+from isorock.validate.compare import AGREEMENT_FRACTION, agreement, compare, exact_first_impact_time, first_tilt
+from isorock.validate.engines import CONTACT_ENGINES, Engine, get_engine
+from isorock.validate.ensemble import Ensemble, run_ensemble, scale_factors
+from isorock.validate.tolerances import TOLERANCES, check, tolerance
 
 PULSE = "ricker:amp=0.5,freq=1"
 

@@ -19,10 +19,10 @@ from pathlib import Path
 
 import numpy as np
 
-from analytic.hybrid import AnalyticSettings
-from analytic.hybrid import simulate as reference_simulate
-from analytic.motion import GroundMotion, load_motion
-from analytic.system import System, paper_system
+from isorock.analytic.hybrid import AnalyticSettings
+from isorock.analytic.hybrid import simulate as reference_simulate
+from isorock.analytic.motion import GroundMotion, load_motion
+from isorock.analytic.system import System, paper_system
 
 RECORDS = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "records"
 KOBE = RECORDS / "RSN1106_KOBE_KJM000.AT2"
@@ -56,7 +56,7 @@ def scenarios(quick: bool) -> list[Scenario]:
 
 def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
     """(label, settings) from cheapest to most accurate."""
-    from validate.engines import get_engine
+    from isorock.validate.engines import get_engine
     if engine in ("analytic", "analytic-fast"):
         # max_step relaxed so the tolerance, not the step cap, sets the accuracy
         tols = (1e-4, 1e-7, 1e-10) if quick else (1e-4, 1e-6, 1e-8, 1e-10)
@@ -71,12 +71,12 @@ def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
 
 
 def _simulator(engine: str):
-    from validate.engines import get_engine
+    from isorock.validate.engines import get_engine
     return get_engine(engine).simulate
 
 
 def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
-    from validate.compare import compare
+    from isorock.validate.compare import compare
     run = _simulator(engine)
     kwargs = dict(settings=settings, duration=sc.duration, theta0=sc.theta0 * sc.system.alpha)
     walls, loops, traj = [], [], None
@@ -103,7 +103,7 @@ def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
 
 
 def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], dict]:
-    from validate.engines import ALL_ENGINES
+    from isorock.validate.engines import ALL_ENGINES
     engines = list(engines or ALL_ENGINES)
     if "analytic-fast" in engines and not _fast_available():
         engines.remove("analytic-fast")
@@ -130,7 +130,7 @@ def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], 
 
 def _fast_available() -> bool:
     try:
-        import analytic.fast  # noqa: F401
+        import isorock.analytic.fast  # noqa: F401
         return True
     except ImportError:
         return False
@@ -139,7 +139,7 @@ def _fast_available() -> bool:
 def speed_ratio(quick: bool) -> dict | None:
     """The compiled kernel against solve_ivp (DOP853 with events) at the same tolerance,
     side by side in this run, on the Kobe scenario (the kernel module owns the measurement)."""
-    from analytic.fast import benchmark_against_solve_ivp
+    from isorock.analytic.fast import benchmark_against_solve_ivp
     kobe = next((sc for sc in scenarios(quick) if sc.name == "kobe-40s"), None)
     if kobe is None:
         return None
@@ -253,8 +253,8 @@ def cmd_bench(a) -> int:
     import csv
     import io
 
-    from validate.engines import get_engine
-    from validate.output import to_json, write_folder_atomic
+    from isorock.validate.engines import get_engine
+    from isorock.validate.output import to_json, write_folder_atomic
     for e in a.engines or []:
         get_engine(e)  # an unknown name is an InputError before anything runs
     start = time.perf_counter()

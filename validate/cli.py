@@ -15,10 +15,10 @@ import argparse
 import importlib
 import sys
 
-from analytic.errors import InputError
+from isorock.analytic.errors import InputError
 
 #: Subcommands that live in their own modules: each has add_parser(subparsers) and run(args).
-EXTRA_COMMANDS = ("validate.report_cli", "validate.bench", "validate.stress")
+EXTRA_COMMANDS = ("isorock.validate.report_cli", "isorock.validate.bench", "isorock.validate.stress")
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
 ENGINE_OPTIONS = ("timestep", "solref", "solimp", "cone", "integrator", "friction", "noslip",
@@ -58,7 +58,7 @@ def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=No
 def system_from_args(a, *, default_isolator=None):
     """The System the options describe; `default_isolator` (period, damping ratio)
     is used when no isolator option is given (the scene command's paper defaults)."""
-    from analytic.system import System
+    from isorock.analytic.system import System
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
     isolation = [x is not None for x in (a.period, a.damping, a.stiffness, a.dashpot)]
     if a.fixed_base:
@@ -92,7 +92,7 @@ def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
 
 
 def motion_from_args(a):
-    from analytic.motion import load_motion
+    from isorock.analytic.motion import load_motion
     m = load_motion(a.motion, format=a.format, units=a.units)
     return m if a.scale == 1.0 else m.scaled(a.scale)
 
@@ -179,8 +179,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def cmd_beta(a) -> int:
-    from analytic import coefficients as co
-    from validate.output import to_json
+    from isorock.analytic import coefficients as co
+    from isorock.validate.output import to_json
     h = a.height / 2 if a.height is not None and a.height > 0 else a.height
     if h is None or not h > 0:
         raise InputError(f"height = {a.height!r}: must be a positive finite number")
@@ -205,8 +205,8 @@ def _progress(quiet):
 
 
 def cmd_run(a) -> int:
-    from validate.engines import get_engine
-    from validate.output import to_json, write_atomic, write_json
+    from isorock.validate.engines import get_engine
+    from isorock.validate.output import to_json, write_atomic, write_json
     engine = get_engine(a.engine)
     system = system_from_args(a)
     motion = motion_from_args(a)
@@ -238,8 +238,8 @@ def _settings_dict(settings):
 
 
 def cmd_scene(a) -> int:
-    from validate.engines import get_engine
-    from validate.output import write_text
+    from isorock.validate.engines import get_engine
+    from isorock.validate.output import write_text
     engine = get_engine(a.engine)
     if not engine.has_scene:
         raise InputError(f"engine = {a.engine!r}: has no model file to write (mujoco and bullet do)")

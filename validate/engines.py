@@ -15,14 +15,14 @@ import importlib
 from dataclasses import dataclass, fields, replace
 from types import ModuleType
 
-from analytic.errors import InputError
+from isorock.analytic.errors import InputError
 
 ENGINE_MODULES = {
-    "analytic": "analytic.engine",
-    "mujoco": "mujoco_models.scene",
-    "bullet": "bullet_models.scene",
+    "analytic": "isorock.analytic.engine",
+    "mujoco": "isorock.mujoco_models.scene",
+    "bullet": "isorock.bullet_models.scene",
     # the same model as "analytic", compiled (analytic.fast): for speed, by name
-    "analytic-fast": "analytic.fast_engine",
+    "analytic-fast": "isorock.analytic.fast_engine",
 }
 #: The engines every report and comparison loops over: the reference and the contact engines.
 ENGINE_NAMES = ("analytic", "mujoco", "bullet")

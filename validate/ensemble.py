@@ -13,9 +13,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from analytic.errors import InputError, require
-from analytic.motion import GroundMotion
-from analytic.system import System
+from isorock.analytic.errors import InputError, require
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.system import System
 
 DEFAULT_SCALES = (0.25, 1.5, 21)  # first, last factor of the motion's PGA, number of steps
 REFERENCE = "analytic"

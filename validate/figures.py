@@ -12,8 +12,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from analytic.coefficients import beta, beta2, beta_housner
-from analytic.system import STANDARD_GRAVITY
+from isorock.analytic.coefficients import beta, beta2, beta_housner
+from isorock.analytic.system import STANDARD_GRAVITY
 
 ENGINE_STYLE = {
     "analytic": dict(color="black", linestyle="-", marker="o", label="analytic"),

@@ -11,11 +11,11 @@ import math
 
 import numpy as np
 
-from analytic.coefficients import beta as beta_closed_form
-from analytic.hybrid import map_to_impact
-from analytic.motion import GroundMotion
-from analytic.system import System
-from analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, Trajectory, half_cycles
+from isorock.analytic.coefficients import beta as beta_closed_form
+from isorock.analytic.hybrid import map_to_impact
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.system import System
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, Trajectory, half_cycles
 
 #: How far (s) before and after a sign change the states are taken: well outside the
 #: contact transient of the default scenes (time constants of a few ms), and capped at

@@ -8,7 +8,7 @@ analytic model, each check against the tolerance table.
 
 Regenerate the golden metrics (from the repository root):
 
-    python -m validate.report --regenerate-golden [ENGINE ...]
+    python -m isorock.validate.report --regenerate-golden [ENGINE ...]
 """
 from __future__ import annotations
 
@@ -25,17 +25,17 @@ from pathlib import Path
 
 import numpy as np
 
-from analytic.coefficients import beta as beta_closed, beta2 as beta2_closed
-from analytic.errors import InputError, require
-from analytic.motion import GroundMotion, load_motion
-from analytic.system import System, paper_system
-from validate import figures
-from validate.compare import Comparison, compare, exact_first_impact_time, first_tilt, reference_sensitivity
-from validate.engines import ENGINE_MODULES, ENGINE_NAMES, get_engine
-from validate.ensemble import REFERENCE, run_ensemble, scale_factors
-from validate.measure import beta_errors
-from validate.output import write_folder_atomic, write_json
-from validate.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, skipped
+from isorock.analytic.coefficients import beta as beta_closed, beta2 as beta2_closed
+from isorock.analytic.errors import InputError, require
+from isorock.analytic.motion import GroundMotion, load_motion
+from isorock.analytic.system import System, paper_system
+from isorock.validate import figures
+from isorock.validate.compare import Comparison, compare, exact_first_impact_time, first_tilt, reference_sensitivity
+from isorock.validate.engines import ENGINE_MODULES, ENGINE_NAMES, get_engine
+from isorock.validate.ensemble import REFERENCE, run_ensemble, scale_factors
+from isorock.validate.measure import beta_errors
+from isorock.validate.output import write_folder_atomic, write_json
+from isorock.validate.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, skipped
 
 #: Built-in pulses of the default report, chosen with the analytic model so that the
 #: paper's block rocks on both bases without overturning, and (the sine) robustly:
@@ -709,7 +709,7 @@ def golden_metrics(engine_name: str, runs: dict | None = None) -> dict:
 
 def _regenerate(argv) -> int:
     import argparse
-    p = argparse.ArgumentParser(prog="python -m validate.report",
+    p = argparse.ArgumentParser(prog="python -m isorock.validate.report",
                                 description="Regenerate the golden metrics of tests/golden/.")
     p.add_argument("--regenerate-golden", action="store_true", required=True)
     p.add_argument("engines", nargs="*", default=list(ENGINE_NAMES))
@@ -721,7 +721,7 @@ def _regenerate(argv) -> int:
     for name in engines:
         path = Path(a.golden_dir) / f"{name}.json"
         write_json(path, {"engine": name, "versions": versions(), "motion": GOLDEN_MOTION,
-                          "regenerate": "python -m validate.report --regenerate-golden " + name,
+                          "regenerate": "python -m isorock.validate.report --regenerate-golden " + name,
                           "metrics": golden_metrics(name)})
         print(path)
     return 0

@@ -8,14 +8,14 @@ from __future__ import annotations
 import argparse
 import sys
 
-from analytic.errors import InputError
-from validate.engines import ENGINE_NAMES
+from isorock.analytic.errors import InputError
+from isorock.validate.engines import ENGINE_NAMES
 
 DEFAULT_OUT = "isorock-report"
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
-    from validate.report import DEFAULT_MOTIONS, RECORD_WINDOW
+    from isorock.validate.report import DEFAULT_MOTIONS, RECORD_WINDOW
     p = subparsers.add_parser(
         "validate", help="the validation report: all engines side by side with the analytic model",
         description="Run the paper's block (isolated T 1.5 s ξ 0.2, and on a fixed base) on each motion "
@@ -62,7 +62,7 @@ def _scales(text):
 
 
 def run(args) -> int:
-    from validate.report import DEFAULT_MOTIONS, ReportConfig, build, verdict, write_report
+    from isorock.validate.report import DEFAULT_MOTIONS, ReportConfig, build, verdict, write_report
     engines = tuple(e for item in args.engines for e in item.split(",") if e)
     config = ReportConfig(motions=tuple(args.motion or DEFAULT_MOTIONS), engines=engines, quick=args.quick,
                           duration=args.duration, scales=_scales(args.scales), format=args.format,

@@ -20,9 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-from analytic.coefficients import no_bounce_slenderness
-from analytic.motion import GroundMotion, load_motion
-from analytic.system import System
+from isorock.analytic.coefficients import no_bounce_slenderness
+from isorock.analytic.motion import GroundMotion, load_motion
+from isorock.analytic.system import System
 
 ENERGY_TOLERANCE = 1e-6  # analytic energy balance residual / input energy (issue 6)
 #: |θ|/α a run may show without being overturned: contact engines sample a step past α
@@ -116,7 +116,7 @@ def grid(quick: bool = False) -> list[StressCase]:
 
 def _run_in_child(conn, engine_name, case):
     try:
-        from validate.engines import get_engine
+        from isorock.validate.engines import get_engine
         engine = get_engine(engine_name)
         system, motion = case.system, case.ground_motion()
         start = time.perf_counter()
@@ -178,7 +178,7 @@ def verdict(r: dict) -> str:
 
 
 def run_stress(*, quick=False, engines=None, time_limit=None, progress=True) -> list[dict]:
-    from validate.engines import ALL_ENGINES
+    from isorock.validate.engines import ALL_ENGINES
     engines = list(engines or ALL_ENGINES)
     time_limit = time_limit or (30.0 if quick else 120.0)
     cases = grid(quick)
@@ -230,9 +230,9 @@ def cmd_stress(a) -> int:
     import csv
     import io
 
-    from analytic.errors import InputError
-    from validate.engines import get_engine
-    from validate.output import to_json, write_folder_atomic
+    from isorock.analytic.errors import InputError
+    from isorock.validate.engines import get_engine
+    from isorock.validate.output import to_json, write_folder_atomic
     for e in a.engines or []:
         get_engine(e)  # an unknown name is an InputError before anything runs
     if a.time_limit is not None and not a.time_limit > 0:

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from analytic.errors import InputError
+from isorock.analytic.errors import InputError
 
 
 @dataclass(frozen=True)
