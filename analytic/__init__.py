@@ -3,6 +3,7 @@ speaks (System, GroundMotion, Trajectory, closed-form coefficients)."""
 from .coefficients import beta, beta2, beta3, beta_housner, no_bounce_slenderness, uplift_acceleration
 from .errors import InputError
 from .hybrid import AnalyticSettings, simulate
+from .status import Status
 from .motion import GroundMotion, Pulse, load_motion, parse_pulse, read_at2, read_jma, read_two_column
 from .system import System, paper_system
 from .trajectory import Impact, Trajectory
@@ -11,5 +12,5 @@ __all__ = [
     "System", "paper_system", "GroundMotion", "Pulse", "load_motion", "parse_pulse", "read_at2",
     "read_jma", "read_two_column", "Trajectory", "Impact", "AnalyticSettings", "simulate",
     "beta", "beta2", "beta3", "beta_housner", "no_bounce_slenderness", "uplift_acceleration",
-    "InputError",
+    "InputError", "Status",
 ]

@@ -55,6 +55,7 @@ from .errors import InputError, require, require_positive_finite
 from .hybrid import AnalyticSettings
 from .motion import GroundMotion
 from .protocol import run_inputs
+from .status import Status
 from .system import STANDARD_GRAVITY, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
@@ -99,7 +100,7 @@ _EPS = float(np.finfo(float).eps)
 _SAMPLED, _SINE, _COSINE, _RICKER = 0, 1, 2, 3
 # statuses
 _COMPLETED, _OVERTURNED, _EVENT_LIMIT, _FAILED = 0, 1, 2, 3
-STATUS_NAMES = ("completed", "overturned", "event-limit", "failed")
+STATUS_NAMES = (Status.COMPLETED, Status.OVERTURNED, Status.EVENT_LIMIT, Status.FAILED)
 # event slots: translation (0 lift about O, 1 lift about O', 3 u̇ = 0);
 # rocking (0 impact, 1 overturn, 2 θ̇ = 0, 3 u̇ = 0). Slot 3 only on an isolated base:
 # it locates the extremes of u so that u_max is exact (the reference reads it off

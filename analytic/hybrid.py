@@ -21,6 +21,7 @@ from .coefficients import beta, beta2, beta3
 from .errors import require, require_positive_finite
 from .motion import GroundMotion
 from .protocol import run_inputs
+from .status import Status
 from .system import System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
@@ -213,7 +214,7 @@ class _Integrator:
             mode = self.uplift_mode(t, y)
             if mode:
                 self.uplifts.append(0.0)
-        status, message = "completed", "reached the end time"
+        status, message = Status.COMPLETED, "reached the end time"
         overturn_time = None
         events = 0
         ibreak = 1
@@ -231,7 +232,7 @@ class _Integrator:
             self._evs = evs
             sol = self.solve(fun, t, t_end, y, evs)
             if sol.status == -1:
-                status, message = "failed", f"integration failed at t = {t:.6g} s: {sol.message}"
+                status, message = Status.FAILED, f"integration failed at t = {t:.6g} s: {sol.message}"
                 break
             hit = self.first_terminal(sol, evs)
             if hit is None:
@@ -245,12 +246,12 @@ class _Integrator:
             t, y = te, ye.copy()
             events += 1
             if events > cfg.max_events:
-                status, message = "event-limit", (
+                status, message = Status.EVENT_LIMIT, (
                     f"stopped after {cfg.max_events} events at t = {t:.6g} s (max_events)")
                 break
             kind = evs[k].kind
             if kind == "overturn":
-                status, message = "overturned", f"|θ| reached α at t = {t:.6g} s"
+                status, message = Status.OVERTURNED, f"|θ| reached α at t = {t:.6g} s"
                 overturn_time = t
                 break
             if kind == "impact":
@@ -357,7 +358,7 @@ class _Integrator:
         return Trajectory(
             engine="analytic", system=sys, t=t, u=y[U], u_dot=y[UD], theta=y[TH], theta_dot=y[THD],
             mode=mode, impacts=tuple(self.impacts), uplift_times=tuple(self.uplifts),
-            overturned=status == "overturned", overturn_time=overturn_time,
+            overturned=status == Status.OVERTURNED, overturn_time=overturn_time,
             impact_threshold=self.impact_threshold, runtime_s=runtime, status=status,
             message=message, energy=log)
 

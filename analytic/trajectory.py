@@ -11,6 +11,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from .status import Status
 from .system import System
 
 DEFAULT_IMPACT_THRESHOLD = 0.01  # fraction of α (model.md)
@@ -91,7 +92,7 @@ class Trajectory:
     overturn_time: float | None = None
     impact_threshold: float = DEFAULT_IMPACT_THRESHOLD
     runtime_s: float = 0.0
-    status: str = "completed"
+    status: Status = Status.COMPLETED
     message: str = ""
     energy: EnergyLog | None = None
     extras: dict = field(default_factory=dict)  # engine-specific histories (lift-off, drift…)
@@ -133,7 +134,7 @@ class Trajectory:
         """The machine-readable metrics (field names are a contract: keep them)."""
         out = {
             "engine": self.engine,
-            "status": self.status,
+            "status": str(self.status),
             "message": self.message,
             "alpha": self.alpha,
             "slenderness": self.system.slenderness,

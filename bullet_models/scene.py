@@ -114,6 +114,7 @@ with _c_output_silenced(fds=(1, 2)):
 from isorock.analytic.errors import require, require_nonnegative_finite, require_positive_finite
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.protocol import run_inputs
+from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Trajectory
 from isorock.validate.measure import CONTACT_WINDOW, REST_FRACTION, contact_trajectory
@@ -366,7 +367,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         torque = p.TORQUE_CONTROL
         rows = []  # (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y)
         alpha = system.alpha
-        status, message = "completed", "reached the end time"
+        status, message = Status.COMPLETED, "reached the end time"
         u = ud = 0.0
         ud_prev = udd = 0.0  # base velocity one step back; base acceleration estimate
         side_prev = 0.0  # sin θ (≈ R₀₂) one step back
@@ -383,7 +384,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 tilt = abs(math.atan2(2 * (qx * qz + qw * qy), 1 - 2 * (qx * qx + qy * qy)))
                 if not math.isfinite(tilt + u):
                     rows.pop()  # the history ends at the last finite state
-                    status, message = "failed", f"non-finite state at t = {times[i]:.6g} s"
+                    status, message = Status.FAILED, f"non-finite state at t = {times[i]:.6g} s"
                     break
                 if tilt >= alpha:
                     break  # overturned: contact_trajectory reports it

@@ -60,6 +60,7 @@ from mujoco import rollout
 from isorock.analytic.errors import InputError, require, require_positive_finite
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.protocol import run_inputs
+from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Trajectory, counted_sign_changes
 from isorock.validate.measure import CONTACT_WINDOW, contact_trajectory
@@ -436,7 +437,7 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
     state0[1:1 + lay.nq] = _initial_qpos(model, lay, system, theta0)
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
-    status, message = "completed", "reached the end time"
+    status, message = Status.COMPLETED, "reached the end time"
     alpha = system.alpha
     last_report = start
     done = 0
@@ -452,7 +453,7 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
         if bad.any():
             k = int(np.argmax(bad))
             rows.append(chunk[:k])
-            status = "failed"
+            status = Status.FAILED
             message = (f"the state stopped being finite at t = {(done - n + k + 1) * dt:.6g} s; "
                        "try a smaller timestep or a longer solref timeconst")
             break
@@ -526,7 +527,7 @@ def _run_event_resolved(model, system, motion, settings, lay, nstep, theta0, imp
     warm = np.zeros(lay.nv)
     k = 0
     last_cross = -math.inf
-    status, message = "completed", "reached the end time"
+    status, message = Status.COMPLETED, "reached the end time"
     last_report = start
     while k < nstep:
         th, thd = theta_rate(state[None, :])
@@ -576,7 +577,7 @@ def _run_event_resolved(model, system, motion, settings, lay, nstep, theta0, imp
             j = int(np.argmax(bad))
             rows.extend(chunk[:j])
             coarse.extend(chunk_coarse[:j])
-            status = "failed"
+            status = Status.FAILED
             message = (f"the state stopped being finite near t = {t_k + (j + 1) * dt:.6g} s; "
                        "try a smaller timestep")
             break

@@ -14,6 +14,7 @@ import numpy as np
 from isorock.analytic.coefficients import beta as beta_closed_form
 from isorock.analytic.hybrid import map_to_impact
 from isorock.analytic.motion import GroundMotion
+from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, Trajectory, half_cycles
 
@@ -27,7 +28,7 @@ REST_FRACTION = 1e-3
 
 def contact_trajectory(engine: str, system: System, motion: GroundMotion, *, t, u, u_dot, theta, theta_dot,
                        impact_threshold: float = DEFAULT_IMPACT_THRESHOLD, runtime_s: float = 0.0,
-                       status: str = "completed", message: str = "", extras: dict | None = None,
+                       status: Status = Status.COMPLETED, message: str = "", extras: dict | None = None,
                        window: float = CONTACT_WINDOW) -> Trajectory:
     """The shared Trajectory of a contact engine: modes from |θ|, impacts counted by
     model.md's rule, effective β mapped to θ = 0, uplifts where |θ| leaves the rest
@@ -39,7 +40,7 @@ def contact_trajectory(engine: str, system: System, motion: GroundMotion, *, t, 
     over = np.nonzero(np.abs(theta) >= alpha)[0]
     overturn_time = float(t[over[0]]) if over.size else None
     if over.size:
-        status, message = "overturned", f"|θ| reached α at t = {overturn_time:.6g} s"
+        status, message = Status.OVERTURNED, f"|θ| reached α at t = {overturn_time:.6g} s"
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
                                 impact_threshold=impact_threshold, window=window)
     uplift_times = _uplifts(t, mode, window)

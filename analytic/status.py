@@ -1,0 +1,21 @@
+"""How a run ended: one enum every engine's Trajectory carries, with a message beside it
+(as scipy's `OdeResult.status` and MuJoCo's rollout do). A `StrEnum`, so the value is the
+plain word in JSON, CSV and Parquet, and compares equal to it."""
+from __future__ import annotations
+
+from enum import StrEnum
+
+
+class Status(StrEnum):
+    COMPLETED = "completed"      #: reached the end time
+    OVERTURNED = "overturned"    #: the block overturned (by the run's overturning rule)
+    EVENT_LIMIT = "event-limit"  #: the analytic model stopped after `max_events` events
+    FAILED = "failed"            #: the integration or the engine failed; the message says why
+
+    @property
+    def ended_normally(self) -> bool:
+        """True when the history covers the physics asked for (completed or overturned)."""
+        return self in (Status.COMPLETED, Status.OVERTURNED)
+
+
+__all__ = ["Status"]
