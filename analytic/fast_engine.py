@@ -1,5 +1,7 @@
-"""The compiled analytic kernel (analytic.fast) behind the engine protocol of
-`validate.engines`: same settings as the reference path, same Trajectory."""
+"""The compiled analytic kernel (analytic.fast) as an engine: same settings as the
+reference path, same Trajectory."""
+from .engine import ladder
+from .engine_protocol import Capabilities, EngineSpec
 from .fast import simulate_fast
 from .hybrid import AnalyticSettings as Settings
 
@@ -9,4 +11,9 @@ def simulate(system, motion=None, *, progress=None, **kwargs):
     return simulate_fast(system, motion, **kwargs)
 
 
-__all__ = ["Settings", "simulate"]
+ENGINE = EngineSpec(
+    name="analytic-fast", label="analytic (compiled)", settings_type=Settings, simulate=simulate,
+    capabilities=Capabilities(isolated_base=True, past_alpha=False, batch=True, exact_impacts=True),
+    presets={"default": Settings}, ladder=ladder)
+
+__all__ = ["ENGINE", "Settings", "simulate", "ladder"]

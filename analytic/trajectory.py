@@ -77,6 +77,29 @@ class EnergyLog:
 
 
 @dataclass(frozen=True, eq=False)
+class RawHistory:
+    """What a contact engine hands over: its sampled states (arrays as in Trajectory),
+    how the run ended, and its own diagnostics (`extras`, scalars, one vocabulary: see
+    `isorock.analytic.kinematics.contact_extras`). Impacts, effective β, uplifts and
+    overturning are measured from it outside the engine, the same way for every engine
+    (`isorock.validate.measure.measure`). `stop_reason` says why the history ends
+    early, if it does ('non-finite', 'lying', 'falling'; see kinematics.first_stop)."""
+
+    engine: str
+    system: System
+    t: np.ndarray
+    u: np.ndarray
+    u_dot: np.ndarray
+    theta: np.ndarray
+    theta_dot: np.ndarray
+    status: Status = Status.COMPLETED
+    message: str = ""
+    runtime_s: float = 0.0
+    extras: dict = field(default_factory=dict)
+    stop_reason: str | None = None
+
+
+@dataclass(frozen=True, eq=False)
 class Trajectory:
     engine: str
     system: System

@@ -1,3 +1,31 @@
-"""The block on its base in PyBullet: `bullet_models.scene` (engine "bullet").
+"""The rocking block as a PyBullet scene: `scene.py` (the bodies, and the same scene as
+an SDF file), `settings.py` (numerical settings, measured), `simulate.py` (stepping).
+Measurements behind every default: docs/bullet.md."""
+from isorock.analytic.engine_protocol import Capabilities, EngineSpec
 
-Nothing is imported here, so listing engines never loads PyBullet."""
+from .scene import SCENE_FORMAT, build, connect, scene_text
+from .settings import Settings, settings_for, settings_for_timestep
+from .simulate import simulate
+
+
+def ladder(quick: bool):
+    """Work-precision ladder: physics steps, the control step kept near 4 ms."""
+    steps = (1 / 500, 1 / 1000, 1 / 4000) if quick else (1 / 500, 1 / 1000, 1 / 2000, 1 / 5000, 1 / 10000)
+    return [(f"dt={dt:.3g}", settings_for_timestep(dt)) for dt in steps]
+
+
+ENGINE = EngineSpec(
+    name="bullet", label="PyBullet", settings_type=Settings, simulate=simulate,
+    capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False),
+    settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
+    presets={
+        "default": Settings,
+        # 1 ms physics steps: β within ~1% at three times the speed (docs/bullet.md)
+        "fast": lambda: settings_for_timestep(1e-3),
+        # 0.1 ms physics steps: β within ~0.1%
+        "fine": lambda: settings_for_timestep(1e-4),
+    },
+    ladder=ladder)
+
+__all__ = ["ENGINE", "Settings", "simulate", "scene_text", "build", "connect", "settings_for",
+           "settings_for_timestep"]

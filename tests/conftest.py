@@ -5,6 +5,12 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
+
+
+def pytest_addoption(parser):
+    parser.addoption("--regenerate-golden", action="store_true", default=False,
+                     help="write tests/golden/<engine>.json from this run instead of comparing with it "
+                          "(only after checking that a change of numbers is intended)")
 RECORDS = ROOT.parent / "shared" / "data" / "records"
 
 

@@ -3,22 +3,29 @@ the limits of validate/tolerances.py, and against the golden metrics in tests/go
 
 Regenerate the goldens (only after checking that a change of numbers is intended):
 
-    python -m isorock.validate.report --regenerate-golden            # all importable engines
-    python -m isorock.validate.report --regenerate-golden mujoco     # one engine
+    python -m pytest tests/test_regression.py -k golden --regenerate-golden          # every engine
+    python -m pytest tests/test_regression.py -k "golden and mujoco" --regenerate-golden
 """
 from __future__ import annotations
 
 import functools
+import importlib.metadata
 import json
 import math
+from pathlib import Path
 
 import pytest
 
 from isorock.analytic.coefficients import beta as beta_closed
-from isorock.validate.compare import compare, exact_first_impact_time
-from isorock.validate.engines import ENGINE_NAMES, get_engine
-from isorock.validate.report import GOLDEN_DIR, effective_beta, golden_metrics, golden_scenarios
-from isorock.validate.tolerances import GOLDEN_TOLERANCES, TOLERANCES, GoldenTolerance, tolerance
+from isorock.validate.compare import compare, exact_first_impact_time, first_tilt
+from isorock.validate.engines import CONTACT_ENGINES, ENGINE_NAMES, REFERENCE, get_engine
+from isorock.validate.output import write_json
+from isorock.validate.report_run import effective_beta
+from isorock.validate.scenarios import ROBUST_SINE, golden_scenarios
+from isorock.validate.tolerances import (GOLDEN_TOLERANCES, TOLERANCES, GoldenTolerance, golden_tolerances,
+                                         tolerance)
+
+GOLDEN_DIR = Path(__file__).resolve().parent / "golden"
 
 
 def _why_not_importable(name):
@@ -37,16 +44,16 @@ def engine_param(name):
 
 
 ALL = [engine_param(n) for n in ENGINE_NAMES]
-CONTACT = [engine_param(n) for n in ENGINE_NAMES if n != "analytic"]
-SCENARIOS = {name: (system, motion, duration, theta0) for name, system, motion, duration, theta0 in golden_scenarios()}
+CONTACT = [engine_param(n) for n in CONTACT_ENGINES]
+SCENARIOS = {sc.name: sc for sc in golden_scenarios()}
 
 
 @functools.lru_cache(maxsize=None)
 def run(engine: str, scenario: str):
     """Each (engine, scenario) is simulated once per session: the runs are a few seconds
     of simulated time each, shared by the tolerance tests and the golden test."""
-    system, motion, duration, theta0 = SCENARIOS[scenario]
-    return get_engine(engine).simulate(system, motion, duration=duration, theta0=theta0 * system.alpha)
+    sc = SCENARIOS[scenario]
+    return get_engine(engine).simulate(sc.system, sc.ground_motion(), duration=sc.duration, theta0=sc.theta0)
 
 
 def within(engine, metric, value, context=""):
@@ -72,8 +79,8 @@ def test_free_rocking_beta(engine, scenario):
 
 @pytest.mark.parametrize("engine", ALL)
 def test_time_to_first_impact(engine):
-    system, _, _, theta0 = SCENARIOS["free_fixed"]
-    t1 = exact_first_impact_time(system, theta0 * system.alpha)
+    sc = SCENARIOS["free_fixed"]
+    t1 = exact_first_impact_time(sc.system, sc.theta0)
     tr = run(engine, "free_fixed")
     assert tr.counted_impacts, f"{engine}: no impact in free rocking"
     t = tr.counted_impacts[0].t
@@ -81,19 +88,19 @@ def test_time_to_first_impact(engine):
 
 
 def test_exact_first_impact_time_matches_model_md():
-    system, _, _, theta0 = SCENARIOS["free_fixed"]
-    assert exact_first_impact_time(system, theta0 * system.alpha) == pytest.approx(0.5014170, abs=5e-8)
+    sc = SCENARIOS["free_fixed"]
+    assert exact_first_impact_time(sc.system, sc.theta0) == pytest.approx(0.5014170, abs=5e-8)
 
 
 @pytest.mark.parametrize("scenario", list(SCENARIOS))
 def test_analytic_every_impact_is_the_closed_form(scenario):
-    tr = run("analytic", scenario)
+    tr = run(REFERENCE, scenario)
     ref = beta_closed(tr.system.slenderness, tr.system.mu)
     continued = [i for i in tr.impacts if i.continued]
     assert continued, f"{scenario}: no impact"
     worst = max(abs(i.beta / ref - 1) for i in continued)
-    within("analytic", "beta_rel_error", worst, f"{scenario}, every impact")
-    within("analytic", "energy_residual", tr.energy.relative_residual, scenario)
+    within(REFERENCE, "beta_rel_error", worst, f"{scenario}, every impact")
+    within(REFERENCE, "energy_residual", tr.energy.relative_residual, scenario)
 
 
 # --- contact engines against the analytic model ------------------------------------------
@@ -101,7 +108,7 @@ def test_analytic_every_impact_is_the_closed_form(scenario):
 @pytest.mark.parametrize("engine", CONTACT)
 @pytest.mark.parametrize("scenario", ["pulse_isolated", "pulse_fixed"])
 def test_pulse_agrees_with_analytic(engine, scenario):
-    c = compare(run(engine, scenario), run("analytic", scenario))
+    c = compare(run(engine, scenario), run(REFERENCE, scenario))
     within(engine, "theta_max_diff", abs(c.theta_max_diff),
            f"{scenario} (θmax/α {c.theta_max_over_alpha:.4f} against {c.theta_max_over_alpha_ref:.4f})")
     assert c.overturn_agree, f"{engine} {scenario}: overturned {c.overturned}, analytic {c.overturned_ref}"
@@ -114,13 +121,40 @@ def test_pulse_agrees_with_analytic(engine, scenario):
 
 @pytest.mark.parametrize("engine", CONTACT)
 def test_deterministic(engine):
-    system, motion, duration, _ = SCENARIOS["pulse_fixed"]
-    again = get_engine(engine).simulate(system, motion, duration=duration)
+    sc = SCENARIOS["pulse_fixed"]
+    again = get_engine(engine).simulate(sc.system, sc.ground_motion(), duration=sc.duration)
     first = run(engine, "pulse_fixed")
     assert (again.theta == first.theta).all() and (again.u == first.u).all(), f"{engine}: two runs differ"
 
 
 # --- golden metrics -----------------------------------------------------------------------
+
+def golden_metrics(engine: str) -> dict:
+    """The numbers tests/golden/<engine>.json holds, from this session's runs."""
+    out = {}
+    for name, sc in SCENARIOS.items():
+        tr = run(engine, name)
+        m = {"theta_max_over_alpha": tr.theta_max_over_alpha, "impacts": tr.impact_count,
+             "overturned": tr.overturned, "u_max": tr.u_max}
+        if sc.theta0_over_alpha:
+            eb = effective_beta(tr)
+            m["beta_effective"] = eb["beta"]
+            m["first_impact_time"] = eb["first_impact_time"]
+        else:
+            m["first_uplift"] = first_tilt(tr)
+        out[name] = m
+    return out
+
+
+def _versions() -> dict:
+    out = {}
+    for dist in ("isorock", "numpy", "scipy", "mujoco", "pybullet", "numba"):
+        try:
+            out[dist] = importlib.metadata.version(dist)
+        except importlib.metadata.PackageNotFoundError:
+            out[dist] = "not installed"
+    return out
+
 
 def golden_mismatches(actual: dict, golden: dict, tolerances: dict[str, GoldenTolerance]) -> list[str]:
     """One line per key that differs beyond its tolerance, with both values and the
@@ -146,23 +180,30 @@ def golden_mismatches(actual: dict, golden: dict, tolerances: dict[str, GoldenTo
     return out
 
 
+REGENERATE = "python -m pytest tests/test_regression.py -k 'golden and {engine}' --regenerate-golden"
+
+
 @pytest.mark.parametrize("engine", ALL)
-def test_golden(engine):
+def test_golden(engine, request):
     path = GOLDEN_DIR / f"{engine}.json"
-    assert path.is_file(), f"{path} missing: run `python -m isorock.validate.report --regenerate-golden {engine}`"
+    actual = json.loads(json.dumps(golden_metrics(engine)))
+    if request.config.getoption("--regenerate-golden"):
+        write_json(path, {"engine": engine, "versions": _versions(), "motion": ROBUST_SINE,
+                          "regenerate": REGENERATE.format(engine=engine), "metrics": actual})
+        pytest.skip(f"regenerated {path}")
+    assert path.is_file(), f"{path} missing: run `{REGENERATE.format(engine=engine)}`"
     golden = json.loads(path.read_text())["metrics"]
-    actual = json.loads(json.dumps(golden_metrics(engine, runs={s: run(engine, s) for s in SCENARIOS})))
-    problems = golden_mismatches(actual, golden, GOLDEN_TOLERANCES)
+    problems = golden_mismatches(actual, golden, golden_tolerances(engine))
     assert not problems, (f"{engine} differs from {path.name} (if intended, regenerate with "
-                          f"`python -m isorock.validate.report --regenerate-golden {engine}`):\n  " + "\n  ".join(problems))
+                          f"`{REGENERATE.format(engine=engine)}`):\n  " + "\n  ".join(problems))
 
 
 def test_golden_comparison_can_fail():
     golden = {"s": {"theta_max_over_alpha": 0.5, "impacts": 7, "overturned": False}}
     same = {"s": {"theta_max_over_alpha": 0.5 + 1e-9, "impacts": 7, "overturned": False}}
     off = {"s": {"theta_max_over_alpha": 0.51, "impacts": 9, "overturned": True}}
-    assert golden_mismatches(same, golden, GOLDEN_TOLERANCES) == []
-    problems = golden_mismatches(off, golden, GOLDEN_TOLERANCES)
+    assert golden_mismatches(same, golden, golden_tolerances("mujoco")) == []
+    problems = golden_mismatches(off, golden, golden_tolerances("mujoco"))
     assert len(problems) == 3
     assert "0.51 against golden 0.5, difference +0.01" in problems[1] or any(
         "difference +0.01" in p for p in problems), problems
@@ -173,3 +214,5 @@ def test_every_tolerance_has_a_reason():
         assert tol.reason.strip() and tol.kind in ("max", "min", "equal"), key
     for key, tol in GOLDEN_TOLERANCES.items():
         assert tol.reason.strip() and tol.rtol >= 0 and tol.atol >= 0, key
+    for engine in ENGINE_NAMES:  # every golden key of every engine has its own tolerance
+        assert set(golden_tolerances(engine)) >= {"theta_max_over_alpha", "u_max", "impacts"}, engine

@@ -21,70 +21,41 @@ import numpy as np
 
 from isorock.analytic.hybrid import AnalyticSettings
 from isorock.analytic.hybrid import simulate as reference_simulate
-from isorock.analytic.motion import GroundMotion, load_motion
-from isorock.analytic.system import System, paper_system
+from isorock.validate.scenarios import KOBE, Scenario, bench_scenarios
 
-RECORDS = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "records"
-KOBE = RECORDS / "RSN1106_KOBE_KJM000.AT2"
 REFERENCE = AnalyticSettings(rtol=1e-12, atol=1e-14)
 N_BETA = 4  # impacts whose effective β error is reported
-GOALS = {  # issue 6: simulated s per wall s at a β error no larger than …
+#: Simulated s per wall s asked of an engine at a β error no larger than …
+GOALS = {
     "mujoco": (1000.0, 0.005),
     "bullet": (200.0, 0.01),
 }
-
-
-@dataclass(frozen=True)
-class Scenario:
-    name: str
-    system: System
-    motion: GroundMotion
-    duration: float
-    theta0: float = 0.0  # fraction of α
-
-
-def scenarios(quick: bool) -> list[Scenario]:
-    out = [
-        Scenario("free-rocking", paper_system(fixed_base=True), GroundMotion.zero(), 3.0 if quick else 5.0, 0.5),
-        # isolated, rocks 7 times without overturning (θmax/α 0.66)
-        Scenario("pulse", paper_system(), load_motion("sine:amp=0.4,freq=1,cycles=2"), 8.0),
-    ]
-    if KOBE.is_file():
-        out.append(Scenario("kobe-40s", paper_system(), load_motion(str(KOBE)).trimmed(0, 40), 40.0))
-    return out
+#: Runs shorter than this (s) are repeated FAST_REPEATS times: their medians need more samples.
+FAST_RUN = 0.1
+FAST_REPEATS = 5
 
 
 def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
-    """(label, settings) from cheapest to most accurate."""
+    """(label, settings) from cheapest to most accurate: the engine's own ladder."""
     from isorock.validate.engines import get_engine
-    if engine in ("analytic", "analytic-fast"):
-        # max_step relaxed so the tolerance, not the step cap, sets the accuracy
-        tols = (1e-4, 1e-7, 1e-10) if quick else (1e-4, 1e-6, 1e-8, 1e-10)
-        return [(f"rtol={r:g}", AnalyticSettings(rtol=r, atol=r * 1e-2, max_step=0.1)) for r in tols]
-    module = get_engine(engine).module
-    if engine == "mujoco":
-        steps = (2e-3, 1e-3, 2.5e-4) if quick else (2e-3, 1e-3, 5e-4, 2.5e-4, 1e-4)
-    else:
-        steps = (1 / 500, 1 / 1000, 1 / 4000) if quick else (1 / 500, 1 / 1000, 1 / 2000, 1 / 5000, 1 / 10000)
-    tie = getattr(module, "settings_for_timestep", None)
-    return [(f"dt={dt:.3g}", tie(dt) if tie else replace(module.Settings(), timestep=dt)) for dt in steps]
-
-
-def _simulator(engine: str):
-    from isorock.validate.engines import get_engine
-    return get_engine(engine).simulate
+    spec = get_engine(engine).spec
+    return spec.ladder(quick) if spec.ladder else [("default", spec.settings())]
 
 
 def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
     from isorock.validate.compare import compare
-    run = _simulator(engine)
-    kwargs = dict(settings=settings, duration=sc.duration, theta0=sc.theta0 * sc.system.alpha)
+    from isorock.validate.engines import get_engine
+    run = get_engine(engine).simulate
+    motion = sc.ground_motion()
+    kwargs = dict(settings=settings, duration=sc.duration, theta0=sc.theta0)
     walls, loops, traj = [], [], None
-    for _ in range(repeats):
+    k = 0
+    while k < repeats or (k < FAST_REPEATS and statistics.median(walls) < FAST_RUN):
         start = time.perf_counter()
-        traj = run(sc.system, sc.motion, **kwargs)
+        traj = run(sc.system, motion, **kwargs)
         walls.append(time.perf_counter() - start)
         loops.append(traj.runtime_s)
+        k += 1
     wall = statistics.median(walls)
     loop = statistics.median(loops)
     c = compare(traj, ref)
@@ -103,21 +74,17 @@ def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
 
 
 def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], dict]:
-    from isorock.validate.engines import ALL_ENGINES
-    engines = list(engines or ALL_ENGINES)
-    if "analytic-fast" in engines and not _fast_available():
-        engines.remove("analytic-fast")
+    from isorock.validate.engines import ALL_ENGINES, get_engine
+    engines = [e for e in (engines or ALL_ENGINES) if _importable(e)]
     rows = []
-    for sc in scenarios(quick):
-        ref = reference_simulate(sc.system, sc.motion, settings=REFERENCE, duration=sc.duration,
-                                 theta0=sc.theta0 * sc.system.alpha)
+    for sc in bench_scenarios(quick):
+        motion = sc.ground_motion()
+        ref = reference_simulate(sc.system, motion, settings=REFERENCE, duration=sc.duration, theta0=sc.theta0)
         for engine in engines:
-            if engine == "analytic-fast":  # compile outside the timing
-                _simulator(engine)(sc.system, sc.motion, duration=min(sc.duration, 1.0),
-                                   theta0=sc.theta0 * sc.system.alpha)
+            # once outside the timing: a compiled kernel loads (or compiles) on its first call
+            get_engine(engine).simulate(sc.system, motion, duration=min(sc.duration, 1.0), theta0=sc.theta0)
             for label, settings in ladder(engine, quick):
-                repeats = 5 if engine == "analytic-fast" else (1 if quick else 3)
-                row = measure(engine, label, settings, sc, ref, repeats)
+                row = measure(engine, label, settings, sc, ref, 1 if quick else 3)
                 rows.append(row)
                 if progress:
                     print(f"  {sc.name:13s} {engine:13s} {label:12s} {row['sim_per_wall']:10.1f} sim s/wall s "
@@ -128,22 +95,27 @@ def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], 
     return rows, extra
 
 
-def _fast_available() -> bool:
+def _importable(engine: str) -> bool:
+    from isorock.validate.engines import get_engine
     try:
-        import isorock.analytic.fast  # noqa: F401
+        get_engine(engine)
         return True
     except ImportError:
         return False
+
+
+def _fast_available() -> bool:
+    return _importable("analytic-fast")
 
 
 def speed_ratio(quick: bool) -> dict | None:
     """The compiled kernel against solve_ivp (DOP853 with events) at the same tolerance,
     side by side in this run, on the Kobe scenario (the kernel module owns the measurement)."""
     from isorock.analytic.fast import benchmark_against_solve_ivp
-    kobe = next((sc for sc in scenarios(quick) if sc.name == "kobe-40s"), None)
+    kobe = next((sc for sc in bench_scenarios(quick) if sc.name == "kobe-40s"), None)
     if kobe is None:
         return None
-    return benchmark_against_solve_ivp(kobe.system, kobe.motion, duration=kobe.duration,
+    return benchmark_against_solve_ivp(kobe.system, kobe.ground_motion(), duration=kobe.duration,
                                        repeats=5 if quick else 20)
 
 
@@ -187,7 +159,7 @@ def markdown(rows, extra) -> str:
         lines += ["", f"The Kobe scenario was not run: {KOBE} not found (the shared records sit beside the "
                       "repository)."]
     if GOALS:
-        lines += ["", "## Goals (issue 6)", ""]
+        lines += ["", "## Speed goals", ""]
         for engine, (speed, err) in GOALS.items():
             ok = [r for r in rows if r["engine"] == engine and r["scenario"] == "free-rocking"
                   and r["beta_error_max"] is not None and r["beta_error_max"] <= err]
@@ -238,6 +210,11 @@ def plot(rows, path) -> None:
     plt.close(fig)
 
 
+def _engine_names():
+    from isorock.validate.engines import ALL_ENGINES
+    return ALL_ENGINES
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser("bench", help="work-precision benchmarks of every engine",
                        description=__doc__.split("\n\n")[0])
@@ -245,7 +222,7 @@ def add_parser(sub) -> None:
     p.add_argument("--out", default="isorock-bench", metavar="DIR",
                    help="folder for bench.csv, bench.md, bench.png, bench.json (default: %(default)s)")
     p.add_argument("--engines", nargs="+", metavar="ENGINE",
-                   help="engines to bench: analytic, analytic-fast, mujoco, bullet (default: all)")
+                   help="engines to bench (default: all registered: %s)" % ", ".join(_engine_names()))
     p.set_defaults(func=cmd_bench)
 
 

@@ -158,7 +158,7 @@ def build_parser() -> argparse.ArgumentParser:
     add_engine_options(p)
     p.set_defaults(func=cmd_run)
 
-    p = sub.add_parser("scene", help="write the model file (MJCF or URDF) a contact engine runs",
+    p = sub.add_parser("scene", help="write the model file a contact engine runs (MuJoCo: MJCF, PyBullet: SDF)",
                        description="Write the model file a contact engine runs. Without system options it is "
                                    "the paper's block (H 2.0 m, B 0.7 m, m = m_b = 3800 kg, T 1.5 s, ξ 0.2).")
     p.add_argument("--engine", required=True, help="mujoco or bullet")
@@ -242,16 +242,28 @@ def cmd_scene(a) -> int:
     from isorock.validate.output import write_text
     engine = get_engine(a.engine)
     if not engine.has_scene:
-        raise InputError(f"engine = {a.engine!r}: has no model file to write (mujoco and bullet do)")
+        raise InputError(f"engine = {a.engine!r}: has no model file to write (those that do: "
+                         f"{', '.join(_engines_with_scenes())})")
     system = system_from_args(a, default_isolator=(1.5, 0.2))
     settings = engine_settings_from_args(engine, a)
-    write_text(a.out, engine.module.scene_text(system, settings))
-    suffix = getattr(engine.module, "SCENE_SUFFIX", "")
-    if suffix and not str(a.out).lower().endswith(suffix):
-        print(f"note: {a.engine} scenes are {suffix[1:].upper()} files; {a.out} holds {suffix[1:].upper()}",
-              file=sys.stderr)
+    write_text(a.out, engine.scene_text(system, settings))
+    kind, suffix = engine.spec.scene_format
+    if not str(a.out).lower().endswith(suffix):
+        print(f"note: {a.engine} scenes are {kind} files ({suffix}); {a.out} holds {kind}", file=sys.stderr)
     print(a.out)
     return 0
+
+
+def _engines_with_scenes():
+    from isorock.validate.engines import ALL_ENGINES, get_engine
+    out = []
+    for name in ALL_ENGINES:
+        try:
+            if get_engine(name).has_scene:
+                out.append(name)
+        except ImportError:
+            continue
+    return out
 
 
 def main(argv=None) -> int:

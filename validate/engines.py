@@ -1,65 +1,110 @@
 """The engine registry: every command, report and test loops over these names.
 
-An engine is a module exposing
-    simulate(system, motion, *, settings=None, duration=None, theta0=0.0,
-             impact_threshold=0.01, progress=None) -> Trajectory
-    Settings            a frozen dataclass of its own numerical settings
-and optionally `scene_text(system, settings) -> str` (the model file a user can open)
-with `SCENE_SUFFIX`, and `settings_for(**overrides) -> Settings` where some settings
-must follow others (MuJoCo's contact time constant follows its timestep). Modules are imported lazily so `isorock beta` never loads a
-physics engine.
+Each entry names a package exposing `ENGINE`, an `isorock.analytic.engine_protocol.
+EngineSpec` (simulate, its frozen Settings, presets, what it can export and supports).
+`Engine.simulate` always returns the shared Trajectory: a contact engine's raw history
+is measured here (`isorock.validate.measure`), the same way for every engine, so no
+engine measures anything itself. Packages are imported lazily, so `isorock beta` never
+loads a physics engine.
 """
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass, fields, replace
-from types import ModuleType
+from dataclasses import dataclass, fields
 
+from isorock.analytic.engine_protocol import EngineSpec
 from isorock.analytic.errors import InputError
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, Trajectory
 
 ENGINE_MODULES = {
     "analytic": "isorock.analytic.engine",
-    "mujoco": "isorock.mujoco_models.scene",
-    "bullet": "isorock.bullet_models.scene",
+    "mujoco": "isorock.mujoco_models",
+    "bullet": "isorock.bullet_models",
     # the same model as "analytic", compiled (analytic.fast): for speed, by name
     "analytic-fast": "isorock.analytic.fast_engine",
 }
+#: The engine every other is compared with.
+REFERENCE = "analytic"
 #: The engines every report and comparison loops over: the reference and the contact engines.
 ENGINE_NAMES = ("analytic", "mujoco", "bullet")
-CONTACT_ENGINES = ("mujoco", "bullet")
+CONTACT_ENGINES = tuple(n for n in ENGINE_NAMES if n != REFERENCE)
 #: Every engine that can be asked for by name (bench and stress run them all).
 ALL_ENGINES = tuple(ENGINE_MODULES)
 
 
 @dataclass(frozen=True)
 class Engine:
+    """A registered engine: its spec, and `simulate` that returns a measured Trajectory."""
+
     name: str
-    module: ModuleType
+    spec: EngineSpec
+
+    @property
+    def label(self) -> str:
+        return self.spec.label
+
+    @property
+    def capabilities(self):
+        return self.spec.capabilities
 
     @property
     def Settings(self):
-        return self.module.Settings
-
-    def simulate(self, system, motion, **kwargs):
-        return self.module.simulate(system, motion, **kwargs)
+        return self.spec.settings_type
 
     def settings(self, **overrides):
-        """The engine's default settings with `overrides` applied; an override the
-        engine does not have is an InputError naming it."""
+        """The engine's default settings with `overrides` applied (settings that follow
+        others, e.g. MuJoCo's contact parameters after its timestep, follow them); an
+        override the engine does not have is an InputError naming it."""
         known = {f.name for f in fields(self.Settings)}
         unknown = sorted(k for k in overrides if k not in known)
         if unknown:
             raise InputError(f"{', '.join(unknown)}: not a setting of engine {self.name!r} "
                              f"(its settings: {', '.join(sorted(known))})")
-        tie = getattr(self.module, "settings_for", None)
-        return tie(**overrides) if tie else replace(self.Settings(), **overrides)
+        return self.spec.settings(**overrides)
+
+    def preset(self, name: str):
+        """The Settings of a named preset (ENGINE:PRESET on the command line)."""
+        presets = self.spec.presets
+        if name not in presets:
+            raise InputError(f"preset = {name!r}: not a preset of engine {self.name!r} "
+                             f"(its presets: {', '.join(presets) or 'none'})")
+        return presets[name]()
 
     @property
     def has_scene(self) -> bool:
-        return hasattr(self.module, "scene_text")
+        return self.spec.scene_text is not None
+
+    def scene_text(self, system, settings=None) -> str:
+        return self.spec.scene_text(system, settings)
+
+    def simulate(self, system, motion=None, *, settings=None, duration=None, theta0=0.0,
+                 impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule="pi/2",
+                 progress=None) -> Trajectory:
+        """Run the engine and measure its history: θ0 in rad; impact_threshold as a
+        fraction of α (model.md's counting rule); contact_window (s) and overturn_rule
+        are how a contact engine's history is measured (validate.measure)."""
+        from isorock.validate import measure
+        kwargs = dict(settings=settings, duration=duration, theta0=theta0, progress=progress)
+        if self.capabilities.exact_impacts:
+            kwargs["impact_threshold"] = impact_threshold
+        out = self.spec.simulate(system, motion, **kwargs)
+        if isinstance(out, RawHistory):
+            from isorock.analytic.motion import GroundMotion
+            out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
+                                  window=measure.CONTACT_WINDOW if contact_window is None else contact_window,
+                                  overturn_rule=overturn_rule)
+        return out
 
 
 def get_engine(name: str) -> Engine:
     if name not in ENGINE_MODULES:
         raise InputError(f"engine = {name!r}: must be one of {', '.join(ALL_ENGINES)}")
-    return Engine(name, importlib.import_module(ENGINE_MODULES[name]))
+    return Engine(name, importlib.import_module(ENGINE_MODULES[name]).ENGINE)
+
+
+def engine_label(name: str) -> str:
+    """The name figures and reports show, without importing a missing engine."""
+    try:
+        return get_engine(name).label
+    except ImportError:
+        return name

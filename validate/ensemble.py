@@ -16,9 +16,9 @@ import numpy as np
 from isorock.analytic.errors import InputError, require
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
+from isorock.validate.engines import REFERENCE
 
 DEFAULT_SCALES = (0.25, 1.5, 21)  # first, last factor of the motion's PGA, number of steps
-REFERENCE = "analytic"
 #: θmax/α above which a case counts as rocking (model.md's impact threshold).
 ROCKING = 0.01
 

@@ -14,18 +14,23 @@ from matplotlib.figure import Figure
 
 from isorock.analytic.coefficients import beta, beta2, beta_housner
 from isorock.analytic.system import STANDARD_GRAVITY
+from isorock.validate.engines import ALL_ENGINES, REFERENCE, engine_label
 
-ENGINE_STYLE = {
-    "analytic": dict(color="black", linestyle="-", marker="o", label="analytic"),
-    "mujoco": dict(color="tab:blue", linestyle="--", marker="s", label="MuJoCo"),
-    "bullet": dict(color="tab:red", linestyle=":", marker="^", label="PyBullet"),
-}
+#: The reference is drawn black and solid; the other engines take these in registry order.
+PALETTE = (("tab:blue", "--", "s"), ("tab:red", ":", "^"), ("tab:green", "-.", "v"), ("tab:purple", "--", "D"),
+           ("tab:brown", ":", "P"))
 MU_COLORS = {0.5: "tab:green", 1.0: "tab:blue", 1.5: "tab:orange", 2.0: "tab:purple"}
 DPI = 110
 
 
 def style(engine: str) -> dict:
-    return ENGINE_STYLE.get(engine, dict(color="gray", linestyle="-.", marker="d", label=engine))
+    """Line and marker style of an engine, the same in every figure."""
+    if engine == REFERENCE:
+        return dict(color="black", linestyle="-", marker="o", label=engine_label(engine))
+    others = [e for e in ALL_ENGINES if e != REFERENCE]
+    i = others.index(engine) if engine in others else len(others)
+    color, linestyle, marker = PALETTE[i % len(PALETTE)]
+    return dict(color=color, linestyle=linestyle, marker=marker, label=engine_label(engine))
 
 
 def _save(fig: Figure, path) -> None:

@@ -1,9 +1,14 @@
-"""Measuring, the same way for every engine (model.md): impacts counted from a θ
-history, and effective β per counted impact from states outside the contact
-transient mapped to θ = 0 with the rigid equations.
+"""Measuring, the same way for every engine (model.md): a contact engine's raw history
+(`RawHistory`) becomes the shared `Trajectory` here, never inside the engine.
 
-Contact engines hand their raw histories to `contact_trajectory`, which returns the
-shared `Trajectory`; no engine measures anything itself.
+- impacts: every sign change of θ is an impact; it is counted when the largest |θ| of
+  the half-cycle ending in it exceeds `impact_threshold`·α;
+- effective β per counted impact: the states `window` seconds outside the crossing
+  mapped to θ = 0 with the rigid equations (finite differences across a soft contact
+  are biased by about 1%); impacts that are not counted (contact chatter) carry NaN
+  velocities, since their β measures the contact more than the block;
+- uplifts: where |θ| leaves the band REST_FRACTION·α after resting;
+- overturning: judged from the history by the run's rule (`judge_overturning`).
 """
 from __future__ import annotations
 
@@ -13,10 +18,11 @@ import numpy as np
 
 from isorock.analytic.coefficients import beta as beta_closed_form
 from isorock.analytic.hybrid import map_to_impact
+from isorock.analytic.kinematics import LYING, LYING_SLACK
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, Trajectory, half_cycles
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, RawHistory, Trajectory, half_cycles
 
 #: How far (s) before and after a sign change the states are taken: well outside the
 #: contact transient of the default scenes (time constants of a few ms), and capped at
@@ -24,30 +30,57 @@ from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, Trajec
 CONTACT_WINDOW = 0.03
 #: |θ| below this fraction of α counts as "down" when deriving the mode of a contact engine.
 REST_FRACTION = 1e-3
+#: model.md's overturning rules: "pi/2" (the default: overturned when |θ| reaches π/2, or
+#: the run ends with |θ| > α) and the conservative "alpha" (overturned once |θ| reaches α).
+OVERTURN_RULES = ("pi/2", "alpha")
 
 
-def contact_trajectory(engine: str, system: System, motion: GroundMotion, *, t, u, u_dot, theta, theta_dot,
-                       impact_threshold: float = DEFAULT_IMPACT_THRESHOLD, runtime_s: float = 0.0,
-                       status: Status = Status.COMPLETED, message: str = "", extras: dict | None = None,
-                       window: float = CONTACT_WINDOW) -> Trajectory:
-    """The shared Trajectory of a contact engine: modes from |θ|, impacts counted by
-    model.md's rule, effective β mapped to θ = 0, uplifts where |θ| leaves the rest
-    band, overturning where |θ| ≥ α."""
-    t, u, u_dot, theta, theta_dot = (np.asarray(x, dtype=float) for x in (t, u, u_dot, theta, theta_dot))
-    alpha = system.alpha
-    rest = REST_FRACTION * alpha
+def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = DEFAULT_IMPACT_THRESHOLD,
+            window: float = CONTACT_WINDOW, overturn_rule: str = "pi/2") -> Trajectory:
+    """The shared Trajectory of a contact engine's raw history: modes from |θ|, every
+    impact with model.md's `counted` flag, effective β of the counted ones, uplifts,
+    and overturning by `overturn_rule`."""
+    t, u, u_dot, theta, theta_dot = (np.asarray(x, dtype=float)
+                                     for x in (raw.t, raw.u, raw.u_dot, raw.theta, raw.theta_dot))
+    system = raw.system
+    rest = REST_FRACTION * system.alpha
     mode = np.where(theta > rest, 1, np.where(theta < -rest, -1, 0)).astype(np.int8)
-    over = np.nonzero(np.abs(theta) >= alpha)[0]
-    overturn_time = float(t[over[0]]) if over.size else None
-    if over.size:
-        status, message = Status.OVERTURNED, f"|θ| reached α at t = {overturn_time:.6g} s"
+    overturned, overturn_time = judge_overturning(t, theta, system.alpha, rule=overturn_rule,
+                                                  lying=raw.stop_reason in ("lying", "falling"))
+    status, message = raw.status, raw.message
+    if overturned and status == Status.COMPLETED:
+        status = Status.OVERTURNED
+        message = (f"|θ| reached α at t = {overturn_time:.6g} s" if overturn_rule == "alpha" else
+                   f"overturned: last passed α at t = {overturn_time:.6g} s"
+                   + {"lying": " and came to lie on its side", "falling": " and falls (fixed base, motion over)"}
+                   .get(raw.stop_reason, " and ended beyond it"))
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
                                 impact_threshold=impact_threshold, window=window)
-    uplift_times = _uplifts(t, mode, window)
-    return Trajectory(engine=engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
-                      mode=mode, impacts=impacts, uplift_times=uplift_times, overturned=over.size > 0,
-                      overturn_time=overturn_time, impact_threshold=impact_threshold, runtime_s=runtime_s,
-                      status=status, message=message, extras=dict(extras or {}))
+    return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
+                      mode=mode, impacts=impacts, uplift_times=_uplifts(t, mode, window), overturned=overturned,
+                      overturn_time=overturn_time, impact_threshold=impact_threshold, runtime_s=raw.runtime_s,
+                      status=status, message=message, extras=dict(raw.extras))
+
+
+def judge_overturning(t, theta, alpha: float, *, rule: str = "pi/2", lying: bool = False):
+    """(overturned, time) of a sampled history by model.md's rule. "pi/2": overturned when
+    |θ| reaches π/2 (or `lying`: the engine stopped the run because the block lies on its
+    side or, on a fixed base after the motion, falls) or the history ends with |θ| > α;
+    the time is the last time |θ| passed α upwards. "alpha": overturned once |θ| reaches
+    α, at the first such time."""
+    if rule not in OVERTURN_RULES:
+        raise ValueError(f"overturn rule {rule!r}: must be one of {', '.join(OVERTURN_RULES)}")
+    t, a = np.asarray(t, dtype=float), np.abs(np.asarray(theta, dtype=float))
+    beyond = a >= alpha
+    if not beyond.any():
+        return False, None
+    if rule == "alpha":
+        return True, float(t[int(np.argmax(beyond))])
+    if not (lying or beyond[-1] or np.max(a) >= LYING - LYING_SLACK):
+        return False, None
+    rising = np.flatnonzero(beyond[1:] & ~beyond[:-1]) + 1
+    k = int(rising[-1]) if rising.size else 0
+    return True, float(t[k])
 
 
 def _uplifts(t, mode, rest_time):
@@ -71,26 +104,29 @@ def _uplifts(t, mode, rest_time):
 
 def effective_impacts(system, motion, t, u, u_dot, theta, theta_dot, *, impact_threshold=DEFAULT_IMPACT_THRESHOLD,
                       window=CONTACT_WINDOW) -> tuple[Impact, ...]:
-    """One Impact per counted sign change of θ, its velocities the rigid-model images
-    at θ = 0 of the states `window` seconds before and after the crossing."""
+    """One Impact per sign change of θ. Counted ones (model.md's rule) carry the
+    rigid-model images at θ = 0 of the states `window` seconds before and after the
+    crossing; the others NaN velocities."""
     changes = half_cycles(theta)
-    counted = {i for i, peak in changes if peak > impact_threshold * system.alpha}
     out = []
     for n, (i, peak) in enumerate(changes):
-        if i not in counted:
-            continue
         t_cross = _crossing_time(t, theta, i)
-        t_prev = t[changes[n - 1][0]] if n > 0 else t[0]
-        t_next = t[changes[n + 1][0]] if n + 1 < len(changes) else t[-1]
-        pre = _mapped(system, motion, t, u, u_dot, theta, theta_dot,
-                      t_cross - min(window, 0.5 * (t_cross - t_prev)), backward=False, window=window)
-        post = _mapped(system, motion, t, u, u_dot, theta, theta_dot,
-                       t_cross + min(window, 0.5 * (t_next - t_cross)), backward=True, window=window)
-        thd_pre, ud_pre = pre if pre else (math.nan, math.nan)
-        thd_post, ud_post = post if post else (math.nan, math.nan)
+        counted = peak > impact_threshold * system.alpha
+        thd_pre = ud_pre = thd_post = ud_post = math.nan
+        if counted:
+            t_prev = t[changes[n - 1][0]] if n > 0 else t[0]
+            t_next = t[changes[n + 1][0]] if n + 1 < len(changes) else t[-1]
+            pre = _mapped(system, motion, t, u, u_dot, theta, theta_dot,
+                          t_cross - min(window, 0.5 * (t_cross - t_prev)), backward=False, window=window)
+            post = _mapped(system, motion, t, u, u_dot, theta, theta_dot,
+                           t_cross + min(window, 0.5 * (t_next - t_cross)), backward=True, window=window)
+            if pre:
+                thd_pre, ud_pre = pre
+            if post:
+                thd_post, ud_post = post
         out.append(Impact(t=float(t_cross), theta_dot_pre=thd_pre, theta_dot_post=thd_post,
                           u_dot_pre=ud_pre, u_dot_post=ud_post, continued=True, amplitude=float(peak),
-                          counted=True))
+                          counted=counted))
     return tuple(out)
 
 
@@ -118,3 +154,7 @@ def beta_errors(traj: Trajectory, n: int | None = None) -> list[float]:
     ref = beta_closed_form(traj.system.slenderness, traj.system.mu)
     errs = [i.beta / ref - 1 for i in traj.counted_impacts]
     return errs[:n] if n is not None else errs
+
+
+__all__ = ["measure", "judge_overturning", "effective_impacts", "beta_errors", "CONTACT_WINDOW",
+           "REST_FRACTION", "OVERTURN_RULES"]

@@ -1,4 +1,5 @@
-"""`isorock validate`: the validation report (validate/report.py) from the command line.
+"""`isorock validate`: the validation report (report_run.py runs it, report_render.py
+writes it) from the command line.
 
 Exit code 0 when every check passes, 1 when some check fails (the last line says
 which), 2 for bad input (nothing is written).
@@ -15,7 +16,7 @@ DEFAULT_OUT = "isorock-report"
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
-    from isorock.validate.report import DEFAULT_MOTIONS, RECORD_WINDOW
+    from isorock.validate.report_run import DEFAULT_MOTIONS, RECORD_WINDOW
     p = subparsers.add_parser(
         "validate", help="the validation report: all engines side by side with the analytic model",
         description="Run the paper's block (isolated T 1.5 s ξ 0.2, and on a fixed base) on each motion "
@@ -62,7 +63,8 @@ def _scales(text):
 
 
 def run(args) -> int:
-    from isorock.validate.report import DEFAULT_MOTIONS, ReportConfig, build, verdict, write_report
+    from isorock.validate.report_render import verdict, write_report
+    from isorock.validate.report_run import DEFAULT_MOTIONS, ReportConfig, build
     engines = tuple(e for item in args.engines for e in item.split(",") if e)
     config = ReportConfig(motions=tuple(args.motion or DEFAULT_MOTIONS), engines=engines, quick=args.quick,
                           duration=args.duration, scales=_scales(args.scales), format=args.format,

@@ -1,0 +1,68 @@
+"""The engine protocol: what every engine package hands the registry
+(`isorock.validate.engines`), so that commands, figures and reports loop over engines
+without knowing their names.
+
+An engine package exposes one `ENGINE = EngineSpec(...)`. Its `simulate` takes
+(system, motion, *, settings, duration, theta0 (rad), progress) and returns either the
+shared `Trajectory` (an engine whose impacts are exact events, the analytic model) or a
+`RawHistory` (a contact engine), which the registry measures the same way for every
+engine. A third engine is one new package plus one registry line.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Any, Callable, Protocol
+
+from .motion import GroundMotion
+from .system import System
+from .trajectory import RawHistory, Trajectory
+
+
+class Simulate(Protocol):
+    def __call__(self, system: System, motion: GroundMotion | None = None, *, settings: Any = None,
+                 duration: float | None = None, theta0: float = 0.0,
+                 progress: Callable[[float, float], None] | None = None) -> Trajectory | RawHistory: ...
+
+
+@dataclass(frozen=True)
+class Capabilities:
+    """What an engine supports. isolated_base: the spring–dashpot base (every engine
+    here); past_alpha: it simulates beyond |θ| = α (model.md, "Past α"); batch: it runs
+    many cases in one call (`simulate_batch`); exact_impacts: its impacts are located as
+    events of the rigid model, not measured from a contact history."""
+
+    isolated_base: bool = True
+    past_alpha: bool = True
+    batch: bool = False
+    exact_impacts: bool = False
+
+
+@dataclass(frozen=True)
+class EngineSpec:
+    """One engine. `settings_type` is its frozen Settings dataclass (validated on
+    construction); `settings_for(**overrides)` builds one where some settings follow
+    others (default: the dataclass with the overrides); `scene_text(system, settings)`
+    is the model file a user can open, `scene_format` its format and suffix (None: no
+    file); `label` is the name figures and reports show; `presets` maps a name a user
+    can ask for as ENGINE:PRESET to a zero-argument callable returning Settings;
+    `ladder(quick)` lists (label, Settings) from cheapest to most accurate, for
+    work-precision benchmarks."""
+
+    name: str
+    label: str
+    settings_type: type
+    simulate: Simulate
+    capabilities: Capabilities = Capabilities()
+    settings_for: Callable[..., Any] | None = None
+    scene_text: Callable[..., str] | None = None
+    scene_format: tuple[str, str] | None = None  # (format name, file suffix)
+    presets: dict = field(default_factory=dict)
+    ladder: Callable[[bool], list] | None = None
+
+    def settings(self, **overrides):
+        if self.settings_for is not None:
+            return self.settings_for(**overrides)
+        return replace(self.settings_type(), **overrides)
+
+
+__all__ = ["EngineSpec", "Capabilities", "Simulate"]

@@ -1,0 +1,146 @@
+"""Rigid-block kinematics every contact scene needs, written once: the pose of a block
+tilted about its corner, the rocking angle and out-of-plane tilts from a rotation,
+where the pivot corner and the lowest corner are, and the rules that stop a run.
+
+Conventions (model.md): x horizontal, z up, the base's top face at z = 0 when u = 0;
+θ is a rotation about +y, θ > 0 when the centroid moves to +x (rocking about corner
+O at x = +b). Positions are absolute, in the ground's (translating) frame; u is the
+base displacement relative to the ground.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from .system import System
+
+
+# --- pose -----------------------------------------------------------------------------
+
+def tilted_centroid(system: System, theta: float) -> tuple[float, float]:
+    """(x, z) of the centroid of a block resting on its corner s·b (s = sign θ) of the
+    base's top face and tilted by θ about it: the corner stays where it rests upright."""
+    s = 1.0 if theta >= 0 else -1.0
+    h, b = system.h, system.b
+    return (s * b + h * math.sin(theta) - s * b * math.cos(theta),
+            h * math.cos(theta) + s * b * math.sin(theta))
+
+
+# --- rotations ------------------------------------------------------------------------
+
+def tilts_from_quaternion(w, x, y, z):
+    """(θ, roll, yaw) of unit quaternions (arrays or scalars, scalar part w first): θ the
+    lean of the body's z axis towards +x (rotation about y), roll about the world x axis,
+    yaw about the world z axis. For a block that stays in its plane roll = yaw = 0."""
+    r00 = 1 - 2 * (y * y + z * z)
+    r10 = 2 * (x * y + w * z)
+    r02 = 2 * (x * z + w * y)
+    r12 = 2 * (y * z - w * x)
+    r22 = 1 - 2 * (x * x + y * y)
+    theta = np.arctan2(r02, r22)
+    roll = np.arctan2(-r12, np.hypot(r02, r22))
+    yaw = np.arctan2(r10, r00)
+    return theta, roll, yaw
+
+
+# --- corners --------------------------------------------------------------------------
+
+def pivot_slip(system: System, x_centroid, theta, u):
+    """How far (m) the corner the block rocks on has moved along x relative to the point
+    of the base it rests on (s·b + u): zero for pure rocking, non-zero when it slides.
+    The corner (s·b, −h) of the body frame is at x_c + s·b·cosθ − h·sinθ."""
+    theta = np.asarray(theta, dtype=float)
+    s = np.where(theta >= 0, 1.0, -1.0)
+    b, h = system.b, system.h
+    return np.asarray(x_centroid) + s * b * np.cos(theta) - h * np.sin(theta) - np.asarray(u) - s * b
+
+
+def lift_off(system: System, z_centroid, theta):
+    """Height (m) of the block's lowest bottom corner above the base's top face
+    (negative: penetration), for an in-plane rotation θ."""
+    theta = np.asarray(theta, dtype=float)
+    return np.asarray(z_centroid) - system.h * np.cos(theta) - system.b * np.abs(np.sin(theta))
+
+
+def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_from: int | None,
+                   rest_fraction: float, out_of_plane=None) -> dict:
+    """The contact engines' extras, one vocabulary for all of them (each a scalar):
+    pivot_slip_max (m, while rocking), lift_off_max_after_impact (m, after the first
+    counted impact: a hop shows here), penetration_max (m) and, where the block can
+    leave its plane, out_of_plane_max (largest of |y| in m and the roll and yaw tilts in
+    rad; both small). `counted_from`: index of the first counted impact, or None."""
+    theta = np.asarray(theta, dtype=float)
+    rocking = np.abs(theta) > rest_fraction * system.alpha
+    slip = pivot_slip(system, x_centroid, theta, u)
+    low = lift_off(system, z_centroid, theta)
+    after = low[counted_from:] if counted_from is not None else low[:0]
+    out = {
+        "pivot_slip_max": float(np.max(np.abs(slip[rocking]))) if rocking.any() else 0.0,
+        "lift_off_max_after_impact": float(np.max(after)) if after.size else 0.0,
+        "penetration_max": float(max(0.0, -np.min(low))) if low.size else 0.0,
+    }
+    if out_of_plane is not None:
+        out["out_of_plane_max"] = float(np.max(out_of_plane)) if np.size(out_of_plane) else 0.0
+    return out
+
+
+# --- when a run stops -------------------------------------------------------------------
+
+#: |θ| at which the block lies on its side: the rocking equations end there (model.md).
+LYING = 0.5 * math.pi
+#: A contact engine's block lands on its side face through a compliant contact and may
+#: come to rest a little short of π/2: within this (rad) it is lying.
+LYING_SLACK = 0.01
+
+
+def first_stop(t, theta, theta_dot, finite, *, system: System, motion_end: float) -> tuple[int | None, str | None]:
+    """(index, reason) of the first sample at which a contact engine's run stops, by the
+    rules of model.md ("Past α"), or (None, None) while it goes on:
+    - 'non-finite': the state stopped being finite (the history ends before it);
+    - 'lying': |θ| reached π/2 (within LYING_SLACK), the block lies on its side (the
+      history ends with it);
+    - 'falling': on a fixed base after the motion has ended, |θ| > α and growing: nothing
+      can bring the block back (on an isolated base the base still swings, so never).
+    Overturning itself is judged from the history afterwards, the same way for every
+    engine (`isorock.validate.measure`)."""
+    t = np.asarray(t, dtype=float)
+    theta = np.asarray(theta, dtype=float)
+    theta_dot = np.asarray(theta_dot, dtype=float)
+    finite = np.asarray(finite, dtype=bool)
+    th = np.where(finite, theta, 0.0)
+    thd = np.where(finite, theta_dot, 0.0)
+    candidates = []
+    bad = np.flatnonzero(~finite)
+    if bad.size:
+        candidates.append((int(bad[0]), "non-finite"))
+    lying = np.flatnonzero(np.abs(th) >= LYING - LYING_SLACK)
+    if lying.size:
+        candidates.append((int(lying[0]), "lying"))
+    if system.fixed_base:
+        falling = np.flatnonzero((t > motion_end) & (np.abs(th) > system.alpha) & (th * thd > 0))
+        if falling.size:
+            candidates.append((int(falling[0]), "falling"))
+    return min(candidates) if candidates else (None, None)
+
+
+class Throttle:
+    """Calls `report(t, duration)` at most once per `interval` wall seconds: engines
+    report progress between chunks of work without paying for it at every step."""
+
+    def __init__(self, report, duration: float, interval: float = 1.0):
+        self.report, self.duration, self.interval = report, duration, interval
+        self.last = time.perf_counter()
+
+    def __call__(self, t: float) -> None:
+        if self.report is None:
+            return
+        now = time.perf_counter()
+        if now - self.last >= self.interval:
+            self.report(float(t), self.duration)
+            self.last = now
+
+
+__all__ = ["tilted_centroid", "tilts_from_quaternion", "pivot_slip", "lift_off", "contact_extras",
+           "first_stop", "Throttle", "LYING"]

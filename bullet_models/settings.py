@@ -1,0 +1,87 @@
+"""PyBullet's numerical settings for the rocking scene. Every default was chosen by
+measurement (docs/bullet.md).
+
+`timestep` is Bullet's own (physics) step, as for every engine; the ground motion, the
+isolator force and the output are updated every `substeps` physics steps (the control
+step, timestep × substeps), because a Python step costs more than Bullet's sub-steps in C.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from isorock.analytic.errors import require, require_nonnegative_finite, require_positive_finite
+
+#: s; the control step (ground motion, isolator force, output) a timestep given alone keeps:
+#: the physics step is what sets the accuracy, and sub-steps in C are cheaper than Python steps.
+CONTROL_STEP = 4e-3
+#: The longest control step: the isolator force and the ground motion are held over it.
+MAX_CONTROL_STEP = 0.01
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Numerical settings of the PyBullet scene.
+
+    timestep: Bullet's physics step (s). substeps: physics steps per control step, at
+        which the ground motion, the isolator force and the output are updated (the
+        control step is timestep × substeps, at most MAX_CONTROL_STEP).
+    solver_iterations: constraint solver iterations. friction: block–plate lateral
+        friction coefficient. restitution: block–plate restitution. contact_erp: error
+        reduction of contacts (Bullet's contactERP; 0.8 makes the block bounce).
+        contact_processing_threshold: contact points farther apart than this (m) are left
+        out of the solver (Bullet's default keeps them up to 2 cm: the lifted corner of a
+        block rocking by less than ~0.1α then acts as a speculative contact and small
+        impacts are off by up to 1.7%). linear_damping, angular_damping: Bullet's velocity
+        damping of every body (1/s); model.md's physics has none. output_every: store
+        every n-th control step.
+    """
+
+    timestep: float = CONTROL_STEP / 12
+    substeps: int = 12
+    solver_iterations: int = 50
+    friction: float = 1.0
+    restitution: float = 0.0
+    contact_erp: float = 0.08
+    contact_processing_threshold: float = 0.0
+    linear_damping: float = 0.0
+    angular_damping: float = 0.0
+    output_every: int = 1
+
+    def __post_init__(self):
+        require_positive_finite("timestep", self.timestep)
+        for name, low in (("substeps", 1), ("solver_iterations", 1), ("output_every", 1)):
+            value = getattr(self, name)
+            require(isinstance(value, (int, np.integer)) and not isinstance(value, bool) and value >= low,
+                    name, value, f"an integer ≥ {low}")
+        require(self.control_step <= MAX_CONTROL_STEP * (1 + 1e-9), "timestep", self.timestep,
+                f"a step whose control step timestep × substeps ({self.substeps}) is at most "
+                f"{MAX_CONTROL_STEP:g} s (contacts need steps far shorter than the rocking time scale)")
+        require_positive_finite("friction", self.friction)
+        require(0 <= self.restitution <= 1, "restitution", self.restitution, "in [0, 1]")
+        require(0 < self.contact_erp <= 1, "contact_erp", self.contact_erp, "in (0, 1]")
+        for name in ("linear_damping", "angular_damping", "contact_processing_threshold"):
+            require_nonnegative_finite(name, getattr(self, name))
+
+    @property
+    def control_step(self) -> float:
+        """The step (s) at which ground motion, isolator force and output are updated."""
+        return self.timestep * self.substeps
+
+
+def settings_for(**overrides) -> Settings:
+    """Settings with `overrides`; a timestep given without substeps keeps the control
+    step near CONTROL_STEP (settings_for_timestep)."""
+    if "timestep" in overrides and "substeps" not in overrides:
+        return settings_for_timestep(overrides.pop("timestep"), **overrides)
+    return Settings(**overrides)
+
+
+def settings_for_timestep(dt: float, **overrides) -> Settings:
+    """Settings whose physics step is `dt` (s), for work-precision ladders: the control
+    step (ground motion, isolator force, output) stays near CONTROL_STEP and Bullet's
+    sub-steps fill it. dt = 1/3000 s gives the defaults."""
+    dt = require_positive_finite("timestep", dt)
+    n = max(1, round(CONTROL_STEP / dt))
+    return Settings(**{"timestep": dt, "substeps": n, **overrides})

@@ -1,0 +1,150 @@
+"""Stepping the PyBullet scene from Python, one control step (Settings.control_step) at
+a time, and the states as a RawHistory (measured outside the engine, by the registry).
+
+- ground motion as horizontal gravity, `setGravity(−ẍg, 0, −g)`: exact for a translating
+  ground (model.md), held over a control step and so taken at its middle, as MuJoCo
+  takes its forces (at its start it would lag by half a step);
+- the isolator force is held by Bullet over the sub-steps, so it is evaluated at the
+  sub-steps' mean time: −(k(u + l u̇) + c(u̇ + l ü)), l = (n − 1)/(2n)·dt, with ü the base
+  acceleration of the last step (kept from the step before when θ changed sign over it:
+  an impact's jump of u̇ is no acceleration);
+- a run stops by the shared rules of `isorock.analytic.kinematics.first_stop`;
+- a duration that is no multiple of the step ends with one shorter step.
+Measurements behind each choice and each skipped cost: docs/bullet.md.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from isorock.analytic import kinematics
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.protocol import run_inputs
+from isorock.analytic.status import Status
+from isorock.analytic.system import System
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
+
+from .scene import build, connect, p
+from .settings import Settings
+
+ENGINE = "bullet"
+#: |θ| below this fraction of α counts as "down": no sign change of θ there is an impact
+#: to keep out of the base-acceleration estimate (and no rocking for the pivot slip).
+REST_FRACTION = 1e-3
+
+
+def simulate(system: System, motion: GroundMotion | None = None, *, settings: Settings | None = None,
+             duration: float | None = None, theta0: float = 0.0, progress=None) -> RawHistory:
+    """Simulate from rest at tilt `theta0` (rad; > 0 rests on corner O, centroid towards
+    +x) for `duration` s (default: motion end + 5 s, or 10 s without motion).
+    progress: callable(t, duration), called about once a second."""
+    settings = settings or Settings()
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD)
+
+    dt = settings.control_step
+    n_steps = int(math.floor(duration / dt + 1e-9))
+    times = (np.arange(n_steps + 1) * dt).tolist()
+    mids = (np.arange(n_steps) + 0.5) * dt
+    last = duration - n_steps * dt  # a shorter last step, so the run ends at `duration`
+    if last > 1e-6 * dt:
+        times.append(duration)
+        mids = np.append(mids, n_steps * dt + 0.5 * last)
+        n_steps += 1
+    else:
+        last = 0.0
+    xg = np.asarray(motion(mids), dtype=float).tolist()
+    g = system.gravity
+    k, c_dash = system.stiffness, system.damping
+    n = settings.substeps
+    lead = (n - 1) / (2 * n) * dt  # the held isolator force acts at the sub-steps' mean time
+    rocking = REST_FRACTION * system.alpha
+    every = settings.output_every
+    fixed = system.fixed_base
+    motion_end = motion.end_time
+    throttle = kinematics.Throttle(progress, duration)
+    check_every = max(1, round(0.25 / dt))  # the stop rules look at the rows every 0.25 s
+
+    client = connect()
+    try:
+        scene = build(client, system, settings, theta0)
+        c, block, base = client, scene.block, scene.base
+        set_gravity, step = c.setGravity, c.stepSimulation
+        joint_state, motor = c.getJointState, c.setJointMotorControl2
+        pose, velocity = c.getBasePositionAndOrientation, c.getBaseVelocity
+        torque = p.TORQUE_CONTROL
+        rows = []  # (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y)
+        status, message, stop_reason = Status.COMPLETED, "reached the end time", None
+        u = ud = 0.0
+        ud_prev = udd = 0.0  # base velocity one step back; base acceleration estimate
+        side_prev = 0.0  # sin θ (≈ R₀₂) one step back
+        a_set = 0.0  # build() set gravity (0, 0, −g)
+        checked = 0  # rows already looked at by the stop rules
+        start = time.perf_counter()
+        for i in range(n_steps + 1):
+            if not fixed:
+                # one read serves both the isolator force and the output
+                u, ud = joint_state(base, 0)[:2]
+            if i % every == 0 or i == n_steps:
+                pos, orn = pose(block)
+                rows.append((times[i], u, ud, *pos, *orn, velocity(block)[1][1]))
+            if i % check_every == 0 or i == n_steps:  # the stop rules, over the rows since the last look
+                stop, reason = _stop_in(system, rows, checked, motion_end)
+                if reason == "non-finite":
+                    status, message = Status.FAILED, f"non-finite state at t = {rows[stop][0]:.6g} s"
+                    del rows[stop:]  # the history ends at the last finite state
+                    break
+                if reason is not None:
+                    del rows[stop + 1:]
+                    stop_reason = reason
+                    break
+                checked = len(rows)
+                throttle(times[i])
+            if i == n_steps:
+                break
+            if last and i == n_steps - 1:  # the shorter last step, sub-steps no longer than before
+                m = math.ceil(last / settings.timestep - 1e-9)
+                c.setPhysicsEngineParameter(fixedTimeStep=last, numSubSteps=m)
+                lead = (m - 1) / (2 * m) * last
+            a = xg[i]
+            if a != a_set:  # gravity persists in Bullet: set it only when ẍg changes
+                set_gravity(-a, 0.0, -g)
+                a_set = a
+            if not fixed:
+                # ü from the last step, except over an impact (θ changed sign while rocking):
+                # the jump of u̇ there is no acceleration to extrapolate, the last one is kept
+                qx, qy, qz, qw = orn if i % every == 0 else pose(block)[1]
+                side = 2 * (qx * qz + qw * qy)
+                if i and ((side > 0) == (side_prev > 0) or max(abs(side), abs(side_prev)) < rocking):
+                    udd = (ud - ud_prev) / dt
+                ud_prev, side_prev = ud, side
+                motor(base, 0, torque, force=-(k * (u + lead * ud) + c_dash * (ud + lead * udd)))
+            step()
+        runtime = time.perf_counter() - start
+    finally:
+        client.disconnect()
+    return raw_history(system, np.array(rows), runtime, status, message, stop_reason)
+
+
+def _stop_in(system, rows, checked, motion_end):
+    """kinematics.first_stop over rows[checked:]: (index into rows, reason) or (None, None)."""
+    new = np.array(rows[checked:], dtype=float)
+    if not new.size:
+        return None, None
+    qx, qy, qz, qw = new[:, 6:10].T
+    theta = np.arctan2(2 * (qx * qz + qw * qy), 1 - 2 * (qx * qx + qy * qy))
+    finite = np.all(np.isfinite(new), axis=1)
+    k, reason = kinematics.first_stop(new[:, 0], theta, new[:, 10], finite, system=system, motion_end=motion_end)
+    return (None, None) if k is None else (checked + k, reason)
+
+
+def raw_history(system, rows, runtime, status, message, stop_reason) -> RawHistory:
+    t, u, ud, x, y, z, qx, qy, qz, qw, wy = rows.T
+    theta, roll, yaw = kinematics.tilts_from_quaternion(qw, qx, qy, qz)
+    counted = counted_sign_changes(theta, system.alpha, DEFAULT_IMPACT_THRESHOLD)
+    extras = kinematics.contact_extras(
+        system, x_centroid=x, z_centroid=z, theta=theta, u=u, counted_from=counted[0][0] if counted else None,
+        rest_fraction=REST_FRACTION, out_of_plane=np.maximum.reduce([np.abs(y), np.abs(roll), np.abs(yaw)]))
+    return RawHistory(engine=ENGINE, system=system, t=t, u=u, u_dot=ud, theta=theta, theta_dot=wy,
+                      status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason)

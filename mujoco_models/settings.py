@@ -1,0 +1,151 @@
+"""MuJoCo's numerical settings for the rocking scene, and the ones that follow a timestep.
+
+Every default was chosen by measurement; the tables and commands are in docs/mujoco.md.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from isorock.analytic.errors import InputError, require, require_positive_finite
+
+INTEGRATORS = ("Euler", "implicit", "implicitfast", "RK4")
+CONES = ("pyramidal", "elliptic")
+JOINTS = ("planar", "free")
+CONTACTS = ("box", "corners")
+
+
+@dataclass(frozen=True)
+class Settings:
+    """MuJoCo's numerical settings for this scene.
+
+    timestep: s. integrator: one of Euler, implicit, implicitfast, RK4. cone:
+    pyramidal or elliptic friction cone. solref: contact (timeconst s, dampratio),
+    both positive, with timeconst ≥ 2·timestep (MuJoCo would silently raise it), or
+    MuJoCo's direct form (−stiffness, −damping). solimp: (dmin, dmax, width[, mid,
+    power]). friction: block–base sliding friction coefficient. noslip: noslip
+    solver iterations (0: off). impact_timestep: None (one timestep throughout), or a
+    divisor of `timestep` (s) used from just before each impact until shortly after
+    it ("event-resolved" stepping, docs/mujoco.md; needs the direct solref form:
+    the fine model keeps the stiffness and scales the damping by timestep /
+    impact_timestep). joint: "planar" (slide x, slide z, hinge y) or
+    "free". contact: "box" (box–box, the default) or "corners" (a small sphere in
+    each bottom corner of the block against the base box, scene.CORNER_RADIUS:
+    cheaper collision, no better per unit of cost, docs/mujoco.md).
+    """
+
+    timestep: float = 5e-4
+    integrator: str = "implicitfast"
+    cone: str = "elliptic"
+    solref: tuple = (0.002, 2.0)
+    solimp: tuple = (0.9, 0.999, 0.001)
+    friction: float = 1.0
+    noslip: int = 0
+    joint: str = "planar"
+    contact: str = "box"
+    impact_timestep: float | None = None
+
+    def __post_init__(self):
+        dt = require_positive_finite("timestep", self.timestep)
+        require(dt <= 0.01, "timestep", self.timestep, "at most 0.01 s (rocking needs far finer steps)")
+        require(self.integrator in INTEGRATORS, "integrator", self.integrator, f"one of {', '.join(INTEGRATORS)}")
+        require(self.cone in CONES, "cone", self.cone, f"one of {', '.join(CONES)}")
+        require(self.joint in JOINTS, "joint", self.joint, f"one of {', '.join(JOINTS)}")
+        require(self.contact in CONTACTS, "contact", self.contact, f"one of {', '.join(CONTACTS)}")
+        if self.impact_timestep is not None:
+            fine = require_positive_finite("impact_timestep", self.impact_timestep)
+            ratio = dt / fine
+            require(fine < dt and abs(ratio - round(ratio)) < 1e-6, "impact_timestep", self.impact_timestep,
+                    f"the timestep {dt:g} s divided by a whole number of at least 2")
+            require(all(x < 0 for x in _float_tuple("solref", self.solref, 2, 2)), "solref", self.solref,
+                    "the direct form (−stiffness, −damping) with impact_timestep (both models share the stiffness)")
+            object.__setattr__(self, "impact_timestep", fine)
+        solref = _float_tuple("solref", self.solref, 2, 2)
+        positive = all(x > 0 for x in solref)
+        require(positive or all(x < 0 for x in solref), "solref", self.solref,
+                "(timeconst, dampratio) both positive, or (−stiffness, −damping) both negative")
+        require(not positive or solref[0] >= 2 * dt * (1 - 1e-9), "solref", self.solref,
+                f"a timeconst of at least 2·timestep = {2 * dt:g} s (MuJoCo raises a shorter one to that)")
+        solimp = _float_tuple("solimp", self.solimp, 3, 5)
+        require(0 < solimp[0] < 1 and 0 < solimp[1] < 1, "solimp", self.solimp,
+                "(dmin, dmax, width[, mid, power]) with dmin and dmax in (0, 1)")
+        require(solimp[2] > 0, "solimp", self.solimp, "a positive width (third value)")
+        if len(solimp) > 3:
+            require(0 < solimp[3] < 1, "solimp", self.solimp, "a midpoint (fourth value) in (0, 1)")
+        if len(solimp) > 4:
+            require(solimp[4] >= 1, "solimp", self.solimp, "a power (fifth value) of at least 1")
+        object.__setattr__(self, "timestep", dt)
+        object.__setattr__(self, "solref", solref)
+        object.__setattr__(self, "solimp", solimp)
+        object.__setattr__(self, "friction", require_positive_finite("friction", self.friction))
+        require(isinstance(self.noslip, (int, np.integer)) and not isinstance(self.noslip, bool)
+                and self.noslip >= 0, "noslip", self.noslip, "a non-negative whole number of iterations")
+        object.__setattr__(self, "noslip", int(self.noslip))
+
+
+#: The default contact time constant in steps: solref = (SOLREF_STEPS · timestep, 2).
+SOLREF_STEPS = 4
+
+#: From this timestep up, `settings_for_timestep` uses MuJoCo's direct contact
+#: parameters: solref = (−DIRECT_STIFFNESS / dt², −DIRECT_DAMPING / dt) (stiffness and
+#: damping of the reference acceleration, mass-normalised) with solimp DIRECT_SOLIMP.
+#: A time constant of 4 steps makes the impact last 16 ms or more at dt ≥ 2e-3, about
+#: half the measuring window, and β errors reach 8%; the direct form is not bound to
+#: timeconst ≥ 2·dt and measured rms 0.88% against 2.3% at 2e-3, 0.54% against 0.57%
+#: at 1e-3, and worse than the default at 5e-4 (docs/mujoco.md).
+DIRECT_FROM = 1e-3
+DIRECT_STIFFNESS = 0.05
+DIRECT_DAMPING = 0.6
+DIRECT_SOLIMP = (0.9, 0.9, 0.001)
+
+
+def settings_for(**overrides) -> Settings:
+    """Settings with `overrides`; a timestep given without solref and solimp takes the
+    contact parameters measured for it (settings_for_timestep), since the default
+    contact time constant is only right for the default step."""
+    if "timestep" in overrides and not {"solref", "solimp"} & set(overrides):
+        return settings_for_timestep(overrides.pop("timestep"), **overrides)
+    return Settings(**overrides)
+
+
+def settings_for_timestep(timestep: float, **overrides) -> Settings:
+    """The contact parameters measured best at this timestep (what `isorock bench`
+    ladders): below DIRECT_FROM the defaults with the contact time constant kept at
+    SOLREF_STEPS steps (the default is this at 5e-4 s); from DIRECT_FROM up the
+    direct form, stiffness DIRECT_STIFFNESS/dt² and damping DIRECT_DAMPING/dt."""
+    dt = require_positive_finite("timestep", timestep)
+    if dt >= DIRECT_FROM * (1 - 1e-9):
+        base = dict(timestep=dt, solref=(-DIRECT_STIFFNESS / dt**2, -DIRECT_DAMPING / dt), solimp=DIRECT_SOLIMP)
+    else:
+        base = dict(timestep=dt, solref=(SOLREF_STEPS * dt, Settings.solref[1]))
+    return Settings(**{**base, **overrides})
+
+
+#: Event-resolved stepping as measured (docs/mujoco.md): coarse contact stiffness
+#: EVENT_STIFFNESS/dt² (static pivot sink ≈ 0.02 mm at dt 3e-3), damping 0.6/dt.
+EVENT_STIFFNESS = 0.5
+
+
+def event_resolved_settings(timestep: float = 3e-3, impact_timestep: float = 2.5e-4, **overrides) -> Settings:
+    """Coarse steps of `timestep` with fine steps of `impact_timestep` around impacts
+    (Settings.impact_timestep), direct contact parameters tied to the coarse step.
+    Measured at the defaults of this function: β within 0.47% of the closed form at
+    θ0 = α/2 (1.3% worst over θ0 = 0.3–0.7α), Kobe 40 s 4× faster than the defaults but
+    θmax/α 0.035 low (the defaults: 0.007)."""
+    dt = require_positive_finite("timestep", timestep)
+    base = dict(timestep=dt, impact_timestep=impact_timestep, solref=(-EVENT_STIFFNESS / dt**2, -DIRECT_DAMPING / dt),
+                solimp=DIRECT_SOLIMP)
+    return Settings(**{**base, **overrides})
+
+
+def _float_tuple(name, value, n_min, n_max) -> tuple:
+    try:
+        out = tuple(float(x) for x in value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} = {value!r}: must be {n_min}–{n_max} numbers") from None
+    require(n_min <= len(out) <= n_max and all(math.isfinite(x) for x in out), name, value,
+            f"{n_min} finite numbers" if n_min == n_max else f"{n_min}–{n_max} finite numbers")
+    return out
+

@@ -1,0 +1,187 @@
+"""Stepping the MuJoCo scene: `mujoco.rollout` runs the loop in C, chunk by chunk, and
+the states become a RawHistory (measured outside the engine, by the registry).
+
+The ground motion is applied exactly as generalized forces in the (translating) ground
+frame: −m ẍg on the block's x dof and −m_b ẍg on the base's. A force is held over a
+step, so ẍg is taken at the step's middle: the impulse it gives is then right to
+second order (taken at the step's start it lags by dt/2). PyBullet does the same.
+
+Outputs follow model.md: u (m) is the base displacement relative to the ground, θ (rad)
+the rotation about +y (θ > 0 rocks about corner O at x = +b). A run stops by the shared
+rules of `isorock.analytic.kinematics.first_stop` (a non-finite state, the block lying on
+its side, or falling on a fixed base after the motion); MuJoCo's auto-reset is off, so a
+blow-up cannot pass silently.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import mujoco
+import numpy as np
+from mujoco import rollout
+
+from isorock.analytic import kinematics
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.protocol import run_inputs
+from isorock.analytic.status import Status
+from isorock.analytic.system import System
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
+
+from .scene import build_model
+from .settings import Settings
+
+ENGINE = "mujoco"
+#: Steps per call of mujoco.rollout: the progress callback and the stop rules run
+#: between calls. The warm start is carried across calls, so the split does not change
+#: the result (tested).
+CHUNK_STEPS = 20_000
+#: |θ| below this fraction of α is "at rest" for the extras (pivot slip while rocking);
+#: the same band the measuring uses.
+REST_FRACTION = 1e-3
+
+
+class Layout:
+    """Where the scene's quantities sit in qpos / qvel and in rollout's state rows."""
+
+    def __init__(self, model: mujoco.MjModel, system: System, joint: str):
+        self.nq, self.nv = model.nq, model.nv
+        self.nstate = mujoco.mj_stateSize(model, mujoco.mjtState.mjSTATE_FULLPHYSICS)
+        self.free = joint == "free"
+        self.base_v = None if system.fixed_base else model.jnt_dofadr[model.joint("base_slide").id]
+        self.base_q = None if system.fixed_base else model.jnt_qposadr[model.joint("base_slide").id]
+        if self.free:
+            jid = model.joint("block_free").id
+            self.bq, self.bv = model.jnt_qposadr[jid], model.jnt_dofadr[jid]
+            self.x_v = self.bv  # free joint: linear velocity first, in the world frame
+        else:
+            self.xq, self.zq, self.thq = (model.jnt_qposadr[model.joint(n).id]
+                                           for n in ("block_x", "block_z", "block_theta"))
+            self.x_v, self.thv = (model.jnt_dofadr[model.joint(n).id] for n in ("block_x", "block_theta"))
+
+    def initial_state(self, model, system: System, theta0: float) -> np.ndarray:
+        """A rollout state row at t = 0: at rest, tilted by θ0 about the corner it rocks on."""
+        qpos = model.qpos0.copy()
+        x, z = kinematics.tilted_centroid(system, theta0)
+        if self.free:
+            qpos[self.bq:self.bq + 3] = (x, 0.0, z)
+            qpos[self.bq + 3:self.bq + 7] = (math.cos(theta0 / 2), 0.0, math.sin(theta0 / 2), 0.0)
+        else:
+            qpos[self.xq], qpos[self.zq], qpos[self.thq] = x, z - system.h, theta0
+        state = np.zeros(self.nstate)
+        state[1:1 + self.nq] = qpos
+        return state
+
+    def forces(self, system: System, xg: np.ndarray) -> np.ndarray:
+        """qfrc_applied rows for the ground accelerations ẍg (one per step)."""
+        f = np.zeros((xg.size, self.nv))
+        f[:, self.x_v] = -system.mass * xg
+        if self.base_v is not None:
+            f[:, self.base_v] = -system.base_mass * xg
+        return f
+
+    def histories(self, system: System, states: np.ndarray) -> dict:
+        """t, u, u̇, θ, θ̇ and the centroid's x and z (and out-of-plane tilt with the free
+        joint) from rollout state rows."""
+        t = states[:, 0]
+        qpos = states[:, 1:1 + self.nq]
+        qvel = states[:, 1 + self.nq:1 + self.nq + self.nv]
+        n = t.size
+        if self.base_q is None:
+            u, u_dot = np.zeros(n), np.zeros(n)
+        else:
+            u, u_dot = qpos[:, self.base_q].copy(), qvel[:, self.base_v].copy()
+        out = {"t": t.copy(), "u": u, "u_dot": u_dot}
+        if self.free:
+            w, x, y, z = qpos[:, self.bq + 3:self.bq + 7].T
+            theta, roll, yaw = kinematics.tilts_from_quaternion(w, x, y, z)
+            out["theta"] = theta
+            out["theta_dot"] = qvel[:, self.bv + 4].copy()  # angular velocity about the body y axis
+            out["x"], out["z"] = qpos[:, self.bq].copy(), qpos[:, self.bq + 2].copy()
+            out["out_of_plane"] = np.maximum.reduce([np.abs(qpos[:, self.bq + 1]), np.abs(roll), np.abs(yaw)])
+        else:
+            out["theta"] = qpos[:, self.thq].copy()
+            out["theta_dot"] = qvel[:, self.thv].copy()
+            out["x"], out["z"] = qpos[:, self.xq].copy(), system.h + qpos[:, self.zq]
+        return out
+
+
+def simulate(system: System, motion: GroundMotion | None = None, *, settings: Settings | None = None,
+             duration: float | None = None, theta0: float = 0.0, progress=None) -> RawHistory:
+    """Simulate the scene from t = 0 to `duration` (s; default: the motion's end + 5 s,
+    or 10 s without motion) from rest, tilted by `theta0` (rad) about its corner.
+    progress: optional callable(t, duration), called between rollout chunks about
+    once a second."""
+    settings = settings or Settings()
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD)
+    model = build_model(system, settings)
+    return run_model(model, system, motion, settings=settings, duration=duration, theta0=theta0,
+                     progress=progress)
+
+
+def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, settings: Settings,
+              duration: float, theta0: float = 0.0, progress=None, chunk_steps: int | None = None) -> RawHistory:
+    """`simulate` on an already compiled scene (for measuring variants of the model)."""
+    start = time.perf_counter()
+    lay = Layout(model, system, settings.joint)
+    dt = model.opt.timestep
+    nstep = int(math.floor(duration / dt + 1e-9))
+    if settings.impact_timestep is not None:
+        from .event_resolved import run_event_resolved
+        return run_event_resolved(model, system, motion, settings, lay, nstep, theta0, progress, start, duration)
+
+    chunk_steps = chunk_steps or CHUNK_STEPS
+    data = mujoco.MjData(model)
+    forces = lay.forces(system, np.asarray(motion((np.arange(nstep) + 0.5) * dt), dtype=float))
+    state0 = lay.initial_state(model, system, theta0)
+    warm = np.zeros(lay.nv)
+    rows = [state0[None, :]]
+    status, message, stop_reason = Status.COMPLETED, "reached the end time", None
+    throttle = kinematics.Throttle(progress, duration)
+    done = 0
+    while done < nstep:
+        n = min(chunk_steps, nstep - done)
+        state, _ = rollout.rollout(model, data, state0, forces[done:done + n][None],
+                                   control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED,
+                                   initial_warmstart=warm)
+        chunk = state[0]
+        t0 = done * dt
+        done += n
+        k, reason = stop_in(lay, system, chunk, t0 + dt * np.arange(1, n + 1), motion)
+        if reason == "non-finite":
+            rows.append(chunk[:k])
+            status = Status.FAILED
+            message = (f"the state stopped being finite at t = {t0 + (k + 1) * dt:.6g} s; "
+                       "try a smaller timestep or a longer solref timeconst")
+            break
+        if reason is not None:
+            rows.append(chunk[:k + 1])
+            stop_reason = reason
+            break
+        rows.append(chunk)
+        state0 = chunk[-1]
+        warm = data.qacc_warmstart.copy()
+        throttle(done * dt)
+    runtime = time.perf_counter() - start
+    return raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
+
+
+def stop_in(lay: Layout, system: System, chunk: np.ndarray, t: np.ndarray, motion: GroundMotion):
+    """kinematics.first_stop over a chunk of rollout state rows (at times t)."""
+    finite = np.all(np.isfinite(chunk), axis=1)
+    h = lay.histories(system, np.where(finite[:, None], chunk, 0.0))
+    return kinematics.first_stop(t, h["theta"], h["theta_dot"], finite, system=system,
+                                 motion_end=motion.end_time)
+
+
+def raw_history(lay, system, states, dt, runtime, status, message, stop_reason) -> RawHistory:
+    hist = lay.histories(system, states)
+    t = np.arange(hist["t"].size) * dt  # MuJoCo's time sums dt and drifts by round-off
+    counted = counted_sign_changes(hist["theta"], system.alpha, DEFAULT_IMPACT_THRESHOLD)
+    extras = kinematics.contact_extras(
+        system, x_centroid=hist["x"], z_centroid=hist["z"], theta=hist["theta"], u=hist["u"],
+        counted_from=counted[0][0] if counted else None, rest_fraction=REST_FRACTION,
+        out_of_plane=hist.get("out_of_plane"))
+    return RawHistory(engine=ENGINE, system=system, t=t, u=hist["u"], u_dot=hist["u_dot"], theta=hist["theta"],
+                      theta_dot=hist["theta_dot"], status=status, message=message, runtime_s=runtime,
+                      extras=extras, stop_reason=stop_reason)
