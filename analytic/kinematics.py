@@ -125,12 +125,18 @@ def first_stop(t, theta, theta_dot, finite, *, system: System, motion_end: float
     return min(candidates) if candidates else (None, None)
 
 
-class Throttle:
-    """Calls `report(t, duration)` at most once per `interval` wall seconds: engines
-    report progress between chunks of work without paying for it at every step."""
+#: Wall seconds between two progress reports of an engine.
+PROGRESS_INTERVAL = 1.0
 
-    def __init__(self, report, duration: float, interval: float = 1.0):
-        self.report, self.duration, self.interval = report, duration, interval
+
+class Throttle:
+    """Calls `report(t, duration)` at most once per `interval` wall seconds (default
+    PROGRESS_INTERVAL): engines report progress between chunks of work without paying
+    for it at every step."""
+
+    def __init__(self, report, duration: float, interval: float | None = None):
+        self.report, self.duration = report, duration
+        self.interval = PROGRESS_INTERVAL if interval is None else interval
         self.last = time.perf_counter()
 
     def __call__(self, t: float) -> None:

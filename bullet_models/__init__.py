@@ -1,11 +1,11 @@
 """The rocking block as a PyBullet scene: `scene.py` (the bodies, and the same scene as
-an SDF file), `settings.py` (numerical settings, measured), `simulate.py` (stepping).
+an SDF file), `settings.py` (numerical settings, measured), `stepping.py` (stepping).
 Measurements behind every default: docs/bullet.md."""
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec
 
 from .scene import SCENE_FORMAT, build, connect, scene_text
 from .settings import Settings, settings_for, settings_for_timestep
-from .simulate import simulate
+from .stepping import simulate
 
 
 def ladder(quick: bool):

@@ -5,7 +5,7 @@ and the same scene as an SDF file a user can open.
   coordinates); Bullet's box inertia about y is m(b² + h²)/3, the model's I;
 - isolated base: a plate on a prismatic joint along x under a massless, shapeless
   anchor; its default velocity motor is switched off (force 0) and the isolator force
-  −(k u + c u̇) is applied as a joint force every control step (simulate.py);
+  −(k u + c u̇) is applied as a joint force every control step (stepping.py);
 - fixed base: the same plate as a static body (mass 0), no joint;
 - no ground plane: the base moves on its joint, so the only collision pair in the
   world is block–plate and no collision filtering is needed.

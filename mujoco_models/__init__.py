@@ -1,12 +1,12 @@
 """The rocking block as a MuJoCo scene: `scene.xml` + `scene.py` (the model),
-`settings.py` (numerical settings, measured), `simulate.py` (stepping with
+`settings.py` (numerical settings, measured), `stepping.py` (stepping with
 `mujoco.rollout`), `event_resolved.py` (an opt-in second stepping scheme).
 Measurements behind every default: docs/mujoco.md."""
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec
 
 from .scene import SCENE_FORMAT, build_model, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep
-from .simulate import run_model, simulate
+from .stepping import run_model, simulate
 
 
 def ladder(quick: bool):

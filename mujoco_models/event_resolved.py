@@ -18,7 +18,7 @@ from isorock.analytic.trajectory import RawHistory
 
 from .scene import scene_text
 from .settings import Settings
-from .simulate import raw_history, stop_in
+from .stepping import raw_history, stop_in
 
 #: Fine steps start when the block would reach θ = 0 within IMPACT_ZONE coarse steps at
 #: its present θ̇ (and |θ̇| is above IMPACT_MIN_RATE, rad/s: a block at rest stays on
@@ -52,7 +52,7 @@ def run_event_resolved(model, system, motion, settings, lay, nstep, theta0, prog
     v0 = 1 + lay.nq
     vel = slice(v0, v0 + lay.nv)
 
-    def forces(t0, h, n):  # ẍg at each step's middle, as in simulate.run_model
+    def forces(t0, h, n):  # ẍg at each step's middle, as in stepping.run_model
         return lay.forces(system, np.asarray(motion(t0 + (np.arange(n) + 0.5) * h), dtype=float))
 
     def theta_rate(states):

@@ -2,14 +2,16 @@
 reference are small for the analytic engines, and the outputs are written whole."""
 import json
 
+from isorock.analytic import paper_system
 from isorock.validate import bench
 from isorock.validate.cli import main
+from isorock.validate.scenarios import Scenario
 
 
 def test_quick_analytic_bench_writes_tables(tmp_path, capsys, monkeypatch):
     # one short scenario keeps this a test of the machinery, not a timing
-    sc = bench.Scenario("free-rocking", bench.paper_system(fixed_base=True), bench.GroundMotion.zero(), 2.0, 0.5)
-    monkeypatch.setattr(bench, "scenarios", lambda quick: [sc])
+    sc = Scenario("free-rocking", paper_system(fixed_base=True), "none", 2.0, 0.5)
+    monkeypatch.setattr(bench, "bench_scenarios", lambda quick: [sc])
     out = tmp_path / "b"
     assert main(["bench", "--quick", "--engines", "analytic", "--out", str(out)]) == 0
     data = json.loads((out / "bench.json").read_text())

@@ -1,8 +1,9 @@
 """The stress grid's quick subset: every case finite, in time, and (analytic) with
 its energy balance closed to 1e-6 of the input energy."""
 
-from isorock.validate.stress import ENERGY_TOLERANCE, StressCase, grid, run_case, run_stress, verdict
 from isorock.analytic import System
+from isorock.validate.scenarios import Scenario
+from isorock.validate.stress import ENERGY_TOLERANCE, StressCase, grid, run_case, run_stress, verdict
 
 
 def test_quick_subset_passes_on_every_engine():
@@ -20,8 +21,8 @@ def test_quick_subset_passes_on_every_engine():
 
 def test_a_hang_is_reported_as_timeout():
     # 300 s of 1 ms record on the reference path cannot finish in 0.5 s
-    case = StressCase("slow", "forced time-out", System.fixed(height=2, width=0.5, mass=1),
-                      "noise:dt=0.001,pga=0.3,seconds=300,seed=0", 300.0)
+    case = StressCase(Scenario("slow", System.fixed(height=2, width=0.5, mass=1),
+                               "noise:dt=0.001,pga=0.3,seconds=300,seed=0", 300.0), "forced time-out")
     r = run_case("analytic", case, time_limit=0.5)
     assert r["status"] == "timeout" and r["verdict"] == "FAIL"
 
@@ -34,5 +35,8 @@ def test_verdict_rules():
     assert verdict(dict(ok, sim_end=4.0)) == "FAIL"
     assert verdict(dict(ok, sim_end=4.0, status="overturned")) == "pass"
     assert verdict(dict(ok, status="event-limit")) == "FAIL"
-    assert verdict(dict(ok, theta_max_over_alpha=4.3)) == "FAIL"
-    assert verdict(dict(ok, theta_max_over_alpha=1.01, status="overturned")) == "pass"
+    alpha = 0.96  # a squat block: 4.3α is well past lying on its side (π/2)
+    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=4.3, status="overturned")) == "FAIL"
+    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.2, theta_end_over_alpha=0.1)) == "pass"  # leaned, came back
+    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.2, theta_end_over_alpha=1.1)) == "FAIL"  # ended past α
+    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.01, status="overturned")) == "pass"

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import json
 import math
-import types
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from isorock.analytic import load_motion, paper_system, simulate
+from isorock.analytic import AnalyticSettings, load_motion, paper_system, simulate
+from isorock.analytic.engine_protocol import Capabilities, EngineSpec
 from isorock.analytic.errors import InputError
 from isorock.analytic.trajectory import Trajectory
 from isorock.validate import engines as engine_registry
@@ -110,7 +110,8 @@ def _renamed(name, fail_above=None):
         if fail_above is not None and motion.pga_g > fail_above:
             raise RuntimeError("boom")
         return simulate(system, motion, **kw)
-    return Engine(name, types.SimpleNamespace(simulate=sim, Settings=None))
+    return Engine(name, EngineSpec(name=name, label=name, settings_type=AnalyticSettings, simulate=sim,
+                                   capabilities=Capabilities(exact_impacts=True)))
 
 
 def test_ensemble_of_identical_engines_agrees_and_failures_are_recorded():

@@ -75,7 +75,7 @@ def grid(quick: bool = False) -> list[StressCase]:
         duration=12.0, q=True)
     add("record-dt-0.05", "record sampled at 50 ms", block(slenderness=4.0), "noise:dt=0.05,pga=0.8,seconds=20,seed=2",
         duration=22.0, q=True)
-    add("record-dt-0.01-fixed", "record, fixed base", block(fixed=True, lam=4.0),
+    add("record-dt-0.01-fixed", "record, fixed base", block(fixed=True, slenderness=4.0),
         "noise:dt=0.01,pga=0.5,seconds=20,seed=3", duration=22.0)
     add("duration-300", "300 s: long record then free vibration", block(), "noise:dt=0.02,pga=1.0,seconds=120,seed=4",
         duration=300.0)

@@ -100,7 +100,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                     stop_reason = reason
                     break
                 checked = len(rows)
-                throttle(times[i])
+                if i:
+                    throttle(times[i])
             if i == n_steps:
                 break
             if last and i == n_steps - 1:  # the shorter last step, sub-steps no longer than before
