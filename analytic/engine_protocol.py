@@ -11,11 +11,12 @@ engine. A third engine is one new package plus one registry line.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Any, Callable, Protocol
+from typing import TYPE_CHECKING, Any, Callable, Protocol
 
-from .motion import GroundMotion
-from .system import System
-from .trajectory import RawHistory, Trajectory
+if TYPE_CHECKING:  # the registry loads this module for every command: keep it light
+    from .motion import GroundMotion
+    from .system import System
+    from .trajectory import RawHistory, Trajectory
 
 
 class Simulate(Protocol):

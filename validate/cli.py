@@ -17,8 +17,15 @@ import sys
 
 from isorock.analytic.errors import InputError
 
-#: Subcommands that live in their own modules: each has add_parser(subparsers) and run(args).
-EXTRA_COMMANDS = ("isorock.validate.report_cli", "isorock.validate.bench", "isorock.validate.stress")
+#: Subcommands that live in their own modules (each has add_parser(subparsers)), with
+#: their one-line help. Only the module of the command being run is imported, so a
+#: light command never loads what a heavy one needs.
+EXTRA_COMMANDS = {
+    "validate": ("isorock.validate.report_cli", "the validation report: all engines side by side with the "
+                                                 "analytic model"),
+    "bench": ("isorock.validate.bench", "work-precision benchmarks of every engine"),
+    "stress": ("isorock.validate.stress", "the stability stress grid (exits non-zero on any failure)"),
+}
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
 ENGINE_OPTIONS = ("timestep", "solref", "solimp", "cone", "integrator", "friction", "noslip",
@@ -49,7 +56,8 @@ def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=No
     g.add_argument("--base-mass", type=float, required=required and "base_mass" not in d,
                    default=d.get("base_mass"), help="base plate mass m_b, kg (μ = m/m_b)")
     g.add_argument("--period", type=float, help="isolation period T = 2π√(M/k), s")
-    g.add_argument("--damping", type=float, help="isolator damping ratio ξ = c/(2Mω), dimensionless")
+    g.add_argument("--damping-ratio", "--damping", dest="damping_ratio", type=float,
+                   help="isolator damping ratio ξ = c/(2Mω), dimensionless (--damping is an alias)")
     g.add_argument("--stiffness", type=float, help="isolator stiffness k, N/m (instead of --period)")
     g.add_argument("--dashpot", type=float, help="isolator dashpot c, N·s/m (with --stiffness)")
     g.add_argument("--fixed-base", action="store_true", help="fixed (non-isolated) base: μ = 0")
@@ -60,22 +68,22 @@ def system_from_args(a, *, default_isolator=None):
     is used when no isolator option is given (the scene command's paper defaults)."""
     from isorock.analytic.system import System
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
-    isolation = [x is not None for x in (a.period, a.damping, a.stiffness, a.dashpot)]
+    isolation = [x is not None for x in (a.period, a.damping_ratio, a.stiffness, a.dashpot)]
     if a.fixed_base:
         if any(isolation):
-            raise InputError("--fixed-base: cannot be combined with --period/--damping/--stiffness/--dashpot")
+            raise InputError("--fixed-base: cannot be combined with --period/--damping-ratio/--stiffness/--dashpot")
         return System.fixed(**common)
-    if a.period is not None or a.damping is not None:
-        if a.period is None or a.damping is None or a.stiffness is not None or a.dashpot is not None:
-            raise InputError("isolator: give --period with --damping, or --stiffness with --dashpot, "
+    if a.period is not None or a.damping_ratio is not None:
+        if a.period is None or a.damping_ratio is None or a.stiffness is not None or a.dashpot is not None:
+            raise InputError("isolator: give --period with --damping-ratio, or --stiffness with --dashpot, "
                              "or --fixed-base")
-        return System.isolated(**common, period=a.period, damping_ratio=a.damping)
+        return System.isolated(**common, period=a.period, damping_ratio=a.damping_ratio)
     if a.stiffness is not None:
         return System.from_stiffness(**common, stiffness=a.stiffness,
                                      damping=0.0 if a.dashpot is None else a.dashpot)
     if default_isolator is not None:
         return System.isolated(**common, period=default_isolator[0], damping_ratio=default_isolator[1])
-    raise InputError("isolator: give --period T --damping XI, or --stiffness K --dashpot C, or --fixed-base")
+    raise InputError("isolator: give --period T --damping-ratio XI, or --stiffness K --dashpot C, or --fixed-base")
 
 
 def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
@@ -128,7 +136,9 @@ def engine_settings_from_args(engine, a):
         raise InputError(str(e).replace("_", "-")) from None
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The whole parser; the options of the extra commands other than `command` are
+    left out (their module is not imported), unless no command is known (top-level help)."""
     parser = argparse.ArgumentParser(prog="isorock", description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
@@ -148,7 +158,8 @@ def build_parser() -> argparse.ArgumentParser:
     add_motion_options(p)
     p.add_argument("--duration", type=float,
                    help="end time from t = 0, s (default: motion end + 5 s, or 10 s without motion)")
-    p.add_argument("--theta0", type=float, default=0.0, help="initial tilt as a fraction of α (default 0)")
+    p.add_argument("--theta0-over-alpha", "--theta0", dest="theta0_over_alpha", type=float, default=0.0,
+                   help="initial tilt as a fraction of α (default 0; --theta0 is an alias)")
     p.add_argument("--impact-threshold", type=float, default=0.01,
                    help="an impact counts when its half-cycle's peak |θ| exceeds this × α (default 0.01)")
     p.add_argument("--json", metavar="FILE", help="write the metrics and impact log as JSON")
@@ -167,11 +178,15 @@ def build_parser() -> argparse.ArgumentParser:
     add_engine_options(p)
     p.set_defaults(func=cmd_scene)
 
-    for name in EXTRA_COMMANDS:
+    builtin = {"beta", "run", "scene"}
+    for name, (module, help_) in EXTRA_COMMANDS.items():
+        if command in builtin or (command in EXTRA_COMMANDS and command != name):
+            sub.add_parser(name, help=help_)  # listed, its options not loaded
+            continue
         try:
-            mod = importlib.import_module(name)
+            mod = importlib.import_module(module)
         except ModuleNotFoundError as e:
-            if e.name != name:
+            if e.name != module:
                 raise
             continue
         mod.add_parser(sub)
@@ -179,8 +194,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def cmd_beta(a) -> int:
+    import json
+
     from isorock.analytic import coefficients as co
-    from isorock.validate.output import to_json
     h = a.height / 2 if a.height is not None and a.height > 0 else a.height
     if h is None or not h > 0:
         raise InputError(f"height = {a.height!r}: must be a positive finite number")
@@ -192,7 +208,7 @@ def cmd_beta(a) -> int:
         "beta_housner": co.beta_housner(a.slenderness),
         "no_bounce_slenderness": co.no_bounce_slenderness(a.mass_ratio),
     }
-    print(to_json(out))
+    print(json.dumps(out, indent=2))  # plain floats: no NumPy needed, so `beta` stays light
     return 0
 
 
@@ -213,11 +229,11 @@ def cmd_run(a) -> int:
     settings = engine_settings_from_args(engine, a)
     if a.duration is not None and not a.duration > 0:
         raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
-    if not (abs(a.theta0) < 1):
-        raise InputError(f"theta0 = {a.theta0!r}: must be a fraction of α between -1 and 1")
+    if not (abs(a.theta0_over_alpha) < 1):
+        raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     if a.csv_dt is not None and not a.csv_dt > 0:
         raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")
-    traj = engine.simulate(system, motion, settings=settings, duration=a.duration, theta0=a.theta0 * system.alpha,
+    traj = engine.simulate(system, motion, settings=settings, duration=a.duration, theta0=a.theta0_over_alpha * system.alpha,
                            impact_threshold=a.impact_threshold, progress=_progress(a.quiet))
     summary = traj.summary()
     report = dict(summary, system=system.describe(), motion=motion.describe(), settings=_settings_dict(settings))
@@ -267,7 +283,9 @@ def _engines_with_scenes():
 
 
 def main(argv=None) -> int:
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    command = next((a for a in argv if not a.startswith("-")), None)
+    parser = build_parser(command)
     args = parser.parse_args(argv)
     try:
         return int(args.func(args) or 0)

@@ -12,9 +12,17 @@ from __future__ import annotations
 import importlib
 from dataclasses import dataclass, fields
 
+from typing import TYPE_CHECKING
+
 from isorock.analytic.engine_protocol import EngineSpec
 from isorock.analytic.errors import InputError
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, Trajectory
+
+if TYPE_CHECKING:
+    from isorock.analytic.trajectory import Trajectory
+
+#: model.md's counting rule, as a fraction of α (analytic.trajectory.DEFAULT_IMPACT_THRESHOLD,
+#: repeated here so that loading the registry loads no numerical module)
+DEFAULT_IMPACT_THRESHOLD = 0.01
 
 ENGINE_MODULES = {
     "analytic": "isorock.analytic.engine",
@@ -83,6 +91,7 @@ class Engine:
         """Run the engine and measure its history: θ0 in rad; impact_threshold as a
         fraction of α (model.md's counting rule); contact_window (s) and overturn_rule
         are how a contact engine's history is measured (validate.measure)."""
+        from isorock.analytic.trajectory import RawHistory
         from isorock.validate import measure
         kwargs = dict(settings=settings, duration=duration, theta0=theta0, progress=progress)
         if self.capabilities.exact_impacts:

@@ -16,7 +16,7 @@ DEFAULT_OUT = "isorock-report"
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
-    from isorock.validate.report_run import DEFAULT_MOTIONS, RECORD_WINDOW
+    from isorock.validate.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
     p = subparsers.add_parser(
         "validate", help="the validation report: all engines side by side with the analytic model",
         description="Run the paper's block (isolated T 1.5 s ξ 0.2, and on a fixed base) on each motion "

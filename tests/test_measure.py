@@ -1,0 +1,103 @@
+"""Measuring a contact engine's raw history (validate/measure.py) on synthetic histories
+whose impacts, β and overturning are known independently: closed-form β, hand-made
+θ(t) with known half-cycle peaks, and model.md's overturning rules."""
+import math
+
+import numpy as np
+import pytest
+
+from isorock.analytic import AnalyticSettings, GroundMotion, System, simulate
+from isorock.analytic.coefficients import beta
+from isorock.analytic.status import Status
+from isorock.analytic.trajectory import RawHistory
+from isorock.validate.measure import CONTACT_WINDOW, judge_overturning, measure
+
+FIXED = System.fixed(height=2.0, width=0.7, mass=3800.0)
+ISOLATED = System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.5, damping_ratio=0.2)
+ZERO = GroundMotion.zero()
+FINE = AnalyticSettings(output_dt=1e-3)  # stored points every 1 ms, like a contact engine's
+
+
+def raw(system, t, theta, theta_dot=None, u=None, u_dot=None, **kw):
+    n = len(t)
+    theta = np.asarray(theta, dtype=float)
+    return RawHistory(engine="synthetic", system=system, t=np.asarray(t, dtype=float),
+                      u=np.zeros(n) if u is None else np.asarray(u), u_dot=np.zeros(n) if u_dot is None else u_dot,
+                      theta=theta, theta_dot=np.gradient(theta, t) if theta_dot is None else theta_dot, **kw)
+
+
+@pytest.mark.parametrize("system", [FIXED, ISOLATED], ids=["fixed", "isolated"])
+def test_rigid_history_sampled_like_a_contact_engine_gives_the_closed_form_beta(system):
+    # the rigid model's own states, stored every 1 ms: impacts are instantaneous, so the
+    # states outside the window map to θ = 0 exactly and β_eff is the closed form
+    s = exact = simulate(system, None, duration=2.0, theta0=0.5 * system.alpha, settings=FINE)
+    tr = measure(raw(system, s.t, s.theta, s.theta_dot, s.u, s.u_dot), ZERO)
+    ref = beta(system.slenderness, system.mu)
+    counted = tr.counted_impacts
+    assert len(counted) >= 3
+    for got, want in zip(counted, exact.counted_impacts):
+        assert got.t == pytest.approx(want.t, abs=1e-3)  # the crossing, read between two samples
+        assert got.beta == pytest.approx(ref, rel=1e-6)
+    assert tr.status == Status.COMPLETED and not tr.overturned
+
+
+def test_every_sign_change_is_an_impact_and_the_rule_counts_some():
+    # half-cycles of known peaks: 0.5α, 0.005α (below the 1% threshold), 0.3α
+    a = FIXED.alpha
+    peaks = [0.5, 0.005, 0.3]
+    t, theta, sign = [], [], 1.0
+    for k, p in enumerate(peaks):
+        tt = np.linspace(k, k + 1, 201)[:-1]
+        t.append(tt)
+        theta.append(sign * p * a * np.sin(np.pi * (tt - k)))
+        sign = -sign
+    t = np.concatenate(t + [np.array([3.0, 3.1])])
+    theta = np.concatenate(theta + [sign * np.array([0.01 * a, 0.02 * a])])  # a last half-cycle begins
+    tr = measure(raw(FIXED, t, theta), ZERO)
+    assert [round(i.amplitude / a, 6) for i in tr.impacts] == [0.5, 0.005, 0.3]
+    assert [i.counted for i in tr.impacts] == [True, False, True]
+    assert tr.impact_count == 2 and tr.summary()["impacts_total"] == 3
+    assert math.isnan(tr.impacts[1].beta)  # not counted: no β measured for chatter
+
+
+def test_uplift_is_read_where_theta_leaves_the_rest_band():
+    t = np.linspace(0, 2, 2001)
+    theta = np.where(t > 0.5, 0.2 * FIXED.alpha * np.sin(np.pi * (t - 0.5)), 0.0)
+    tr = measure(raw(FIXED, t, theta), ZERO)
+    assert len(tr.uplift_times) == 1 and tr.uplift_times[0] == pytest.approx(0.5, abs=0.01)
+
+
+def _lean(peak, end):
+    """θ/α rising to `peak` at t = 1 s and ending at `end` at t = 3 s (piecewise linear)."""
+    t = np.linspace(0, 3, 3001)
+    return t, np.interp(t, [0, 1, 3], [0.0, peak, end]) * FIXED.alpha
+
+
+def test_overturning_past_alpha_follows_model_md():
+    t, th = _lean(1.3, 0.2)  # leaned past α and came back: survives by the π/2 rule
+    assert judge_overturning(t, th, FIXED.alpha) == (False, None)
+    over, at = judge_overturning(t, th, FIXED.alpha, rule="alpha")  # the conservative rule
+    assert over and at == pytest.approx(1 / 1.3, abs=2e-3)
+    t, th = _lean(0.8, 1.2)  # ends beyond α: overturned, at the last time it passed α
+    over, at = judge_overturning(t, th, FIXED.alpha)
+    assert over and at == pytest.approx(1 + 2 * 0.2 / 0.4, abs=2e-3)
+    t, th = _lean(1.1, 1.1)
+    assert judge_overturning(t, th, FIXED.alpha, lying=True)[0]
+    with pytest.raises(ValueError, match="overturn rule"):
+        judge_overturning(t, th, FIXED.alpha, rule="sometimes")
+
+
+def test_measure_reports_overturning_in_the_status_and_keeps_failures():
+    t, th = _lean(0.8, 1.2)
+    tr = measure(raw(FIXED, t, th), ZERO)
+    assert tr.overturned and tr.status == Status.OVERTURNED and "last passed α" in tr.message
+    failed = measure(raw(FIXED, t, th, status=Status.FAILED, message="blew up"), ZERO)
+    assert failed.status == Status.FAILED and failed.message == "blew up"  # a failure is never renamed
+
+
+def test_contact_window_is_a_measuring_parameter():
+    s = simulate(FIXED, None, duration=1.2, theta0=0.5 * FIXED.alpha, settings=FINE)
+    history = raw(FIXED, s.t, s.theta, s.theta_dot)
+    for window in (0.5 * CONTACT_WINDOW, CONTACT_WINDOW):
+        tr = measure(history, ZERO, window=window)
+        assert tr.counted_impacts[0].beta == pytest.approx(beta(FIXED.slenderness, 0.0), rel=1e-6)
