@@ -8,7 +8,7 @@ import importlib
 
 _HOMES = {
     "beta": "coefficients", "beta2": "coefficients", "beta3": "coefficients", "beta_housner": "coefficients",
-    "no_bounce_slenderness": "coefficients", "uplift_acceleration": "coefficients",
+    "no_bounce_slenderness": "coefficients",
     "InputError": "errors",
     "AnalyticSettings": "hybrid", "simulate": "hybrid",
     "GroundMotion": "motion", "Pulse": "motion", "load_motion": "motion", "parse_pulse": "motion",

@@ -51,20 +51,3 @@ def no_bounce_slenderness(mass_ratio: float) -> float:
     """β > 0 exactly when λ exceeds √(2(μ+1)/(μ+4))."""
     mu = require_nonnegative_finite("mass_ratio", mass_ratio)
     return math.sqrt(2 * (mu + 1) / (mu + 4))
-
-
-def uplift_acceleration(slenderness: float, gravity: float = 9.81) -> float:
-    """Base acceleration magnitude g·tanα = g/λ at which rocking starts (m/s²)."""
-    lam = require_positive_finite("slenderness", slenderness)
-    require(gravity > 0, "gravity", gravity, "positive")
-    return gravity / lam
-
-
-def coefficients_of(system) -> dict:
-    """β, β₂, β₃ of a System, in the units above."""
-    lam, mu, h = system.slenderness, system.mu, system.h
-    return {
-        "beta": beta(lam, mu),
-        "beta2": beta2(lam, mu, h),
-        "beta3": beta3(mu, h),
-    }

@@ -108,9 +108,10 @@ def motion_from_args(a):
 def add_engine_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("engine settings (defaults chosen by measurement; see each engine's docs)")
     g.add_argument("--timestep", type=float,
-                   help="mujoco: time step, s (contact solref/solimp follow it unless given); "
-                        "bullet: the step at which ground motion and isolator force are updated, s "
-                        "(Bullet integrates at timestep/substeps)")
+                   help="the physics step, s, for every contact engine. mujoco: its contact solref/solimp "
+                        "follow it unless given; bullet: the ground motion and isolator force are updated every "
+                        "--substeps physics steps, which follow it (keeping that control step near 4 ms) unless "
+                        "given. The settings used, those that followed included, are in the --json output")
     g.add_argument("--solref", type=_floats(2, 2, "solref"), help="mujoco: contact solref 'timeconst,dampratio'")
     g.add_argument("--solimp", type=_floats(3, 5, "solimp"), help="mujoco: contact solimp 'dmin,dmax,width[,mid,power]'")
     g.add_argument("--cone", choices=("pyramidal", "elliptic"), help="mujoco: friction cone")
@@ -118,7 +119,8 @@ def add_engine_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--friction", type=float, help="mujoco, bullet: block–base friction coefficient")
     g.add_argument("--noslip", type=int, dest="noslip", metavar="N", help="mujoco: noslip iterations")
     g.add_argument("--solver-iterations", type=int, help="bullet: constraint solver iterations")
-    g.add_argument("--substeps", type=int, help="bullet: physics substeps per step")
+    g.add_argument("--substeps", type=int,
+                   help="bullet: physics steps per control step (ground motion and isolator force updated)")
     g.add_argument("--rtol", type=float, help="analytic: relative tolerance (default 1e-10)")
     g.add_argument("--atol", type=float, help="analytic: absolute tolerance, m and rad (default 1e-12)")
     g.add_argument("--max-step", type=float,
@@ -152,8 +154,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     p = sub.add_parser("run", help="simulate one system with one engine",
                        description="Simulate one block on its base with one engine and print its metrics.")
     p.add_argument("--engine", default="analytic",
-                   help="analytic (reference path), analytic-fast (the same model compiled), mujoco or bullet "
-                        "(default: %(default)s)")
+                   help=f"one of {', '.join(_registered())} (default: %(default)s)")
     add_system_options(p)
     add_motion_options(p)
     p.add_argument("--duration", type=float,
@@ -249,8 +250,14 @@ def cmd_run(a) -> int:
 
 
 def _settings_dict(settings):
+    """Every setting the run used, with those derived from them (e.g. PyBullet's control
+    step): a timestep given alone brings other settings along, and the JSON says which."""
     from dataclasses import asdict
-    return asdict(settings)
+    out = asdict(settings)
+    for name in dir(type(settings)):
+        if isinstance(getattr(type(settings), name), property):
+            out[name] = getattr(settings, name)
+    return out
 
 
 def cmd_scene(a) -> int:
@@ -268,6 +275,11 @@ def cmd_scene(a) -> int:
         print(f"note: {a.engine} scenes are {kind} files ({suffix}); {a.out} holds {kind}", file=sys.stderr)
     print(a.out)
     return 0
+
+
+def _registered():
+    from isorock.validate.engines import ALL_ENGINES
+    return ALL_ENGINES
 
 
 def _engines_with_scenes():
