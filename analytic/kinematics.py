@@ -65,19 +65,19 @@ def lift_off(system: System, z_centroid, theta):
 
 
 def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_from: int | None,
-                   rest_fraction: float, out_of_plane=None) -> dict:
+                   out_of_plane=None) -> dict:
     """The contact engines' extras, one vocabulary for all of them (each a scalar):
-    pivot_slip_max (m, while rocking), lift_off_max_after_impact (m, after the first
+    pivot_slip_max (m: how far the corner the block stands or rocks on moved along the
+    base; at rest that is the block sliding), lift_off_max_after_impact (m, after the first
     counted impact: a hop shows here), penetration_max (m) and, where the block can
     leave its plane, out_of_plane_max (largest of |y| in m and the roll and yaw tilts in
     rad; both small). `counted_from`: index of the first counted impact, or None."""
     theta = np.asarray(theta, dtype=float)
-    rocking = np.abs(theta) > rest_fraction * system.alpha
     slip = pivot_slip(system, x_centroid, theta, u)
     low = lift_off(system, z_centroid, theta)
     after = low[counted_from:] if counted_from is not None else low[:0]
     out = {
-        "pivot_slip_max": float(np.max(np.abs(slip[rocking]))) if rocking.any() else 0.0,
+        "pivot_slip_max": float(np.max(np.abs(slip))) if slip.size else 0.0,
         "lift_off_max_after_impact": float(np.max(after)) if after.size else 0.0,
         "penetration_max": float(max(0.0, -np.min(low))) if low.size else 0.0,
     }

@@ -11,11 +11,17 @@ class Status(StrEnum):
     OVERTURNED = "overturned"    #: the block overturned (by the run's overturning rule)
     EVENT_LIMIT = "event-limit"  #: the analytic model stopped after `max_events` events
     FAILED = "failed"            #: the integration or the engine failed; the message says why
+    SLID = "slid"                #: a contact engine's block slid on its base: not the no-sliding model
 
     @property
     def ended_normally(self) -> bool:
         """True when the history covers the physics asked for (completed or overturned)."""
         return self in (Status.COMPLETED, Status.OVERTURNED)
+
+    @property
+    def is_failure(self) -> bool:
+        """True when the run produced no answer to trust (failed, or stopped at the event limit)."""
+        return self in (Status.FAILED, Status.EVENT_LIMIT)
 
 
 __all__ = ["Status"]

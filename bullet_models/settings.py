@@ -7,6 +7,7 @@ step, timestep × substeps), because a Python step costs more than Bullet's sub-
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,6 +19,11 @@ from isorock.analytic.errors import require, require_nonnegative_finite, require
 CONTROL_STEP = 4e-3
 #: The longest control step: the isolator force and the ground motion are held over it.
 MAX_CONTROL_STEP = 0.01
+#: The isolator force is applied explicitly, once per control step: with ω·dt above this
+#: (ω = 2π/T) it lags the spring enough to pump energy into the base, and at ω·dt ≈ 2 it
+#: diverges (T 0.01 s at 4 ms overturned a block the analytic model rocks). 0.2 keeps
+#: the held force within a few per cent of the spring's (T ≥ 0.126 s at 4 ms).
+MAX_ISOLATOR_PHASE = 0.2
 
 
 @dataclass(frozen=True)
@@ -68,6 +74,17 @@ class Settings:
     def control_step(self) -> float:
         """The step (s) at which ground motion, isolator force and output are updated."""
         return self.timestep * self.substeps
+
+    def check_isolator(self, system) -> None:
+        """An isolator too stiff for the explicit force of this control step is bad input:
+        it would blow up or give a wrong history, not an answer."""
+        if system.fixed_base:
+            return
+        shortest = 2 * math.pi * self.control_step / MAX_ISOLATOR_PHASE
+        require(system.period >= shortest, "period", round(system.period, 6),
+                f"at least {shortest:.3g} s for PyBullet with a control step of {self.control_step:g} s "
+                f"(ω·dt ≤ {MAX_ISOLATOR_PHASE:g}: the isolator force is applied explicitly once per control step); "
+                "give fewer --substeps or a shorter --timestep")
 
 
 def settings_for(**overrides) -> Settings:

@@ -31,7 +31,7 @@ from .settings import Settings
 
 ENGINE = "bullet"
 #: |θ| below this fraction of α counts as "down": no sign change of θ there is an impact
-#: to keep out of the base-acceleration estimate (and no rocking for the pivot slip).
+#: to keep out of the base-acceleration estimate.
 REST_FRACTION = 1e-3
 
 
@@ -42,6 +42,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: callable(t, duration), called about once a second."""
     settings = settings or Settings()
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD)
+    settings.check_isolator(system)
 
     dt = settings.control_step
     n_steps = int(math.floor(duration / dt + 1e-9))
@@ -146,6 +147,6 @@ def raw_history(system, rows, runtime, status, message, stop_reason) -> RawHisto
     counted = counted_sign_changes(theta, system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(
         system, x_centroid=x, z_centroid=z, theta=theta, u=u, counted_from=counted[0][0] if counted else None,
-        rest_fraction=REST_FRACTION, out_of_plane=np.maximum.reduce([np.abs(y), np.abs(roll), np.abs(yaw)]))
+        out_of_plane=np.maximum.reduce([np.abs(y), np.abs(roll), np.abs(yaw)]))
     return RawHistory(engine=ENGINE, system=system, t=t, u=u, u_dot=ud, theta=theta, theta_dot=wy,
                       status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason)

@@ -18,7 +18,7 @@ from isorock.analytic.trajectory import RawHistory
 
 from .scene import scene_text
 from .settings import Settings
-from .stepping import raw_history, stop_in
+from .stepping import raw_history, stop_in, warning_failure
 
 #: Fine steps start when the block would reach θ = 0 within IMPACT_ZONE coarse steps at
 #: its present θ̇ (and |θ̇| is above IMPACT_MIN_RATE, rad/s: a block at rest stays on
@@ -33,7 +33,7 @@ COARSE_CHUNK = 64
 
 
 def run_event_resolved(model, system, motion, settings, lay, nstep, theta0, progress, start,
-                       duration) -> RawHistory:
+                       duration, warnings) -> RawHistory:
     """Coarse steps (settings.timestep) in flight and at rest, fine steps
     (settings.impact_timestep) around impacts; the history keeps the coarse grid.
 
@@ -109,6 +109,10 @@ def run_event_resolved(model, system, motion, settings, lay, nstep, theta0, prog
                 if flipped[stop[0]]:
                     last_cross = t_k + (stop[0] + 1) * dt
             chunk_coarse = [True] * len(chunk)
+        failure = warning_failure(warnings, data_f if fine else data_c)
+        if failure is not None:
+            status, message = Status.FAILED, f"MuJoCo: {failure[0]} (try a smaller timestep)"
+            break
         k_stop, reason = stop_in(lay, system, chunk, t_k + dt * np.arange(1, len(chunk) + 1), motion)
         if reason == "non-finite":
             rows.extend(chunk[:k_stop])

@@ -15,7 +15,9 @@ blow-up cannot pass silently.
 from __future__ import annotations
 
 import math
+import re
 import time
+from contextlib import contextmanager
 
 import mujoco
 import numpy as np
@@ -36,9 +38,6 @@ ENGINE = "mujoco"
 #: between calls. The warm start is carried across calls, so the split does not change
 #: the result (tested).
 CHUNK_STEPS = 20_000
-#: |θ| below this fraction of α is "at rest" for the extras (pivot slip while rocking);
-#: the same band the measuring uses.
-REST_FRACTION = 1e-3
 
 
 class Layout:
@@ -106,6 +105,31 @@ class Layout:
         return out
 
 
+@contextmanager
+def warnings_as_status():
+    """MuJoCo's warnings (a blown-up state, "Nan, Inf or huge value in QACC", a full
+    contact buffer) collected as messages while the body runs, instead of being printed
+    and written to MUJOCO_LOG.TXT in the user's working directory; the run reports the
+    first one as its failure. The handler is process-wide, so the previous one is restored."""
+    messages: list[str] = []
+    previous = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(messages.append)
+    try:
+        yield messages
+    finally:
+        mujoco.set_mju_user_warning(previous)
+
+
+def warning_failure(messages: list[str], data: mujoco.MjData) -> tuple[str, float] | None:
+    """(message, time) of the first MuJoCo warning of a run, or None: any warning means the
+    history after it is not the physics (MuJoCo's auto-reset is off, so the bad state stays)."""
+    if not messages and not any(w.number for w in data.warning):
+        return None
+    text = messages[0] if messages else "MuJoCo raised a warning"
+    found = re.search(r"Time = ([0-9]+(?:\.[0-9]+)?(?:[eE][+-]?[0-9]+)?)", text)
+    return text, float(found.group(1)) if found else math.nan
+
+
 def simulate(system: System, motion: GroundMotion | None = None, *, settings: Settings | None = None,
              duration: float | None = None, theta0: float = 0.0, progress=None) -> RawHistory:
     """Simulate the scene from t = 0 to `duration` (s; default: the motion's end + 5 s,
@@ -128,7 +152,9 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
     nstep = int(math.floor(duration / dt + 1e-9))
     if settings.impact_timestep is not None:
         from .event_resolved import run_event_resolved
-        return run_event_resolved(model, system, motion, settings, lay, nstep, theta0, progress, start, duration)
+        with warnings_as_status() as warnings:
+            return run_event_resolved(model, system, motion, settings, lay, nstep, theta0, progress, start,
+                                      duration, warnings)
 
     chunk_steps = chunk_steps or CHUNK_STEPS
     data = mujoco.MjData(model)
@@ -136,8 +162,16 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
     state0 = lay.initial_state(model, system, theta0)
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
-    status, message, stop_reason = Status.COMPLETED, "reached the end time", None
     throttle = kinematics.Throttle(progress, duration)
+    with warnings_as_status() as warnings:
+        rows, status, message, stop_reason = _roll(model, data, lay, system, motion, forces, state0, warm, rows,
+                                                   nstep, chunk_steps, dt, throttle, warnings)
+    runtime = time.perf_counter() - start
+    return raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
+
+
+def _roll(model, data, lay, system, motion, forces, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings):
+    status, message, stop_reason = Status.COMPLETED, "reached the end time", None
     done = 0
     while done < nstep:
         n = min(chunk_steps, nstep - done)
@@ -147,6 +181,13 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
         chunk = state[0]
         t0 = done * dt
         done += n
+        failure = warning_failure(warnings, data)
+        if failure is not None:
+            text, at = failure
+            keep = int(np.searchsorted(t0 + dt * np.arange(1, n + 1), at)) if math.isfinite(at) else 0
+            rows.append(chunk[:keep])
+            status, message = Status.FAILED, f"MuJoCo: {text} (try a smaller timestep)"
+            break
         k, reason = stop_in(lay, system, chunk, t0 + dt * np.arange(1, n + 1), motion)
         if reason == "non-finite":
             rows.append(chunk[:k])
@@ -162,8 +203,7 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
         state0 = chunk[-1]
         warm = data.qacc_warmstart.copy()
         throttle(done * dt)
-    runtime = time.perf_counter() - start
-    return raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
+    return rows, status, message, stop_reason
 
 
 def stop_in(lay: Layout, system: System, chunk: np.ndarray, t: np.ndarray, motion: GroundMotion):
@@ -180,8 +220,7 @@ def raw_history(lay, system, states, dt, runtime, status, message, stop_reason) 
     counted = counted_sign_changes(hist["theta"], system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(
         system, x_centroid=hist["x"], z_centroid=hist["z"], theta=hist["theta"], u=hist["u"],
-        counted_from=counted[0][0] if counted else None, rest_fraction=REST_FRACTION,
-        out_of_plane=hist.get("out_of_plane"))
+        counted_from=counted[0][0] if counted else None, out_of_plane=hist.get("out_of_plane"))
     return RawHistory(engine=ENGINE, system=system, t=t, u=hist["u"], u_dot=hist["u_dot"], theta=hist["theta"],
                       theta_dot=hist["theta_dot"], status=status, message=message, runtime_s=runtime,
                       extras=extras, stop_reason=stop_reason)

@@ -298,3 +298,19 @@ def test_progress_is_called_with_the_duration(monkeypatch):
     monkeypatch.setattr(kinematics.time, "perf_counter", lambda: next(ticks))
     simulate(FIXED, duration=3.0, progress=lambda t, total: seen.append((t, total)))
     assert seen and all(total == 3.0 and 0 < t <= 3.0 for t, total in seen)
+
+
+def test_an_isolator_too_stiff_for_the_control_step_is_refused():
+    stiff = System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=0.01, damping_ratio=0.2)
+    with pytest.raises(InputError, match=r"period = 0\.01: must be at least 0\.126 s"):
+        simulate(stiff, GroundMotion.from_pulse(Pulse("sine", 0.6, 1.3)), duration=1.0)
+    # a shorter control step carries it
+    fine = Settings(timestep=1e-4, substeps=1)
+    fine.check_isolator(System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=0.01,
+                                        damping_ratio=0.2))
+
+
+def test_a_squat_block_that_slides_says_so():
+    squat = System.fixed(height=0.5, width=0.56, mass=100.0)
+    traj = simulate(squat, GroundMotion.from_pulse(Pulse("sine", 1.5, 1.0, 2)), duration=3.0)
+    assert traj.status == "slid" and traj.extras["pivot_slip_max"] > 0.01 * squat.b

@@ -101,3 +101,12 @@ def test_contact_window_is_a_measuring_parameter():
     for window in (0.5 * CONTACT_WINDOW, CONTACT_WINDOW):
         tr = measure(history, ZERO, window=window)
         assert tr.counted_impacts[0].beta == pytest.approx(beta(FIXED.slenderness, 0.0), rel=1e-6)
+
+
+def test_a_block_that_slides_says_so_in_its_status():
+    t = np.linspace(0, 1, 101)
+    theta = 0.2 * FIXED.alpha * np.sin(np.pi * t)
+    slid = measure(raw(FIXED, t, theta, extras={"pivot_slip_max": 0.05 * FIXED.b}), ZERO)
+    assert slid.status == Status.SLID and "assumes no sliding" in slid.message
+    held = measure(raw(FIXED, t, theta, extras={"pivot_slip_max": 1e-5}), ZERO)
+    assert held.status == Status.COMPLETED

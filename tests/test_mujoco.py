@@ -364,3 +364,21 @@ def test_a_timestep_alone_takes_the_contact_parameters_measured_for_it():
     # solref given with it: the user's values stand
     assert engine.settings(timestep=2e-3, solref=(0.004, 1.0)).solref == (0.004, 1.0)
     assert engine.settings(friction=2.0).timestep == scene.Settings().timestep
+
+
+def test_a_blown_up_state_is_a_failure_and_leaves_no_log_file(tmp_path, monkeypatch):
+    """T 0.001 s is far too stiff for dt 5e-4: MuJoCo warns of a huge QACC. The run must
+    say 'failed' (not 'completed' with a 600 m base displacement) and write nothing into
+    the working directory (MuJoCo's MUJOCO_LOG.TXT)."""
+    monkeypatch.chdir(tmp_path)
+    stiff = System.isolated(height=H, width=B07, mass=M, base_mass=M, period=0.001, damping_ratio=0.2)
+    traj = MUJOCO.simulate(stiff, load_motion("sine:amp=0.6,freq=1.3,cycles=2"), duration=2.0)
+    assert traj.status == "failed" and "QACC" in traj.message
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_squat_block_that_slides_says_so():
+    # λ 0.89 with friction 1 < b/h: the block slides instead of rocking (model.md assumes it cannot)
+    squat = System.fixed(height=0.5, width=0.56, mass=100.0)
+    traj = MUJOCO.simulate(squat, load_motion("sine:amp=1.5,freq=1,cycles=2"), duration=3.0)
+    assert traj.status == "slid" and traj.extras["pivot_slip_max"] > 0.01 * squat.b

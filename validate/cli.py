@@ -246,7 +246,7 @@ def cmd_run(a) -> int:
     if not a.quiet:
         brief = {k: v for k, v in summary.items() if k != "impact_log"}
         print(to_json(brief))
-    return 0 if traj.status in ("completed", "overturned") else 1
+    return 1 if traj.status.is_failure else 0
 
 
 def _settings_dict(settings):

@@ -30,6 +30,12 @@ from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, RawHis
 CONTACT_WINDOW = 0.03
 #: |θ| below this fraction of α counts as "down" when deriving the mode of a contact engine.
 REST_FRACTION = 1e-3
+#: The corner the block stands or rocks on moving along the base by more than this
+#: fraction of the half width b is sliding, not a contact's compliance (measured up to
+#: 4e-4·b at the defaults of both engines under the report's pulses; a squat λ 0.89 block
+#: with friction 1 slides 0.6–0.7·b): the run then breaks the analytic model's
+#: no-sliding assumption and says so in its status.
+SLIDING_FRACTION = 0.01
 #: model.md's overturning rules: "pi/2" (the default: overturned when |θ| reaches π/2, or
 #: the run ends with |θ| > α) and the conservative "alpha" (overturned once |θ| reaches α).
 OVERTURN_RULES = ("pi/2", "alpha")
@@ -54,6 +60,12 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
                    f"overturned: last passed α at t = {overturn_time:.6g} s"
                    + {"lying": " and came to lie on its side", "falling": " and falls (fixed base, motion over)"}
                    .get(raw.stop_reason, " and ended beyond it"))
+    slip = raw.extras.get("pivot_slip_max")
+    if slip is not None and slip > SLIDING_FRACTION * system.b and not status.is_failure:
+        status = Status.SLID
+        message = (f"the block slid {slip * 1000:.3g} mm at its pivot (more than {SLIDING_FRACTION:g}·b): the "
+                   f"analytic model assumes no sliding (friction above b/h = {1 / system.slenderness:.3g} is needed)"
+                   + (f"; it also {message}" if overturned else ""))
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
                                 impact_threshold=impact_threshold, window=window)
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
