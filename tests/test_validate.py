@@ -159,12 +159,14 @@ def test_figures_write_png(tmp_path, pulse_run):
     png = b"\x89PNG"
     figures.beta_slenderness([{"engine": "mujoco", "mass_ratio": 1.0, "slenderness": 2.857, "beta": 0.75,
                                "beta2_over_h": 0.3}], tmp_path / "a.png")
-    figures.histories(motion, {"analytic": iso}, {"analytic": tr}, tmp_path / "b.png")
-    figures.beta_per_impact([("free", [("paper", "mujoco", [0.001, -0.002])]), ("forced", [])], tmp_path / "c.png")
+    figures.history(motion, {"analytic": tr, "twin": tr}, tmp_path / "b.png", title="a fixed base")
+    figures.beta_per_impact([("free", [("paper", "mujoco", [0.001, -0.002])]), ("forced", [])], tmp_path / "c.png",
+                            bands={"mujoco": 0.01})
     ens = Ensemble(system=system, motion="m", pga_g=0.5, duration=1.0, scales=np.array([1.0, 2.0]),
                    theta_max={"analytic": np.array([0.2, 1.0])}, overturned={"analytic": np.array([False, True])})
-    figures.ensemble([ens], tmp_path / "d.png")
-    for name in "abcd":
+    figures.ensemble([ens], tmp_path / "d.png", bands={"mujoco": 0.02})
+    figures.history(motion, {"analytic": iso}, tmp_path / "e.png", title="an isolated base")
+    for name in "abcde":
         assert (tmp_path / f"{name}.png").read_bytes()[:4] == png
 
 
@@ -180,7 +182,7 @@ def test_validate_end_to_end_with_a_missing_engine(tmp_path, monkeypatch, capsys
     assert main(TINY + ["--engines", "analytic", "ghost", "--out", str(out)]) == 0
     assert capsys.readouterr().out.strip().splitlines()[-1].startswith("Result: all")
     for name in ("report.md", "report.html", "metrics.json", "fig4_beta_slenderness.png", "ensemble.png",
-                 "beta_per_impact.png", "fig5_histories_1.png"):
+                 "beta_per_impact.png", "history_1.png", "history_2.png"):
         assert (out / name).is_file(), name
     m = json.loads((out / "metrics.json").read_text())
     assert {"config", "versions", "engines", "free_rocking", "scenarios", "ensembles", "checks", "passed",
@@ -190,10 +192,11 @@ def test_validate_end_to_end_with_a_missing_engine(tmp_path, monkeypatch, capsys
     assert [sc["name"] for sc in m["scenarios"]] == [f"{PULSE}, isolated base", f"{PULSE}, fixed base"]
     assert all(c["status"] in ("pass", "skip") for c in m["checks"]) and m["checks"]
     md = (out / "report.md").read_text()
-    assert "SKIPPED" in md and "## Checks" in md and md.rstrip().splitlines()[-1].startswith("Result: all")
+    assert "SKIPPED" in md and "<details><summary>All" in md and md.rstrip().splitlines()[-1].startswith("Result: all")
+    assert md.splitlines()[2].startswith("**Result: all")  # the verdict comes first
     assert md.count("data:image/png;base64") == 0
-    # Figure 4, β per impact, one Figure 5 layout per motion, the ensemble
-    assert (out / "report.html").read_text().count("data:image/png;base64,") == 4
+    # Figure 4, β per impact, one history per motion and base, the ensemble
+    assert (out / "report.html").read_text().count("data:image/png;base64,") == 5
 
 
 def test_validate_exit_code_1_when_a_check_fails(tmp_path, monkeypatch, capsys):
@@ -237,3 +240,43 @@ def test_validate_sets_kobe_beside_the_paper(tmp_path, kobe_at2):
     assert paper["fixed base"]["analytic"] == pytest.approx(1.0)
     md = (out / "report.md").read_text()
     assert "Where and why our numbers differ from the paper's" in md and "unreadable" in md
+
+
+def test_a_motion_that_lifts_nothing_is_not_exercised_never_passed(tmp_path, capsys):
+    """0.2 g lifts the paper's block on neither base (uplift needs 0.35 g): the history and
+    ensemble checks of MuJoCo are 'not exercised', counted apart, and its verdict has a caveat."""
+    out = tmp_path / "rep"
+    rc = main(["validate", "--quick", "--quiet", "--engines", "analytic", "mujoco", "--motion",
+               "sine:amp=0.2,freq=1.3,cycles=1", "--scales", "1,1,1", "--duration", "2", "--workers", "1",
+               "--out", str(out)])
+    assert rc == 0
+    m = json.loads((out / "metrics.json").read_text())
+    assert [sc["exercised"] for sc in m["scenarios"]] == [False, False]
+    idle = [c for c in m["checks"] if c["status"] == "not exercised"]
+    assert idle and all(c["engine"] == "mujoco" for c in idle)
+    assert "uplift needs ≈ 0.35 g" in idle[0]["note"]
+    assert m["engine_verdicts"]["mujoco"]["verdict"] == "agrees with caveats"
+    assert f"{len(idle)} not exercised" in m["verdict"] and m["verdict"] == capsys.readouterr().out.splitlines()[-1]
+    assert all(c["status"] == "pass" for c in m["checks"] if c["scenario"].startswith("free rocking"))
+
+
+def test_validate_takes_your_own_system(tmp_path, capsys):
+    out = tmp_path / "rep"
+    rc = main(["validate", "--quick", "--quiet", "--engines", "analytic", "--height", "1.2", "--width", "0.3",
+               "--mass", "200", "--base-mass", "400", "--period", "2", "--damping-ratio", "0.1",
+               "--motion", "sine:amp=0.5,freq=1.5,cycles=2", "--scales", "1,1.2,2", "--out", str(out)])
+    assert rc == 0
+    m = json.loads((out / "metrics.json").read_text())
+    systems = [sc["system"] for sc in m["scenarios"]]
+    assert [s["height"] for s in systems] == [1.2, 1.2] and [s["fixed_base"] for s in systems] == [False, True]
+    assert systems[0]["period"] == pytest.approx(2.0) and systems[0]["mass_ratio"] == pytest.approx(0.5)
+    assert "your block (H 1.2 m" in (out / "report.md").read_text()
+
+
+def test_a_config_file_with_an_unknown_key_is_bad_input(tmp_path, capsys):
+    cfg = tmp_path / "statue.toml"
+    cfg.write_text("[system]\nheight = 1.2\nwidht = 0.3\n")
+    assert main(["validate", "--config", str(cfg), "--out", str(tmp_path / "rep")]) == 2
+    err = capsys.readouterr().err
+    assert "system.widht" in err and err.count("\n") == 1
+    assert not (tmp_path / "rep").exists()

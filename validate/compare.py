@@ -152,7 +152,8 @@ def reference_sensitivity(system: System, motion: GroundMotion, *, duration: flo
     """θmax/α and overturning of the analytic model with the motion scaled by 1 ± scale.
     A history whose θmax/α moves a lot under a 1% change of PGA is chaotic there, and
     single-history agreement with it is no test of an engine (model.md)."""
-    from isorock.analytic.hybrid import simulate
+    from isorock.validate.engines import REFERENCE, get_engine
+    simulate = get_engine(REFERENCE).simulate
     values, over = [], []
     for f in (1 - scale, 1.0, 1 + scale):
         tr = simulate(system, motion.scaled(f), duration=duration, settings=settings)

@@ -112,7 +112,10 @@ def get_engine(name: str) -> Engine:
 
 
 def engine_label(name: str) -> str:
-    """The name figures and reports show, without importing a missing engine."""
+    """The name figures and reports show; an engine that is not registered or cannot be
+    imported here shows its name."""
+    if name not in ENGINE_MODULES:
+        return name
     try:
         return get_engine(name).label
     except ImportError:

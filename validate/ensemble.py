@@ -64,12 +64,18 @@ class Ensemble:
             "median_theta_max_diff_rocking": float(np.median(dr)) if dr.size else math.nan,
         }
 
+    def rocking_count(self) -> int:
+        """How many cases the reference rocks in (θmax/α above ROCKING)."""
+        ref = self.theta_max.get(REFERENCE)
+        return int(np.sum(np.nan_to_num(ref) > ROCKING)) if ref is not None else 0
+
     def as_dict(self) -> dict:
         out = {"motion": self.motion, "pga_g": self.pga_g, "duration": self.duration,
                "fixed_base": self.system.fixed_base, "scales": self.scales.tolist(),
                "theta_max_over_alpha": {k: v.tolist() for k, v in self.theta_max.items()},
                "overturned": {k: v.tolist() for k, v in self.overturned.items()},
-               "failed": {k: [list(x) for x in v] for k, v in self.failed.items()}}
+               "failed": {k: [list(x) for x in v] for k, v in self.failed.items()},
+               "rocking_cases": self.rocking_count()}
         out["agreement"] = {e: self.agreement(e) for e in self.theta_max if e != REFERENCE}
         return out
 

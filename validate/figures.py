@@ -1,10 +1,11 @@
 """The report's figures (PNG), drawn with matplotlib's object API on the Agg canvas so
 no global pyplot state or display is involved.
 
-    beta_slenderness   the paper's Figure 4: β and β₂/h against λ, closed form and engines
-    histories          the paper's Figure 5: ẍg, θ/α isolated and fixed, u, θ̇, engines overlaid
-    beta_per_impact    effective β error of each engine per impact index
-    ensemble           θmax/α against the PGA scale factor, one curve per engine
+    beta_slenderness   β and β₂/h against λ, closed form and engines (the paper's Figure 4)
+    history            one motion on one base: ẍg, θ/α, engine − analytic, a zoom on the
+                       rocking window, u or θ̇ with its difference
+    beta_per_impact    effective β error of each engine per impact index, with tolerances
+    ensemble           θmax/α against the PGA scale factor, and each engine − analytic
 """
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from matplotlib.figure import Figure
 
 from isorock.analytic.coefficients import beta, beta2, beta_housner
 from isorock.analytic.system import STANDARD_GRAVITY
+from isorock.validate.compare import COMPARE_DT
 from isorock.validate.engines import ALL_ENGINES, REFERENCE, engine_label
 
 #: The reference is drawn black and solid; the other engines take these in registry order.
@@ -23,14 +25,23 @@ MU_COLORS = {0.5: "tab:green", 1.0: "tab:blue", 1.5: "tab:orange", 2.0: "tab:pur
 DPI = 110
 
 
+#: A preset of an engine (ENGINE:PRESET) keeps the engine's colour and takes these.
+PRESET_STYLES = ((":", "x"), ("-.", "+"), ((0, (1, 1)), "1"))
+
+
 def style(engine: str) -> dict:
-    """Line and marker style of an engine, the same in every figure."""
-    if engine == REFERENCE:
-        return dict(color="black", linestyle="-", marker="o", label=engine_label(engine))
+    """Line and marker style of an engine (or ENGINE:PRESET), the same in every figure."""
+    name, _, preset = engine.partition(":")
+    if name == REFERENCE and not preset:
+        return dict(color="black", linestyle="-", marker="o", label=engine_label(name))
     others = [e for e in ALL_ENGINES if e != REFERENCE]
-    i = others.index(engine) if engine in others else len(others)
-    color, linestyle, marker = PALETTE[i % len(PALETTE)]
-    return dict(color=color, linestyle=linestyle, marker=marker, label=engine_label(engine))
+    i = others.index(name) if name in others else len(others)
+    color, linestyle, marker = ("black", "-", "o") if name == REFERENCE else PALETTE[i % len(PALETTE)]
+    label = engine_label(name)
+    if preset:
+        linestyle, marker = PRESET_STYLES[sum(map(ord, preset)) % len(PRESET_STYLES)]
+        label = f"{label} ({preset})"
+    return dict(color=color, linestyle=linestyle, marker=marker, label=label)
 
 
 def _save(fig: Figure, path) -> None:
@@ -66,46 +77,96 @@ def beta_slenderness(points, path, *, mass_ratios=(0.5, 1.0, 1.5, 2.0)) -> None:
     ax_b2.legend(fontsize=8, loc="upper right")
     for ax in (ax_b, ax_b2):
         ax.grid(alpha=0.3)
-    fig.suptitle("Figure 4: closed form (lines) and effective values of the contact engines (markers)", fontsize=10)
+    fig.suptitle("β and β₂/h against slenderness: closed form (lines), contact engines' effective values (markers)",
+                 fontsize=10)
     fig.tight_layout()
     _save(fig, path)
 
 
-def histories(motion, isolated: dict, fixed: dict, path, *, title: str = "") -> None:
-    """Figure 5. `isolated`, `fixed`: engine → Trajectory on the same motion."""
-    fig = Figure(figsize=(10, 11))
-    axes = fig.subplots(5, 1, sharex=True)
-    t_end = max([tr.t[-1] for tr in (*isolated.values(), *fixed.values())] + [0.0])
-    tg = np.linspace(0.0, t_end, max(2, int(t_end / 0.005) + 1))
-    axes[0].plot(tg, motion(tg) / STANDARD_GRAVITY, color="gray", lw=0.8)
-    axes[0].set_ylabel("ẍg / g")
-    for ax, runs, name in ((axes[1], isolated, "isolated base"), (axes[2], fixed, "fixed base")):
-        for engine, tr in runs.items():
-            st = style(engine)
-            ax.plot(tr.t, tr.theta / tr.alpha, color=st["color"], ls=st["linestyle"], lw=1, label=st["label"])
-        ax.axhline(1, color="k", lw=0.5)
-        ax.axhline(-1, color="k", lw=0.5)
-        ax.set_ylabel(f"θ/α, {name}")
-        ax.set_ylim(-1.1, 1.1)
-        ax.legend(fontsize=8, loc="upper right")
-    for engine, tr in isolated.items():
+def _on_grid(tr, grid):
+    """θ/α, u and θ̇ of a Trajectory on a common time grid (NaN past its end)."""
+    r = tr.resample(COMPARE_DT)
+    out = []
+    for y in (r.theta / tr.alpha, r.u, r.theta_dot):
+        out.append(np.interp(grid, r.t, y, right=np.nan))
+    return out
+
+
+def rocking_window(runs: dict, *, before: float = 0.2, length: float = 4.0):
+    """(t0, t1): from a little before the first time any engine leaves |θ| ≤ 1% α, for
+    at most `length` s while some engine still rocks; None when none rocked."""
+    starts, ends = [], []
+    for tr in runs.values():
+        moving = np.flatnonzero(np.abs(tr.theta) > 0.01 * tr.alpha)
+        if moving.size:
+            starts.append(tr.t[moving[0]])
+            ends.append(tr.t[moving[-1]])
+    if not starts:
+        return None
+    t0 = max(0.0, min(starts) - before)
+    return t0, min(max(ends) + before, t0 + length)
+
+
+def history(motion, runs: dict, path, *, title: str, reference: str = REFERENCE) -> None:
+    """One motion on one base, every engine: the ground acceleration, θ/α, each engine −
+    the reference (θ/α), a zoom on the rocking window, and the base displacement with its
+    difference (isolated base) or θ̇ with its difference (fixed base)."""
+    fig = Figure(figsize=(11, 9.5))
+    axes = fig.subplots(3, 2)
+    t_end = max([tr.t[-1] for tr in runs.values()] + [1e-3])
+    grid = np.arange(0.0, t_end + COMPARE_DT / 2, COMPARE_DT)
+    fixed = next(iter(runs.values())).system.fixed_base if runs else True
+    on_grid = {e: _on_grid(tr, grid) for e, tr in runs.items()}
+    ref = on_grid.get(reference)
+    ax = axes[0, 0]
+    ax.plot(grid, motion(grid) / STANDARD_GRAVITY, color="gray", lw=0.8)
+    ax.set(ylabel="ẍg / g", title="ground acceleration")
+    for engine, (th, u, thd) in on_grid.items():
         st = style(engine)
-        axes[3].plot(tr.t, tr.u * 100, color=st["color"], ls=st["linestyle"], lw=1, label=st["label"])
-        axes[4].plot(tr.t, tr.theta_dot, color=st["color"], ls=st["linestyle"], lw=1, label=st["label"])
-    axes[3].set_ylabel("base u (cm), isolated")
-    axes[4].set_ylabel("θ̇ (rad/s), isolated")
-    axes[4].set_xlabel("t (s)")
-    for ax in axes:
+        kw = dict(color=st["color"], ls=st["linestyle"], lw=1, label=st["label"])
+        axes[0, 1].plot(grid, th, **kw)
+        axes[2, 0].plot(grid, u * 100 if not fixed else thd, **kw)
+        if ref is not None and engine != reference:
+            axes[1, 0].plot(grid, th - ref[0], **kw)
+            axes[2, 1].plot(grid, (u - ref[1]) * 1000 if not fixed else thd - ref[2], **kw)
+    for y in (-1, 1):
+        axes[0, 1].axhline(y, color="k", lw=0.5)
+    axes[0, 1].set(ylabel="θ/α", title="rotation (±1: the critical angle α)")
+    axes[1, 0].set(ylabel="Δθ/α", title=f"each engine − {style(reference)['label']}: rotation")
+    window = rocking_window(runs)
+    zoom = axes[1, 1]
+    if window is None:
+        zoom.text(0.5, 0.5, "no engine lifted the block", ha="center", va="center", transform=zoom.transAxes)
+    else:
+        for engine, (th, _, _) in on_grid.items():
+            st = style(engine)
+            keep = (grid >= window[0]) & (grid <= window[1])
+            zoom.plot(grid[keep], th[keep], color=st["color"], ls=st["linestyle"], lw=1.2, label=st["label"])
+        zoom.set_xlim(*window)
+    zoom.set(ylabel="θ/α", title="zoom: the rocking window")
+    if fixed:
+        axes[2, 0].set(ylabel="θ̇ (rad/s)", title="angular velocity (fixed base: the base does not move)")
+        axes[2, 1].set(ylabel="Δθ̇ (rad/s)", title=f"each engine − {style(reference)['label']}: angular velocity")
+    else:
+        axes[2, 0].set(ylabel="u (cm)", title="base displacement")
+        axes[2, 1].set(ylabel="Δu (mm)", title=f"each engine − {style(reference)['label']}: base displacement")
+    for ax in axes.ravel():
         ax.grid(alpha=0.3)
-    fig.suptitle(title or f"Figure 5: {motion.name}", fontsize=10)
+    for ax in axes[2]:
+        ax.set_xlabel("t (s)")
+    axes[0, 1].legend(fontsize=8, loc="upper right")
+    if ref is not None and len(runs) > 1:
+        axes[1, 0].legend(fontsize=8, loc="upper right")
+    fig.suptitle(title, fontsize=11)
     fig.tight_layout()
     _save(fig, path)
 
 
-def beta_per_impact(panels, path) -> None:
+def beta_per_impact(panels, path, *, bands: dict | None = None) -> None:
     """`panels`: (title, series) with series = (label, engine, list of β_eff/β − 1), one
     marker colour per engine and one fill per label; points are spread a little along x
-    so that engines at the same impact index stay visible."""
+    so that engines at the same impact index stay visible. `bands`: engine → its
+    tolerance (a fraction), drawn as ± lines in the engine's colour."""
     panels = list(panels) or [("", [])]
     fig = Figure(figsize=(6 * len(panels), 6))
     axes = np.atleast_1d(fig.subplots(1, len(panels)))
@@ -120,39 +181,64 @@ def beta_per_impact(panels, path) -> None:
             ax.plot(x, e, marker=st["marker"], color=st["color"], ls="none",
                     fillstyle=fills[labels.index(label) % len(fills)], label=f"{st['label']}, {label}")
         ax.axhline(0, color="k", lw=0.5)
+        for engine, limit in (bands or {}).items():
+            if any(e == engine for _, e, _ in series):
+                st = style(engine)
+                for sign in (-1, 1):
+                    ax.axhline(sign * limit * 100, color=st["color"], lw=1, ls="--", alpha=0.7,
+                               label=f"{st['label']} tolerance ±{limit * 100:g}%" if sign > 0 else None)
         ax.set(xlabel="counted impact", ylabel="β_eff / β − 1 (%)", title=title)
         ax.xaxis.get_major_locator().set_params(integer=True)
         ax.grid(alpha=0.3)
         if series:  # below the axes: the points fill the whole panel
             ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=1)
-    fig.suptitle("Effective β per impact against the closed form", fontsize=10)
+    fig.suptitle("Effective β of every counted impact against the closed form, with each engine's tolerance",
+                 fontsize=10)
     fig.tight_layout()
     _save(fig, path)
 
 
-def ensemble(ensembles, path) -> None:
-    """θmax/α against the scale factor, one panel per Ensemble, one curve per engine;
-    overturned cases are drawn at 1 with a cross."""
+def ensemble(ensembles, path, *, bands: dict | None = None, reference: str = REFERENCE) -> None:
+    """Per Ensemble a column: θmax/α against the scale factor, one curve per engine
+    (overturned drawn at 1 with a cross), and below it each engine − the reference, with
+    `bands` (engine → tolerance of the median difference) as ± lines."""
     n = max(1, len(ensembles))
-    cols = min(n, 2)  # isolated and fixed side by side, one row per motion
+    cols = min(n, 2)  # isolated and fixed side by side, one pair of rows per motion
     rows = -(-n // cols)
-    fig = Figure(figsize=(5.5 * cols, 4 * rows))
-    axes = np.atleast_1d(fig.subplots(rows, cols, squeeze=False)).ravel()
-    for ax in axes[n:]:
-        ax.set_visible(False)
-    for ax, ens in zip(axes, ensembles):
-        for engine, tmax in ens.theta_max.items():
+    fig = Figure(figsize=(5.8 * cols, 6.2 * rows))
+    axes = np.atleast_2d(fig.subplots(2 * rows, cols, squeeze=False, gridspec_kw={"height_ratios": [2, 1] * rows}))
+    for k in range(rows * cols):
+        top, bottom = axes[2 * (k // cols), k % cols], axes[2 * (k // cols) + 1, k % cols]
+        if k >= len(ensembles):
+            top.set_visible(False)
+            bottom.set_visible(False)
+            continue
+        ens = ensembles[k]
+        capped = {e: np.where(ens.overturned[e], 1.0, np.minimum(t, 1.0)) for e, t in ens.theta_max.items()}
+        for engine, y in capped.items():
             st = style(engine)
             over = ens.overturned[engine]
-            y = np.where(over, 1.0, np.minimum(tmax, 1.0))
-            ax.plot(ens.scales, y, color=st["color"], ls=st["linestyle"], marker=st["marker"], ms=3,
-                    lw=1, label=st["label"])
-            ax.plot(ens.scales[over], np.full(over.sum(), 1.0), "x", color=st["color"], ms=9)
-        ax.axhline(1, color="k", lw=0.5)
+            top.plot(ens.scales, y, color=st["color"], ls=st["linestyle"], marker=st["marker"], ms=3, lw=1,
+                     label=st["label"])
+            top.plot(ens.scales[over], np.full(over.sum(), 1.0), "x", color=st["color"], ms=9)
+            if engine != reference and reference in capped:
+                bottom.plot(ens.scales, y - capped[reference], color=st["color"], ls=st["linestyle"],
+                            marker=st["marker"], ms=3, lw=1, label=st["label"])
+                limit = (bands or {}).get(engine)
+                if limit is not None:
+                    for sign in (-1, 1):
+                        bottom.axhline(sign * limit, color=st["color"], lw=0.8, ls="--", alpha=0.7)
+        top.axhline(1, color="k", lw=0.5)
+        bottom.axhline(0, color="k", lw=0.5)
         base = "fixed base" if ens.system.fixed_base else "isolated base"
-        ax.set(xlabel=f"scale factor × PGA ({ens.pga_g:.2f} g)", ylabel="θmax/α (× = overturned)",
-               ylim=(0, 1.1), title=f"{ens.motion}, {base}")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
+        top.set(ylabel="θmax/α (× = overturned)", ylim=(0, 1.1),
+                title=f"{ens.motion}, {base}: {ens.rocking_count()} of {ens.scales.size} cases rock")
+        bottom.set(xlabel=f"scale factor × PGA ({ens.pga_g:.2f} g)",
+                   ylabel=f"Δ θmax/α (vs {style(reference)['label']})")
+        for ax in (top, bottom):
+            ax.grid(alpha=0.3)
+        top.legend(fontsize=8)
+    fig.suptitle("Peak rotation over the motion scaled in amplitude: where engines part from the analytic model",
+                 fontsize=10)
     fig.tight_layout()
     _save(fig, path)

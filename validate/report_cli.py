@@ -16,33 +16,44 @@ DEFAULT_OUT = "isorock-report"
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
+    from isorock.validate.cli import add_engine_options, add_system_options
     from isorock.validate.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
     p = subparsers.add_parser(
         "validate", help="the validation report: all engines side by side with the analytic model",
-        description="Run the paper's block (isolated T 1.5 s ξ 0.2, and on a fixed base) on each motion "
-                    "with every engine, compare with the analytic model, check against the tolerance table "
-                    "and write DIR/report.md, DIR/report.html, the figures and DIR/metrics.json.")
+        description="Run a block on its base (the paper's by default: isolated T 1.5 s ξ 0.2, and on a fixed base; "
+                    "or yours, given by the system options or --config) under each motion with every engine, "
+                    "compare with the analytic model, check against the tolerance table and write DIR/report.md, "
+                    "DIR/report.html, the figures and DIR/metrics.json. The last line on stdout is the verdict.")
+    p.add_argument("--config", metavar="FILE.toml",
+                   help="a TOML file with [system] (the system options, underscored), engines = [...], "
+                        "motions = [...], and [settings.ENGINE] tables of engine settings; options given on "
+                        "the command line win")
     p.add_argument("--motion", action="append", metavar="SPEC",
                    help="a record file or a pulse 'sine:amp=A,freq=F,cycles=N', 'cosine:…', "
                         "'ricker:amp=A,freq=F' (A in g, F in Hz); repeat for several "
                         f"(default: {' and '.join(DEFAULT_MOTIONS)})")
     p.add_argument("--format", choices=("at2", "jma", "csv"),
                    help="record format; guessed from the file when omitted")
-    p.add_argument("--units", default="m/s2", choices=("m/s2", "g", "gal", "cm/s2"),
-                   help="units of a two-column (csv) record (default: %(default)s)")
+    p.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
+                   help="units of a two-column (csv) record")
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
                    help="report folder, replaced whole when the report is done (default: %(default)s)")
-    p.add_argument("--engines", nargs="+", default=list(ENGINE_NAMES), metavar="ENGINE",
-                   help=f"engines to run, space- or comma-separated; must include analytic "
-                        f"(default: {' '.join(ENGINE_NAMES)})")
+    p.add_argument("--engines", nargs="+", metavar="ENGINE",
+                   help=f"engines to run, space- or comma-separated, each ENGINE or ENGINE:PRESET (a preset "
+                        f"is its own column); must include analytic (default: {' '.join(ENGINE_NAMES)})")
     p.add_argument("--quick", action="store_true",
                    help="fewer ensemble steps (6), shorter tails after pulses, Figure 4 at μ = 1 only")
     p.add_argument("--duration", type=float,
                    help=f"end time of every run, s (default: pulse end + 4 s, 2 s with --quick; "
                         f"records: the first {RECORD_WINDOW:g} s)")
     p.add_argument("--scales", metavar="FIRST,LAST,STEPS",
-                   help="ensemble scale factors of the PGA (default: 0.25,1.5,21; 6 steps with --quick)")
-    p.add_argument("--quiet", action="store_true", help="no progress lines on stderr")
+                   help="ensemble scale factors of the motion (default: from 1.2 to 2.5 times the scale at which "
+                        "the block first lifts, 21 steps, 6 with --quick)")
+    p.add_argument("--workers", type=int,
+                   help="processes for the contact engines (default: 2, or the cores there are; 1: one process)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
+    add_system_options(p, required=False)
+    add_engine_options(p)
     p.set_defaults(func=run)
     return p
 
@@ -62,16 +73,87 @@ def _scales(text):
     return first, last, int(steps)
 
 
+SYSTEM_KEYS = ("height", "width", "mass", "base_mass", "period", "damping_ratio", "stiffness", "dashpot",
+               "fixed_base")
+
+
+def _read_config(path) -> dict:
+    import tomllib
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except OSError as e:
+        raise InputError(f"config = {str(path)!r}: cannot be read ({e.strerror or e})") from None
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"config = {str(path)!r}: not valid TOML ({e})") from None
+    known = {"system", "engines", "motions", "settings", "units", "format", "quick", "duration"}
+    unknown = sorted(set(data) - known)
+    if unknown:
+        raise InputError(f"config key {unknown[0]!r}: not known (known: {', '.join(sorted(known))})")
+    bad = sorted(set(data.get("system", {})) - set(SYSTEM_KEYS))
+    if bad:
+        raise InputError(f"config key system.{bad[0]}: not known (known: {', '.join(SYSTEM_KEYS)})")
+    return data
+
+
+def _system(args, config: dict):
+    """The user's System from the options (or the config's [system]), None for the paper's block."""
+    from types import SimpleNamespace
+
+    from isorock.validate.cli import system_from_args
+    values = {k: config.get("system", {}).get(k) for k in SYSTEM_KEYS}
+    for k in SYSTEM_KEYS:
+        v = getattr(args, k, None)
+        if v not in (None, False):
+            values[k] = v
+    if not any(v not in (None, False) for v in values.values()):
+        return None
+    missing = [k for k in ("height", "width", "mass") if values[k] is None]
+    if missing:
+        raise InputError(f"--{missing[0].replace('_', '-')}: give the block's height, width and mass "
+                         "(and its base) to validate your own system")
+    if values["base_mass"] is None:
+        if not values["fixed_base"]:
+            raise InputError("--base-mass: give the base plate's mass for an isolated base (or --fixed-base)")
+    return system_from_args(SimpleNamespace(**{k: values[k] for k in SYSTEM_KEYS}))
+
+
 def run(args) -> int:
+    from isorock.validate.cli import ENGINE_OPTIONS
+    from isorock.validate.progress import ProgressBar
     from isorock.validate.report_render import verdict, write_report
     from isorock.validate.report_run import DEFAULT_MOTIONS, ReportConfig, build
-    engines = tuple(e for item in args.engines for e in item.split(",") if e)
-    config = ReportConfig(motions=tuple(args.motion or DEFAULT_MOTIONS), engines=engines, quick=args.quick,
-                          duration=args.duration, scales=_scales(args.scales), format=args.format,
-                          units=args.units)
-    log = (lambda line: None) if args.quiet else (lambda line: print(line, file=sys.stderr, flush=True))
-    results = build(config, log=log)
+    config = _read_config(args.config) if args.config else {}
+    engines = tuple(e for item in (args.engines or config.get("engines") or ENGINE_NAMES)
+                    for e in str(item).split(",") if e)
+    overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
+    given = {k: getattr(args, k) for k in ENGINE_OPTIONS if getattr(args, k, None) is not None}
+    if given:  # a setting on the command line applies to every engine that has it
+        overrides["*"] = {**overrides.get("*", {}), **given}
+    if args.workers is not None and args.workers < 1:
+        raise InputError(f"workers = {args.workers!r}: must be a whole number of processes ≥ 1")
+    report = ReportConfig(motions=tuple(args.motion or config.get("motions") or DEFAULT_MOTIONS), engines=engines,
+                          quick=args.quick or bool(config.get("quick")),
+                          duration=args.duration if args.duration is not None else config.get("duration"),
+                          scales=_scales(args.scales), format=args.format or config.get("format"),
+                          units=args.units or config.get("units"), system=_system(args, config),
+                          overrides=overrides, workers=args.workers)
+    from isorock.validate.runner import resolve
+    for name in report.engines:  # an unknown setting or preset is bad input before anything runs
+        try:
+            resolve(name, report.overrides_for(name))
+        except ImportError:
+            pass  # reported as a skipped engine
+    bars = []  # made at the first result, when the number of runs is known
+
+    def progress(done, total):
+        if not bars:
+            bars.append(ProgressBar(total, "validate", enabled=False if args.quiet else None))
+        bars[0].advance(done - bars[0].done)
+    results = build(report, progress=progress)
+    for bar in bars:
+        bar.close()
     write_report(results, args.out)
-    log(f"wrote {args.out}/report.md, report.html, metrics.json ({results.wall_s:.0f} s)")
+    print(f"wrote {args.out}/report.md, report.html, metrics.json in {results.wall_s:.0f} s")
     print(verdict(results))
     return 1 if results.failed else 0

@@ -1,22 +1,43 @@
 """Writing the validation report: report.md, report.html (figures embedded), the PNGs and
 metrics.json, from the Results of `isorock.validate.report_run.build`.
 
-The report is a list of blocks (headings, paragraphs, tables, images), rendered once to
-Markdown and once to HTML.
+The report opens with its verdict: one line per engine (agrees / agrees with caveats /
+disagrees) and a scorecard of the worst value of each family of checks against its
+tolerance; the evidence follows (figures where engines part, tables), and the full
+check table last, folded. It is a list of blocks (headings, paragraphs, tables, images,
+folded sections), rendered once to Markdown and once to HTML.
 """
 from __future__ import annotations
 
 import base64
 import html
 import math
-from dataclasses import asdict
+from dataclasses import asdict, fields
 from pathlib import Path
 
 from isorock.validate import figures
-from isorock.validate.engines import ENGINE_MODULES, REFERENCE
+from isorock.validate.engines import REFERENCE
 from isorock.validate.output import write_folder_atomic, write_json
 from isorock.validate.paper import PAPER_FIGURE5, is_kobe, paper_blocks
 from isorock.validate.report_run import PAPER_SLENDERNESS, Results
+from isorock.validate.tolerances import has_tolerance, tolerance
+
+#: The families of checks the scorecard shows, in order: (title, metrics).
+FAMILIES = (
+    ("β per impact", ("beta_rel_error", "beta2_abs_error")),
+    ("first impact time", ("first_impact_time_rel_error",)),
+    ("θmax/α", ("theta_max_diff",)),
+    ("impacts", ("impacts_diff",)),
+    ("uplift time", ("first_uplift_diff",)),
+    ("overturning", ("overturn_agree",)),
+    ("base displacement", ("u_max_rel_error",)),
+    ("ensemble θmax/α", ("ensemble_theta_max_diff",)),
+    ("ensemble overturn agreement", ("ensemble_overturn_agreement",)),
+    ("energy balance", ("energy_residual",)),
+)
+NOT_EXERCISED = "not exercised"
+AGREES, CAVEATS, DISAGREES, UNTESTED = "agrees", "agrees with caveats", "disagrees", "was not tested"
+
 
 def _f(x, fmt=".3f"):
     if x is None or (isinstance(x, float) and not math.isfinite(x)):
@@ -26,128 +47,261 @@ def _f(x, fmt=".3f"):
     return format(x, fmt)
 
 
+def family_of(metric: str) -> str:
+    return next((title for title, metrics in FAMILIES if metric in metrics), metric)
+
+
+def _margin(c) -> float | None:
+    """How far a checked value is inside its tolerance, as a fraction of the limit
+    (negative: outside); None for a check without a value."""
+    if c.value is None or not math.isfinite(c.value):
+        return None
+    if c.kind == "equal":
+        return 0.0 if c.value == c.limit else -1.0
+    scale = abs(c.limit) or 1.0
+    return (c.limit - c.value) / scale if c.kind == "max" else (c.value - c.limit) / scale
+
+
+def _label(name: str) -> str:
+    return figures.style(name)["label"]
+
+
+# --- the verdict ------------------------------------------------------------------------
+
+def engine_verdicts(results: Results) -> dict:
+    """engine → (verdict word, reasons): disagrees when a check fails; agrees with
+    caveats when checks were skipped, scenarios not exercised, or a run slid or failed;
+    was not tested when no check of it passed."""
+    out = {}
+    for name in results.engines:
+        mine = [c for c in results.checks if c.engine == name]
+        fails = [c for c in mine if c.status == "fail"]
+        passes = [c for c in mine if c.status == "pass"]
+        skips = [c for c in mine if c.status == "skip"]
+        idle = [c for c in mine if c.status == NOT_EXERCISED]
+        odd = sorted({f"{sc.name}: {sc.runs[name].status}" for sc in results.scenarios
+                      if name in sc.runs and str(sc.runs[name].status) in ("slid", "failed", "event-limit")})
+        reasons = []
+        if fails:
+            reasons.append(f"{len(fails)} failed ({', '.join(sorted({family_of(c.metric) for c in fails}))})")
+        if skips:
+            reasons.append(f"{len(skips)} skipped (chaotic references are judged by their ensembles)")
+        if idle:
+            reasons.append(f"{len(idle)} not exercised (no engine lifted the block there)")
+        reasons += odd
+        word = DISAGREES if fails else UNTESTED if not passes else CAVEATS if (skips or idle or odd) else AGREES
+        out[name] = (word, reasons)
+    return out
+
+
+def verdict(results: Results) -> str:
+    """The one-line verdict: the report's first line, the terminal's last, metrics.json's `verdict`."""
+    checks = results.checks
+    n_pass = sum(c.status == "pass" for c in checks)
+    n_skip = sum(c.status == "skip" for c in checks)
+    n_idle = sum(c.status == NOT_EXERCISED for c in checks)
+    failed = results.failed
+    engines = "; ".join(f"{_label(n)} {word}" for n, (word, _) in engine_verdicts(results).items()
+                        if n != REFERENCE)
+    skipped_engines = f" Engines skipped: {', '.join(results.skipped)}." if results.skipped else ""
+    tail = f"({n_skip} skipped, {n_idle} not exercised)"
+    if failed:
+        worst = ", ".join(sorted({f"{c.engine} {c.metric}" for c in failed}))
+        head = f"Result: FAILED — {len(failed)} of {len(checks)} checks failed ({worst}) {tail}"
+    elif n_pass == 0:
+        head = f"Result: nothing was tested — no check could be made {tail}"
+    else:
+        head = f"Result: all {n_pass} checks passed {tail}"
+    return f"{head}. {engines}.{skipped_engines}" if engines else f"{head}.{skipped_engines}"
+
+
+def scorecard(results: Results) -> tuple[list, list]:
+    """One row per engine and family: checks made, worst value against its tolerance and
+    the margin left, skipped and not-exercised checks with their reasons."""
+    rows = []
+    for name in results.engines:
+        for title, metrics in FAMILIES:
+            mine = [c for c in results.checks if c.engine == name and c.metric in metrics]
+            if not mine:
+                continue
+            judged = [c for c in mine if c.status in ("pass", "fail")]
+            with_margin = [(m, c) for c in judged if (m := _margin(c)) is not None]
+            failed_blank = [c for c in judged if _margin(c) is None]
+            worst = min(with_margin, key=lambda x: x[0])[1] if with_margin else None
+            skipped_notes = sorted({c.note for c in mine if c.status in ("skip", NOT_EXERCISED)})
+            n_fail = sum(c.status == "fail" for c in judged)
+            result = "FAIL" if n_fail else "PASS" if judged else "SKIP"
+            rows.append([result, _label(name), title,
+                         f"{len(judged) - n_fail}/{len(judged)}" if judged else "0",
+                         _f(worst.value, ".4g") if worst else ("not measured" if failed_blank else "–"),
+                         ({"max": "≤ ", "min": "≥ ", "equal": "= "}[worst.kind] + format(worst.limit, "g")) if worst
+                         else "–",
+                         _margin_text(worst) if worst else "–",
+                         (f"{sum(c.status == 'skip' for c in mine)} skipped, "
+                          f"{sum(c.status == NOT_EXERCISED for c in mine)} not exercised: " + "; ".join(skipped_notes)[:300])
+                         if skipped_notes else ""])
+    header = ["result", "engine", "checks", "passed", "worst value", "tolerance", "margin", "not judged (why)"]
+    return header, rows
+
+
+def _margin_text(c) -> str:
+    m = _margin(c)
+    if c.kind == "equal":
+        return "holds" if m == 0 else "broken"
+    return f"{m * 100:+.0f}% of the limit"
+
+
+# --- the report's blocks -------------------------------------------------------------------
+
 def summary_rows(results: Results):
-    """The report's summary table: one row per scenario and engine."""
+    """The evidence table: one row per scenario and engine."""
     rows = []
     for sc in results.scenarios:
         for name in results.engines:
             tr, c = sc.runs.get(name), sc.comparisons.get(name)
             if tr is None:
-                rows.append([sc.name, name, "error: " + sc.errors.get(name, "?")] + ["–"] * 7)
+                rows.append([sc.name, _label(name), "error: " + sc.errors.get(name, "?")] + ["–"] * 8)
                 continue
-            rows.append([sc.name, name, _f(tr.theta_max_over_alpha),
+            rows.append([sc.name, _label(name), str(tr.status), _f(tr.theta_max_over_alpha),
                          _f(c.theta_max_diff, "+.3f") if c else "(reference)",
                          str(tr.impact_count), _f(tr.overturned),
                          _f(c.horizon, ".2f") + ("" if c.parted else " (whole run)") if c else "–",
                          _f(tr.u_max * 100, ".2f"),
                          _f(c.beta_error_median * 100 if c and c.beta_error_median is not None else None, ".2f"),
                          _f(tr.runtime_s, ".2f")])
-    header = ["scenario", "engine", "θmax/α", "Δθmax/α", "impacts", "overturned", "horizon (s)",
+    header = ["scenario", "engine", "status", "θmax/α", "Δθmax/α", "impacts", "overturned", "horizon (s)",
               "max |u| (cm)", "median |β err| (%)", "runtime (s)"]
     return header, rows
 
 
-def _blocks(results: Results, images: dict) -> list:
-    """The report as a list of blocks, rendered once to Markdown and once to HTML."""
+def describe_system(results: Results) -> str:
     cfg = results.config
-    B = [("h1", "isorock validation report")]
-    B.append(("p", f"Generated {results.started} in {results.wall_s:.0f} s "
-                   f"({'quick' if cfg.quick else 'full'} run). Reference: the analytic hybrid model; "
-                   f"contact engines are compared with it on the same System and GroundMotion. "
-                   f"System: the paper's block (H 2.0 m, B 0.7 m, m = m_b = 3800 kg), isolated with "
-                   f"T 1.5 s, ξ 0.2 (the reading of the paper that fits its figure, model.md), and on a fixed base."))
-    settings = engine_settings(results)
-    eng_rows = [[n, "ok", ENGINE_MODULES[n], ", ".join(f"{k}={v}" for k, v in settings[n].items())]
-                for n in results.engines] + \
-               [[n, "SKIPPED", why, "–"] for n, why in results.skipped.items()]
-    B.append(("h2", "Engines"))
-    B.append(("table", ["engine", "status", "module / reason", "settings (defaults)"], eng_rows))
-    B.append(("h2", "Summary"))
+    if not cfg.own_system:
+        return ("the paper's block (H 2.0 m, B 0.7 m, m = m_b = 3800 kg), isolated with T 1.5 s, ξ 0.2 (the reading "
+                "of the paper that fits its figure, model.md), and on a fixed base")
+    s = cfg.system
+    base = ("a fixed base" if s.fixed_base else
+            f"an isolated base (m_b {s.base_mass:g} kg, T {s.period:.3g} s, ξ {s.damping_ratio:.3g}), and the same "
+            "block on a fixed base")
+    return (f"your block (H {s.height:g} m, B {s.width:g} m, m {s.mass:g} kg; λ {s.slenderness:.3g}, "
+            f"α {s.alpha:.4g} rad) on {base}")
+
+
+def _blocks(results: Results, images: dict) -> list:
+    cfg = results.config
+    verdicts = engine_verdicts(results)
+    B = [("h1", "Do the contact engines agree with the exact rocking model?"),
+         ("verdict", verdict(results), [(_label(n), word, "; ".join(reasons)) for n, (word, reasons) in verdicts.items()
+                                        if n != REFERENCE]),
+         ("p", f"System: {describe_system(results)}. Motions: {', '.join(sc.motion.name for sc in results.scenarios[::len(cfg.bases())])}. "
+               f"Reference: the analytic hybrid model (exact impacts, closed-form β). Generated {results.started} in "
+               f"{results.wall_s:.0f} s ({'quick' if cfg.quick else 'full'} run).")]
+    header, rows = scorecard(results)
+    B.append(("h2", "Scorecard: the worst of each family of checks"))
+    B.append(("table", header, rows))
+    B.append(("p", "Margin: how far the worst value is inside its tolerance, as a share of the limit (negative: "
+                   "outside). Every tolerance and its reason is in validate/tolerances.py and in the folded table "
+                   "at the end. A scenario in which no engine lifts the block tests nothing about contact: its "
+                   "checks are 'not exercised', counted apart, never passed."))
+    B.append(("h2", "Where the engines part from the analytic model"))
+    for sc, key in zip(results.scenarios, images["histories"]):
+        B.append(("img", key, f"{sc.name}: ground acceleration, θ/α of every engine, each engine − analytic, "
+                              f"a zoom on the rocking window, and the base displacement (or θ̇ on a fixed base) "
+                              f"with its difference."
+                              + (" The paper's Figure 5 shows this record." if is_kobe(sc.motion) else "")))
+        if not sc.exercised:
+            B.append(("p", f"{sc.name}: {sc.why_not_exercised()}."))
+    B.append(("img", images["ensemble"], "θmax/α over the motion scaled in amplitude (from just above the scale "
+                                         "at which the block first lifts), and each engine − analytic with its "
+                                         "tolerance on the median; × marks overturning."))
+    B.append(("img", images["beta_per_impact"], "Effective β of every counted impact against the closed form, "
+                                                "free rocking and the forced histories, with each engine's "
+                                                "tolerance (dashed)."))
+    B.append(("h2", "Evidence"))
     header, rows = summary_rows(results)
     B.append(("table", header, rows))
     B.append(("p", "Δ is engine − analytic. The horizon is the first time |Δθ| > 0.1α (histories on a 1 ms grid). "
                    "β errors are per counted impact, effective β (states 30 ms outside the contact mapped to θ = 0 "
                    "with the rigid equations) against the closed form."))
-    kobe = [sc for sc in results.scenarios if is_kobe(sc.motion)]
-    if kobe:
-        B += paper_blocks(results, kobe, _f)
-    B.append(("h2", "Free rocking: effective β (the paper's Figure 4)"))
-    B.append(("img", images["beta_slenderness"], "β and β₂/h against slenderness: closed form (lines), "
-                                                  "contact engines' effective values (markers)."))
-    B.append(("table", ["engine", "case", "β closed", "β effective", "|β err| max (%)", "β₂/h closed",
-                        "β₂/h effective", "first impact (s)", "impacts used"],
-              [[r["engine"], r["scenario"], _f(r.get("beta_closed"), ".4f"), _f(r.get("beta"), ".4f"),
-                _f(r.get("beta_rel_error", math.nan) * 100 if r.get("beta_rel_error") is not None else None, ".3f"),
-                _f(r.get("beta2_over_h_closed"), ".4f") if not r["fixed_base"] else "–",
-                _f(r.get("beta2_over_h"), ".4f"), _f(r.get("first_impact_time"), ".4f"),
-                str(r.get("impacts_used", "–")) if not r["error"] else "error: " + r["error"]]
-               for r in results.free]))
-    B.append(("img", images["beta_per_impact"], "Effective β per counted impact against the closed form: free "
-                                                "rocking of the paper's block, and every impact of the forced "
-                                                "histories (small half-cycles and impacts where the block comes to "
-                                                "rest between pulses measure the contact more than β)."))
-    B.append(("h2", "Histories (the paper's Figure 5 layout)"))
-    for sc_iso, sc_fix, key in _history_pairs(results):
-        B.append(("img", images[key], f"{sc_iso.motion.name}: ground acceleration, θ/α on the isolated and the "
-                                      f"fixed base, base displacement and angular velocity (isolated)."))
     for sc in results.scenarios:
         s = sc.sensitivity
         B.append(("p", f"{sc.name}: analytic θmax/α {', '.join(f'{v:.3f}' for v in s['theta_max_over_alpha'])} "
                        f"at ×0.99, ×1, ×1.01 PGA — "
                        f"{'robust, single-history checks apply' if sc.robust else 'sensitive, so single-history checks are skipped and the ensemble decides'}."))
-    B.append(("h2", "Ensembles (PGA scaled)"))
-    B.append(("img", images["ensemble"], "θmax/α against the scale factor of the PGA; × marks overturning."))
+    kobe = [sc for sc in results.scenarios if is_kobe(sc.motion)]
+    if kobe and not cfg.own_system:
+        B += paper_blocks(results, kobe, _f)
+    B.append(("h2", "Free rocking: effective β" + ("" if cfg.own_system else " (the paper's Figure 4)")))
+    if "beta_slenderness" in images:
+        B.append(("img", images["beta_slenderness"], "β and β₂/h against slenderness: closed form (lines), "
+                                                      "contact engines' effective values (markers); the paper's "
+                                                      "Figure 4."))
+    B.append(("table", ["engine", "case", "β closed", "β effective", "|β err| max (%)", "β₂/h closed",
+                        "β₂/h effective", "first impact (s)", "impacts used"],
+              [[_label(r["engine"]), r["scenario"], _f(r.get("beta_closed"), ".4f"), _f(r.get("beta"), ".4f"),
+                _f(r.get("beta_rel_error", math.nan) * 100 if r.get("beta_rel_error") is not None else None, ".3f"),
+                _f(r.get("beta2_over_h_closed"), ".4f") if not r["fixed_base"] else "–",
+                _f(r.get("beta2_over_h"), ".4f"), _f(r.get("first_impact_time"), ".4f"),
+                str(r.get("impacts_used", "–")) if not r["error"] else "error: " + r["error"]]
+               for r in results.free]))
+    B.append(("h2", "Ensembles"))
     ens_rows = []
     for ens in results.ensembles:
         for name, a in ens.as_dict()["agreement"].items():
-            ens_rows.append([f"{ens.motion}, {'fixed' if ens.system.fixed_base else 'isolated'} base", name,
-                             str(a["cases"]), _f(a["overturn_agreement"] * 100, ".0f") + " %",
+            ens_rows.append([f"{ens.motion}, {'fixed' if ens.system.fixed_base else 'isolated'} base", _label(name),
+                             f"{ens.rocking_count()} of {a['cases']}", _f(a["overturn_agreement"] * 100, ".0f") + " %",
                              _f(a["median_theta_max_diff"]), _f(a["max_theta_max_diff"]),
                              f"{_f(a['median_theta_max_diff_rocking'])} ({a['rocking_cases']})"])
-    B.append(("table", ["ensemble", "engine", "cases", "overturning agrees", "median |Δθmax/α|",
+    B.append(("table", ["ensemble", "engine", "cases that rock", "overturning agrees", "median |Δθmax/α|",
                         "max |Δθmax/α|", "median |Δθmax/α|, rocking cases (n)"], ens_rows))
     B.append(("p", "θmax/α is capped at 1 (overturned) before differencing. Rocking cases: the analytic "
                    "block rocks (θmax/α > 0.01) and neither overturns."))
-    B.append(("h2", "Checks"))
-    B.append(("table", ["result", "engine", "metric", "scenario", "value", "tolerance", "reason", "note"],
-              [[c.status.upper(), c.engine, c.metric, c.scenario, _f(c.value, ".4g"),
-                {"max": "≤ ", "min": "≥ ", "equal": "= "}[c.kind] + format(c.limit, "g"), c.reason, c.note]
-               for c in results.checks]))
+    B.append(("h2", "Engines and settings"))
+    B.append(("table", ["engine", "status", "settings"],
+              [[_label(n), "ok", ", ".join(f"{k}={v}" for k, v in engine_settings(results)[n].items())]
+               for n in results.engines] + [[n, "SKIPPED", why] for n, why in results.skipped.items()]))
+    B.append(("details", f"All {len(results.checks)} checks, by family (the reason for each tolerance once per family)",
+              _check_blocks(results)))
     B.append(("h2", "Versions"))
     B.append(("table", ["package", "version"], [[k, v] for k, v in results.versions.items()]))
     B.append(("p", verdict(results)))
     return B
 
 
-def engine_settings(results: Results) -> dict:
-    """Each loaded engine's default Settings as plain values (every run uses the defaults)."""
-    out = {}
-    for name, engine in results.engines.items():
-        try:
-            out[name] = asdict(engine.Settings())
-        except TypeError:  # a Settings that is not a dataclass
-            out[name] = {}
-    return out
-
-
-def _history_pairs(results):
-    """(isolated, fixed, image key) per motion, in order."""
+def _check_blocks(results: Results) -> list:
     out = []
-    for k in range(0, len(results.scenarios), 2):
-        out.append((results.scenarios[k], results.scenarios[k + 1], f"histories_{k // 2 + 1}"))
+    for title, metrics in FAMILIES + (("other", ()),):
+        mine = [c for c in results.checks if family_of(c.metric) == title or (title == "other" and
+                                                                                family_of(c.metric) == c.metric)]
+        if not mine:
+            continue
+        out.append(("h3", title))
+        for reason_key in dict.fromkeys((c.engine, c.metric) for c in mine):
+            c0 = next(c for c in mine if (c.engine, c.metric) == reason_key)
+            out.append(("p", f"{_label(c0.engine)}, {c0.metric} "
+                             f"({ {'max': '≤', 'min': '≥', 'equal': '='}[c0.kind]} {c0.limit:g}): {c0.reason}"))
+        out.append(("table", ["result", "engine", "metric", "scenario", "value", "note"],
+                    [[c.status.upper(), _label(c.engine), c.metric, c.scenario, _f(c.value, ".4g"), c.note]
+                     for c in mine]))
     return out
 
 
-def verdict(results: Results) -> str:
-    n = len(results.checks)
-    n_skip = sum(c.status == "skip" for c in results.checks)
-    failed = results.failed
-    skipped_engines = (f" Engines skipped: {', '.join(results.skipped)}." if results.skipped else "")
-    if failed:
-        worst = ", ".join(sorted({f"{c.engine} {c.metric}" for c in failed}))
-        return f"Result: FAILED — {len(failed)} of {n} checks failed ({worst}).{skipped_engines}"
-    return f"Result: all {n - n_skip} checks passed ({n_skip} skipped).{skipped_engines}"
+def engine_settings(results: Results) -> dict:
+    """Each engine's Settings as the runs used them, derived settings included."""
+    out = {}
+    for name, s in results.settings.items():
+        try:
+            d = asdict(s)
+        except TypeError:  # a Settings that is not a dataclass
+            d = {}
+        for attr in dir(type(s)):
+            if isinstance(getattr(type(s), attr, None), property):
+                d[attr] = getattr(s, attr)
+        out[name] = d
+    return out
 
+
+# --- rendering -----------------------------------------------------------------------------
 
 def _md_cell(x) -> str:
     return str(x).replace("|", "\\|").replace("\n", " ")
@@ -157,12 +311,14 @@ def render_markdown(blocks) -> str:
     out = []
     for b in blocks:
         kind = b[0]
-        if kind == "h1":
-            out.append(f"# {b[1]}\n")
-        elif kind == "h2":
-            out.append(f"## {b[1]}\n")
+        if kind in ("h1", "h2", "h3"):
+            out.append(f"{'#' * int(kind[1])} {b[1]}\n")
         elif kind == "p":
             out.append(f"{b[1]}\n")
+        elif kind == "verdict":
+            out.append(f"**{b[1]}**\n")
+            out += [f"- **{label} {word}**" + (f" — {why}" if why else "") for label, word, why in b[2]]
+            out.append("")
         elif kind == "img":
             out.append(f"![{b[2]}]({b[1]})\n\n*{b[2]}*\n")
         elif kind == "table":
@@ -171,18 +327,27 @@ def render_markdown(blocks) -> str:
             out.append("|" + "---|" * len(header))
             out += ["| " + " | ".join(map(_md_cell, r)) + " |" for r in rows]
             out.append("")
+        elif kind == "details":
+            out.append(f"<details><summary>{b[1]}</summary>\n")
+            out.append(render_markdown(b[2]))
+            out.append("</details>\n")
     return "\n".join(out) + "\n"
 
 
-def render_html(blocks, folder: Path) -> str:
+def _html_body(blocks, folder: Path) -> list:
     e = html.escape
     body = []
     for b in blocks:
         kind = b[0]
-        if kind in ("h1", "h2"):
+        if kind in ("h1", "h2", "h3"):
             body.append(f"<{kind}>{e(b[1])}</{kind}>")
         elif kind == "p":
             body.append(f"<p>{e(b[1])}</p>")
+        elif kind == "verdict":
+            cls = "fail" if b[1].startswith("Result: FAILED") else "pass" if "checks passed" in b[1] else "skip"
+            lines = "".join(f'<li class="{_word_css(word)}"><b>{e(label)} {e(word)}</b>'
+                            + (f" — {e(why)}" if why else "") + "</li>" for label, word, why in b[2])
+            body.append(f'<div class="verdict {cls}"><p><b>{e(b[1])}</b></p><ul>{lines}</ul></div>')
         elif kind == "img":
             data = base64.b64encode((folder / b[1]).read_bytes()).decode("ascii")
             body.append(f'<figure><img src="data:image/png;base64,{data}" alt="{e(b[2])}">'
@@ -192,24 +357,50 @@ def render_html(blocks, folder: Path) -> str:
             rows = "".join("<tr>" + "".join(f'<td class="{_css(c)}">{e(str(c))}</td>' for c in r) + "</tr>"
                            for r in b[2])
             body.append(f"<table><thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>")
-    css = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}"
+        elif kind == "details":
+            body.append(f"<details><summary>{e(b[1])}</summary>" + "\n".join(_html_body(b[2], folder))
+                        + "</details>")
+    return body
+
+
+def render_html(blocks, folder: Path) -> str:
+    css = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4;padding:0 1em}"
+           "h1{font-size:1.6em;margin-bottom:0.3em}"
+           ".verdict{border-radius:6px;padding:0.4em 1em;margin:0.8em 0}.verdict ul{margin:0.3em 0}"
+           ".verdict.pass{background:#e8f6e8;border:1px solid #7c7}.verdict.fail{background:#fbe5e5;border:1px solid #d77}"
+           ".verdict.skip{background:#f1f1f1;border:1px solid #bbb}"
+           "li.agrees{color:#185c18}li.caveats{color:#7a5a00}li.disagrees{color:#a01010}li.untested{color:#555}"
            "table{border-collapse:collapse;font-size:0.85em;margin:1em 0}"
-           "td,th{border:1px solid #ccc;padding:3px 6px;text-align:left}"
+           "td,th{border:1px solid #ccc;padding:3px 6px;text-align:left;vertical-align:top}"
            "td.fail{background:#fdd;font-weight:bold}td.pass{background:#dfd}td.skip{background:#eee}"
-           "img{max-width:100%}figcaption{font-size:0.85em;color:#444}")
+           "img{max-width:100%}figcaption{font-size:0.85em;color:#444}"
+           "details{margin:1em 0}summary{cursor:pointer;font-weight:bold}")
     return (f"<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>isorock validation report</title>"
-            f"<style>{css}</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n")
+            f"<style>{css}</style></head><body>\n" + "\n".join(_html_body(blocks, folder)) + "\n</body></html>\n")
 
 
 def _css(cell) -> str:
-    return {"PASS": "pass", "FAIL": "fail", "SKIP": "skip"}.get(str(cell), "")
+    return {"PASS": "pass", "FAIL": "fail", "SKIP": "skip", NOT_EXERCISED.upper(): "skip"}.get(str(cell), "")
 
+
+def _word_css(word: str) -> str:
+    return {AGREES: "agrees", CAVEATS: "caveats", DISAGREES: "disagrees", UNTESTED: "untested"}[word]
+
+
+# --- machine-readable -----------------------------------------------------------------------
 
 def metrics(results: Results) -> dict:
     """metrics.json: everything the tables show, machine-readable."""
     def cfg(c):
-        return {k: list(v) if isinstance(v, tuple) else v for k, v in asdict(c).items()}
+        out = {}
+        for f in fields(c):
+            v = getattr(c, f.name)
+            out[f.name] = (list(v) if isinstance(v, tuple) else v.describe() if hasattr(v, "describe") else v)
+        return out
     out = {
+        "verdict": verdict(results),
+        "engine_verdicts": {n: {"verdict": w, "reasons": r} for n, (w, r) in engine_verdicts(results).items()},
+        "passed": not results.failed,
         "config": cfg(results.config),
         "started": results.started, "wall_s": results.wall_s, "versions": results.versions,
         "engines": {**{n: "ok" for n in results.engines}, **{n: f"skipped: {w}" for n, w in results.skipped.items()}},
@@ -218,16 +409,15 @@ def metrics(results: Results) -> dict:
         "scenarios": [{
             "name": sc.name, "motion": sc.motion.describe(), "system": sc.system.describe(),
             "duration": sc.duration, "sensitivity": sc.sensitivity, "robust": sc.robust,
+            "exercised": sc.exercised, "base_acceleration_peak": sc.base_acceleration_peak,
             "runs": {n: tr.summary() for n, tr in sc.runs.items()}, "errors": sc.errors,
             "comparisons": {n: c.as_dict() for n, c in sc.comparisons.items()},
         } for sc in results.scenarios],
         "ensembles": [e.as_dict() for e in results.ensembles],
         "checks": [c.as_dict() for c in results.checks],
-        "passed": not results.failed,
-        "verdict": verdict(results),
     }
     kobe = [sc for sc in results.scenarios if is_kobe(sc.motion)]
-    if kobe:
+    if kobe and not results.config.own_system:
         out["paper_figure5"] = {
             ("fixed base" if sc.system.fixed_base else "isolated base"): {
                 "paper_theta_max_over_alpha": PAPER_FIGURE5["fixed base" if sc.system.fixed_base else "isolated base"],
@@ -236,30 +426,41 @@ def metrics(results: Results) -> dict:
 
 
 def beta_series(results: Results):
-    """Figure panels of per-impact β errors: free rocking of the paper's block (isolated
-    μ = 1 and fixed), and every impact of the forced histories."""
-    free = [("isolated" if not r["fixed_base"] else "fixed", r["engine"], r["beta_errors_all"])
+    """Figure panels of per-impact β errors: free rocking (the paper's block, or the
+    user's), and every impact of the forced histories."""
+    own = results.config.own_system
+    free = [(r["scenario"] if own else ("isolated" if not r["fixed_base"] else "fixed"), r["engine"],
+             r["beta_errors_all"])
             for r in results.free if r["engine"] != REFERENCE and not r["error"]
-            and abs(r["slenderness"] - PAPER_SLENDERNESS) < 1e-9 and r["mass_ratio"] in (0.0, 1.0)]
+            and (own or (abs(r["slenderness"] - PAPER_SLENDERNESS) < 1e-9 and r["mass_ratio"] in (0.0, 1.0)))]
     forced = [(sc.name, name, list(c.beta_errors)) for sc in results.scenarios
               for name, c in sc.comparisons.items()]
-    return [("free rocking from 0.5α, the paper's block", free), ("forced histories", forced)]
+    return [("free rocking from 0.5α", free), ("forced histories", forced)]
+
+
+def _bands(results: Results, metric: str) -> dict:
+    return {n: tolerance(n.partition(":")[0], metric).limit for n in results.engines
+            if n != REFERENCE and has_tolerance(n.partition(":")[0], metric)}
 
 
 def write_report(results: Results, out_dir) -> None:
     """report.md, report.html (figures embedded), the PNGs and metrics.json, written
     into a temporary folder that replaces out_dir only when all of it is done."""
     def fill(tmp: Path):
-        images = {"beta_slenderness": "fig4_beta_slenderness.png", "beta_per_impact": "beta_per_impact.png",
-                  "ensemble": "ensemble.png"}
-        figures.beta_slenderness([r for r in results.free if r["engine"] != REFERENCE and not r["error"]
-                                  and not r["fixed_base"]], tmp / images["beta_slenderness"])
-        figures.beta_per_impact(beta_series(results), tmp / images["beta_per_impact"])
-        figures.ensemble(results.ensembles, tmp / images["ensemble"])
-        for iso, fix, key in _history_pairs(results):
-            images[key] = f"fig5_{key}.png"
-            figures.histories(iso.motion, iso.runs, fix.runs, tmp / images[key],
-                              title=f"Figure 5 layout: {iso.motion.name}")
+        images = {"beta_per_impact": "beta_per_impact.png", "ensemble": "ensemble.png", "histories": []}
+        if not results.config.own_system:
+            images["beta_slenderness"] = "fig4_beta_slenderness.png"
+            figures.beta_slenderness([r for r in results.free if r["engine"] != REFERENCE and not r["error"]
+                                      and not r["fixed_base"]], tmp / images["beta_slenderness"])
+        figures.beta_per_impact(beta_series(results), tmp / images["beta_per_impact"],
+                                bands=_bands(results, "beta_rel_error"))
+        figures.ensemble(results.ensembles, tmp / images["ensemble"],
+                         bands=_bands(results, "ensemble_theta_max_diff"))
+        for k, sc in enumerate(results.scenarios, 1):
+            name = f"history_{k}.png"
+            figures.history(sc.motion, sc.runs, tmp / name,
+                            title=f"Every engine against the analytic model: {sc.name}")
+            images["histories"].append(name)
         blocks = _blocks(results, images)
         (tmp / "report.md").write_text(render_markdown(blocks), encoding="utf-8")
         (tmp / "report.html").write_text(render_html(blocks, tmp), encoding="utf-8")

@@ -1,7 +1,12 @@
-"""The validation report's runs: every engine on the paper's block (or the user's system)
-under each motion, side by side with the analytic model, each check against the
+"""The validation report's runs: every engine on the paper's block (or the user's own
+system) under each motion, side by side with the analytic model, each check against the
 tolerance table. `build(config)` runs everything and returns a Results;
 `isorock.validate.report_render` writes it.
+
+All simulations are tasks of `isorock.validate.runner`: the analytic model's in this
+process (compiled, milliseconds each), the contact engines' in worker processes. A
+scenario in which no engine lifts the block tests nothing about contact: it is "not
+exercised" and counted apart, never passed.
 """
 from __future__ import annotations
 
@@ -20,11 +25,12 @@ from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
 from isorock.validate.compare import Comparison, compare, exact_first_impact_time, reference_sensitivity
 from isorock.validate.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine
-from isorock.validate.ensemble import run_ensemble, scale_factors
+from isorock.validate.ensemble import ROCKING, Ensemble, scale_factors
 from isorock.validate.measure import beta_errors
-from isorock.validate.scenarios import (RECORD_WINDOW, REPORT_MOTIONS, Scenario, free_rocking_grid,
-                                       paper_bases)
-from isorock.validate.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, skipped
+from isorock.validate.runner import Task, resolve, run_tasks
+from isorock.validate.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
+                                       free_rocking_grid, paper_bases)
+from isorock.validate.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, not_exercised, skipped
 
 #: Built-in pulses of the default report, chosen with the analytic model so that the
 #: paper's block rocks on both bases without overturning, and (the sine) robustly:
@@ -37,6 +43,13 @@ BETA_MIN_AMPLITUDE = 0.1
 BETA_IMPACTS = 3
 #: The paper's block (H 2 m, B 0.7 m, m = m_b = 3800 kg) and its isolator (T 1.5 s, ξ 0.2).
 PAPER_SLENDERNESS = paper_system().slenderness
+#: An ensemble scales the motion from above the scale at which the block first lifts
+#: (ENSEMBLE_FIRST × that scale: just above it the block lifts only a little) to
+#: ENSEMBLE_LAST × it, so that most cases rock and the largest overturn: a range fixed in
+#: PGA would waste cases below uplift on a user's record.
+ENSEMBLE_FIRST, ENSEMBLE_LAST = 1.2, 2.5
+#: The scale factors' range when the motion never lifts the block in the linear estimate.
+FALLBACK_SCALES = (0.25, 1.5)
 
 
 @dataclass(frozen=True)
@@ -58,20 +71,33 @@ QUICK = Effort(scale_steps=6, tail=2.0, free_duration=2.0, mass_ratios=(1.0,),
 
 @dataclass(frozen=True)
 class ReportConfig:
+    """What to validate. `engines`: names, or ENGINE:PRESET (reported as separate
+    columns); `system`: the user's block and base (None: the paper's block, isolated and
+    on a fixed base); `overrides`: engine name → settings that differ from the defaults
+    (a name of "*" applies to every engine that has the setting, e.g. friction);
+    `workers`: processes for the contact engines (1: all in this one)."""
+
     motions: tuple[str, ...] = DEFAULT_MOTIONS
     engines: tuple[str, ...] = ENGINE_NAMES
     quick: bool = False
     duration: float | None = None        # s; default: pulse end + tail, records RECORD_WINDOW
     scales: tuple[float, float, int] | None = None
     format: str | None = None
-    units: str = "m/s2"
+    units: str | None = None
+    system: System | None = None
+    overrides: dict = field(default_factory=dict)
+    workers: int | None = None
 
     def __post_init__(self):
         require(len(self.motions) > 0, "motion", self.motions, "at least one motion")
         for name in self.engines:
-            require(name in ENGINE_MODULES, "engines", name, f"one of {', '.join(ENGINE_NAMES)}")
+            base, _, preset = name.partition(":")
+            require(base in ENGINE_MODULES, "engines", name, f"one of {', '.join(ENGINE_MODULES)} "
+                                                              "(optionally ENGINE:PRESET)")
         require(REFERENCE in self.engines, "engines", ",".join(self.engines),
                 f"a list that includes the {REFERENCE!r} reference")
+        require(len(set(self.engines)) == len(self.engines), "engines", ",".join(self.engines),
+                "a list without repeats")
         if self.duration is not None:
             require(math.isfinite(self.duration) and self.duration > 0, "duration", self.duration,
                     "a positive number of seconds")
@@ -79,6 +105,24 @@ class ReportConfig:
     @property
     def effort(self) -> Effort:
         return QUICK if self.quick else FULL
+
+    @property
+    def own_system(self) -> bool:
+        return self.system is not None
+
+    def bases(self) -> tuple[tuple[str, System], ...]:
+        """(label, System) of every base the histories and ensembles run on."""
+        if self.system is None:
+            return paper_bases()
+        if self.system.fixed_base:
+            return (("your block on a fixed base", self.system),)
+        fixed = System.fixed(height=self.system.height, width=self.system.width, mass=self.system.mass,
+                             base_mass=self.system.base_mass, gravity=self.system.gravity)
+        return (("your isolated base", self.system), ("the same block on a fixed base", fixed))
+
+    def overrides_for(self, name: str) -> dict:
+        base = name.partition(":")[0]
+        return {**self.overrides.get("*", {}), **self.overrides.get(base, {}), **self.overrides.get(name, {})}
 
 
 @dataclass
@@ -93,11 +137,22 @@ class HistoryRuns:
     errors: dict = field(default_factory=dict)       # engine → message
     comparisons: dict = field(default_factory=dict)  # engine → Comparison
     sensitivity: dict | None = None
+    base_acceleration_peak: float | None = None      # m/s², the base's largest |absolute acceleration|
 
     @property
     def robust(self) -> bool:
         s = self.sensitivity
         return s is not None and s["spread"] < ROBUST_SPREAD and not s["overturn_flips"]
+
+    @property
+    def exercised(self) -> bool:
+        """True when some engine lifted the block: otherwise nothing about contact was tested."""
+        return any(tr.theta_max_over_alpha > ROCKING for tr in self.runs.values())
+
+    def why_not_exercised(self) -> str:
+        need = self.system.uplift_acceleration / self.system.gravity
+        reach = (self.base_acceleration_peak or 0.0) / self.system.gravity
+        return f"not exercised: uplift needs ≈ {need:.3g} g, the base reaches {reach:.3g} g"
 
 
 @dataclass
@@ -112,35 +167,27 @@ class Results:
     versions: dict
     started: str
     wall_s: float = 0.0
+    settings: dict = field(default_factory=dict)  # engine → its Settings
+    record_paths: tuple = ()
 
     @property
     def failed(self) -> list:
         return [c for c in self.checks if c.status == "fail"]
 
 
-# --- running ----------------------------------------------------------------------------
+# --- what to run ---------------------------------------------------------------------------
 
 def load_engines(names):
-    """(name → Engine, name → reason) for the requested names; a module that cannot be
-    imported is skipped with the reason, not a crash."""
+    """(name → Engine, name → reason) for the requested names (ENGINE or ENGINE:PRESET);
+    a module that cannot be imported is skipped with the reason, not a crash."""
     ok, skipped_ = {}, {}
     for name in names:
+        base = name.partition(":")[0]
         try:
-            ok[name] = get_engine(name)
+            ok[name] = get_engine(base)
         except ImportError as e:
-            skipped_[name] = f"module {ENGINE_MODULES[name]} not importable ({type(e).__name__}: {e})"
+            skipped_[name] = f"module {ENGINE_MODULES[base]} not importable ({type(e).__name__}: {e})"
     return ok, skipped_
-
-
-def _simulate(engine, system, motion, **kw):
-    """(Trajectory, None) or (None, message): an engine that raises is reported, and the
-    checks that needed it fail with that message."""
-    try:
-        return engine.simulate(system, motion, **kw), None
-    except InputError:
-        raise
-    except Exception as e:
-        return None, f"{type(e).__name__}: {e}"
 
 
 def effective_beta(traj) -> dict:
@@ -166,41 +213,15 @@ def effective_beta(traj) -> dict:
     }
 
 
-def free_scenarios(effort: Effort) -> list[Scenario]:
-    """Figure 4's grid (isolated bases of each μ, H fixed, B = H/λ) and the paper's block
-    on a fixed base, free rocking from FREE_THETA0_OVER_ALPHA·α."""
-    return free_rocking_grid(effort.mass_ratios, effort.slenderness, duration=effort.free_duration)
-
-
-def _free_rocking(engines, effort, log):
-    rows, checks = [], []
-    scenarios = free_scenarios(effort)
-    total, done = len(engines) * len(scenarios), 0
-    for engine in engines.values():
-        for sc in scenarios:
-            label, s = sc.name, sc.system
-            done += 1
-            start = time.perf_counter()
-            tr, err = _simulate(engine, s, GroundMotion.zero(), duration=sc.duration, theta0=sc.theta0)
-            row = {"engine": engine.name, "scenario": label, "slenderness": s.slenderness,
-                   "mass_ratio": s.mu, "fixed_base": s.fixed_base, "error": err}
-            if tr is not None:
-                row.update(effective_beta(tr))
-                row["runtime_s"] = tr.runtime_s
-            rows.append(row)
-            log(f"free rocking [{done}/{total}] {engine.name} {label}: "
-                f"{'β ' + format(row['beta'], '.4f') if tr else err} ({time.perf_counter() - start:.1f} s)")
-            checks.append(check(engine.name, "beta_rel_error", label, row.get("beta_rel_error"), note=err or ""))
-            if not s.fixed_base:
-                checks.append(check(engine.name, "beta2_abs_error", label, row.get("beta2_abs_error"),
-                                    note=err or ""))
-            else:
-                t1 = exact_first_impact_time(s, sc.theta0)
-                row["first_impact_time_exact"] = t1
-                t = row.get("first_impact_time")
-                checks.append(check(engine.name, "first_impact_time_rel_error", label,
-                                    None if t is None else abs(t / t1 - 1), note=err or ""))
-    return rows, checks
+def free_scenarios(config: ReportConfig) -> list[Scenario]:
+    """The paper's Figure 4 grid (isolated bases of each μ, H fixed, B = H/λ) and the
+    paper's block on a fixed base; or, for the user's system, its block free rocking on
+    each of its bases; from FREE_THETA0_OVER_ALPHA·α."""
+    effort = config.effort
+    if not config.own_system:
+        return free_rocking_grid(effort.mass_ratios, effort.slenderness, duration=effort.free_duration)
+    return [Scenario(f"free rocking, {label}", system, "none", effort.free_duration, FREE_THETA0_OVER_ALPHA)
+            for label, system in config.bases()]
 
 
 def scenario_duration(motion: GroundMotion, config: ReportConfig) -> float:
@@ -212,42 +233,133 @@ def scenario_duration(motion: GroundMotion, config: ReportConfig) -> float:
 
 
 def load_motions(config: ReportConfig):
+    """(GroundMotion, path or None) of every motion."""
+    from pathlib import Path
     motions = []
     for spec in config.motions:
-        m = load_motion(spec, format=config.format, units=config.units)
+        kwargs = {"format": config.format}
+        if config.units is not None:
+            kwargs["units"] = config.units
+        m = load_motion(spec, **kwargs)
         if m.is_zero:
             raise InputError(f"motion = {spec!r}: the report needs a ground motion ('none' has none)")
         if m.pulse is None and m.end_time > RECORD_WINDOW and config.duration is None:
             m = m.trimmed(0.0, RECORD_WINDOW)
-        motions.append(m)
+        motions.append((m, spec if m.pulse is None and Path(spec).is_file() else None))
     return motions
 
 
-def _histories(engines, motions, config, log):
-    scenarios, checks = [], []
-    for motion in motions:
+def base_acceleration_peak(system: System, motion: GroundMotion, duration: float) -> float:
+    """The largest |absolute base acceleration| (m/s²) while the block stays down: the
+    ground's on a fixed base; on an isolated base the linear isolator's response, read
+    from the analytic model under the motion scaled far below uplift (it is linear there)."""
+    if system.fixed_base:
+        return motion.pga
+    small = 1e-3 * system.uplift_acceleration / max(motion.pga, 1e-300)
+    tr = get_engine(REFERENCE).simulate(system, motion.scaled(small), duration=duration)
+    a = (system.damping * tr.u_dot + system.stiffness * tr.u) / system.total_mass
+    return float(np.max(np.abs(a))) / small
+
+
+def ensemble_scales(config: ReportConfig, system: System, motion: GroundMotion, peak: float) -> np.ndarray:
+    """The user's --scales, or a range from just above the uplift scale: the motion scaled
+    by f lifts the block once f·peak exceeds g·tanα."""
+    if config.scales is not None:
+        return scale_factors(*config.scales)
+    steps = config.effort.scale_steps
+    if peak <= 0:
+        return scale_factors(*FALLBACK_SCALES, steps)
+    lift = system.uplift_acceleration / peak
+    return scale_factors(ENSEMBLE_FIRST * lift, ENSEMBLE_LAST * lift, steps)
+
+
+# --- running -------------------------------------------------------------------------------
+
+def build(config: ReportConfig, *, progress=None) -> Results:
+    """Run every part of the report. Bad input raises InputError before anything runs.
+    `progress`: a callable(done, total) called as runs finish."""
+    start = time.perf_counter()
+    motions = load_motions(config)          # bad input fails here, before any simulation
+    if config.scales is not None:
+        scale_factors(*config.scales)
+    engines, skipped_ = load_engines(config.engines)
+    settings = {name: resolve(name, config.overrides_for(name))[1] for name in engines}
+    started = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+
+    free = free_scenarios(config)
+    histories = []
+    for motion, _ in motions:
         duration = scenario_duration(motion, config)
-        for base, system in paper_bases():
+        for base, system in config.bases():
             sc = HistoryRuns(f"{motion.name}, {base}", motion, system, duration)
-            for engine in engines.values():
-                start = time.perf_counter()
-                tr, err = _simulate(engine, system, motion, duration=duration)
-                if tr is None:
-                    sc.errors[engine.name] = err
-                else:
-                    sc.runs[engine.name] = tr
-                log(f"history {sc.name}: {engine.name} "
-                    f"{'θmax/α ' + format(tr.theta_max_over_alpha, '.3f') if tr else err} "
-                    f"({time.perf_counter() - start:.1f} s)")
-            sc.sensitivity = reference_sensitivity(system, motion, duration=duration)
-            ref = sc.runs.get(REFERENCE)
-            if ref is not None:
-                for name, tr in sc.runs.items():
-                    if name != REFERENCE:
-                        sc.comparisons[name] = compare(tr, ref)
-            checks += _history_checks(sc, engines)
-            scenarios.append(sc)
-    return scenarios, checks
+            sc.base_acceleration_peak = base_acceleration_peak(system, motion, duration)
+            histories.append(sc)
+    scales = [ensemble_scales(config, sc.system, sc.motion, sc.base_acceleration_peak) for sc in histories]
+
+    tasks = []
+    for name in engines:
+        o = config.overrides_for(name)
+        tasks += [Task(("free", i, name), name, sc.system, GroundMotion.zero(), sc.duration, sc.theta0, o)
+                  for i, sc in enumerate(free)]
+        tasks += [Task(("history", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o)
+                  for i, sc in enumerate(histories)]
+        tasks += [Task(("ensemble", i, k, name), name, sc.system, sc.motion.scaled(float(f)), sc.duration, 0.0, o)
+                  for i, sc in enumerate(histories) for k, f in enumerate(scales[i])]
+    done = [0]
+
+    def tick(_key):
+        done[0] += 1
+        if progress:
+            progress(done[0], len(tasks))
+    results = run_tasks(tasks, workers=config.workers, on_result=tick)
+
+    free_rows, checks = _free_rocking(engines, free, results)
+    for i, sc in enumerate(histories):
+        for name in engines:
+            tr, err = results[("history", i, name)]
+            if tr is None:
+                sc.errors[name] = err
+            else:
+                sc.runs[name] = tr
+        sc.sensitivity = reference_sensitivity(sc.system, sc.motion, duration=sc.duration)
+        ref = sc.runs.get(REFERENCE)
+        if ref is not None:
+            sc.comparisons = {name: compare(tr, ref) for name, tr in sc.runs.items() if name != REFERENCE}
+        checks += _history_checks(sc, engines)
+    ensembles = []
+    for i, sc in enumerate(histories):
+        ens = _ensemble(i, sc, scales[i], engines, results)
+        ensembles.append(ens)
+        checks += _ensemble_checks(ens, sc.name, engines)
+    return Results(config=config, engines=engines, skipped=skipped_, free=free_rows, scenarios=histories,
+                   ensembles=ensembles, checks=checks, versions=versions(), started=started,
+                   wall_s=time.perf_counter() - start, settings=settings,
+                   record_paths=tuple(p for _, p in motions if p))
+
+
+def _free_rocking(engines, scenarios, results):
+    rows, checks = [], []
+    for name in engines:
+        for i, sc in enumerate(scenarios):
+            label, s = sc.name, sc.system
+            tr, err = results[("free", i, name)]
+            row = {"engine": name, "scenario": label, "slenderness": s.slenderness,
+                   "mass_ratio": s.mu, "fixed_base": s.fixed_base, "error": err}
+            if tr is not None:
+                row.update(effective_beta(tr))
+                row["runtime_s"] = tr.runtime_s
+                row["status"] = str(tr.status)
+            rows.append(row)
+            checks.append(check(name, "beta_rel_error", label, row.get("beta_rel_error"), note=err or ""))
+            if not s.fixed_base:
+                checks.append(check(name, "beta2_abs_error", label, row.get("beta2_abs_error"), note=err or ""))
+            else:
+                t1 = exact_first_impact_time(s, sc.theta0)
+                row["first_impact_time_exact"] = t1
+                t = row.get("first_impact_time")
+                checks.append(check(name, "first_impact_time_rel_error", label,
+                                    None if t is None else abs(t / t1 - 1), note=err or ""))
+    return rows, checks
 
 
 def _history_checks(sc: HistoryRuns, engines) -> list[Check]:
@@ -265,77 +377,76 @@ def _history_checks(sc: HistoryRuns, engines) -> list[Check]:
         c: Comparison | None = sc.comparisons.get(name)
         err = sc.errors.get(name) or ("" if c else "no analytic reference")
         metrics = {"theta_max_diff": None if c is None else abs(c.theta_max_diff),
+                   "impacts_diff": None if c is None else abs(c.impacts - c.impacts_ref),
                    "overturn_agree": None if c is None else c.overturn_agree}
         if not sc.system.fixed_base:
             metrics["u_max_rel_error"] = None if c is None or c.u_max_rel_error is None else abs(c.u_max_rel_error)
         if c is None or c.first_uplift_ref is not None or c.first_uplift is not None:
             metrics["first_uplift_diff"] = (None if c is None or c.first_uplift_diff is None
                                             else abs(c.first_uplift_diff))
+        slid = sc.runs.get(name) is not None and str(sc.runs[name].status) == "slid"
         for metric, value in metrics.items():
             if not has_tolerance(name, metric):
                 continue
-            if not sc.robust:
+            if not sc.exercised and not err:
+                out.append(not_exercised(name, metric, sc.name, sc.why_not_exercised()))
+            elif not sc.robust:
                 out.append(skipped(name, metric, sc.name, why_not))
             else:
                 note = err or ("uplifted in one engine only" if metric == "first_uplift_diff" and value is None
-                               else "")
+                               else "the block slid on its base" if slid else "")
                 out.append(check(name, metric, sc.name, value, note=note))
     return out
 
 
-def _ensembles(engines, motions, config, log):
-    effort = config.effort
-    first, last, steps = config.scales or (0.25, 1.5, effort.scale_steps)
-    scales = scale_factors(first, last, steps)
-    ensembles, checks = [], []
-    for motion in motions:
-        duration = scenario_duration(motion, config)
-        for base, system in paper_bases():
-            label = f"{motion.name}, {base}"
-            ens = run_ensemble(list(engines.values()), system, motion, scales=scales, duration=duration,
-                               label=label, progress=log)
-            ensembles.append(ens)
-            for name in engines:
-                if name == REFERENCE:
-                    continue
-                a = ens.agreement(name)
-                note = "; ".join(f"×{f:.3g}: {m}" for f, m in ens.failed.get(name, []))
-                checks.append(check(name, "ensemble_overturn_agreement", f"ensemble {label}",
-                                    a["overturn_agreement"], note=note))
-                if a["rocking_cases"]:
-                    checks.append(check(name, "ensemble_theta_max_diff", f"ensemble {label}",
-                                        a["median_theta_max_diff_rocking"],
-                                        note=note or f"median over the {a['rocking_cases']} rocking cases"))
-                else:
-                    checks.append(skipped(name, "ensemble_theta_max_diff", f"ensemble {label}",
-                                          "the reference rocks without overturning in no case"))
-    return ensembles, checks
+def _ensemble(i: int, sc: HistoryRuns, scales, engines, results) -> Ensemble:
+    """The ensemble of history scenario i from the task results; a failed case is NaN
+    with its message in `failed`."""
+    ens = Ensemble(system=sc.system, motion=sc.motion.name, pga_g=sc.motion.pga_g, duration=sc.duration,
+                   scales=np.asarray(scales, dtype=float))
+    for name in engines:
+        tmax = np.full(len(scales), math.nan)
+        over = np.zeros(len(scales), dtype=bool)
+        for k, f in enumerate(scales):
+            tr, err = results[("ensemble", i, k, name)]
+            if tr is None:
+                ens.failed.setdefault(name, []).append((float(f), err))
+            else:
+                tmax[k], over[k] = tr.theta_max_over_alpha, tr.overturned
+        ens.theta_max[name], ens.overturned[name] = tmax, over
+    return ens
+
+
+def _ensemble_checks(ens: Ensemble, label: str, engines) -> list[Check]:
+    checks = []
+    scenario = f"ensemble {label}"
+    rocked = ens.rocking_count()
+    for name in engines:
+        if name == REFERENCE:
+            continue
+        a = ens.agreement(name)
+        note = "; ".join(f"×{f:.3g}: {m}" for f, m in ens.failed.get(name, []))
+        if rocked == 0:
+            why = f"not exercised: the block rocks in none of the {ens.scales.size} cases"
+            checks.append(not_exercised(name, "ensemble_overturn_agreement", scenario, why))
+            checks.append(not_exercised(name, "ensemble_theta_max_diff", scenario, why))
+            continue
+        checks.append(check(name, "ensemble_overturn_agreement", scenario, a["overturn_agreement"],
+                            note=note or f"the block rocks in {rocked} of {ens.scales.size} cases"))
+        if a["rocking_cases"]:
+            checks.append(check(name, "ensemble_theta_max_diff", scenario, a["median_theta_max_diff_rocking"],
+                                note=note or f"median over the {a['rocking_cases']} rocking cases"))
+        else:
+            checks.append(skipped(name, "ensemble_theta_max_diff", scenario,
+                                  "the reference rocks without overturning in no case"))
+    return checks
 
 
 def versions() -> dict:
     out = {"python": platform.python_version()}
-    for dist in ("isorock", "numpy", "scipy", "matplotlib", "mujoco", "pybullet"):
+    for dist in ("isorock", "numpy", "scipy", "matplotlib", "mujoco", "pybullet", "numba"):
         try:
             out[dist] = importlib.metadata.version(dist)
         except importlib.metadata.PackageNotFoundError:
             out[dist] = "not installed"
     return out
-
-
-def build(config: ReportConfig, *, log=None) -> Results:
-    """Run every part of the report. Bad input raises InputError before anything runs."""
-    log = log or (lambda line: None)
-    start = time.perf_counter()
-    motions = load_motions(config)          # bad input fails here, before any simulation
-    if config.scales is not None:
-        scale_factors(*config.scales)
-    engines, skipped_ = load_engines(config.engines)
-    for name, why in skipped_.items():
-        log(f"skipping engine {name}: {why}")
-    started = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
-    free, checks = _free_rocking(engines, config.effort, log)
-    scenarios, c2 = _histories(engines, motions, config, log)
-    ensembles, c3 = _ensembles(engines, motions, config, log)
-    return Results(config=config, engines=engines, skipped=skipped_, free=free, scenarios=scenarios,
-                   ensembles=ensembles, checks=checks + c2 + c3, versions=versions(), started=started,
-                   wall_s=time.perf_counter() - start)
