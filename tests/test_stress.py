@@ -28,15 +28,16 @@ def test_a_hang_is_reported_as_timeout():
 
 
 def test_verdict_rules():
-    ok = dict(status="completed", finite=True, energy_residual=1e-12, sim_end=5.0, duration=5.0)
+    ok = dict(status="completed", finite=True, energy_residual=1e-12, sim_end=5.0, duration=5.0, overturned=False)
     assert verdict(ok) == "pass"
     assert verdict(dict(ok, finite=False)) == "FAIL"
     assert verdict(dict(ok, energy_residual=2e-6)) == "FAIL"
     assert verdict(dict(ok, sim_end=4.0)) == "FAIL"
-    assert verdict(dict(ok, sim_end=4.0, status="overturned")) == "pass"
+    assert verdict(dict(ok, sim_end=4.0, status="overturned", overturned=True)) == "pass"
+    assert verdict(dict(ok, sim_end=4.0, status="slid", overturned=True)) == "pass"  # slid, then overturned
     assert verdict(dict(ok, status="event-limit")) == "FAIL"
     alpha = 0.96  # a squat block: 4.3α is well past lying on its side (π/2)
-    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=4.3, status="overturned")) == "FAIL"
+    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=4.3, status="overturned", overturned=True)) == "FAIL"
     assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.2, theta_end_over_alpha=0.1)) == "pass"  # leaned, came back
     assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.2, theta_end_over_alpha=1.1)) == "FAIL"  # ended past α
-    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.01, status="overturned")) == "pass"
+    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.01, status="overturned", overturned=True)) == "pass"

@@ -1,12 +1,23 @@
-"""`isorock stress`: a grid built to break each engine.
+"""`isorock stress`: a grid built to break each engine, and to find where engines part.
 
-Each case (a Scenario) varies one thing far from the paper's block (slenderness 1–20 including
-both sides of the no-bounce limit, μ 0.01–100, T 0.2–6 s, ξ 0–0.5, PGA up to 3 g,
-durations up to 300 s, records with dt 0.001–0.05 s, zero motion, long Zeno tails,
-10 cm and 10 m blocks). Every case runs in a forked process with a wall-time limit,
-so a hang is reported as a time-out instead of stalling the grid. A case fails when
-its histories are not finite, it times out, the engine reports a failure, or (analytic)
-the energy balance residual exceeds 1e-6 of the input energy.
+Two parts:
+- edge cases, each varying one thing far from the paper's block (slenderness 1–20 on both
+  sides of the no-bounce limit, μ 0.01–100, T 0.2–6 s, ξ 0–0.5, PGA up to 3 g, durations
+  up to 300 s, records with dt 0.001–0.05 s, zero motion, long Zeno tails, 10 cm and 10 m
+  blocks);
+- property-based draws (Hypothesis, derandomized: the same cases every run) over
+  geometry (H 0.2–5 m, λ 0.8–10), base (fixed, or μ 0.1–10, T 0.5–5 s, ξ 0–0.5), pulses
+  in dimensionless form (kind, ω_p/p 0.5–12, a_p/(g·tanα) 0.8–10) and record-like noise
+  scaled to 0.5–5 × g·tanα.
+
+Every (case, engine) runs in a forked process with a wall-time limit, two at a time, so a
+hang is a time-out, not a stalled grid. A run FAILs when its histories are not finite,
+it times out or crashes, the engine reports a failure, it ends beyond α without calling
+it overturned or tilts past lying on its side, or (analytic) its energy balance residual
+exceeds 1e-6 of the input energy. Across engines: a contact engine that overturns where
+the analytic model does not (or the reverse) DISAGREEs when the analytic outcome is
+robust (it does not flip under ±3% of the motion); a block that slid is flagged "slid"
+(the analytic model assumes no sliding), not failed.
 """
 from __future__ import annotations
 
@@ -22,12 +33,18 @@ import numpy as np
 
 from isorock.analytic.coefficients import no_bounce_slenderness
 from isorock.analytic.kinematics import LYING
+from isorock.validate.engines import REFERENCE
 from isorock.validate.scenarios import Scenario, block
 
 ENERGY_TOLERANCE = 1e-6  # analytic energy balance residual / input energy
 #: |θ| a run may show beyond π/2 (a contact engine's block lands on its side face through
 #: a compliant contact), in rad
 LYING_SLACK = 0.05
+#: The reference's overturning must hold under the motion scaled by 1 ± this for a
+#: contact engine's other outcome to count as a disagreement, not chaos (model.md).
+ROBUST_SCALE = 0.03
+#: Drawn cases: in the full grid, and in --quick.
+DRAWN_FULL, DRAWN_QUICK = 2000, 12
 
 
 @dataclass(frozen=True)
@@ -42,8 +59,15 @@ class StressCase:
         return self.scenario.name
 
 
-def grid(quick: bool = False) -> list[StressCase]:
-    """The stress grid; `quick` keeps the cases marked quick."""
+def grid(quick: bool = False, drawn: int | None = None) -> list[StressCase]:
+    """The stress grid: the edge cases (`quick` keeps those marked quick) and `drawn`
+    property-based cases (default DRAWN_QUICK or DRAWN_FULL)."""
+    drawn = (DRAWN_QUICK if quick else DRAWN_FULL) if drawn is None else drawn
+    return edge_cases(quick) + drawn_cases(drawn)
+
+
+def edge_cases(quick: bool = False) -> list[StressCase]:
+    """Each varies one thing far from the paper's block; `quick` keeps those marked quick."""
     pulse = "sine:amp=0.6,freq=1,cycles=2"
     c = []
 
@@ -85,6 +109,54 @@ def grid(quick: bool = False) -> list[StressCase]:
     return [x for x in c if x.quick] if quick else c
 
 
+def drawn_cases(n: int) -> list[StressCase]:
+    """`n` cases drawn by Hypothesis (derandomized, so every run draws the same ones) over
+    geometry, base, pulses in dimensionless form and record-like noise; each named by
+    its numbers, so a failing one can be run again by hand."""
+    if n <= 0:
+        return []
+    from hypothesis import HealthCheck, Phase, given, settings
+    from hypothesis import strategies as st
+    out: list[StressCase] = []
+
+    def number(lo, hi):
+        return st.floats(lo, hi, allow_nan=False, allow_infinity=False)
+
+    bases = st.one_of(st.just(None), st.tuples(number(0.1, 10.0), number(0.5, 5.0), number(0.0, 0.5)))
+    pulses = st.tuples(st.sampled_from(("sine", "cosine", "ricker")), number(0.5, 12.0), number(0.8, 10.0))
+    noise = st.tuples(st.just("noise"), st.sampled_from((0.005, 0.01, 0.02)), number(0.5, 5.0),
+                      st.integers(0, 10_000))
+
+    @settings(max_examples=n, derandomize=True, database=None, phases=[Phase.generate], deadline=None,
+              suppress_health_check=list(HealthCheck))
+    @given(height=number(0.2, 5.0), slenderness=number(0.8, 10.0), base=bases, motion=st.one_of(pulses, noise))
+    def draw(height, slenderness, base, motion):
+        if base is None:
+            system = block(height=height, slenderness=slenderness, fixed=True)
+        else:
+            mu, period, xi = base
+            system = block(height=height, slenderness=slenderness, mass_ratio=mu, period=period, damping_ratio=xi)
+        tan_alpha = 1 / slenderness
+        if motion[0] == "noise":
+            _, dt, ratio, seed = motion
+            seconds = 8.0
+            spec = f"noise:dt={dt:g},pga={ratio * tan_alpha:.6g},seconds={seconds:g},seed={seed}"
+            duration, what = seconds + 3.0, f"record-like noise at {ratio:.3g}·g·tanα"
+        else:
+            kind, w_ratio, a_ratio = motion
+            freq = w_ratio * system.p / (2 * math.pi)
+            spec = (f"{kind}:amp={a_ratio * tan_alpha:.6g},freq={freq:.6g}" +
+                    (",cycles=1" if kind != "ricker" else ""))
+            end = (2.0 if kind == "ricker" else 1.0) / freq
+            duration, what = min(end + 3.0, 30.0), f"{kind} ω_p/p {w_ratio:.3g}, a_p/(g·tanα) {a_ratio:.3g}"
+        base_text = "fixed" if base is None else f"μ{base[0]:.3g} T{base[1]:.3g} ξ{base[2]:.3g}"
+        name = f"drawn-{len(out) + 1:04d} H{height:.3g} λ{slenderness:.3g} {base_text}"
+        out.append(StressCase(Scenario(name, system, spec, duration), what, quick=True, engines=None))
+
+    draw()
+    return out[:n]
+
+
 # --- running -------------------------------------------------------------------------
 
 def _run_in_child(conn, engine_name, case):
@@ -98,7 +170,12 @@ def _run_in_child(conn, engine_name, case):
         wall = time.perf_counter() - start
         arrays = (tr.t, tr.u, tr.u_dot, tr.theta, tr.theta_dot)
         finite = all(np.all(np.isfinite(a)) for a in arrays)
+        robust = None
+        if engine_name == REFERENCE:  # does its overturning hold under ±ROBUST_SCALE of the motion?
+            robust = all(engine.simulate(system, motion.scaled(f), duration=sc.duration, theta0=sc.theta0).overturned
+                         == tr.overturned for f in (1 - ROBUST_SCALE, 1 + ROBUST_SCALE))
         out = dict(status=str(tr.status), finite=bool(finite), wall_s=wall, impacts=tr.impact_count, alpha=system.alpha,
+                   robust=robust,
                    theta_end_over_alpha=float(abs(tr.theta[-1]) / system.alpha) if tr.theta.size else 0.0,
                    uplifts=tr.uplifts, overturned=tr.overturned,
                    theta_max_over_alpha=float(np.nanmax(np.abs(tr.theta)) / system.alpha) if tr.theta.size else 0.0,
@@ -112,24 +189,59 @@ def _run_in_child(conn, engine_name, case):
 
 def run_case(engine: str, case: StressCase, time_limit: float) -> dict:
     """One case in a forked process; killed and reported as 'timeout' past time_limit."""
+    return run_cases([(engine, case)], time_limit, workers=1)[0]
+
+
+def run_cases(todo, time_limit: float, *, workers: int = 2, on_result=None) -> list[dict]:
+    """Every (engine, case) of `todo` in a forked process, `workers` at a time, each killed
+    and reported as 'timeout' past time_limit; results in the order of `todo`."""
+    from multiprocessing.connection import wait
     ctx = mp.get_context("fork")
-    parent, child = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_run_in_child, args=(child, engine, case), daemon=True)
-    start = time.perf_counter()
-    proc.start()
-    child.close()
-    result = None
-    if parent.poll(time_limit):
-        try:
-            result = parent.recv()
-        except EOFError:
-            result = None
-    proc.join(1.0)
+    results: list[dict | None] = [None] * len(todo)
+    running = {}  # pipe → (index, process, start)
+    pending = list(range(len(todo)))[::-1]
+    while pending or running:
+        while pending and len(running) < max(1, workers):
+            i = pending.pop()
+            parent, child = ctx.Pipe(duplex=False)
+            proc = ctx.Process(target=_run_in_child, args=(child, *todo[i]), daemon=True)
+            proc.start()
+            child.close()
+            running[parent] = (i, proc, time.perf_counter())
+        now = time.perf_counter()
+        next_deadline = min(start + time_limit for _, _, start in running.values())
+        for pipe in wait(list(running), timeout=max(0.0, next_deadline - now)):
+            i, proc, start = running.pop(pipe)
+            try:
+                result = pipe.recv()
+            except EOFError:
+                result = None
+            _reap(proc)
+            results[i] = _finish(result, todo[i], time.perf_counter() - start, time_limit, proc)
+            if on_result:
+                on_result(results[i])
+        now = time.perf_counter()
+        for pipe, (i, proc, start) in list(running.items()):
+            if now - start >= time_limit:
+                running.pop(pipe)
+                _reap(proc)
+                results[i] = _finish(None, todo[i], now - start, time_limit, proc)
+                if on_result:
+                    on_result(results[i])
+    return results
+
+
+def _reap(proc):
+    proc.join(0.5)
     if proc.is_alive():
         proc.kill()
         proc.join()
+
+
+def _finish(result, item, elapsed, time_limit, proc) -> dict:
+    engine, case = item
     if result is None:
-        timed_out = time.perf_counter() - start >= time_limit
+        timed_out = elapsed >= time_limit
         result = dict(status="timeout" if timed_out else "crashed",
                       error=f"no result within {time_limit:g} s" if timed_out else f"exit code {proc.exitcode}")
     result.update(engine=engine, case=case.name, what=case.what, duration=case.scenario.duration)
@@ -145,35 +257,57 @@ def verdict(r: dict) -> str:
     res = r.get("energy_residual")
     if res is not None and not res < ENERGY_TOLERANCE:
         return "FAIL"
-    if r["status"] != "overturned" and r.get("sim_end", 0) < r["duration"] * (1 - 1e-9):
+    if not r.get("overturned") and r.get("sim_end", 0) < r["duration"] * (1 - 1e-9):
         return "FAIL"  # stopped early without saying why
     alpha = r.get("alpha")
     if alpha and r.get("theta_max_over_alpha", 0) * alpha > LYING + LYING_SLACK:
         return "FAIL"  # tilted past lying on its side: not a physical answer
-    if r["status"] != "overturned" and r.get("theta_end_over_alpha", 0) > 1:
+    if not r.get("overturned") and r.get("theta_end_over_alpha", 0) > 1:
         return "FAIL"  # ended beyond α without calling it overturned (model.md, "Past α")
     return "pass"
 
 
-def run_stress(*, quick=False, engines=None, time_limit=None, progress=True) -> list[dict]:
-    from isorock.validate.engines import ALL_ENGINES
+def compare_engines(results: list[dict]) -> None:
+    """Each contact engine against the reference, case by case (in place): `cross` is
+    "agree", "DISAGREE" (the overturning differs where the reference's is robust),
+    "slid" (flagged: the no-sliding assumption broke), "chaotic" (the reference's outcome
+    flips within ±ROBUST_SCALE of the motion) or "" (nothing to compare)."""
+    refs = {r["case"]: r for r in results if r["engine"] == REFERENCE}
+    for r in results:
+        ref = refs.get(r["case"])
+        if r["engine"] == REFERENCE or ref is None or ref["verdict"] != "pass" or r["verdict"] != "pass":
+            r["cross"] = ""
+        elif r["status"] == "slid":
+            r["cross"] = "slid"
+        elif r["overturned"] == ref["overturned"]:
+            r["cross"] = "agree"
+        else:
+            r["cross"] = "DISAGREE" if ref.get("robust") else "chaotic"
+
+
+def run_stress(*, quick=False, engines=None, time_limit=None, progress=True, drawn: int | None = None,
+               workers: int = 2) -> list[dict]:
+    from isorock.validate.engines import ALL_ENGINES, ENGINE_NAMES, get_engine
+    from isorock.validate.progress import ProgressBar
     engines = list(engines or ALL_ENGINES)
     time_limit = time_limit or (30.0 if quick else 120.0)
-    cases = grid(quick)
-    todo = [(e, c) for c in cases for e in engines if c.engines is None or e in c.engines]
-    results = []
-    for k, (e, c) in enumerate(todo, 1):
-        r = run_case(e, c, time_limit)
-        results.append(r)
-        if progress:
-            print(f"[{k}/{len(todo)}] {e:8s} {c.name:26s} {r['verdict']:4s} {r['status']:10s} "
-                  f"{r.get('wall_s', float('nan')):7.2f} s", file=sys.stderr, flush=True)
+    edges = edge_cases(quick)
+    draws = drawn_cases((DRAWN_QUICK if quick else DRAWN_FULL) if drawn is None else drawn)
+    # drawn cases compare the report's engines; the edges break every registered one
+    todo = [(e, c) for c in edges for e in engines if c.engines is None or e in c.engines]
+    todo += [(e, c) for c in draws for e in engines if e in ENGINE_NAMES]
+    for e in dict.fromkeys(e for e, _ in todo):  # loaded once here, so forked children do not load them again
+        get_engine(e)
+    bar = ProgressBar(len(todo), "stress", enabled=None if progress else False)
+    results = run_cases(todo, time_limit, workers=workers, on_result=lambda r: bar.advance(note=r["case"][:30]))
+    bar.close()
+    compare_engines(results)
     return results
 
 
 # --- output ----------------------------------------------------------------------------
 
-COLUMNS = ("engine", "case", "verdict", "status", "finite", "wall_s", "impacts", "uplifts", "overturned",
+COLUMNS = ("engine", "case", "verdict", "cross", "status", "finite", "wall_s", "impacts", "uplifts", "overturned",
            "theta_max_over_alpha", "u_max", "energy_residual", "what", "error")
 
 
@@ -183,13 +317,42 @@ def _fmt(v):
     return "" if v is None else str(v)
 
 
+def summary(results) -> dict:
+    """Counts the verdict line and the tables are made of."""
+    cross = [r["cross"] for r in results if r.get("cross")]
+    return {"runs": len(results), "cases": len({r["case"] for r in results}),
+            "fail": sum(r["verdict"] != "pass" for r in results),
+            "agree": cross.count("agree"), "disagree": cross.count("DISAGREE"),
+            "slid": cross.count("slid"), "chaotic": cross.count("chaotic")}
+
+
+def failures(results) -> list[dict]:
+    """Runs that broke (their verdict) or disagree with a robust reference."""
+    return [r for r in results if r["verdict"] != "pass" or r.get("cross") == "DISAGREE"]
+
+
+def stress_verdict(results) -> str:
+    s = summary(results)
+    compared = s["agree"] + s["disagree"]
+    rate = f"{100 * s['agree'] / compared:.1f}%" if compared else "–"
+    head = "stress: PASS" if not failures(results) else "stress: FAIL"
+    return (f"{head} — {s['runs']} runs of {s['cases']} cases: {s['fail']} broke; contact engines agree with the "
+            f"analytic model on overturning in {s['agree']} of {compared} robust comparisons ({rate}), "
+            f"{s['disagree']} disagree, {s['slid']} slid (flagged), {s['chaotic']} chaotic")
+
+
 def markdown(results) -> str:
-    fails = [r for r in results if r["verdict"] != "pass"]
-    lines = [f"# isorock stress: {len(results) - len(fails)} of {len(results)} cases pass", "",
-             "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
+    bad = failures(results)
+    lines = [f"# {stress_verdict(results)}", ""]
+    if bad:
+        lines += ["## Failures and disagreements", "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
+        lines += ["| " + " | ".join(_fmt(r.get(c)).replace("|", "/") for c in COLUMNS) + " |" for r in bad]
+        lines.append("")
+    lines += ["## Every run", "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     for r in results:
         lines.append("| " + " | ".join(_fmt(r.get(c)).replace("|", "/") for c in COLUMNS) + " |")
-    lines += ["", f"Energy balance tolerance (analytic): {ENERGY_TOLERANCE:g} of the input energy."]
+    lines += ["", f"Energy balance tolerance (analytic): {ENERGY_TOLERANCE:g} of the input energy. A disagreement "
+                  f"counts only where the analytic outcome holds under ±{ROBUST_SCALE:.0%} of the motion."]
     return "\n".join(lines) + "\n"
 
 
@@ -197,6 +360,9 @@ def add_parser(sub) -> None:
     p = sub.add_parser("stress", help="the stability stress grid (exits non-zero on any failure)",
                        description=__doc__.split("\n\n")[1])
     p.add_argument("--quick", action="store_true", help="the quick subset (under 2 minutes)")
+    p.add_argument("--drawn", type=int, metavar="N",
+                   help=f"property-based cases to draw (default {DRAWN_FULL}, {DRAWN_QUICK} with --quick)")
+    p.add_argument("--workers", type=int, default=2, help="runs at a time (default: %(default)s)")
     p.add_argument("--out", default="isorock-stress", metavar="DIR",
                    help="folder for stress.md, stress.csv, stress.json (default: %(default)s)")
     p.add_argument("--engines", nargs="+", metavar="ENGINE", help="engines to stress (default: all)")
@@ -216,7 +382,12 @@ def cmd_stress(a) -> int:
     if a.time_limit is not None and not a.time_limit > 0:
         raise InputError(f"time-limit = {a.time_limit!r}: must be a positive number of seconds")
     start = time.perf_counter()
-    results = run_stress(quick=a.quick, engines=a.engines, time_limit=a.time_limit)
+    if a.drawn is not None and not 0 <= a.drawn <= 100_000:
+        raise InputError(f"drawn = {a.drawn!r}: must be a number of cases from 0 to 100000")
+    if not 1 <= a.workers <= 64:
+        raise InputError(f"workers = {a.workers!r}: must be a number of processes from 1 to 64")
+    results = run_stress(quick=a.quick, engines=a.engines, time_limit=a.time_limit, drawn=a.drawn,
+                         workers=a.workers)
 
     def fill(tmp: Path):
         (tmp / "stress.md").write_text(markdown(results))
@@ -227,9 +398,10 @@ def cmd_stress(a) -> int:
         w.writerows(results)
         (tmp / "stress.csv").write_text(buf.getvalue())
     write_folder_atomic(a.out, fill)
-    fails = [r for r in results if r["verdict"] != "pass"]
-    print(f"stress: {len(results) - len(fails)} of {len(results)} cases pass in "
-          f"{time.perf_counter() - start:.0f} s; report in {a.out}/stress.md")
+    fails = failures(results)
     for r in fails:
-        print(f"  FAIL {r['engine']} {r['case']}: {r['status']} {r.get('error', '')}")
+        print(f"  {r['verdict'] if r['verdict'] != 'pass' else r['cross']} {r['engine']} {r['case']}: "
+              f"{r['status']} {r.get('error', '')}")
+    print(f"report in {a.out}/stress.md ({time.perf_counter() - start:.0f} s)")
+    print(stress_verdict(results))
     return 1 if fails else 0
