@@ -21,6 +21,7 @@ ENGINE_MODULES = {
     "analytic": "isorock.analytic.engine",
     "mujoco": "isorock.mujoco_models.scene",
     "bullet": "isorock.bullet_models.scene",
+    "drake": "isorock.drake_models.scene",
     # the same model as "analytic", compiled (analytic.fast): for speed, by name
     "analytic-fast": "isorock.analytic.fast_engine",
 }
