@@ -95,7 +95,7 @@ FORCE_KNOT = 5e-4
 class Settings:
     """Drake's numerical settings for this scene (defaults: the "continuous" preset).
 
-    time_step: 0 for a continuous plant integrated with error control (`integrator`
+    timestep: 0 for a continuous plant integrated with error control (`integrator`
         at `accuracy`), or the step (s) of a discrete plant solved by
         `discrete_solver` (sap, tamsi or lagged).
     integrator: continuous plants only: radau3, radau1, implicit_euler or
@@ -108,12 +108,12 @@ class Settings:
         Lagged's linear dissipation time scale (s; each geometry carries half, Drake adds them).
     friction: block–plate Coulomb friction (static = dynamic).
     corner_radius: radius (m) of the corner spheres, below b/10.
-    sample_interval: the history's sample spacing (s); a multiple of time_step on a
+    sample_interval: the history's sample spacing (s); a multiple of timestep on a
         discrete plant. contact_window: s, how far outside a θ sign change the states
         mapped to θ = 0 are taken (validate.measure).
     """
 
-    time_step: float = 0.0
+    timestep: float = 0.0
     integrator: str = "radau3"
     accuracy: float = 1e-3
     discrete_solver: str = "sap"
@@ -121,7 +121,7 @@ class Settings:
     stiffness: float = 1e10
     dissipation: float = 100.0
     relaxation_time: float = 5e-3
-    hydroelastic_modulus: float = 1e8
+    hydroelastic_modulus: float = 1e10
     friction: float = 1.0
     corner_radius: float = CORNER_RADIUS
     sample_interval: float = 1e-3
@@ -129,12 +129,12 @@ class Settings:
 
     def __post_init__(self):
         try:
-            dt = float(self.time_step)
+            dt = float(self.timestep)
         except (TypeError, ValueError):
-            raise InputError(f"time_step = {self.time_step!r}: must be 0 (continuous) or a positive step") from None
-        require(math.isfinite(dt) and 0 <= dt <= 0.01, "time_step", self.time_step,
+            raise InputError(f"timestep = {self.timestep!r}: must be 0 (continuous) or a positive step") from None
+        require(math.isfinite(dt) and 0 <= dt <= 0.01, "timestep", self.timestep,
                 "0 (continuous) or a step in (0, 0.01] s")
-        object.__setattr__(self, "time_step", dt)
+        object.__setattr__(self, "timestep", dt)
         require(self.integrator in INTEGRATORS, "integrator", self.integrator, f"one of {', '.join(INTEGRATORS)}")
         require(self.discrete_solver in DISCRETE_SOLVERS, "discrete_solver", self.discrete_solver,
                 f"one of {', '.join(DISCRETE_SOLVERS)}")
@@ -150,21 +150,45 @@ class Settings:
         if dt > 0:
             ratio = si / dt
             require(ratio >= 1 - 1e-9 and abs(ratio - round(ratio)) < 1e-6, "sample_interval",
-                    self.sample_interval, f"a whole multiple of time_step = {dt:g} s")
+                    self.sample_interval, f"a whole multiple of timestep = {dt:g} s")
         object.__setattr__(self, "sample_interval", si)
 
     @property
     def continuous(self) -> bool:
-        return self.time_step == 0
+        return self.timestep == 0
 
 
 #: Named families of settings (issue 12). Measured β error and speed: docs/drake.md.
 PRESETS: dict[str, Settings] = {
     "continuous": Settings(),
-    "sap": Settings(time_step=2e-4, discrete_solver="sap", relaxation_time=5e-3),
-    "tamsi": Settings(time_step=2e-4, discrete_solver="tamsi"),
-    "hydroelastic": Settings(time_step=2e-4, discrete_solver="sap", contact="hydroelastic"),
+    "sap": Settings(timestep=2e-4, discrete_solver="sap", relaxation_time=5e-3),
+    "tamsi": Settings(timestep=2e-4, discrete_solver="tamsi"),
+    "hydroelastic": Settings(timestep=2e-4, discrete_solver="sap", contact="hydroelastic"),
 }
+
+
+#: The history's sample spacing (s) when a timestep is given alone: the multiple of the
+#: step nearest to this.
+SAMPLE_INTERVAL = 1e-3
+
+
+def settings_for(**overrides) -> Settings:
+    """Settings with `overrides`; a positive timestep given without sample_interval
+    takes the whole multiple of it nearest to SAMPLE_INTERVAL (a discrete plant is
+    sampled on its steps)."""
+    dt = overrides.get("timestep")
+    if dt and "sample_interval" not in overrides:
+        dt = require_positive_finite("timestep", dt)
+        overrides["sample_interval"] = dt * max(1, round(SAMPLE_INTERVAL / dt))
+    return Settings(**overrides)
+
+
+def settings_for_timestep(timestep: float, **overrides) -> Settings:
+    """The discrete family at this step (what a work-precision ladder steps through):
+    SAP with the "sap" preset's relaxation time, sampled near every SAMPLE_INTERVAL."""
+    base = {f.name: getattr(PRESETS["sap"], f.name) for f in fields(Settings)}
+    base.pop("sample_interval")
+    return settings_for(**{**base, "timestep": timestep, **overrides})
 
 
 def preset(name: str, **overrides) -> Settings:
@@ -329,9 +353,9 @@ def _props(settings: Settings, *, hydro: str | None = None) -> str:
 
 def _plant_description(settings: Settings) -> str:
     if settings.continuous:
-        return (f"continuous plant (time_step 0), integrator {settings.integrator}, accuracy {settings.accuracy:g}, "
+        return (f"continuous plant (timestep 0), integrator {settings.integrator}, accuracy {settings.accuracy:g}, "
                 f"contact model {settings.contact}")
-    return (f"discrete plant, time_step {settings.time_step:g} s, contact approximation "
+    return (f"discrete plant, timestep {settings.timestep:g} s, contact approximation "
             f"{settings.discrete_solver}, contact model {settings.contact}")
 
 
@@ -379,7 +403,7 @@ class _Built:
 
     def __init__(self, pd, system: System, motion: GroundMotion, settings: Settings, duration: float):
         builder = pd.DiagramBuilder()
-        plant, _ = pd.AddMultibodyPlantSceneGraph(builder, settings.time_step)
+        plant, _ = pd.AddMultibodyPlantSceneGraph(builder, settings.timestep)
         if not settings.continuous:
             plant.set_discrete_contact_approximation({
                 "sap": pd.DiscreteContactApproximation.kSap,
@@ -489,7 +513,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         if bad.any():
             status = Status.FAILED
             message = (f"the state stopped being finite near t = {context.get_time():.6g} s; "
-                       "try a smaller accuracy or time_step")
+                       "try a smaller accuracy or timestep")
             break
         if np.any(np.abs(new[built.thq]) >= alpha):
             break  # overturned: contact_trajectory reports it where |θ| first reached α
