@@ -209,3 +209,11 @@ def test_registered_as_an_engine():
     assert engine.settings(timestep=2e-4).discrete_solver == "sap"
     with pytest.raises(InputError, match="not a setting"):
         engine.settings(warp_drive=1)
+
+
+def test_cli_writes_the_scene(tmp_path):
+    from isorock.validate.cli import main
+    out = tmp_path / "block.sdf"
+    assert main(["scene", "--engine", "drake", "--out", str(out)]) == 0
+    assert out.read_text() == scene.scene_text(System.isolated(height=H, width=B, mass=M, base_mass=M, period=1.5,
+                                                                damping_ratio=0.2))
