@@ -1,9 +1,8 @@
 """The Drake scene against the closed forms (model.md) and the corner-sphere geometry's own.
 
-Drake's continuous plant runs ~2–10 simulated s per CPU s, so every run here is short
+Drake's continuous plant runs ~1–2 simulated s per CPU s on the shared test machine, so every run here is short
 free rocking or a short pulse. Skipped, with the reason, where pydrake is not installed.
 """
-import math
 import xml.etree.ElementTree as ET
 
 import numpy as np
