@@ -145,6 +145,22 @@ def test_a_drake_failure_is_a_failed_status(monkeypatch):
     assert traj.t[-1] == pytest.approx(2 * scene.CHUNK)
 
 
+def test_a_non_finite_state_is_a_failed_status(monkeypatch):
+    # the logged states turn NaN from sample 300 on: the history ends at the last finite one
+    original = pd.VectorLog.data
+
+    def data(self):
+        d = np.array(original(self))
+        d[:, 300:] = np.nan
+        return d
+
+    monkeypatch.setattr(pd.VectorLog, "data", data)
+    system = fixed()
+    traj = scene.simulate(system, None, duration=1.0, theta0=0.3 * system.alpha)
+    assert traj.status == "failed" and "finite" in traj.message
+    assert traj.t.size == 300 and np.all(np.isfinite(traj.theta)) and np.all(np.isfinite(traj.u))
+
+
 # --- the scene file, settings, registry ---------------------------------------------------
 
 def _parsed(system, settings):
