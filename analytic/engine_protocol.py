@@ -30,12 +30,14 @@ class Capabilities:
     """What an engine supports. isolated_base: the spring–dashpot base (every engine
     here); past_alpha: it simulates beyond |θ| = α (model.md, "Past α"); batch: it runs
     many cases in one call (`simulate_batch`); exact_impacts: its impacts are located as
-    events of the rigid model, not measured from a contact history."""
+    events of the rigid model, not measured from a contact history; campaigns: it is fast
+    enough for grids of thousands of runs (bench and stress run it unless told otherwise)."""
 
     isolated_base: bool = True
     past_alpha: bool = True
     batch: bool = False
     exact_impacts: bool = False
+    campaigns: bool = True
 
 
 @dataclass(frozen=True)

@@ -28,6 +28,8 @@ ENGINE_MODULES = {
     "analytic": "isorock.analytic.engine",
     "mujoco": "isorock.mujoco_models",
     "bullet": "isorock.bullet_models",
+    # Drake's point contact: an independent, slower formulation, asked for by name (docs/drake.md)
+    "drake": "isorock.drake_models",
     # the same model as "analytic", compiled (analytic.fast): for speed, by name
     "analytic-fast": "isorock.analytic.fast_engine",
 }
@@ -109,6 +111,19 @@ def get_engine(name: str) -> Engine:
     if name not in ENGINE_MODULES:
         raise InputError(f"engine = {name!r}: must be one of {', '.join(ALL_ENGINES)}")
     return Engine(name, importlib.import_module(ENGINE_MODULES[name]).ENGINE)
+
+
+def campaign_engines() -> tuple[str, ...]:
+    """The registered engines fast enough for grids of thousands of runs that can be
+    imported here: what bench and stress run unless told otherwise."""
+    out = []
+    for name in ALL_ENGINES:
+        try:
+            if get_engine(name).capabilities.campaigns:
+                out.append(name)
+        except ImportError:
+            continue
+    return tuple(out)
 
 
 def engine_label(name: str) -> str:

@@ -123,6 +123,14 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("bullet", "ensemble_theta_max_diff"): Tolerance(
         0.02, "median over the rocking cases; chaotic cases near α are the tail, not the median; "
               "measured ≤ 0.004"),
+    # --- Drake (default Settings: continuous Radau3, point contact on corner spheres) ----
+    ("drake", "beta_rel_error"): Tolerance(
+        0.004, f"{_MODEL}: Hunt–Crossley k 1e10, accuracy 1e-3 gives β within 0.07% fixed / 0.23% "
+               "isolated over θ0 = 0.3–0.8α; measured ≤ 0.14% on the first 4 impacts from 0.5α "
+               "(against the sphere geometry's own β fixed, the box's isolated: they differ by 0.02%)"),
+    ("drake", "first_impact_time_rel_error"): Tolerance(
+        0.002, "against the corner-sphere geometry's exact t₁ (0.04% later than the box's); the "
+               "integrator's accuracy 1e-3 and the 1 ms samples place it to ~0.3 ms; measured +0.056%"),
 }
 
 #: A single history is checked against the analytic model only when the analytic

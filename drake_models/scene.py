@@ -1,0 +1,567 @@
+"""The block on its base in Drake (pydrake): the scene, its settings and its stepping.
+
+Drake is the third, independent contact formulation: a continuous-time plant whose
+point contact (Hunt–Crossley) is integrated with error control, beside MuJoCo's soft
+constraints and Bullet's impulses. It is for free rocking, pulses and single records;
+a step costs ~25× MuJoCo's and there is no batched rollout, so campaigns of thousands
+of runs belong to MuJoCo or the analytic kernel (docs/drake.md).
+
+The scene (`scene_text`: an SDFormat file Drake's Parser reads; `simulate` parses the
+same text, so what a user opens is what ran):
+
+- ground: a massless link welded to the world, turned −90° about x so that its x–y
+  plane is the world's x–z plane (a `drake:joint` cannot name the world, and a planar
+  joint moves in its parent frame's x–y plane);
+- block: a homogeneous box (mass m, I = m(b² + h²)/3 about the rocking axis) on a
+  `PlanarJoint` (drake:joint type "planar") from the ground; its link frame, at the
+  centroid, is turned like the ground's, so the joint's (x, y, θ) are the centroid's
+  world x, minus its world z, and the rotation about world +y: θ > 0 moves the centroid
+  to +x (model.md). Contact geometry: a small sphere (radius `corner_radius`) inscribed
+  in each bottom corner of the rocking plane — point contact, Hunt–Crossley;
+  with `contact="hydroelastic"` the whole block is a compliant-hydroelastic box instead;
+- base: a plate (top face z = 0) on a `PrismaticJoint` along x with a
+  `PrismaticSpring` (k) and joint damping (c) — the isolator; welded to the world on a
+  fixed base.
+- ground motion: generalized forces −m ẍg on the block's x and −m_b ẍg on the base
+  (exact for a translating ground), from a first-order-hold trajectory source into the
+  plant's applied-generalized-force port; the stepping runs in C++ (Simulator.AdvanceTo
+  over chunks of CHUNK s) and a VectorLogSink samples the state every `sample_interval`.
+
+Outputs follow model.md: u (m) is the base's joint position, θ the planar joint's angle;
+`simulate` returns a RawHistory, measured by the registry like every engine's. Extras, in
+the vocabulary of every contact engine: `lift_off_max_after_impact` (m, the lowest
+contact point's height above the base after the first counted impact), `penetration_max`
+(m), `pivot_slip_max` (m, the pivot sphere's slip relative to rolling on the base). These
+follow the corner spheres' own geometry (they roll), not the sharp corners of
+`analytic.kinematics.contact_extras`.
+
+A run stops by the shared rules of `analytic.kinematics.first_stop` (a non-finite state,
+the block lying on its side, falling on a fixed base after the motion), and when Drake's
+integrator gives up (status "failed"); it goes on past α (model.md, "Past α").
+
+Presets (PRESETS; measured in docs/drake.md with docs/scripts/drake_presets.py; worst
+β error over the first 4 impacts from θ0 = 0.3–0.8α, fixed / μ = 1 isolated):
+"continuous" (the default): continuous plant, Radau3 at accuracy 1e-4, k 1e10 N/m,
+d 100 s/m: 0.05% / 0.08% (at 1e-3, the feasibility study's: 0.11% / 0.16% and θmax/α
++0.0071 against +0.0014 on the report's robust isolated sine, for 1.2–1.4× less time); "sap":
+discrete SAP, dt 2e-4 s, relaxation time 5 ms (τ < 2 ms makes the block hop): 0.19% /
+0.44%, the slowest; "tamsi": discrete TAMSI, dt 2e-4 s: 0.13% / 0.33%, the fastest
+(deprecated by Drake); "hydroelastic": the block a compliant box (1e10 Pa) on a rigid
+plate, discrete SAP: 12% / 22% high, as at every modulus tried (the pressure field at
+impact), shown for comparison only.
+
+The corner spheres shrink the rocking half width to b − r and the block rolls on them:
+`sphere_geometry_beta` and `sphere_geometry_first_impact_time` are this geometry's own
+closed forms, against which the engine's convergence is judged.
+"""
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, fields, replace
+
+import numpy as np
+from scipy.integrate import quad
+
+try:
+    import pydrake.all as pd
+except ImportError as exc:  # an optional extra; the registry and the report skip an engine that cannot import
+    raise ImportError(f"the drake engine needs pydrake ({exc}): pip install 'isorock[drake]'") from exc
+
+from isorock.analytic import kinematics
+from isorock.analytic.errors import InputError, require, require_positive_finite
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.protocol import run_inputs
+from isorock.analytic.status import Status
+from isorock.analytic.system import System
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
+
+ENGINE = "drake"
+SCENE_FORMAT = ("SDFormat", ".sdf")
+
+INTEGRATORS = ("radau3", "radau1", "implicit_euler", "runge_kutta3")
+CONTACTS = ("point", "hydroelastic")
+DISCRETE_SOLVERS = ("sap", "tamsi", "lagged")
+
+#: Radius (m) of the corner spheres, inscribed in the block's bottom corners (centre r
+#: inside both faces): small against b (0.06% of 0.35 m), large enough that the sphere
+#: rolls rather than digs in.
+CORNER_RADIUS = 2e-4
+#: Block depth (y half-size) as a fraction of b: a square footprint (inertia only).
+DEPTH_FRACTION = 1.0
+#: Base plate thickness (m); its top face is z = 0.
+PLATE_THICKNESS = 0.1
+#: Simulated seconds per Simulator.AdvanceTo call: the stop rules and the progress
+#: callback run between calls (each call's loop is Drake's, in C++).
+CHUNK = 0.25
+#: Largest knot spacing (s) of the ground-force trajectory (linear between knots): a
+#: record's own samples are knots, so a record is reproduced exactly; a pulse's
+#: curvature error at this spacing is below 1e-5 of its amplitude.
+FORCE_KNOT = 5e-4
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Drake's numerical settings for this scene (defaults: the "continuous" preset).
+
+    timestep: 0 for a continuous plant integrated with error control (`integrator`
+        at `accuracy`), or the step (s) of a discrete plant solved by
+        `discrete_solver` (sap, tamsi or lagged).
+    integrator: continuous plants only: radau3, radau1, implicit_euler or
+        runge_kutta3. accuracy: the integrator's relative accuracy.
+    contact: "point" (corner spheres, Hunt–Crossley) or "hydroelastic" (the block a
+        compliant-hydroelastic box of `hydroelastic_modulus` Pa on a rigid plate).
+    stiffness: point-contact stiffness (N/m) between sphere and plate (each
+        geometry carries 2·stiffness; Drake combines them in series).
+    dissipation: Hunt–Crossley dissipation (s/m). relaxation_time: SAP's and
+        Lagged's linear dissipation time scale (s; each geometry carries half, Drake adds them).
+    friction: block–plate Coulomb friction (static = dynamic).
+    corner_radius: radius (m) of the corner spheres, below b/10.
+    sample_interval: the history's sample spacing (s); a multiple of timestep on a
+        discrete plant.
+    """
+
+    timestep: float = 0.0
+    integrator: str = "radau3"
+    accuracy: float = 1e-4
+    discrete_solver: str = "sap"
+    contact: str = "point"
+    stiffness: float = 1e10
+    dissipation: float = 100.0
+    relaxation_time: float = 5e-3
+    hydroelastic_modulus: float = 1e10
+    friction: float = 1.0
+    corner_radius: float = CORNER_RADIUS
+    sample_interval: float = 1e-3
+
+    def __post_init__(self):
+        try:
+            dt = float(self.timestep)
+        except (TypeError, ValueError):
+            raise InputError(f"timestep = {self.timestep!r}: must be 0 (continuous) or a positive step") from None
+        require(math.isfinite(dt) and 0 <= dt <= 0.01, "timestep", self.timestep,
+                "0 (continuous) or a step in (0, 0.01] s")
+        object.__setattr__(self, "timestep", dt)
+        require(self.integrator in INTEGRATORS, "integrator", self.integrator, f"one of {', '.join(INTEGRATORS)}")
+        require(self.discrete_solver in DISCRETE_SOLVERS, "discrete_solver", self.discrete_solver,
+                f"one of {', '.join(DISCRETE_SOLVERS)}")
+        require(self.contact in CONTACTS, "contact", self.contact, f"one of {', '.join(CONTACTS)}")
+        acc = require_positive_finite("accuracy", self.accuracy)
+        require(acc < 1, "accuracy", self.accuracy, "below 1 (a relative accuracy)")
+        for name in ("stiffness", "dissipation", "relaxation_time", "hydroelastic_modulus", "friction",
+                     "corner_radius"):
+            object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
+        object.__setattr__(self, "accuracy", acc)
+        si = require_positive_finite("sample_interval", self.sample_interval)
+        require(si <= 0.01, "sample_interval", self.sample_interval, "at most 0.01 s")
+        if dt > 0:
+            ratio = si / dt
+            require(ratio >= 1 - 1e-9 and abs(ratio - round(ratio)) < 1e-6, "sample_interval",
+                    self.sample_interval, f"a whole multiple of timestep = {dt:g} s")
+        object.__setattr__(self, "sample_interval", si)
+
+    @property
+    def continuous(self) -> bool:
+        return self.timestep == 0
+
+
+#: Named families of settings (issue 12). Measured β error and speed: docs/drake.md.
+PRESETS: dict[str, Settings] = {
+    "continuous": Settings(),
+    "sap": Settings(timestep=2e-4, discrete_solver="sap", relaxation_time=5e-3),
+    "tamsi": Settings(timestep=2e-4, discrete_solver="tamsi"),
+    "hydroelastic": Settings(timestep=2e-4, discrete_solver="sap", contact="hydroelastic"),
+}
+
+
+#: The history's sample spacing (s) when a timestep is given alone: the multiple of the
+#: step nearest to this.
+SAMPLE_INTERVAL = 1e-3
+
+
+def settings_for(**overrides) -> Settings:
+    """Settings with `overrides`; a positive timestep given without sample_interval
+    takes the whole multiple of it nearest to SAMPLE_INTERVAL (a discrete plant is
+    sampled on its steps)."""
+    dt = overrides.get("timestep")
+    if dt and "sample_interval" not in overrides:
+        dt = require_positive_finite("timestep", dt)
+        overrides["sample_interval"] = dt * max(1, round(SAMPLE_INTERVAL / dt))
+    return Settings(**overrides)
+
+
+def settings_for_timestep(timestep: float, **overrides) -> Settings:
+    """The discrete family at this step (what a work-precision ladder steps through):
+    SAP with the "sap" preset's relaxation time, sampled near every SAMPLE_INTERVAL."""
+    base = {f.name: getattr(PRESETS["sap"], f.name) for f in fields(Settings)}
+    base.pop("sample_interval")
+    return settings_for(**{**base, "timestep": timestep, **overrides})
+
+
+def preset(name: str, **overrides) -> Settings:
+    """The settings of preset `name` (PRESETS) with `overrides` applied."""
+    require(name in PRESETS, "preset", name, f"one of {', '.join(PRESETS)}")
+    known = {f.name for f in fields(Settings)}
+    unknown = sorted(k for k in overrides if k not in known)
+    if unknown:
+        raise InputError(f"{', '.join(unknown)}: not a setting of engine 'drake' (its settings: {', '.join(sorted(known))})")
+    return replace(PRESETS[name], **overrides)
+
+
+# --- the contact geometry's own closed forms -------------------------------------------
+
+def _check_radius(system: System, radius: float) -> float:
+    r = require_positive_finite("corner_radius", radius)
+    require(r < 0.1 * system.b, "corner_radius", radius, f"below b/10 = {0.1 * system.b:.6g} m")
+    return r
+
+
+def sphere_geometry_beta(system: System, radius: float = CORNER_RADIUS) -> float:
+    """β of a fixed-base block standing on spheres of radius r inscribed in its bottom
+    corners. The impulse acts at the new sphere's contact point, at (b − r) from the
+    centroid's vertical and h below it (the sphere's bottom is the block's bottom face),
+    and the block leaves it rolling about that point; conserving angular momentum about
+    it gives β = (I + m(h² − b'²)) / (I + m(h² + b'²)), b' = b − r, with the block's own
+    I = m(b² + h²)/3. r = 0 is Housner's 1 − 1.5 sin²α."""
+    require(system.fixed_base, "system", "isolated base", "a fixed base (this closed form is Housner's)")
+    r = _check_radius(system, radius)
+    m, h, bp = system.mass, system.h, system.b - r
+    inertia = system.inertia
+    return (inertia + m * (h * h - bp * bp)) / (inertia + m * (h * h + bp * bp))
+
+
+def sphere_geometry_first_impact_time(system: System, theta0: float, radius: float = CORNER_RADIUS) -> float:
+    """Time (s) from rest at tilt θ0 (rad) to the first impact of a fixed-base block on
+    corner spheres of radius r, rolling without slip: the sphere's centre stays r above
+    the plate, so the centroid's height is r + (h − r)cosθ + (b − r)sinθ, and the block
+    turns about the contact point, with inertia I + m|G − C|² (G − C changes with θ).
+    Energy gives θ̇(θ); t₁ = ∫ dθ/|θ̇| with θ = θ0 − s² (as model.md's exact t₁).
+    r → 0 gives model.md's exact box integral."""
+    require(system.fixed_base, "system", "isolated base", "a fixed base (free rocking on a fixed plate)")
+    r = _check_radius(system, radius)
+    th0 = abs(theta0)
+    require(0 < th0 < system.alpha, "theta0", theta0, f"non-zero and smaller than α = {system.alpha:.6g} rad")
+    m, g, inertia = system.mass, system.gravity, system.inertia
+    hp, bp = system.h - r, system.b - r
+
+    def height(th):
+        return hp * math.cos(th) + bp * math.sin(th)
+
+    def inertia_about_contact(th):
+        gx = -bp * math.cos(th) + hp * math.sin(th)
+        gz = bp * math.sin(th) + hp * math.cos(th) + r
+        return inertia + m * (gx * gx + gz * gz)
+
+    slope = bp * math.cos(th0) - hp * math.sin(th0)  # d(height)/dθ at θ0, > 0 below the tipping angle
+
+    def integrand(s):
+        if s == 0:
+            return 2 / math.sqrt(2 * m * g * slope / inertia_about_contact(th0))
+        th = th0 - s * s
+        # height(θ0) − height(θ) written with sines of half-differences, to keep digits near θ0
+        x = s * s
+        drop = 2 * math.sin(x / 2) * (bp * math.cos(th0 - x / 2) - hp * math.sin(th0 - x / 2))
+        return 2 * s / math.sqrt(2 * m * g * drop / inertia_about_contact(th))
+
+    value, _ = quad(integrand, 0.0, math.sqrt(th0), epsabs=1e-14, epsrel=1e-13, limit=200)
+    return value
+
+
+# --- the scene -----------------------------------------------------------------------
+
+_SDF = """<?xml version="1.0"?>
+<!-- isorock: block on {base_kind} base for Drake (pydrake Parser, SDFormat with drake: extensions).
+     Written by isorock.drake_models.scene for H = {H:g} m, B = {B:g} m, m = {m:g} kg, m_b = {mb:g} kg.
+     Plant settings that SDFormat cannot hold (simulate() applies them):
+       {plant}
+     Ground motion: apply -m*xg''(t) to the block's planar x and -m_b*xg''(t) to the isolator joint
+     (MultibodyPlant applied generalized force). The planar joint's coordinates are
+     (x, y, theta) = (centroid world x, minus centroid world z, rotation about world +y):
+     tilt the block by theta0 about its corner sphere to start free rocking.
+     Settings: {settings} -->
+<sdf version="1.9" xmlns:drake="http://drake.mit.edu">
+  <model name="isorock">
+    <!-- its x-y plane is the world's x-z plane: the plane the planar joint moves in -->
+    <link name="ground">
+      <pose>0 0 0 {rot} 0 0</pose>
+    </link>
+    <joint name="ground_weld" type="fixed"><parent>world</parent><child>ground</child></joint>
+    <link name="base">
+      <pose>0 0 {plate_z} 0 0 0</pose>
+      <inertial><mass>{mb}</mass>
+        <inertia><ixx>{bixx}</ixx><iyy>{biyy}</iyy><izz>{bizz}</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia>
+      </inertial>
+      <collision name="plate">
+        <geometry><box><size>{W} {W} {T}</size></box></geometry>
+        <drake:proximity_properties>
+{plate_props}
+        </drake:proximity_properties>
+      </collision>
+      <visual name="plate"><geometry><box><size>{W} {W} {T}</size></box></geometry></visual>
+    </link>
+{base_joint}
+    <!-- the link frame is the ground's orientation at the centroid: link x = world x,
+         link y = world -z (up is -y), link z = world y (the rocking axis) -->
+    <link name="block">
+      <pose>0 0 {h} {rot} 0 0</pose>
+      <inertial><mass>{m}</mass>
+        <inertia><ixx>{ixx}</ixx><iyy>{iyy}</iyy><izz>{izz}</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia>
+      </inertial>
+{block_collisions}
+      <visual name="block"><geometry><box><size>{B} {H} {D}</size></box></geometry></visual>
+    </link>
+    <drake:joint name="rocking" type="planar">
+      <drake:parent>ground</drake:parent>
+      <drake:child>block</drake:child>
+      <drake:damping>0 0 0</drake:damping>
+    </drake:joint>
+  </model>
+</sdf>
+"""
+_ISOLATOR = """    <joint name="isolator" type="prismatic">
+      <parent>world</parent><child>base</child>
+      <axis><xyz>1 0 0</xyz>
+        <limit><lower>-1e30</lower><upper>1e30</upper><effort>1e30</effort></limit>
+        <dynamics><damping>{c!r}</damping><spring_stiffness>{k!r}</spring_stiffness><spring_reference>0</spring_reference></dynamics>
+      </axis>
+    </joint>"""
+_WELD = """    <joint name="base_weld" type="fixed"><parent>world</parent><child>base</child></joint>"""
+_SPHERE = """      <collision name="{name}">
+        <pose>{x!r} {y!r} 0 0 0 0</pose>
+        <geometry><sphere><radius>{r!r}</radius></sphere></geometry>
+        <drake:proximity_properties>
+{props}
+        </drake:proximity_properties>
+      </collision>"""
+_BOX = """      <collision name="block">
+        <geometry><box><size>{B!r} {H!r} {D!r}</size></box></geometry>
+        <drake:proximity_properties>
+{props}
+        </drake:proximity_properties>
+      </collision>"""
+
+
+def _props(settings: Settings, *, hydro: str | None = None) -> str:
+    """Proximity properties of one geometry. Drake combines a pair's point stiffnesses
+    in series and adds their relaxation times, so each side carries 2·k and τ/2; equal
+    dissipations and frictions combine to themselves."""
+    lines = [f"<drake:point_contact_stiffness>{2 * settings.stiffness!r}</drake:point_contact_stiffness>",
+             f"<drake:hunt_crossley_dissipation>{settings.dissipation!r}</drake:hunt_crossley_dissipation>",
+             f"<drake:relaxation_time>{settings.relaxation_time / 2!r}</drake:relaxation_time>",
+             f"<drake:mu_dynamic>{settings.friction!r}</drake:mu_dynamic>",
+             f"<drake:mu_static>{settings.friction!r}</drake:mu_static>"]
+    if hydro == "rigid":
+        lines.append("<drake:rigid_hydroelastic/>")
+    elif hydro == "compliant":
+        lines += ["<drake:compliant_hydroelastic/>",
+                  f"<drake:hydroelastic_modulus>{settings.hydroelastic_modulus!r}</drake:hydroelastic_modulus>"]
+    return "\n".join("          " + x for x in lines)
+
+
+def _plant_description(settings: Settings) -> str:
+    if settings.continuous:
+        return (f"continuous plant (timestep 0), integrator {settings.integrator}, accuracy {settings.accuracy:g}, "
+                f"contact model {settings.contact}")
+    return (f"discrete plant, timestep {settings.timestep:g} s, contact approximation "
+            f"{settings.discrete_solver}, contact model {settings.contact}")
+
+
+def scene_text(system: System, settings: Settings | None = None) -> str:
+    """The SDFormat text of this system with these settings (what `simulate` parses),
+    block upright at rest."""
+    settings = settings or Settings()
+    b, h, d = system.b, system.h, DEPTH_FRACTION * system.b
+    m, mb = system.mass, system.base_mass
+    r = _check_radius(system, settings.corner_radius)
+    w = 2 * (b + system.height)  # wide enough that even an overturned block lands on it
+    t = PLATE_THICKNESS
+    hydro = settings.contact == "hydroelastic"
+    if hydro:
+        collisions = _BOX.format(B=2 * b, H=2 * h, D=2 * d, props=_props(settings, hydro="compliant"))
+    else:  # the two bottom corners of the rocking plane, in link coordinates (up is −y)
+        collisions = "\n".join(_SPHERE.format(name=name, x=sx * (b - r), y=h - r, r=r, props=_props(settings))
+                               for name, sx in (("corner_pos", 1.0), ("corner_neg", -1.0)))
+    base_joint = _WELD if system.fixed_base else _ISOLATOR.format(k=system.stiffness, c=system.damping)
+    listed = ", ".join(f"{f.name} = {getattr(settings, f.name)!r}" for f in fields(settings))
+    return _SDF.format(
+        base_kind="a fixed" if system.fixed_base else
+        f"an isolated (k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N s/m)",
+        H=system.height, B=system.width, D=2 * d, m=m, mb=mb, h=h, rot=repr(-math.pi / 2),
+        plant=_plant_description(settings), settings=listed,
+        plate_z=-t / 2, W=w, T=t, bixx=mb * (w * w + t * t) / 12, biyy=mb * (w * w + t * t) / 12,
+        bizz=mb * w * w / 6, plate_props=_props(settings, hydro="rigid" if hydro else None),
+        base_joint=base_joint,
+        # link axes: x = world x, y = world −z, z = world y (the rocking axis)
+        ixx=m * (h * h + d * d) / 3, iyy=m * (b * b + d * d) / 3, izz=m * (b * b + h * h) / 3,
+        block_collisions=collisions)
+
+
+class _Built:
+    """A built diagram and where the scene's quantities sit in the plant's state."""
+
+    def __init__(self, system: System, motion: GroundMotion, settings: Settings, duration: float):
+        builder = pd.DiagramBuilder()
+        plant, _ = pd.AddMultibodyPlantSceneGraph(builder, settings.timestep)
+        if not settings.continuous:
+            plant.set_discrete_contact_approximation({
+                "sap": pd.DiscreteContactApproximation.kSap,
+                "tamsi": pd.DiscreteContactApproximation.kTamsi,
+                "lagged": pd.DiscreteContactApproximation.kLagged}[settings.discrete_solver])
+        plant.set_contact_model(pd.ContactModel.kHydroelastic if settings.contact == "hydroelastic"
+                                else pd.ContactModel.kPoint)
+        pd.Parser(plant).AddModelsFromString(scene_text(system, settings), "sdf")
+        plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -system.gravity])
+        plant.Finalize()
+        self.plant = plant
+        self.nq, self.nv = plant.num_positions(), plant.num_velocities()
+        rocking = plant.GetJointByName("rocking")
+        self.xq, self.yq, self.thq = (rocking.position_start() + i for i in range(3))
+        self.xv, self.yv, self.thv = (rocking.velocity_start() + i for i in range(3))
+        if system.fixed_base:
+            self.uq = self.uv = None
+        else:
+            iso = plant.GetJointByName("isolator")
+            self.uq, self.uv = iso.position_start(), iso.velocity_start()
+
+        # ground motion as generalized forces, linear between knots
+        knots = _force_knots(motion, duration)
+        xg = np.asarray(motion(knots), dtype=float)
+        forces = np.zeros((self.nv, knots.size))
+        forces[self.xv] = -system.mass * xg
+        if self.uv is not None:
+            forces[self.uv] = -system.base_mass * xg
+        source = builder.AddSystem(pd.TrajectorySource(pd.PiecewisePolynomial.FirstOrderHold(knots, forces)))
+        builder.Connect(source.get_output_port(), plant.get_applied_generalized_force_input_port())
+        self.logger = pd.LogVectorOutput(plant.get_state_output_port(), builder, settings.sample_interval)
+        self.diagram = builder.Build()
+
+
+def _force_knots(motion: GroundMotion, duration: float) -> np.ndarray:
+    """Knots of the ground-force trajectory up to `duration`: spaced at most FORCE_KNOT,
+    a record's samples among them (it is linear between them), and the end of a motion
+    (a pulse stops there, possibly with a jump)."""
+    if motion.is_zero:
+        return np.array([0.0, duration])
+    step = FORCE_KNOT if motion.pulse is not None else motion.dt / math.ceil(motion.dt / FORCE_KNOT - 1e-9)
+    n = int(math.ceil(duration / step - 1e-9))
+    knots = np.arange(n + 1) * step
+    end = motion.end_time
+    if 0 < end < duration:  # ẍg is zero after the end: add its last value and the zero beside it
+        knots = np.union1d(knots, [end, min(end + 1e-9, duration)])
+    return knots
+
+
+def _initial_positions(built: _Built, system: System, settings: Settings, theta0: float) -> np.ndarray:
+    """Tilted by θ0 about the corner sphere it rests on, the sphere touching the plate:
+    centroid = sphere centre + R(θ)·(−s(b − r), h − r), the centre at (s(b − r) + rθ0, r),
+    where rolling from upright puts it."""
+    q = np.zeros(built.nq)
+    s = 1.0 if theta0 >= 0 else -1.0
+    r = settings.corner_radius if settings.contact == "point" else 0.0
+    bp, hp = system.b - r, system.h - r
+    c, sn = math.cos(theta0), math.sin(theta0)
+    x = s * bp + r * theta0 - s * bp * c + hp * sn
+    z = r + s * bp * sn + hp * c
+    q[built.xq], q[built.yq], q[built.thq] = x, -z, theta0
+    return q
+
+
+def simulate(system: System, motion: GroundMotion | None = None, *, settings: Settings | None = None,
+             duration: float | None = None, theta0: float = 0.0, progress=None) -> RawHistory:
+    """Simulate the scene from t = 0 to `duration` (s; default: the motion's end + 5 s,
+    or 10 s without motion) from rest, tilted by `theta0` (rad) about its corner.
+    progress: optional callable(t, duration), called between AdvanceTo chunks about once
+    a second."""
+    settings = settings or Settings()
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD)
+    _check_radius(system, settings.corner_radius)
+    start = time.perf_counter()
+    built = _Built(system, motion, settings, duration)
+    simulator = pd.Simulator(built.diagram)
+    if settings.continuous:
+        pd.ApplySimulatorConfig(pd.SimulatorConfig(integration_scheme=settings.integrator,
+                                                   accuracy=settings.accuracy, use_error_control=True,
+                                                   max_step_size=settings.sample_interval,
+                                                   publish_every_time_step=False), simulator)
+    context = simulator.get_mutable_context()
+    plant_context = built.plant.GetMyMutableContextFromRoot(context)
+    built.plant.SetPositions(plant_context, _initial_positions(built, system, settings, theta0))
+    built.plant.SetVelocities(plant_context, np.zeros(built.nv))
+
+    status, message, stop_reason = Status.COMPLETED, "reached the end time", None
+    checked = 0
+    last = None  # where the history ends, when a stop rule ends it early
+    throttle = kinematics.Throttle(progress, duration)
+    t = 0.0
+    simulator.Initialize()
+    while t < duration - 1e-12:
+        t = min(t + CHUNK, duration)
+        try:
+            simulator.AdvanceTo(t)
+        except RuntimeError as exc:  # Drake's integrator or solver gave up
+            status, message = Status.FAILED, f"Drake stopped near t = {context.get_time():.6g} s: {exc}"
+            break
+        log = built.logger.FindLog(context)
+        new, new_t = log.data()[:, checked:], log.sample_times()[checked:]
+        k, reason = kinematics.first_stop(new_t, new[built.thq], new[built.nq + built.thv],
+                                          np.all(np.isfinite(new), axis=0), system=system,
+                                          motion_end=motion.end_time)
+        if reason == "non-finite":
+            status = Status.FAILED
+            message = (f"the state stopped being finite near t = {new_t[k]:.6g} s; "
+                       "try a smaller accuracy or timestep")
+        if reason is not None:
+            stop_reason = None if reason == "non-finite" else reason
+            last = checked + k + (reason != "non-finite")  # a stopping sample is kept, a non-finite one not
+            break
+        checked = log.data().shape[1]
+        throttle(t)
+    runtime = time.perf_counter() - start
+    log = built.logger.FindLog(context)
+    return _raw_history(built, system, settings, log.sample_times()[:last], log.data()[:, :last], runtime,
+                        status, message, stop_reason)
+
+
+def _raw_history(built: _Built, system, settings, times, data, runtime, status, message,
+                 stop_reason) -> RawHistory:
+    """The raw history from the logged states (one column per sample), up to the last
+    finite sample, with the extras of this geometry."""
+    times = np.asarray(times, dtype=float)
+    data = np.asarray(data, dtype=float)
+    finite = np.all(np.isfinite(data), axis=0)
+    keep = int(np.argmin(finite)) if not finite.all() else data.shape[1]
+    times, data = times[:keep], data[:, :keep]
+    q, v = data[:built.nq], data[built.nq:]
+    theta, theta_dot = q[built.thq], v[built.thv]
+    if built.uq is None:
+        u = u_dot = np.zeros(times.size)
+    else:
+        u, u_dot = q[built.uq], v[built.uv]
+    x_c, z_c = q[built.xq], -q[built.yq]
+    s = np.where(theta >= 0, 1.0, -1.0)
+    h = system.h
+    if settings.contact == "point":
+        r = settings.corner_radius
+        bp, hp = system.b - r, h - r
+        # the pivot sphere's centre, relative to rolling from its rest place on the plate
+        centre_x = x_c + s * bp * np.cos(theta) - hp * np.sin(theta)
+        slip = centre_x - u - s * bp - r * theta
+        # the lowest sphere's bottom above the plate's top face
+        lowest = np.minimum(z_c + bp * np.sin(theta) - hp * np.cos(theta),
+                            z_c - bp * np.sin(theta) - hp * np.cos(theta)) - r
+    else:  # the box itself: sharp corners, the shared kinematics
+        slip = kinematics.pivot_slip(system, x_c, theta, u)
+        lowest = kinematics.lift_off(system, z_c, theta)
+    counted = counted_sign_changes(theta, system.alpha, DEFAULT_IMPACT_THRESHOLD)
+    after = lowest[counted[0][0]:] if counted else lowest[:0]
+    extras = {
+        "lift_off_max_after_impact": float(np.max(after)) if after.size else 0.0,
+        "penetration_max": float(max(0.0, -np.min(lowest))) if lowest.size else 0.0,
+        "pivot_slip_max": float(np.max(np.abs(slip))) if slip.size else 0.0,
+    }
+    return RawHistory(engine=ENGINE, system=system, t=times, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
+                      status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason)
+
+
+__all__ = ["Settings", "PRESETS", "preset", "simulate", "scene_text", "SCENE_FORMAT",
+           "sphere_geometry_beta", "sphere_geometry_first_impact_time"]
