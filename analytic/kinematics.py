@@ -68,12 +68,14 @@ def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_
                    out_of_plane=None) -> dict:
     """The contact engines' extras, one vocabulary for all of them (each a scalar):
     pivot_slip_max (m: how far the corner the block stands or rocks on moved along the
-    base; at rest that is the block sliding), lift_off_max_after_impact (m, after the first
+    base, at rest too, while |θ| ≤ α: beyond, a falling block pivots on its edge and lands
+    on its side, and "the pivot" means nothing), lift_off_max_after_impact (m, after the first
     counted impact: a hop shows here), penetration_max (m) and, where the block can
     leave its plane, out_of_plane_max (largest of |y| in m and the roll and yaw tilts in
     rad; both small). `counted_from`: index of the first counted impact, or None."""
     theta = np.asarray(theta, dtype=float)
-    slip = pivot_slip(system, x_centroid, theta, u)
+    upright = np.abs(theta) <= system.alpha
+    slip = pivot_slip(system, x_centroid, theta, u)[upright]
     low = lift_off(system, z_centroid, theta)
     after = low[counted_from:] if counted_from is not None else low[:0]
     out = {

@@ -557,7 +557,8 @@ def _raw_history(built: _Built, system, settings, times, data, runtime, status, 
     extras = {
         "lift_off_max_after_impact": float(np.max(after)) if after.size else 0.0,
         "penetration_max": float(max(0.0, -np.min(lowest))) if lowest.size else 0.0,
-        "pivot_slip_max": float(np.max(np.abs(slip))) if slip.size else 0.0,
+        # while |θ| ≤ α, as for every engine (analytic.kinematics.contact_extras)
+        "pivot_slip_max": float(np.max(np.abs(slip[np.abs(theta) <= system.alpha]), initial=0.0)),
     }
     return RawHistory(engine=ENGINE, system=system, t=times, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
                       status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason)
