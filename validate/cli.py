@@ -239,7 +239,8 @@ def cmd_run(a) -> int:
     summary = traj.summary()
     report = dict(summary, system=system.describe(), motion=motion.describe(), settings=_settings_dict(settings))
     if a.json:
-        write_json(a.json, report)
+        from isorock.validate.provenance import provenance
+        write_json(a.json, dict(report, provenance=provenance(record_paths=[a.motion])))
     if a.csv:
         hist = traj.resample(a.csv_dt) if a.csv_dt else traj
         write_atomic(a.csv, hist.to_csv)
