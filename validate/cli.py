@@ -6,6 +6,7 @@
     isorock validate the validation report (all engines side by side)
     isorock bench    work-precision benchmarks
     isorock stress   the stability stress grid
+    isorock view     replay a run in MuJoCo's viewer (or as a GIF without a display)
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
 """
@@ -25,6 +26,8 @@ EXTRA_COMMANDS = {
                                                  "analytic model"),
     "bench": ("isorock.validate.bench", "work-precision benchmarks of every engine"),
     "stress": ("isorock.validate.stress", "the stability stress grid (exits non-zero on any failure)"),
+    "view": ("isorock.validate.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
+                                      "display"),
 }
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
