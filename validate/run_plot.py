@@ -23,12 +23,19 @@ def _style(name: str, index: int) -> dict:
     return st
 
 
+def _name(label: str, traj) -> str:
+    """The engine's display name, or the label when it names a preset ("mujoco:fast")."""
+    return style(traj.engine)["label"] if label == traj.engine else label
+
+
 def plot_runs(runs: dict, motion, path, *, format: str | None = None) -> None:
     """`runs`: label → Trajectory (first = reference), all on one system and motion;
     `format` the image format (default: from the path's suffix)."""
     labels = list(runs)
     several = len(labels) > 1
-    n_panels = 6 if several else 4
+    ref = runs[labels[0]]
+    show_du = several and not ref.system.fixed_base  # on a fixed base u ≡ 0 for every engine
+    n_panels = 4 + several + show_du
     fig = Figure(figsize=(10, 2.0 * n_panels + 1.0))
     axes = fig.subplots(n_panels, 1, sharex=True)
     t_end = max(float(tr.t[-1]) for tr in runs.values() if tr.t.size)
@@ -36,12 +43,11 @@ def plot_runs(runs: dict, motion, path, *, format: str | None = None) -> None:
     ax_g, ax_th, ax_thd, ax_u = axes[:4]
     ax_g.plot(tg, motion(tg) / STANDARD_GRAVITY, color="gray", lw=0.8)
     ax_g.set_ylabel("ẍg / g")
-    ref = runs[labels[0]]
     for i, label in enumerate(labels):
         tr = runs[label]
         st = _style(tr.engine, i)
         kw = dict(color=st["color"], ls=st["linestyle"], lw=st["lw"])
-        name = st["label"] if label == tr.engine else label  # "mujoco:fast" names its preset
+        name = _name(label, tr)
         ax_th.plot(tr.t, tr.theta / tr.alpha, label=name, **kw)
         impacts = [imp.t for imp in tr.counted_impacts]
         if impacts:
@@ -53,7 +59,8 @@ def plot_runs(runs: dict, motion, path, *, format: str | None = None) -> None:
             a, b = tr.resample(COMPARE_DT), ref.resample(COMPARE_DT)
             n = min(a.t.size, b.t.size)
             axes[4].plot(a.t[:n], (a.theta[:n] - b.theta[:n]) / ref.alpha, label=name, **kw)
-            axes[5].plot(a.t[:n], (a.u[:n] - b.u[:n]) * 100, **kw)
+            if show_du:
+                axes[5].plot(a.t[:n], (a.u[:n] - b.u[:n]) * 100, **kw)
     for y in (1, -1):
         ax_th.axhline(y, color="k", lw=0.5)
     ax_th.set_ylabel("θ/α")
@@ -63,16 +70,17 @@ def plot_runs(runs: dict, motion, path, *, format: str | None = None) -> None:
     if ref.system.fixed_base:
         ax_u.text(0.01, 0.85, "fixed base: u ≡ 0", transform=ax_u.transAxes, fontsize=8)
     if several:
-        ref_name = _style(ref.engine, 0)["label"]
+        ref_name = _name(labels[0], ref)
         axes[4].set_ylabel(f"Δθ/α (− {ref_name})")
         axes[4].axhline(0, color="k", lw=0.5)
         axes[4].legend(fontsize=7, loc="upper right")
+    if show_du:
         axes[5].set_ylabel(f"Δu (cm) (− {ref_name})")
         axes[5].axhline(0, color="k", lw=0.5)
     axes[-1].set_xlabel("t (s)")
     for ax in axes:
         ax.grid(alpha=0.3)
-    engines = ", ".join(style(runs[k].engine)["label"] if k == runs[k].engine else k for k in labels)
+    engines = ", ".join(_name(k, runs[k]) for k in labels)
     what = "rocking response" if not several else "rocking response of each engine and its difference"
     fig.suptitle(f"{describe_motion(motion)}: {what} ({engines})\n{describe_system(ref.system)}", fontsize=10)
     fig.tight_layout()
