@@ -213,7 +213,13 @@ class Trajectory:
         )
 
     def to_csv(self, path) -> None:
-        np.savetxt(path, np.column_stack([self.t, self.u, self.u_dot, self.theta, self.theta_dot]),
+        """The history as CSV, one row per time. An impact is stored twice at its time
+        (the states just before and just after it); the CSV keeps the post-impact row,
+        the one the history continues from, so that t increases strictly."""
+        keep = np.ones(self.t.size, dtype=bool)
+        keep[:-1] = self.t[1:] != self.t[:-1]  # drop a row whose time the next row repeats
+        rows = np.column_stack([self.t, self.u, self.u_dot, self.theta, self.theta_dot])[keep]
+        np.savetxt(path, rows,
                    delimiter=",", header="t,u,u_dot,theta,theta_dot", comments="", fmt="%.10g")
 
 

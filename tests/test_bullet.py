@@ -314,3 +314,32 @@ def test_a_squat_block_that_slides_says_so():
     squat = System.fixed(height=0.5, width=0.56, mass=100.0)
     traj = simulate(squat, GroundMotion.from_pulse(Pulse("sine", 1.5, 1.0, 2)), duration=3.0)
     assert traj.status == "slid" and traj.extras["pivot_slip_max"] > 0.01 * squat.b
+
+
+def test_scene_file_carries_friction_and_the_isolator(tmp_path):
+    """The SDF holds the friction (SDF's surface/ode mu) and the isolator: c as the joint's
+    damping, which loadSDF applies, and k as spring_stiffness, which it does not (the
+    header says so and names both values)."""
+    import xml.etree.ElementTree as ET
+    system = System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.5, damping_ratio=0.2)
+    settings = Settings(friction=0.8)
+    text = scene.scene_text(system, settings)
+    root = ET.fromstring(text.encode())
+    mus = [float(e.text) for e in root.iter("mu")]
+    assert mus == [0.8, 0.8]  # plate and block
+    dyn = root.find(".//joint/axis/dynamics")
+    assert float(dyn.find("damping").text) == pytest.approx(system.damping)
+    assert float(dyn.find("spring_stiffness").text) == pytest.approx(system.stiffness)
+    header = text.split("-->")[0]
+    assert f"k = {system.stiffness}" in header and f"c = {system.damping}" in header
+    assert "ignores" in header and "lateralFriction=0.8" in header
+    path = tmp_path / "scene.sdf"
+    path.write_text(text)
+    loaded = connect()
+    try:
+        base, _ = loaded.loadSDF(str(path))
+        assert loaded.getJointInfo(base, 0)[6] == pytest.approx(system.damping)  # jointDamping as loaded
+    finally:
+        loaded.disconnect()
+    fixed = scene.scene_text(FIXED, settings)
+    assert "<joint" not in fixed and "Isolator: none" in fixed

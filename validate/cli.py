@@ -6,6 +6,7 @@
     isorock validate the validation report (all engines side by side)
     isorock bench    work-precision benchmarks
     isorock stress   the stability stress grid
+    isorock view     replay a run in MuJoCo's viewer (or as a GIF without a display)
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
 """
@@ -25,6 +26,8 @@ EXTRA_COMMANDS = {
                                                  "analytic model"),
     "bench": ("isorock.validate.bench", "work-precision benchmarks of every engine"),
     "stress": ("isorock.validate.stress", "the stability stress grid (exits non-zero on any failure)"),
+    "view": ("isorock.validate.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
+                                      "display"),
 }
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
@@ -153,8 +156,10 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
 
     p = sub.add_parser("run", help="simulate one system with one engine",
                        description="Simulate one block on its base with one engine and print its metrics.")
-    p.add_argument("--engine", default="analytic",
-                   help=f"one of {', '.join(_registered())} (default: %(default)s)")
+    p.add_argument("--engine", default="analytic", metavar="ENGINE[:PRESET][,…]",
+                   help=f"one of {', '.join(_registered())}, optionally ENGINE:PRESET (e.g. mujoco:fast); "
+                        "several, comma-separated, run on the same system and motion and are compared with "
+                        "the first (default: %(default)s)")
     add_system_options(p)
     add_motion_options(p)
     p.add_argument("--duration", type=float,
@@ -164,8 +169,12 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     p.add_argument("--impact-threshold", type=float, default=0.01,
                    help="an impact counts when its half-cycle's peak |θ| exceeds this × α (default 0.01)")
     p.add_argument("--json", metavar="FILE", help="write the metrics and impact log as JSON")
-    p.add_argument("--csv", metavar="FILE", help="write the history t,u,u_dot,theta,theta_dot (s, m, m/s, rad, rad/s)")
+    p.add_argument("--csv", metavar="FILE", help="write the history t,u,u_dot,theta,theta_dot (s, m, m/s, rad, rad/s); "
+                                                 "several engines: one file each, FILE.ENGINE.csv")
     p.add_argument("--csv-dt", type=float, help="resample the CSV history at this interval, s")
+    p.add_argument("--plot", metavar="FILE.png",
+                   help="draw ẍg, θ/α with the counted impacts, θ̇ and u (several engines: overlaid, with each "
+                        "engine's difference from the first); the format follows the suffix")
     p.add_argument("--quiet", action="store_true", help="print nothing but errors")
     add_engine_options(p)
     p.set_defaults(func=cmd_run)
@@ -223,26 +232,38 @@ def _progress(quiet):
 
 def cmd_run(a) -> int:
     from isorock.validate.engines import get_engine
+    from isorock.validate import run_cli
     from isorock.validate.output import to_json, write_atomic, write_json
-    engine = get_engine(a.engine)
+    specs = run_cli.parse_engines(a.engine)
+    engine = get_engine(specs[0][0])
     system = system_from_args(a)
     motion = motion_from_args(a)
-    settings = engine_settings_from_args(engine, a)
     if a.duration is not None and not a.duration > 0:
         raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
     if not (abs(a.theta0_over_alpha) < 1):
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     if a.csv_dt is not None and not a.csv_dt > 0:
         raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")
+    if len(specs) > 1:
+        return run_cli.run_engines(a, specs, system, motion, progress=_progress(a.quiet))
+    if specs[0][1] is not None:  # ENGINE:PRESET, with the engine options on top
+        settings = run_cli.load_engines(specs, a)[0][2]
+    else:
+        settings = engine_settings_from_args(engine, a)
+    if a.plot:
+        run_cli.plot_format(a.plot)  # a bad --plot name fails before the simulation
     traj = engine.simulate(system, motion, settings=settings, duration=a.duration, theta0=a.theta0_over_alpha * system.alpha,
                            impact_threshold=a.impact_threshold, progress=_progress(a.quiet))
     summary = traj.summary()
     report = dict(summary, system=system.describe(), motion=motion.describe(), settings=_settings_dict(settings))
     if a.json:
-        write_json(a.json, report)
+        from isorock.validate.provenance import provenance
+        write_json(a.json, dict(report, provenance=provenance(record_paths=[a.motion])))
     if a.csv:
         hist = traj.resample(a.csv_dt) if a.csv_dt else traj
         write_atomic(a.csv, hist.to_csv)
+    if a.plot:
+        run_cli.write_plot(a.plot, {a.engine: traj}, motion)
     if not a.quiet:
         brief = {k: v for k, v in summary.items() if k != "impact_log"}
         print(to_json(brief))

@@ -1,0 +1,264 @@
+"""`isorock view`: watch a run. The engine named simulates (through the registry, so any
+engine, the analytic model included); the run is then replayed in MuJoCo's scene of the
+same system by setting each frame's joint positions from the measured history (base at
+u, block tilted by θ about its corner; the rigid kinematics, so a contact engine's
+sub-millimetre pivot slip is not shown).
+
+- a display (DISPLAY or WAYLAND_DISPLAY) and no --out: MuJoCo's interactive viewer
+  (mujoco.viewer), in real time × --speed, until the window is closed;
+- otherwise, where an offscreen OpenGL renderer works (MUJOCO_GL if set, else EGL, then
+  OSMesa; each is probed in a child process, since MuJoCo fixes its backend on import):
+  a GIF (Pillow, already installed with matplotlib) of --fps frames per simulated second
+  × --speed, with the time and θ/α written on each frame;
+- where neither exists: one line on stderr and exit 1 (the environment, not the input, is
+  at fault; exit 2 stays for bad input).
+"""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+from isorock.analytic.errors import InputError
+
+#: Tried in this order when MUJOCO_GL is not set.
+OFFSCREEN_BACKENDS = ("egl", "osmesa")
+PROBE_TIMEOUT_S = 60
+_PROBE = ("import mujoco\n"
+          "m = mujoco.MjModel.from_xml_string('<mujoco><worldbody><geom size=\"1\"/></worldbody></mujoco>')\n"
+          "r = mujoco.Renderer(m, 16, 16); d = mujoco.MjData(m); r.update_scene(d); r.render(); r.close()\n")
+DEFAULT_OUT = "isorock-view.gif"
+#: Paper block for a first look (as `isorock scene`): H 2.0 m, B 0.7 m, m = m_b = 3800 kg, T 1.5 s, ξ 0.2,
+#: under a pulse that makes it rock clearly (θmax ≈ 0.46 α)
+PAPER = dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0)
+DEFAULT_MOTION = "sine:amp=0.6,freq=1.3,cycles=2"
+
+
+def add_parser(sub) -> None:
+    from isorock.validate.cli import add_engine_options, add_motion_options, add_system_options
+    p = sub.add_parser("view", help="replay a run in MuJoCo's viewer, or write it as a GIF where there is no display",
+                       description=__doc__.split("\n\n")[0] + "\n\nWithout options: the paper's block "
+                       "(T 1.5 s, ξ 0.2) under " + DEFAULT_MOTION + ".")
+    p.add_argument("--engine", default="mujoco", metavar="ENGINE[:PRESET]",
+                   help="the engine that simulates (default: %(default)s); the replay is drawn in MuJoCo's scene")
+    add_system_options(p, defaults=PAPER)
+    add_motion_options(p, default=DEFAULT_MOTION)
+    p.add_argument("--duration", type=float,
+                   help="end time from t = 0, s (default: motion end + 5 s, or 10 s without motion)")
+    p.add_argument("--theta0-over-alpha", "--theta0", dest="theta0_over_alpha", type=float, default=0.0,
+                   help="initial tilt as a fraction of α (default 0)")
+    p.add_argument("--out", metavar="FILE.gif",
+                   help=f"write a GIF here instead of opening the viewer (default without a display: {DEFAULT_OUT}, "
+                        "never replacing an existing file of that name)")
+    p.add_argument("--fps", type=float, default=20.0, help="GIF frames per second of playback (default: %(default)s)")
+    p.add_argument("--speed", type=float, default=1.0,
+                   help="simulated seconds per second of playback (default: %(default)s)")
+    p.add_argument("--size", default="480x360", metavar="WxH", help="GIF frame size in pixels (default: %(default)s)")
+    add_engine_options(p)
+    p.set_defaults(func=run)
+
+
+def has_display() -> bool:
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def probe(backend: str) -> bool:
+    """Whether MuJoCo can render offscreen with MUJOCO_GL=backend (in a child process)."""
+    try:
+        r = subprocess.run([sys.executable, "-c", _PROBE], env=dict(os.environ, MUJOCO_GL=backend),
+                           capture_output=True, timeout=PROBE_TIMEOUT_S, check=False)
+    except (OSError, subprocess.SubprocessError):
+        return False
+    return r.returncode == 0
+
+
+def offscreen_backend() -> str | None:
+    """The first offscreen backend that works: MUJOCO_GL when the user set it, else EGL,
+    then OSMesa; None when none does."""
+    requested = os.environ.get("MUJOCO_GL")
+    for backend in ((requested,) if requested else OFFSCREEN_BACKENDS):
+        if probe(backend):
+            return backend
+    return None
+
+
+def _size(text: str) -> tuple[int, int]:
+    try:
+        w, h = (int(x) for x in text.lower().split("x"))
+    except ValueError:
+        raise InputError(f"size = {text!r}: must be WIDTHxHEIGHT in pixels, e.g. 480x360") from None
+    if not (16 <= w <= 4096 and 16 <= h <= 4096):
+        raise InputError(f"size = {text!r}: must be 16–4096 pixels each way")
+    return w, h
+
+
+def _check(a) -> None:
+    for name in ("fps", "speed"):
+        value = getattr(a, name)
+        if not (value > 0 and value < 1e4):
+            raise InputError(f"{name} = {value!r}: must be a positive number")
+    if a.out is not None and Path(a.out).suffix.lower() != ".gif":
+        raise InputError(f"out = {a.out!r}: must end in .gif")
+    if not abs(a.theta0_over_alpha) < 1:
+        raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
+    if a.duration is not None and not a.duration > 0:
+        raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
+
+
+def run(a) -> int:
+    from isorock.validate.cli import motion_from_args, system_from_args
+    from isorock.validate.run_cli import load_engines, parse_engines
+    _check(a)
+    size = _size(a.size)
+    specs = parse_engines(a.engine)
+    if len(specs) != 1:
+        raise InputError(f"engine = {a.engine!r}: view replays one engine")
+    system = system_from_args(a, default_isolator=(1.5, 0.2))
+    motion = motion_from_args(a)
+    interactive = has_display() and a.out is None
+    out = a.out or DEFAULT_OUT
+    if not interactive:
+        if a.out is None and Path(out).exists():
+            raise InputError(f"out = {out!r}: exists; give --out FILE.gif to write elsewhere or replace it")
+        backend = offscreen_backend()
+        if backend is None:
+            tried = os.environ.get("MUJOCO_GL") or " and ".join(OFFSCREEN_BACKENDS)
+            print(f"isorock view: no display and no offscreen OpenGL renderer ({tried} tried; install EGL "
+                  f"(libegl1) or OSMesa (libosmesa6), or run where there is a display)", file=sys.stderr)
+            return 1
+        os.environ["MUJOCO_GL"] = backend  # read when mujoco is first imported, which is below
+    label, engine, settings = load_engines(specs, a)[0]
+    traj = engine.simulate(system, motion, settings=settings, duration=a.duration,
+                           theta0=a.theta0_over_alpha * system.alpha)
+    if interactive:
+        return replay_in_viewer(traj, speed=a.speed)
+    try:
+        write_gif(traj, out, fps=a.fps, speed=a.speed, size=size, title=label)
+    except Exception as e:  # noqa: BLE001 — MuJoCo's GL errors have no common type
+        print(f"isorock view: offscreen rendering failed with MUJOCO_GL={os.environ.get('MUJOCO_GL')}: "
+              f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}", file=sys.stderr)
+        return 1
+    print(out)
+    return 0
+
+
+# --- replay ---------------------------------------------------------------------------
+
+def replay_model(system):
+    """MuJoCo's scene of the system with the planar block joints (so a frame is set by
+    u, the centroid's x and z, and θ) and its Layout."""
+    from isorock.mujoco_models import build_model
+    from isorock.mujoco_models.settings import Settings
+    from isorock.mujoco_models.stepping import Layout
+    model = build_model(system, Settings(joint="planar"))
+    return model, Layout(model, system, "planar")
+
+
+def frame_qpos(model, layout, system, u: float, theta: float):
+    """Joint positions of the rigid model at base displacement u (m) and tilt θ (rad):
+    the block pivots on its corner, which rides on the base."""
+    from isorock.analytic import kinematics
+    qpos = model.qpos0.copy()
+    x, z = kinematics.tilted_centroid(system, theta)
+    qpos[layout.xq], qpos[layout.zq], qpos[layout.thq] = u + x, z - system.h, theta
+    if layout.base_q is not None:
+        qpos[layout.base_q] = u
+    return qpos
+
+
+def frames(traj, dt: float):
+    """(t, u, θ) at t = 0, dt, 2dt, … of the run."""
+    r = traj.resample(dt)
+    return list(zip(r.t.tolist(), r.u.tolist(), r.theta.tolist()))
+
+
+def _camera(system):
+    import mujoco
+    cam = mujoco.MjvCamera()
+    cam.type = mujoco.mjtCamera.mjCAMERA_FREE
+    cam.lookat[:] = (0.0, 0.0, system.h)
+    cam.distance = 2.2 * system.height + 2 * system.width
+    cam.azimuth, cam.elevation = 90.0, -8.0  # looking along +y: x to the right, rocking in the image plane
+    return cam
+
+
+#: Software OpenGL (Mesa's EGL or OSMesa) spends ~3/4 of a frame on shadows (measured:
+#: 0.27 → 0.076 s per 480×360 frame): a line drawing needs neither shadows nor reflections.
+_OFF = ("mjRND_SHADOW", "mjRND_REFLECTION")
+
+
+def _prepare(scene, system) -> None:
+    """Shadows and reflections off; the ground drawn under the plate, with a mark at
+    x = 0, so the base's motion relative to the ground is seen (the scene's world frame
+    is the ground, which the MuJoCo scene does not draw)."""
+    import mujoco
+    import numpy as np
+    for name in _OFF:
+        scene.flags[getattr(mujoco.mjtRndFlag, name)] = 0
+    half = system.b + system.height
+    top = -0.12  # just below the plate (0.1 m thick, top face at z = 0)
+    depth = system.b + 0.5  # deeper than the plate, so the mark stands in front of it
+    for size, pos, rgba in (((1.5 * half, depth, 0.02), (0.0, 0.0, top - 0.02), (0.6, 0.55, 0.45, 1.0)),
+                            ((0.012, 0.012, 0.1), (0.0, -depth, top + 0.1), (0.9, 0.1, 0.1, 1.0))):
+        if scene.ngeom >= scene.maxgeom:
+            return
+        mujoco.mjv_initGeom(scene.geoms[scene.ngeom], mujoco.mjtGeom.mjGEOM_BOX, np.array(size, dtype=float),
+                            np.array(pos, dtype=float), np.eye(3).ravel(), np.array(rgba, dtype=np.float32))
+        scene.ngeom += 1
+
+
+def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], title: str) -> None:
+    import mujoco
+    from PIL import Image, ImageDraw
+
+    from isorock.validate.output import write_atomic
+    system = traj.system
+    model, layout = replay_model(system)
+    data = mujoco.MjData(model)
+    width, height = size
+    model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
+    model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+    renderer = mujoco.Renderer(model, height, width)
+    cam = _camera(system)
+    images = []
+    try:
+        for t, u, theta in frames(traj, speed / fps):
+            data.qpos[:] = frame_qpos(model, layout, system, u, theta)
+            mujoco.mj_forward(model, data)
+            renderer.update_scene(data, camera=cam)
+            _prepare(renderer.scene, system)
+            img = Image.fromarray(renderer.render())
+            ImageDraw.Draw(img).text((8, 8), f"{title}   t = {t:5.2f} s   theta/alpha = {theta / system.alpha:+.2f}   "
+                                             f"u = {100 * u:+.1f} cm", fill=(255, 255, 255))
+            images.append(img.convert("P", palette=Image.Palette.ADAPTIVE))
+    finally:
+        renderer.close()
+    first, rest = images[0], images[1:]
+    write_atomic(path, lambda tmp: first.save(tmp, format="GIF", save_all=True, append_images=rest,
+                                              duration=max(20, round(1000 / fps)), loop=0))
+
+
+def replay_in_viewer(traj, *, speed: float) -> int:
+    """The run in MuJoCo's interactive viewer, in real time × speed; the window stays
+    open on the last frame until it is closed."""
+    import time
+
+    import mujoco
+    import mujoco.viewer
+    system = traj.system
+    model, layout = replay_model(system)
+    data = mujoco.MjData(model)
+    dt = 1 / 60
+    with mujoco.viewer.launch_passive(model, data) as viewer:
+        start = time.perf_counter()
+        for t, u, theta in frames(traj, dt * speed):
+            if not viewer.is_running():
+                break
+            data.qpos[:] = frame_qpos(model, layout, system, u, theta)
+            mujoco.mj_forward(model, data)
+            viewer.sync()
+            time.sleep(max(0.0, start + t / speed - time.perf_counter()))
+        while viewer.is_running():
+            time.sleep(0.05)
+    return 0
