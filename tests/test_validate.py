@@ -18,6 +18,7 @@ from isorock.validate import figures
 from isorock.validate.cli import main
 from isorock.validate.compare import AGREEMENT_FRACTION, agreement, compare, exact_first_impact_time, first_tilt
 from isorock.validate.engines import CONTACT_ENGINES, Engine, get_engine
+from isorock.validate.naming import describe_motion
 from isorock.validate.ensemble import Ensemble, run_ensemble, scale_factors
 from isorock.validate.tolerances import TOLERANCES, check, tolerance
 
@@ -189,7 +190,10 @@ def test_validate_end_to_end_with_a_missing_engine(tmp_path, monkeypatch, capsys
             "verdict"} <= set(m)
     assert m["passed"] is True and m["engines"]["ghost"].startswith("skipped: module no_such_engine_module")
     assert {"python", "numpy", "scipy", "mujoco", "pybullet"} <= set(m["versions"])
-    assert [sc["name"] for sc in m["scenarios"]] == [f"{PULSE}, isolated base", f"{PULSE}, fixed base"]
+    named = describe_motion(load_motion(PULSE))  # readable names, not spec strings
+    assert [sc["name"] for sc in m["scenarios"]] == [f"{named}, isolated base", f"{named}, fixed base"]
+    assert named == "Ricker wavelet 0.5 g, 1 Hz"
+    assert m["provenance"]["command_line"] and "isorock_version" in m["provenance"]
     assert all(c["status"] in ("pass", "skip") for c in m["checks"]) and m["checks"]
     md = (out / "report.md").read_text()
     assert "SKIPPED" in md and "<details><summary>All" in md and md.rstrip().splitlines()[-1].startswith("Result: all")

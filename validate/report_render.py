@@ -17,7 +17,9 @@ from pathlib import Path
 
 from isorock.validate import figures
 from isorock.validate.engines import REFERENCE
+from isorock.validate.naming import describe_motion
 from isorock.validate.output import write_folder_atomic, write_json
+from isorock.validate.provenance import provenance
 from isorock.validate.paper import PAPER_FIGURE5, is_kobe, paper_blocks
 from isorock.validate.report_run import PAPER_SLENDERNESS, Results
 from isorock.validate.tolerances import has_tolerance, tolerance
@@ -204,7 +206,7 @@ def _blocks(results: Results, images: dict) -> list:
     B = [("h1", "Do the contact engines agree with the exact rocking model?"),
          ("verdict", verdict(results), [(_label(n), word, "; ".join(reasons)) for n, (word, reasons) in verdicts.items()
                                         if n != REFERENCE]),
-         ("p", f"System: {describe_system(results)}. Motions: {', '.join(sc.motion.name for sc in results.scenarios[::len(cfg.bases())])}. "
+         ("p", f"System: {describe_system(results)}. Motions: {'; '.join(describe_motion(sc.motion) for sc in results.scenarios[::len(cfg.bases())])}. "
                f"Reference: the analytic hybrid model (exact impacts, closed-form β). Generated {results.started} in "
                f"{results.wall_s:.0f} s ({'quick' if cfg.quick else 'full'} run).")]
     header, rows = scorecard(results)
@@ -417,6 +419,7 @@ def metrics(results: Results) -> dict:
         "verdict": verdict(results),
         "engine_verdicts": {n: {"verdict": w, "reasons": r} for n, (w, r) in engine_verdicts(results).items()},
         "passed": not results.failed,
+        "provenance": provenance(record_paths=list(results.record_paths)),
         "config": cfg(results.config),
         "started": results.started, "wall_s": results.wall_s, "versions": results.versions,
         "engines": {**{n: "ok" for n in results.engines}, **{n: f"skipped: {w}" for n, w in results.skipped.items()}},

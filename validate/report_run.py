@@ -27,6 +27,7 @@ from isorock.validate.compare import Comparison, compare, exact_first_impact_tim
 from isorock.validate.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine
 from isorock.validate.ensemble import ROCKING, Ensemble, scale_factors
 from isorock.validate.measure import beta_errors
+from isorock.validate.naming import describe_motion
 from isorock.validate.runner import Task, resolve, run_tasks
 from isorock.validate.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
@@ -291,7 +292,7 @@ def build(config: ReportConfig, *, progress=None) -> Results:
     for motion, _ in motions:
         duration = scenario_duration(motion, config)
         for base, system in config.bases():
-            sc = HistoryRuns(f"{motion.name}, {base}", motion, system, duration)
+            sc = HistoryRuns(f"{describe_motion(motion)}, {base}", motion, system, duration)
             sc.base_acceleration_peak = base_acceleration_peak(system, motion, duration)
             histories.append(sc)
     scales = [ensemble_scales(config, sc.system, sc.motion, sc.base_acceleration_peak) for sc in histories]
@@ -402,7 +403,7 @@ def _history_checks(sc: HistoryRuns, engines) -> list[Check]:
 def _ensemble(i: int, sc: HistoryRuns, scales, engines, results) -> Ensemble:
     """The ensemble of history scenario i from the task results; a failed case is NaN
     with its message in `failed`."""
-    ens = Ensemble(system=sc.system, motion=sc.motion.name, pga_g=sc.motion.pga_g, duration=sc.duration,
+    ens = Ensemble(system=sc.system, motion=describe_motion(sc.motion), pga_g=sc.motion.pga_g, duration=sc.duration,
                    scales=np.asarray(scales, dtype=float))
     for name in engines:
         tmax = np.full(len(scales), math.nan)
