@@ -41,6 +41,19 @@ class Capabilities:
 
 
 @dataclass(frozen=True)
+class Tuning:
+    """The contact parameters of an engine a calibration may move: `names` of the
+    coordinates, their `bounds` (in the coordinates' own, possibly logarithmic, scale),
+    `start(settings)` the coordinates of given settings, `apply(settings, x)` the settings
+    at coordinates x (everything else kept)."""
+
+    names: tuple[str, ...]
+    bounds: tuple[tuple[float, float], ...]
+    start: Callable[[Any], list]
+    apply: Callable[[Any, Any], Any]
+
+
+@dataclass(frozen=True)
 class EngineSpec:
     """One engine. `settings_type` is its frozen Settings dataclass (validated on
     construction); `settings_for(**overrides)` builds one where some settings follow
@@ -49,7 +62,7 @@ class EngineSpec:
     file); `label` is the name figures and reports show; `presets` maps a name a user
     can ask for as ENGINE:PRESET to a zero-argument callable returning Settings;
     `ladder(quick)` lists (label, Settings) from cheapest to most accurate, for
-    work-precision benchmarks."""
+    work-precision benchmarks; `tuning` is what `isorock calibrate` may move."""
 
     name: str
     label: str
@@ -61,6 +74,7 @@ class EngineSpec:
     scene_format: tuple[str, str] | None = None  # (format name, file suffix)
     presets: dict = field(default_factory=dict)
     ladder: Callable[[bool], list] | None = None
+    tuning: Tuning | None = None
 
     def settings(self, **overrides):
         if self.settings_for is not None:
@@ -68,4 +82,4 @@ class EngineSpec:
         return replace(self.settings_type(), **overrides)
 
 
-__all__ = ["EngineSpec", "Capabilities", "Simulate"]
+__all__ = ["EngineSpec", "Capabilities", "Simulate", "Tuning"]

@@ -1,7 +1,9 @@
 """The rocking block as a PyBullet scene: `scene.py` (the bodies, and the same scene as
 an SDF file), `settings.py` (numerical settings, measured), `stepping.py` (stepping).
 Measurements behind every default: docs/bullet.md."""
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec
+from dataclasses import replace
+
+from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Tuning
 
 from .scene import SCENE_FORMAT, build, connect, scene_text
 from .settings import Settings, settings_for, settings_for_timestep
@@ -12,6 +14,15 @@ def ladder(quick: bool):
     """Work-precision ladder: physics steps, the control step kept near 4 ms."""
     steps = (1 / 500, 1 / 1000, 1 / 4000) if quick else (1 / 500, 1 / 1000, 1 / 2000, 1 / 5000, 1 / 10000)
     return [(f"dt={dt:.3g}", settings_for_timestep(dt)) for dt in steps]
+
+
+#: Calibration moves the contact error reduction (ERP) and the solver's iterations; the
+#: physics step (--timestep) stays the user's and sets the sub-steps.
+TUNING = Tuning(
+    names=("contact ERP", "log10 solver iterations"),
+    bounds=((0.01, 0.6), (0.7, 2.3)),
+    start=lambda s: [s.contact_erp, __import__("math").log10(s.solver_iterations)],
+    apply=lambda s, x: replace(s, contact_erp=float(x[0]), solver_iterations=int(round(10 ** x[1]))))
 
 
 ENGINE = EngineSpec(
@@ -25,7 +36,7 @@ ENGINE = EngineSpec(
         # 0.1 ms physics steps: β within ~0.1%
         "fine": lambda: settings_for_timestep(1e-4),
     },
-    ladder=ladder)
+    ladder=ladder, tuning=TUNING)
 
 __all__ = ["ENGINE", "Settings", "simulate", "scene_text", "build", "connect", "settings_for",
            "settings_for_timestep"]

@@ -2,7 +2,10 @@
 `settings.py` (numerical settings, measured), `stepping.py` (stepping with
 `mujoco.rollout`), `event_resolved.py` (an opt-in second stepping scheme).
 Measurements behind every default: docs/mujoco.md."""
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec
+import math
+from dataclasses import replace
+
+from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Tuning
 
 from .scene import SCENE_FORMAT, build_model, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep
@@ -13,6 +16,26 @@ def ladder(quick: bool):
     """Work-precision ladder: timesteps with the contact parameters measured for each."""
     steps = (2e-3, 1e-3, 2.5e-4) if quick else (2e-3, 1e-3, 5e-4, 2.5e-4, 1e-4)
     return [(f"dt={dt:.3g}", settings_for_timestep(dt)) for dt in steps]
+
+
+def _direct(settings):
+    """(log10 K, log10 D, dmin) of the direct contact form solref = (−K/dt², −D/dt),
+    solimp (dmin, dmin, 0.001); positive solref is converted at its critical damping."""
+    dt = settings.timestep
+    a, b = settings.solref
+    if a > 0:  # (timeconst, dampratio): stiffness 1/(tc²·dr²), damping 2/tc
+        a, b = -1.0 / (a * a * b * b), -2.0 / a
+    return [math.log10(-a * dt * dt), math.log10(-b * dt), settings.solimp[0]]
+
+
+#: Calibration moves the direct form's stiffness and damping (in units of the step) and
+#: the constraint impedance dmin (docs/mujoco.md: the direct form measured best from 1 ms up).
+TUNING = Tuning(
+    names=("log10 stiffness·dt²", "log10 damping·dt", "solimp dmin"),
+    bounds=((-3.0, 0.5), (-2.0, 1.0), (0.5, 0.99)),
+    start=_direct,
+    apply=lambda s, x: replace(s, solref=(-(10 ** x[0]) / s.timestep ** 2, -(10 ** x[1]) / s.timestep),
+                               solimp=(x[2], x[2], 0.001)))
 
 
 ENGINE = EngineSpec(
@@ -27,7 +50,7 @@ ENGINE = EngineSpec(
         "corners": lambda: Settings(contact="corners"),
         "pyramidal": lambda: Settings(cone="pyramidal"),
     },
-    ladder=ladder)
+    ladder=ladder, tuning=TUNING)
 
 __all__ = ["ENGINE", "Settings", "simulate", "run_model", "scene_text", "build_model", "settings_for",
            "settings_for_timestep", "event_resolved_settings"]

@@ -26,6 +26,7 @@ EXTRA_COMMANDS = {
                                                  "analytic model"),
     "bench": ("isorock.validate.bench", "work-precision benchmarks of every engine"),
     "stress": ("isorock.validate.stress", "the stability stress grid (exits non-zero on any failure)"),
+    "calibrate": ("isorock.validate.calibrate", "fit a contact engine's contact parameters to the closed-form β"),
     "view": ("isorock.validate.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
                                       "display"),
 }
