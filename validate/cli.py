@@ -18,7 +18,8 @@ import sys
 from isorock.analytic.errors import InputError
 
 #: Subcommands that live in their own modules: each has add_parser(subparsers) and run(args).
-EXTRA_COMMANDS = ("isorock.validate.report_cli", "isorock.validate.bench", "isorock.validate.stress")
+EXTRA_COMMANDS = ("isorock.validate.report_cli", "isorock.validate.bench", "isorock.validate.stress",
+                  "isorock.campaign.cli")
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
 ENGINE_OPTIONS = ("timestep", "solref", "solimp", "cone", "integrator", "friction", "noslip",
