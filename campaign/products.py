@@ -108,7 +108,8 @@ def spectrum_figure(cols, path: Path) -> list[dict]:
         return []
     ref = _select(cols, _is(cols, reference))
     panels = _groups(ref, SYSTEM_KEYS)
-    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.4), squeeze=False, sharey=True)
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.6 * max(len(panels), 2), 4.6 + 0.25 * len(contacts)),
+                             squeeze=False, sharey=True, layout="constrained")
     cmap = ListedColormap(REGION_COLORS)
     norm = BoundaryNorm(np.arange(-0.5, len(REGIONS)), cmap.N)
     stats_rows = []
@@ -125,6 +126,8 @@ def spectrum_figure(cols, path: Path) -> list[dict]:
         ax.set_xlabel("ω_p / p")
         counts = {r: int(np.sum(code == k)) for k, r in enumerate(REGIONS)}
         stats_rows.append({"panel": label, "engine": f"{reference[0]} ({reference[1]})", **counts})
+        low = lowest_overturning(p)
+        ax.plot(fr, [low.get(x, np.nan) for x in fr], "k-", lw=0.8, label=f"{reference[0]}: lowest overturning")
         # contact engines: their lowest overturning amplitude per frequency, on the same systems
         for j, pair in enumerate(contacts):
             m = _is(cols, pair)
@@ -137,17 +140,14 @@ def spectrum_figure(cols, path: Path) -> list[dict]:
             low = lowest_overturning(c)
             xs = np.unique(c["frequency_ratio"])
             ys = np.array([low.get(x, np.nan) for x in xs])
-            ax.plot(xs, ys, styles[j % len(styles)], ms=3.5, lw=1.2, color=f"C{j}",
+            ax.plot(xs, ys, styles[j % len(styles)], ms=5 - j, lw=1.2, color=f"C{j}", mfc="none",
                     label=f"{pair[0]} {pair[1]}: lowest overturning")
             stats_rows.append({"panel": label, "engine": f"{pair[0]} ({pair[1]})",
                                "overturns": int(c["overturned"].sum()), "runs": int(c["case"].size)})
-        low = lowest_overturning(p)
-        ax.plot(fr, [low.get(x, np.nan) for x in fr], "k-", lw=1.0, label=f"{reference[0]}: lowest overturning")
     axes[0][0].set_ylabel("a_p / (g·tanα)")
     handles = [Patch(color=c, label=r) for c, r in zip(REGION_COLORS, REGIONS)]
     line_handles, _ = axes[0][-1].get_legend_handles_labels()
-    fig.legend(handles=handles + line_handles, loc="lower center", ncol=4, fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0.12 + 0.03 * (len(contacts) // 2), 1, 1))
+    fig.legend(handles=handles + line_handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
     fig.savefig(path, dpi=130)
     plt.close(fig)
     return stats_rows
@@ -269,7 +269,7 @@ def agreement_figure(maps, path: Path) -> None:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, len(maps), figsize=(4.6 * len(maps), 7.4), squeeze=False)
+    fig, axes = plt.subplots(2, len(maps), figsize=(4.6 * len(maps), 7.4), squeeze=False, layout="constrained")
     for j, m in enumerate(maps):
         for i, (key, title) in enumerate((("verdict", "overturned or not differs"),
                                            ("theta", f"|Δ θmax/α| > {m['tolerance']:g} (both survive)"))):
