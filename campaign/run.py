@@ -63,6 +63,14 @@ def _client_for(client, workers, scheduler):
     return None, False
 
 
+def _close(client) -> None:
+    """Close a client this module opened, and its LocalCluster if it started one."""
+    cluster = getattr(client, "cluster", None)
+    client.close()
+    if cluster is not None:
+        cluster.close()
+
+
 def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: str | None = None,
                  progress: bool = True, products: bool = True) -> CampaignResult:
     """Run a campaign (a CampaignSpec or the path of its TOML file).
@@ -79,17 +87,13 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     tasks = make_tasks(cases, spec.engines, analytic_chunk=spec.analytic_chunk,
                        contact_chunk=spec.contact_chunk)
     out = Path(out) if out is not None else None
-    parts_dir = None
-    todo, memory = tasks, []
+    parts_dir = out / PARTS if out is not None else None
+    memory = []
     if out is not None:
         check_output_folder(out)
-        out.mkdir(parents=True, exist_ok=True)
-        from isorock.validate.output import write_text
-        write_text(out / MARKER, json.dumps({"tool": "isorock sweep", "campaign": spec.name,
-                                             "fingerprint": spec.fingerprint()}) + "\n")
-        parts_dir = out / PARTS
-        parts_dir.mkdir(exist_ok=True)
         todo = [t for t in tasks if not (parts_dir / f"{t.id}.parquet").is_file()]
+    else:
+        todo = tasks
 
     def on_done(task, rows):
         if parts_dir is not None:
@@ -97,16 +101,19 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         else:
             memory.extend(rows)
 
-    bar = Progress(sum(len(t.cases) for t in todo)) if progress and todo else None
+    # connect before writing anything: an unreachable scheduler leaves no folder behind
     live, close = _client_for(client, workers, scheduler) if todo else (None, False)
     try:
+        if out is not None:
+            from isorock.validate.output import write_text
+            parts_dir.mkdir(parents=True, exist_ok=True)
+            write_text(out / MARKER, json.dumps({"tool": "isorock sweep", "campaign": spec.name,
+                                                 "fingerprint": spec.fingerprint()}) + "\n")
+        bar = Progress(sum(len(t.cases) for t in todo)) if progress and todo else None
         ran = execute(todo, client=live, threads=None, on_done=on_done, progress=bar)
     finally:
         if close:
-            cluster = getattr(live, "cluster", None)
-            live.close()
-            if cluster is not None:
-                cluster.close()
+            _close(live)
     if parts_dir is None:
         return CampaignResult(sort_table(rows_to_table(memory)), None, len(tasks), ran)
     # only this campaign's parts: a folder may hold parts of an earlier version of the file
@@ -142,8 +149,5 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
         execute(tasks, client=live, threads=None, on_done=lambda t, r: rows.extend(r), progress=bar)
     finally:
         if close:
-            cluster = getattr(live, "cluster", None)
-            live.close()
-            if cluster is not None:
-                cluster.close()
+            _close(live)
     return sort_table(rows_to_table(rows))
