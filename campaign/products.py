@@ -193,14 +193,18 @@ def fragility_figure(fits, path: Path) -> None:
         for f in (f for f in fits if f["system"] == system):
             j = pairs.index((f["engine"], f["setting"]))
             color = "k" if f["engine"] in BATCH_ENGINES else f"C{j}"
+            # curves that coincide (engines agreeing run for run) stay visible: each pair
+            # its own dash pattern, later ones thinner
+            style = ("-", "--", "-.", ":")[j % 4]
+            width = max(2.6 - 0.5 * j, 0.8)
             x = f["levels"]
-            ax.plot(x, f["fraction"], "o", color=color, ms=4)
+            ax.plot(x, f["fraction"], "o", color=color, ms=max(6 - j, 2), mfc="none" if j else color)
             fit = f["fit"]
             if math.isfinite(fit.median):
                 xx = np.geomspace(x[0], x[-1], 200)
                 lo, hi = fit.band(xx)
-                ax.fill_between(xx, lo, hi, color=color, alpha=0.15, lw=0)
-                ax.plot(xx, fit.probability(xx), "-", color=color, lw=1.5,
+                ax.fill_between(xx, lo, hi, color=color, alpha=0.10, lw=0)
+                ax.plot(xx, fit.probability(xx), style, color=color, lw=width,
                         label=f"{f['engine']} {f['setting']}: θ = {fit.median:.3g}, β = {fit.dispersion:.2f}")
             else:
                 ax.plot([], [], "o", color=color, label=f"{f['engine']} {f['setting']}: {fit.note}")
