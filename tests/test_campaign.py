@@ -20,8 +20,8 @@ from isorock.campaign.run import MARKER, PARTS
 from isorock.validate.cli import main
 
 # A tiny campaign: a one-sine grid on both bases, the analytic kernel in chunks of 7
-# (so the 2 × 3 × 3 = 18 cases make several chunks) and MuJoCo at a coarse step on
-# one chunk of 4 cases each. Amplitude ratio 0.9 is below uplift (a_p < g·tanα).
+# (so the 2 × 3 × 3 = 18 cases make several chunks) and MuJoCo at a coarse step, one
+# case per chunk. Amplitude ratio 0.9 is below uplift (a_p < g·tanα).
 TINY = """
 [campaign]
 name = "tiny"
@@ -53,7 +53,7 @@ name = "analytic"
 MUJOCO = '\n[[engines]]\nname = "mujoco"\nsettings = [{timestep = 2e-3}]\n'
 
 
-def write_spec(folder: Path, *, base='["fixed", "isolated"]', more=MUJOCO, contact_chunk=4, name="tiny.toml"):
+def write_spec(folder: Path, *, base='["fixed", "isolated"]', more=MUJOCO, contact_chunk=1, name="tiny.toml"):
     path = folder / name
     path.write_text(TINY.format(base=base, more=more, contact_chunk=contact_chunk), encoding="utf-8")
     return path
@@ -89,8 +89,8 @@ def serial(tmp_path_factory):
     (lambda s: s.replace("timestep = 2e-3", "timestp = 2e-3"), "engines[1].settings[0]"),
     (lambda s: s.replace('type = "pulse"', 'type = "pulses"'), "motions.type"),
     (lambda s: s.replace("[duration]", "[durations]"), "durations"),
-    (lambda s: s.replace("[2.0, 4.0, 8.0]", "{from = 1, to = 12, num = 100000}").replace(
-        "[0.9, 3.0, 8.0]", "{from = 1, to = 20, num = 100000}"), "campaign size"),
+    (lambda s: s.replace("[2.0, 4.0, 8.0]", "{from = 1, to = 12, num = 2000}").replace(
+        "[0.9, 3.0, 8.0]", "{from = 1, to = 20, num = 2000}"), "campaign size"),
     (lambda s: s.replace("tail = 1.0", "tail = 1.0 ="), "not valid TOML"),
 ])
 def test_bad_campaign_file_exits_2_with_one_line_naming_the_key(tmp_path, capsys, edit, key):
@@ -205,9 +205,9 @@ def test_separate_scheduler_and_worker_give_the_serial_table(serial, scheduler_a
     assert_same_rows(reference.table, result.table)
 
 
-def test_campaign_killed_midway_resumes_to_the_uninterrupted_table(tmp_path):
-    # MuJoCo one case per chunk, so parts appear one by one while the process runs
-    spec = write_spec(tmp_path, base='"fixed"', contact_chunk=1)
+def test_campaign_killed_midway_resumes_to_the_uninterrupted_table(serial, tmp_path):
+    # MuJoCo one case per chunk (the module's campaign), so parts appear one by one
+    spec, whole = serial
     out = tmp_path / "killed"
     cmd = [sys.executable, "-m", "isorock.validate.cli", "sweep", str(spec), "--out", str(out),
            "--workers", "0", "--no-products"]
@@ -225,7 +225,6 @@ def test_campaign_killed_midway_resumes_to_the_uninterrupted_table(tmp_path):
     assert not (out / "results.parquet").exists()
     resumed = run_campaign(spec, out, workers=0, progress=False, products=False)
     assert resumed.tasks_run == resumed.tasks_total - done_before < resumed.tasks_total
-    whole = run_campaign(spec, tmp_path / "whole", workers=0, progress=False, products=False)
     assert_same_rows(whole.table, resumed.table)
 
 
@@ -331,7 +330,7 @@ def test_lognormal_mle_recovers_known_parameters_from_synthetic_data():
     # per-record outcomes (records × levels): each record has its own capacity
     capacity = theta * np.exp(beta * rng.standard_normal(300))
     outcomes = (levels[None, :] >= capacity[:, None]).astype(float)
-    fit = fit_fragility(levels, outcomes, bootstrap=40)
+    fit = fit_fragility(levels, outcomes, bootstrap=20)
     # the median of 300 lognormal capacities has a standard error of ~2.5% here
     assert fit.median == pytest.approx(theta, rel=0.08)
     assert fit.dispersion == pytest.approx(beta, rel=0.2)
