@@ -29,6 +29,7 @@ EXTRA_COMMANDS = {
     "calibrate": ("isorock.validate.calibrate", "fit a contact engine's contact parameters to the closed-form β"),
     "view": ("isorock.validate.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
                                       "display"),
+    "sweep": ("isorock.campaign.cli", "run a campaign (TOML): overturning spectra, fragility curves, agreement maps"),
 }
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.

@@ -1,0 +1,168 @@
+"""Campaign throughput, measured (not a test): `python -m isorock.campaign.benchmark WHAT`.
+
+    spectrum   the 4,000-cell one-sine spectrum (fixed base, α = 0.25, ω_p/p 0.5–12 ×
+               a_p/(g·tanα) 1–20), analytic, serial path (kernel threads on every core)
+               and a LocalCluster (start-up included and excluded)
+    kobe       analytic runs of 40 s of the Kobe record per second (the batch kernel)
+    contact    MuJoCo and PyBullet: a campaign on a LocalCluster against one run at a time
+    overhead   a tiny campaign: a plain loop against run_cases serially and on Dask
+
+Prints one JSON object per measurement. Numbers depend on the machine's load: say
+which machine and how loaded when quoting them.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def _spectrum_spec(n_freq=80, n_amp=50, engines=({"name": "analytic"},), base="fixed"):
+    from .spec import parse_spec
+    return parse_spec({
+        "campaign": {"name": "bench spectrum", "analytic_chunk": 500, "contact_chunk": 2},
+        "systems": {"alpha": 0.25, "size": 1.0, "mass": 1000.0, "base": base},
+        "motions": {"type": "pulse", "pulse": "sine", "frequency_ratio": {"from": 0.5, "to": 12.0, "num": n_freq},
+                    "amplitude_ratio": {"from": 1.0, "to": 20.0, "num": n_amp}},
+        "duration": {"tail": 5.0}, "engines": list(engines)})
+
+
+def _emit(**kw):
+    print(json.dumps(kw), flush=True)
+
+
+def bench_spectrum(workers):
+    from .execute import local_client
+    from .run import run_campaign
+    spec = _spectrum_spec()
+    run_campaign(_spectrum_spec(2, 2), None, workers=0, progress=False)  # load the kernel first
+    t = time.perf_counter()
+    r = run_campaign(spec, None, workers=0, progress=False)
+    _emit(what="spectrum 4000 cells, serial path (kernel threads)", cells=r.table.num_rows,
+          seconds=round(time.perf_counter() - t, 2), cores=os.cpu_count())
+    t = time.perf_counter()
+    client = local_client(workers)
+    started = time.perf_counter()
+    r = run_campaign(spec, None, client=client, progress=False)
+    done = time.perf_counter()
+    client.close()
+    client.cluster.close()
+    _emit(what=f"spectrum 4000 cells, LocalCluster of {workers} processes", cells=r.table.num_rows,
+          seconds_with_startup=round(done - t, 2), seconds_after_startup=round(done - started, 2))
+
+
+def _kobe():
+    from isorock.analytic.motion import read_at2
+    path = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "records" / "RSN1106_KOBE_KJM000.AT2"
+    if not path.is_file():
+        sys.exit(f"benchmark kobe: {path} not found")
+    return read_at2(path)
+
+
+def bench_kobe(n):
+    from isorock.analytic.fast import simulate_batch
+    from isorock.analytic.system import paper_system
+    kobe = _kobe()
+    systems = [paper_system(), paper_system(fixed_base=True)]
+    motions = [kobe.scaled(f) for f in np.linspace(0.5, 1.0, n // 2)]
+    simulate_batch(systems[0], motions[0], duration=1.0)  # load the kernel
+    for label, sys_ in (("isolated T 1.5 s ξ 0.2", systems[0]), ("fixed", systems[1])):
+        t = time.perf_counter()
+        rows = simulate_batch(sys_, motions, duration=40.0)
+        dt = time.perf_counter() - t
+        _emit(what=f"analytic batch, Kobe 40 s, paper block {label}", runs=len(rows), seconds=round(dt, 3),
+              runs_per_second=round(len(rows) / dt, 1),
+              overturned=sum(r["overturned"] for r in rows))
+
+
+def _contact_cases(n):
+    from isorock.analytic.motion import GroundMotion, Pulse
+    from isorock.analytic.system import paper_system
+    from .spec import Case
+    system = paper_system(fixed_base=True)
+    # one-sine pulses around uplift (3 s runs): rocking with impacts, some overturning
+    return [Case(i, system, GroundMotion.from_pulse(Pulse("sine", amp=a, freq=1.0)), 3.0)
+            for i, a in enumerate(np.linspace(0.4, 0.9, n))]
+
+
+def bench_contact(n, workers):
+    from isorock.validate.engines import get_engine
+    from .execute import local_client
+    from .run import run_cases
+    cases = _contact_cases(n)
+    for name in ("mujoco", "bullet"):
+        engine = get_engine(name)
+        engine.simulate(cases[0].system, cases[0].motion, duration=0.5)  # import and warm up
+        t = time.perf_counter()
+        for c in cases:
+            engine.simulate(c.system, c.motion, duration=c.duration)
+        serial = time.perf_counter() - t
+        client = local_client(workers)
+        client.run(lambda: get_engine(name).simulate(cases[0].system, cases[0].motion, duration=0.5))
+        t = time.perf_counter()
+        run_cases(cases, [name], client=client, contact_chunk=1)
+        campaign = time.perf_counter() - t
+        client.close()
+        client.cluster.close()
+        _emit(what=f"{name}: {n} runs of 3 s, one at a time vs campaign on {workers} worker processes",
+              one_at_a_time_s=round(serial, 2), campaign_s=round(campaign, 2),
+              speedup=round(serial / campaign, 2))
+
+
+def bench_overhead(n, workers):
+    from isorock.analytic.fast import simulate_fast
+    from .execute import local_client
+    from .run import run_cases
+    cases = _contact_cases(n)
+    simulate_fast(cases[0].system, cases[0].motion, duration=1.0)
+    run_cases(cases[:1], ["analytic"])  # imports (pyarrow, the registry) out of the timing
+    t = time.perf_counter()
+    for c in cases:
+        simulate_fast(c.system, c.motion, duration=c.duration)
+    loop = time.perf_counter() - t
+    t = time.perf_counter()
+    run_cases(cases, ["analytic"])
+    serial = time.perf_counter() - t
+    t = time.perf_counter()
+    client = local_client(workers)
+    started = time.perf_counter()
+    run_cases(cases, ["analytic"], client=client)
+    first = time.perf_counter()
+    # a one-task campaign lands on one worker; every worker loads the kernel on its first task
+    client.run(lambda: __import__("isorock.analytic.fast") and None)
+    warm = []
+    for _ in range(3):
+        a = time.perf_counter()
+        run_cases(cases, ["analytic"], client=client)
+        warm.append(time.perf_counter() - a)
+    client.close()
+    client.cluster.close()
+    _emit(what=f"tiny campaign: {n} analytic runs of 3 s", plain_loop_s=round(loop, 3),
+          run_cases_serial_s=round(serial, 3), cluster_startup_s=round(started - t, 2),
+          dask_first_call_s=round(first - started, 2), dask_warm_call_s=round(min(warm), 3))
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog="python -m isorock.campaign.benchmark", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("what", choices=("spectrum", "kobe", "contact", "overhead"))
+    p.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    p.add_argument("-n", type=int, default=None, help="number of runs (kobe 400, contact 16, overhead 20)")
+    a = p.parse_args(argv)
+    if a.what == "spectrum":
+        bench_spectrum(a.workers)
+    elif a.what == "kobe":
+        bench_kobe(a.n or 400)
+    elif a.what == "contact":
+        bench_contact(a.n or 16, a.workers)
+    else:
+        bench_overhead(a.n or 20, a.workers)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,85 @@
+"""From a case's inputs (the table's columns) to the System and GroundMotion it
+defines. One function, used when the campaign is expanded and nowhere else, so the
+table's columns are the whole definition of a case."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from isorock.analytic.motion import GroundMotion, Pulse
+from isorock.analytic.system import STANDARD_GRAVITY, System
+
+from .spec import Case
+
+
+def build_system(inputs: dict) -> System:
+    geo = dict(height=inputs["height"], width=inputs["width"], mass=inputs["mass"])
+    if inputs["base"] == "fixed":
+        return System.fixed(**geo)
+    return System.isolated(**geo, base_mass=inputs["mass"] / inputs["mass_ratio"],
+                           period=inputs["period"], damping_ratio=inputs["damping_ratio"])
+
+
+def pulse_for(system: System, kind: str, frequency_ratio: float, amplitude_ratio: float,
+              cycles: float) -> Pulse:
+    """The pulse in dimensionless form: ω_p = frequency_ratio·p, a_p = amplitude_ratio·g·tanα
+    (the block's p and α; on an isolated base too, so spectra of both bases share axes)."""
+    freq = frequency_ratio * system.p / (2 * math.pi)
+    amp_g = amplitude_ratio * math.tan(system.alpha) * system.gravity / STANDARD_GRAVITY
+    return Pulse(kind=kind, amp=amp_g, freq=freq, cycles=cycles)
+
+
+def peak_ground_velocity(motion: GroundMotion) -> float:
+    """max |v| (m/s) of the record integrated by the trapezoidal rule (no baseline
+    correction: the records of a suite are processed already)."""
+    a = np.asarray(motion.acceleration, dtype=float)
+    v = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * motion.dt)])
+    return float(np.max(np.abs(v)))
+
+
+def scaled_record(record: GroundMotion, scale_by: str, level: float) -> tuple[GroundMotion, float]:
+    """The record scaled to PGA = level (g) or PGV = level (m/s), and the factor."""
+    peak = record.pga_g if scale_by == "pga" else peak_ground_velocity(record)
+    factor = level / peak
+    return record.scaled(factor), factor
+
+
+def build_case(case_id: int, inputs: dict, duration_rule: dict, records: dict | None = None) -> Case:
+    system = build_system(inputs)
+    inputs = dict(inputs)
+    inputs.update(alpha=system.alpha, slenderness=system.slenderness, size=system.R, p=system.p)
+    if inputs["scale_by"]:
+        motion, factor = scaled_record(records[inputs["motion"]], inputs["scale_by"], inputs["intensity"])
+        inputs.update(scale_factor=factor, pulse_amp_g=math.nan, pulse_freq_hz=math.nan)
+    else:
+        pulse = pulse_for(system, inputs["motion"], inputs["frequency_ratio"], inputs["amplitude_ratio"],
+                          inputs["cycles"])
+        motion = _LazyPulse(pulse)
+        inputs.update(scale_factor=math.nan, pulse_amp_g=pulse.amp, pulse_freq_hz=pulse.freq)
+    end = motion.end_time
+    duration = duration_rule["end"] if "end" in duration_rule else end + duration_rule["tail"]
+    inputs["duration"] = duration
+    return Case(case_id, system, motion, duration, inputs)
+
+
+class _LazyPulse:
+    """A pulse whose GroundMotion (with its samples) is made only when a run needs it:
+    a 4,000-cell spectrum would otherwise hold and ship 4,000 sampled copies."""
+
+    __slots__ = ("pulse",)
+
+    def __init__(self, pulse: Pulse):
+        self.pulse = pulse
+
+    @property
+    def end_time(self) -> float:
+        return self.pulse.end_time
+
+    def motion(self) -> GroundMotion:
+        return GroundMotion.from_pulse(self.pulse)
+
+
+def motion_of(case: Case) -> GroundMotion:
+    m = case.motion
+    return m.motion() if isinstance(m, _LazyPulse) else m

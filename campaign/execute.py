@@ -1,0 +1,285 @@
+"""Running cases: in chunks, serially or on a Dask cluster, each finished chunk stored
+at once so that nothing is lost and nothing is redone.
+
+- A *task* is one chunk of cases for one (engine, setting). The analytic engine runs a
+  chunk (hundreds of cases) in one call of the compiled kernel
+  (`analytic.fast.simulate_batch`); a contact engine runs its chunk case by case in the
+  worker process.
+- A chunk's id is a hash of the engine, its settings and its cases' inputs, so it
+  depends on what is computed and on nothing else (not on workers, order or time).
+- The caller's process writes each finished chunk as `parts/<id>.parquet`, atomically
+  (temporary file, then rename): a killed run leaves whole parts or none. A run skips
+  the chunks whose part exists, so a finished campaign run again does no work.
+- Rows are independent of how they were computed: the kernel and the engines are
+  deterministic, so serial, local-cluster and remote-cluster tables are identical
+  except `runtime_s` (wall time, and for analytic chunks the chunk's time shared
+  equally among its cases).
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .spec import Case, EngineSetting
+
+#: Engines that run through the compiled kernel's batch (the same model).
+BATCH_ENGINES = ("analytic", "analytic-fast")
+
+# The table's schema: one home. Inputs first (what defines a case), then results.
+INPUT_COLUMNS = {
+    "case": "int64", "engine": "string", "setting": "string",
+    "base": "string", "height": "float64", "width": "float64", "slenderness": "float64",
+    "alpha": "float64", "size": "float64", "p": "float64", "mass": "float64",
+    "mass_ratio": "float64", "period": "float64", "damping_ratio": "float64",
+    "motion": "string", "cycles": "float64", "frequency_ratio": "float64",
+    "amplitude_ratio": "float64", "pulse_amp_g": "float64", "pulse_freq_hz": "float64",
+    "scale_by": "string", "intensity": "float64", "scale_factor": "float64",
+    "duration": "float64", "theta0": "float64",
+}
+RESULT_COLUMNS = {
+    "status": "string", "message": "string", "theta_max_over_alpha": "float64",
+    "overturned": "bool", "overturn_mode": "string", "overturn_time": "float64",
+    "impacts": "int64", "uplift": "bool", "uplifts": "int64", "u_max": "float64",
+    "runtime_s": "float64",
+}
+COLUMNS = {**INPUT_COLUMNS, **RESULT_COLUMNS}
+#: The one column allowed to differ between two runs of the same campaign.
+NONDETERMINISTIC_COLUMNS = ("runtime_s",)
+SORT_KEYS = ("case", "engine", "setting")
+
+NOT_OVERTURNED, WITHOUT_IMPACT, AFTER_IMPACTS = "none", "without impact", "after impacts"
+
+
+@dataclass(frozen=True)
+class Task:
+    id: str
+    setting: EngineSetting
+    cases: tuple[Case, ...]
+
+
+def _schema():
+    import pyarrow as pa
+    types = {"int64": pa.int64(), "float64": pa.float64(), "string": pa.string(), "bool": pa.bool_()}
+    return pa.schema([(k, types[v]) for k, v in COLUMNS.items()])
+
+
+def _case_inputs(case: Case) -> dict:
+    """The table's input columns for a case: the system's from the System itself (so an
+    in-memory case needs nothing else), the motion's from `inputs` where given."""
+    s = case.system
+    row = {k: (math.nan if t == "float64" else "") for k, t in INPUT_COLUMNS.items() if t != "int64"}
+    row.update(base="fixed" if s.fixed_base else "isolated", height=s.height, width=s.width,
+               slenderness=s.slenderness, alpha=s.alpha, size=s.R, p=s.p, mass=s.mass,
+               mass_ratio=s.mu, period=math.nan if s.fixed_base else s.period,
+               damping_ratio=math.nan if s.fixed_base else s.damping_ratio,
+               motion=getattr(case.motion, "name", ""), duration=case.duration, theta0=case.theta0)
+    row.update({k: v for k, v in case.inputs.items() if k in INPUT_COLUMNS})
+    row["case"] = case.case
+    return row
+
+
+def chunk_id(setting: EngineSetting, cases) -> str:
+    body = json.dumps([setting.engine, [list(o) for o in setting.overrides],
+                       [_case_inputs(c) for c in cases]], sort_keys=True, default=str)
+    return hashlib.sha256(body.encode()).hexdigest()[:20]
+
+
+def make_tasks(cases: list[Case], settings, *, analytic_chunk: int, contact_chunk: int) -> list[Task]:
+    tasks = []
+    for setting in settings:
+        size = analytic_chunk if setting.engine in BATCH_ENGINES else contact_chunk
+        for lo in range(0, len(cases), size):
+            chunk = tuple(cases[lo:lo + size])
+            tasks.append(Task(chunk_id(setting, chunk), setting, chunk))
+    return tasks
+
+
+# --- running one task (in a worker, or here) --------------------------------------------
+
+def _overturn_mode(overturned: bool, impacts_before: int) -> str:
+    if not overturned:
+        return NOT_OVERTURNED
+    return WITHOUT_IMPACT if impacts_before == 0 else AFTER_IMPACTS
+
+
+def run_task(task: Task, threads: int | None = 1) -> list[dict]:
+    """The rows of one chunk. threads: the analytic kernel's threads (1 in a Dask
+    worker, which is one core; None: all cores, for the serial path)."""
+    if task.setting.engine in BATCH_ENGINES:
+        return _run_batch(task, threads)
+    return _run_contact(task)
+
+
+def _run_batch(task: Task, threads) -> list[dict]:
+    from isorock.analytic.fast import simulate_batch
+    from isorock.validate.engines import get_engine
+
+    from .build import motion_of
+    settings = get_engine(task.setting.engine).settings(**task.setting.settings_kwargs)
+    cases = task.cases
+    start = time.perf_counter()
+    out = simulate_batch([c.system for c in cases], [motion_of(c) for c in cases],
+                         duration=np.array([c.duration for c in cases]),
+                         theta0=np.array([c.theta0 for c in cases]), settings=settings,
+                         workers=threads)
+    per_case = (time.perf_counter() - start) / len(cases)
+    rows = []
+    for case, r in zip(cases, out):
+        overturned = bool(r["overturned"])
+        rows.append({**_case_inputs(case), "engine": task.setting.engine, "setting": task.setting.label,
+                     "status": str(r["status"]), "message": "",
+                     "theta_max_over_alpha": float(r["theta_max_over_alpha"]), "overturned": overturned,
+                     # a batch run stops when the block falls, so its impacts all precede it
+                     "overturn_mode": _overturn_mode(overturned, int(r["impacts"])),
+                     "overturn_time": math.nan if r["overturn_time"] is None else float(r["overturn_time"]),
+                     "impacts": int(r["impacts"]), "uplift": int(r["uplifts"]) > 0,
+                     "uplifts": int(r["uplifts"]), "u_max": float(r["u_max"]), "runtime_s": per_case})
+    return rows
+
+
+def _run_contact(task: Task) -> list[dict]:
+    from isorock.validate.engines import get_engine
+
+    from .build import motion_of
+    engine = get_engine(task.setting.engine)
+    settings = engine.settings(**task.setting.settings_kwargs)
+    rows = []
+    for case in task.cases:
+        start = time.perf_counter()
+        base = {**_case_inputs(case), "engine": task.setting.engine, "setting": task.setting.label}
+        try:
+            tr = engine.simulate(case.system, motion_of(case), settings=settings, duration=case.duration,
+                                 theta0=case.theta0)
+        except Exception as e:  # one failed case is a row saying so, not a lost chunk
+            rows.append({**base, "status": "failed", "message": f"{type(e).__name__}: {e}",
+                         "theta_max_over_alpha": math.nan, "overturned": False,
+                         "overturn_mode": NOT_OVERTURNED, "overturn_time": math.nan, "impacts": 0,
+                         "uplift": False, "uplifts": 0, "u_max": math.nan,
+                         "runtime_s": time.perf_counter() - start})
+            continue
+        t_fall = tr.overturn_time if tr.overturned and tr.overturn_time is not None else math.inf
+        before = sum(1 for i in tr.counted_impacts if i.t <= t_fall)
+        rows.append({**base, "status": str(tr.status), "message": tr.message,
+                     "theta_max_over_alpha": tr.theta_max_over_alpha, "overturned": bool(tr.overturned),
+                     "overturn_mode": _overturn_mode(tr.overturned, before),
+                     "overturn_time": math.nan if tr.overturn_time is None else float(tr.overturn_time),
+                     "impacts": tr.impact_count, "uplift": tr.uplifts > 0, "uplifts": tr.uplifts,
+                     "u_max": tr.u_max, "runtime_s": time.perf_counter() - start})
+    return rows
+
+
+# --- tables -----------------------------------------------------------------------------
+
+def rows_to_table(rows: list[dict]):
+    import pyarrow as pa
+    schema = _schema()
+    return pa.Table.from_pylist([{k: r.get(k) for k in COLUMNS} for r in rows], schema=schema)
+
+
+def sort_table(table):
+    return table.sort_by([(k, "ascending") for k in SORT_KEYS])
+
+
+def write_part(path: Path, rows: list[dict]) -> None:
+    import pyarrow.parquet as pq
+    from isorock.validate.output import write_atomic
+    write_atomic(path, lambda tmp: pq.write_table(rows_to_table(rows), tmp))
+
+
+def read_parts(paths) -> "pyarrow.Table":
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+    tables = [pq.read_table(p, schema=_schema()) for p in paths]
+    return sort_table(pa.concat_tables(tables) if tables else _schema().empty_table())
+
+
+# --- progress ---------------------------------------------------------------------------
+
+class Progress:
+    """One progress bar with an ETA on stderr: redrawn in place on a terminal, else a
+    line at most every `every` seconds (logs stay short)."""
+
+    def __init__(self, total: int, *, stream=None, every: float = 10.0, label: str = "runs"):
+        self.total, self.done, self.label = total, 0, label
+        self.stream = stream if stream is not None else sys.stderr
+        self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
+        self.every, self.start, self.last = every, time.monotonic(), -math.inf
+
+    def update(self, n: int) -> None:
+        self.done += n
+        now = time.monotonic()
+        if self.tty or now - self.last >= self.every or self.done >= self.total:
+            self.last = now
+            self._draw(now)
+
+    def _draw(self, now):
+        elapsed = now - self.start
+        frac = self.done / self.total if self.total else 1.0
+        eta = elapsed * (1 - frac) / frac if frac > 0 else math.nan
+        eta_s = f"{eta:5.0f} s" if math.isfinite(eta) else "    ? s"
+        if self.tty:
+            bar = "#" * int(30 * frac)
+            self.stream.write(f"\r[{bar:<30}] {self.done}/{self.total} {self.label} "
+                              f"{elapsed:5.0f} s, ETA {eta_s}")
+            if self.done >= self.total:
+                self.stream.write("\n")
+        else:
+            self.stream.write(f"{self.done}/{self.total} {self.label} ({100 * frac:.0f}%), "
+                              f"{elapsed:.0f} s, ETA {eta_s}\n")
+        self.stream.flush()
+
+
+# --- executing a list of tasks ----------------------------------------------------------
+
+def execute(tasks: list[Task], *, client=None, threads: int | None = None, on_done, progress=None) -> int:
+    """Run `tasks`, calling on_done(task, rows) here as each one finishes (in the order
+    they finish). client: a dask.distributed Client, or None to run serially in this
+    process. Returns the number of tasks run."""
+    if client is None:
+        for task in tasks:
+            rows = run_task(task, threads)
+            on_done(task, rows)
+            if progress:
+                progress.update(len(task.cases))
+        return len(tasks)
+    from dask.distributed import as_completed
+    by_key = {}
+    futures = []
+    for task in tasks:
+        fut = client.submit(run_task, task, 1, key=f"isorock-chunk-{task.id}", pure=False)
+        by_key[fut.key] = task
+        futures.append(fut)
+    try:
+        for fut in as_completed(futures):
+            task = by_key[fut.key]
+            on_done(task, fut.result())
+            fut.release()
+            if progress:
+                progress.update(len(task.cases))
+    except BaseException:
+        client.cancel(futures)
+        raise
+    return len(tasks)
+
+
+def local_client(workers: int):
+    """A LocalCluster of `workers` single-threaded worker processes (the analytic kernel
+    and the contact engines each use one core per process)."""
+    import logging
+
+    from dask.distributed import Client, LocalCluster
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.ERROR)
+    return Client(cluster)
+
+
+def default_workers() -> int:
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)

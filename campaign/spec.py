@@ -1,0 +1,422 @@
+"""The campaign file (TOML): what to run, checked in full before anything runs.
+
+A campaign is the product systems × motions × (engine, setting). `load_spec(path)`
+reads and validates the file and returns a frozen `CampaignSpec`; `spec.cases()`
+expands it into `Case`s in a fixed order (the order, and so every case id and chunk
+id, depends only on the file's content). The format is documented in
+docs/campaigns.md. Every error is an `InputError` naming the key:
+`systems.period = -1.0: must be a positive finite number`.
+"""
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from isorock.analytic.errors import InputError
+from isorock.analytic.motion import PULSES
+
+#: Largest number of rows (case × engine setting) a campaign may have: beyond it a
+#: typo (a grid of 10⁴ × 10⁴) would fill the disk instead of failing.
+MAX_RUNS = 2_000_000
+#: Largest number of contact-engine runs (each costs ~0.1–10 s; 10⁵ is days on 2 cores).
+MAX_CONTACT_RUNS = 100_000
+#: Default cases per task: the analytic kernel runs a whole chunk in one call.
+ANALYTIC_CHUNK = 500
+CONTACT_CHUNK = 4
+#: Default time after the motion's end (s): model.md's tail, ample for a block past α
+#: to return or fall (time scale 1/p ≈ 0.4 s).
+DEFAULT_TAIL = 5.0
+
+SCALE_BY = {"pga": "g", "pgv": "m/s"}
+BASES = ("fixed", "isolated")
+_TOP_KEYS = {"campaign", "systems", "motions", "engines", "duration", "products"}
+
+
+def _where(key, value, allowed):
+    return InputError(f"{key} = {value!r}: must be {allowed}")
+
+
+def _number(key, value, *, positive=True, allow_zero=False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise _where(key, value, "a number")
+    x = float(value)
+    if not math.isfinite(x) or (positive and (x < 0 or (x == 0 and not allow_zero))):
+        raise _where(key, value, "a positive finite number" if not allow_zero else "a non-negative finite number")
+    return x
+
+
+def _grid(key, value, *, allow_zero=False) -> tuple[float, ...]:
+    """A number, a list of numbers, or a range {from, to, num} (linear, both ends
+    included; `log = true` for geometric spacing)."""
+    if isinstance(value, dict):
+        unknown = set(value) - {"from", "to", "num", "log"}
+        if unknown:
+            raise InputError(f"{key}.{sorted(unknown)[0]}: unknown key (a range has from, to, num, log)")
+        for k in ("from", "to", "num"):
+            if k not in value:
+                raise InputError(f"{key}.{k}: missing (a range needs from, to and num)")
+        lo = _number(f"{key}.from", value["from"], allow_zero=allow_zero)
+        hi = _number(f"{key}.to", value["to"], allow_zero=allow_zero)
+        num = value["num"]
+        if isinstance(num, bool) or not isinstance(num, int) or num < 1:
+            raise _where(f"{key}.num", num, "a positive integer")
+        if num > MAX_RUNS:
+            raise _where(f"{key}.num", num, f"at most {MAX_RUNS}")
+        if hi < lo:
+            raise _where(f"{key}.to", hi, f"at least {key}.from = {lo}")
+        log = value.get("log", False)
+        if not isinstance(log, bool):
+            raise _where(f"{key}.log", log, "true or false")
+        if log and lo <= 0:
+            raise _where(f"{key}.from", lo, "positive for a log range")
+        vals = np.geomspace(lo, hi, num) if log else np.linspace(lo, hi, num)
+        return tuple(float(round(v, 12)) for v in vals)
+    items = value if isinstance(value, list) else [value]
+    if not items:
+        raise _where(key, value, "a number, a non-empty list or a range {from, to, num}")
+    return tuple(_number(f"{key}[{i}]" if isinstance(value, list) else key, v, allow_zero=allow_zero)
+                 for i, v in enumerate(items))
+
+
+def _strings(key, value, allowed) -> tuple[str, ...]:
+    items = value if isinstance(value, list) else [value]
+    for v in items:
+        if v not in allowed:
+            raise _where(key, v, f"one of {', '.join(allowed)}")
+    if not items:
+        raise _where(key, value, f"one or more of {', '.join(allowed)}")
+    return tuple(items)
+
+
+def _check_keys(key, table, allowed):
+    if not isinstance(table, dict):
+        raise _where(key, table, "a table")
+    for k in table:
+        if k not in allowed:
+            raise InputError(f"{key}.{k}: unknown key (allowed: {', '.join(sorted(allowed))})")
+
+
+@dataclass(frozen=True)
+class EngineSetting:
+    """One engine with one set of setting overrides; `label` names it in the table."""
+
+    engine: str
+    overrides: tuple[tuple[str, object], ...] = ()
+
+    @property
+    def label(self) -> str:
+        return ",".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
+                        for k, v in self.overrides) or "default"
+
+    @property
+    def settings_kwargs(self) -> dict:
+        return {k: (tuple(v) if isinstance(v, list) else v) for k, v in self.overrides}
+
+
+@dataclass(frozen=True)
+class Case:
+    """One system under one motion for one duration; `inputs` are the table's columns
+    that define it (everything needed to rebuild it, for the record)."""
+
+    case: int
+    system: object  # analytic.system.System
+    motion: object  # analytic.motion.GroundMotion
+    duration: float
+    inputs: dict = field(default_factory=dict, compare=False)
+    theta0: float = 0.0
+
+
+@dataclass(frozen=True)
+class CampaignSpec:
+    name: str
+    systems: dict
+    motions: dict
+    engines: tuple[EngineSetting, ...]
+    duration: dict
+    products: dict
+    analytic_chunk: int = ANALYTIC_CHUNK
+    contact_chunk: int = CONTACT_CHUNK
+    source: str = ""  # the file's path, for messages and relative record folders
+
+    # --- identity -------------------------------------------------------------------
+    def fingerprint(self) -> str:
+        """A hash of everything that defines the results (not name/products/source)."""
+        body = {"systems": self.systems, "motions": self.motions, "duration": self.duration,
+                "engines": [(e.engine, list(e.overrides)) for e in self.engines]}
+        return hashlib.sha256(json.dumps(body, sort_keys=True, default=str).encode()).hexdigest()[:16]
+
+    # --- expansion ------------------------------------------------------------------
+    def system_grid(self) -> list[dict]:
+        """Every system's defining inputs, in a fixed order (geometry outer, base inner)."""
+        s = self.systems
+        if "height" in s:
+            geometry = [{"height": H, "width": B} for H, B in itertools.product(s["height"], s["width"])]
+        else:
+            geometry = []
+            for lam_key, size in itertools.product(s["slenderness"], s["size"]):
+                lam = lam_key
+                # size is R = √(b² + h²), the half-diagonal (m): p = √(3g/4R)
+                b = size / math.sqrt(1 + lam * lam)
+                geometry.append({"height": round(2 * lam * b, 12), "width": round(2 * b, 12)})
+        out = []
+        for geo, mass in itertools.product(geometry, s["mass"]):
+            for base in s["base"]:
+                if base == "fixed":
+                    out.append({**geo, "mass": mass, "base": "fixed", "mass_ratio": 0.0,
+                                "period": math.nan, "damping_ratio": math.nan})
+                else:
+                    for mu, T, xi in itertools.product(s["mass_ratio"], s["period"], s["damping_ratio"]):
+                        out.append({**geo, "mass": mass, "base": "isolated", "mass_ratio": mu,
+                                    "period": T, "damping_ratio": xi})
+        return out
+
+    def n_motions_per_system(self) -> int:
+        m = self.motions
+        if m["type"] == "pulse":
+            return len(m["pulse"]) * len(m["frequency_ratio"]) * len(m["amplitude_ratio"])
+        return m["n_records"] * len(m["levels"])
+
+    @property
+    def n_cases(self) -> int:
+        return len(self.system_grid()) * self.n_motions_per_system()
+
+    @property
+    def n_runs(self) -> int:
+        return self.n_cases * len(self.engines)
+
+    def cases(self, records: dict | None = None) -> list[Case]:
+        """Every case, systems outer, motions inner. `records`: name → GroundMotion
+        for a record suite (campaign.records.load_suite)."""
+        from .build import build_case
+        rows = []
+        for sys_inputs in self.system_grid():
+            for mot_inputs in self._motion_grid(records):
+                rows.append({**sys_inputs, **mot_inputs})
+        return [build_case(i, inputs, self.duration, records) for i, inputs in enumerate(rows)]
+
+    def _motion_grid(self, records):
+        m = self.motions
+        if m["type"] == "pulse":
+            for kind, fr, ar in itertools.product(m["pulse"], m["frequency_ratio"], m["amplitude_ratio"]):
+                yield {"motion": kind, "cycles": m["cycles"], "frequency_ratio": fr, "amplitude_ratio": ar,
+                       "scale_by": "", "intensity": math.nan}
+        else:
+            if records is None:
+                raise InputError("motions: a record suite must be loaded to expand the cases")
+            for name in sorted(records):
+                for level in m["levels"]:
+                    yield {"motion": name, "cycles": math.nan, "frequency_ratio": math.nan,
+                           "amplitude_ratio": math.nan, "scale_by": m["scale_by"], "intensity": level}
+
+
+def _systems(t) -> dict:
+    allowed = {"slenderness", "alpha", "size", "height", "width", "mass", "base", "mass_ratio",
+               "period", "damping_ratio"}
+    _check_keys("systems", t, allowed)
+    out = {}
+    geometry_keys = [k for k in ("slenderness", "alpha", "height", "width") if k in t]
+    if "height" in t or "width" in t:
+        if set(geometry_keys) != {"height", "width"} or "size" in t:
+            raise InputError("systems: give height and width, or slenderness (or alpha) and size, not a mix")
+        out["height"], out["width"] = _grid("systems.height", t["height"]), _grid("systems.width", t["width"])
+    else:
+        if ("slenderness" in t) == ("alpha" in t):
+            raise InputError("systems: give height and width, or slenderness (or alpha) and size")
+        if "alpha" in t:
+            alphas = _grid("systems.alpha", t["alpha"])
+            for a in alphas:
+                if not 0 < a < math.pi / 2:
+                    raise _where("systems.alpha", a, "between 0 and π/2 (rad)")
+            out["slenderness"] = tuple(1 / math.tan(a) for a in alphas)
+        else:
+            out["slenderness"] = _grid("systems.slenderness", t["slenderness"])
+        if "size" not in t:
+            raise InputError("systems.size: missing (R = √(b² + h²), the half-diagonal, m)")
+        out["size"] = _grid("systems.size", t["size"])
+    out["mass"] = _grid("systems.mass", t.get("mass", 1000.0))
+    out["base"] = _strings("systems.base", t.get("base", "fixed"), BASES)
+    if "isolated" in out["base"]:
+        for k in ("mass_ratio", "period", "damping_ratio"):
+            if k not in t:
+                raise InputError(f"systems.{k}: missing (needed for base = 'isolated')")
+        out["mass_ratio"] = _grid("systems.mass_ratio", t["mass_ratio"])
+        out["period"] = _grid("systems.period", t["period"])
+        out["damping_ratio"] = _grid("systems.damping_ratio", t["damping_ratio"], allow_zero=True)
+        for z in out["damping_ratio"]:
+            if z >= 1:
+                raise _where("systems.damping_ratio", z, "below 1 (an underdamped isolator)")
+    return out
+
+
+def _motions(t, source: Path) -> dict:
+    if not isinstance(t, dict) or "type" not in t:
+        raise InputError("motions.type: missing (one of pulse, records)")
+    kind = t["type"]
+    if kind == "pulse":
+        _check_keys("motions", t, {"type", "pulse", "frequency_ratio", "amplitude_ratio", "cycles"})
+        for k in ("frequency_ratio", "amplitude_ratio"):
+            if k not in t:
+                raise InputError(f"motions.{k}: missing ({'ω_p/p' if k[0] == 'f' else 'a_p/(g·tanα)'})")
+        return {"type": "pulse", "pulse": _strings("motions.pulse", t.get("pulse", "sine"), PULSES),
+                "frequency_ratio": _grid("motions.frequency_ratio", t["frequency_ratio"]),
+                "amplitude_ratio": _grid("motions.amplitude_ratio", t["amplitude_ratio"]),
+                "cycles": _number("motions.cycles", t.get("cycles", 1.0))}
+    if kind == "records":
+        _check_keys("motions", t, {"type", "suite", "folder", "units", "scale_by", "levels", "limit"})
+        if ("suite" in t) == ("folder" in t):
+            raise InputError("motions: give suite = 'fema-p695' or folder = 'path/to/records', not both")
+        out = {"type": "records"}
+        if "suite" in t:
+            from .records import SUITES
+            if t["suite"] not in SUITES:
+                raise _where("motions.suite", t["suite"], f"one of {', '.join(SUITES)}")
+            out["suite"] = t["suite"]
+        else:
+            folder = Path(str(t["folder"])).expanduser()
+            if not folder.is_absolute():
+                folder = (source.parent / folder).resolve()
+            if not folder.is_dir():
+                raise _where("motions.folder", str(t["folder"]), f"a folder of records (looked in {folder})")
+            out["folder"] = str(folder)
+        units = t.get("units", "m/s2")
+        from isorock.analytic.motion import UNITS
+        if units not in UNITS:
+            raise _where("motions.units", units, f"one of {', '.join(UNITS)} (for two-column files)")
+        out["units"] = units
+        scale_by = t.get("scale_by", "pga")
+        if scale_by not in SCALE_BY:
+            raise _where("motions.scale_by", scale_by, "pga (levels in g) or pgv (levels in m/s)")
+        out["scale_by"] = scale_by
+        if "levels" not in t:
+            raise InputError(f"motions.levels: missing (intensities in {SCALE_BY[scale_by]})")
+        out["levels"] = _grid("motions.levels", t["levels"])
+        limit = t.get("limit", 0)
+        if isinstance(limit, bool) or not isinstance(limit, int) or limit < 0:
+            raise _where("motions.limit", limit, "a non-negative integer (0: every record)")
+        out["limit"] = limit
+        return out
+    raise _where("motions.type", kind, "one of pulse, records")
+
+
+def _engines(t) -> tuple[EngineSetting, ...]:
+    from isorock.validate.engines import ALL_ENGINES, get_engine
+    if not isinstance(t, list) or not t:
+        raise InputError("engines: missing (one or more [[engines]] tables with name = ...)")
+    out = []
+    for i, e in enumerate(t):
+        key = f"engines[{i}]"
+        _check_keys(key, e, {"name", "settings"})
+        if "name" not in e:
+            raise InputError(f"{key}.name: missing (one of {', '.join(ALL_ENGINES)})")
+        name = e["name"]
+        if name not in ALL_ENGINES:
+            raise _where(f"{key}.name", name, f"one of {', '.join(ALL_ENGINES)}")
+        settings = e.get("settings", [{}])
+        if isinstance(settings, dict):
+            settings = [settings]
+        if not isinstance(settings, list) or not settings:
+            raise _where(f"{key}.settings", settings, "a list of tables, e.g. [{timestep = 1e-3}]")
+        engine = get_engine(name)
+        for j, s in enumerate(settings):
+            if not isinstance(s, dict):
+                raise _where(f"{key}.settings[{j}]", s, "a table, e.g. {timestep = 1e-3}")
+            overrides = tuple(sorted((k, tuple(v) if isinstance(v, list) else v) for k, v in s.items()))
+            try:
+                engine.settings(**dict(overrides))
+            except InputError as err:
+                raise InputError(f"{key}.settings[{j}]: {err}") from None
+            except (TypeError, ValueError) as err:
+                raise InputError(f"{key}.settings[{j}]: {err}") from None
+            setting = EngineSetting(name, overrides)
+            if setting in out:
+                raise InputError(f"{key}.settings[{j}] = {setting.label!r}: listed twice for {name}")
+            out.append(setting)
+    return tuple(out)
+
+
+def _duration(t) -> dict:
+    _check_keys("duration", t, {"tail", "end"})
+    if "end" in t and "tail" in t:
+        raise InputError("duration: give tail (s after the motion's end) or end (s from t = 0), not both")
+    if "end" in t:
+        return {"end": _number("duration.end", t["end"])}
+    return {"tail": _number("duration.tail", t.get("tail", DEFAULT_TAIL), allow_zero=True)}
+
+
+def _products(t) -> dict:
+    _check_keys("products", t, {"agreement", "spectrum", "fragility"})
+    out = {}
+    if "agreement" in t:
+        _check_keys("products.agreement", t["agreement"], {"x", "y"})
+        out["agreement"] = dict(t["agreement"])
+    for k in ("spectrum", "fragility"):
+        if k in t:
+            if not isinstance(t[k], bool):
+                raise _where(f"products.{k}", t[k], "true or false")
+            out[k] = t[k]
+    return out
+
+
+def parse_spec(data: dict, source: Path = Path("campaign.toml")) -> CampaignSpec:
+    for k in data:
+        if k not in _TOP_KEYS:
+            raise InputError(f"{k}: unknown key (a campaign has {', '.join(sorted(_TOP_KEYS))})")
+    head = data.get("campaign", {})
+    _check_keys("campaign", head, {"name", "analytic_chunk", "contact_chunk"})
+    for k in ("systems", "motions", "engines"):
+        if k not in data:
+            raise InputError(f"{k}: missing (see docs/campaigns.md)")
+    chunks = {}
+    for k, default in (("analytic_chunk", ANALYTIC_CHUNK), ("contact_chunk", CONTACT_CHUNK)):
+        v = head.get(k, default)
+        if isinstance(v, bool) or not isinstance(v, int) or not 1 <= v <= 100_000:
+            raise _where(f"campaign.{k}", v, "an integer from 1 to 100000")
+        chunks[k] = v
+    spec = CampaignSpec(
+        name=str(head.get("name", source.stem)), systems=_systems(data["systems"]),
+        motions=_motions(data["motions"], source), engines=_engines(data["engines"]),
+        duration=_duration(data.get("duration", {})), products=_products(data.get("products", {})),
+        source=str(source), **chunks)
+    if spec.motions["type"] == "records":
+        from .records import count_records
+        n = count_records(spec.motions)
+        object.__setattr__(spec, "motions", {**spec.motions, "n_records": n})
+    _check_size(spec)
+    if "agreement" in spec.products:
+        from .products import AXES
+        for k in ("x", "y"):
+            v = spec.products["agreement"].get(k)
+            if v is not None and v not in AXES:
+                raise _where(f"products.agreement.{k}", v, f"one of {', '.join(AXES)}")
+    return spec
+
+
+def _check_size(spec: CampaignSpec) -> None:
+    n_runs = spec.n_runs
+    if n_runs > MAX_RUNS:
+        raise InputError(f"campaign size = {n_runs} runs ({spec.n_cases} cases × {len(spec.engines)} "
+                         f"engine settings): must be at most {MAX_RUNS}")
+    n_contact = spec.n_cases * sum(e.engine not in ("analytic", "analytic-fast") for e in spec.engines)
+    if n_contact > MAX_CONTACT_RUNS:
+        raise InputError(f"campaign size = {n_contact} contact-engine runs: must be at most "
+                         f"{MAX_CONTACT_RUNS} (each takes 0.1–10 s; use a coarser grid for them)")
+
+
+def load_spec(path) -> CampaignSpec:
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"campaign file {str(path)!r}: no such file")
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"campaign file {str(path)!r}: not valid TOML ({e})") from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise InputError(f"campaign file {str(path)!r}: cannot be read ({e})") from None
+    return parse_spec(data, path.resolve())

