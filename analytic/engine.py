@@ -1,5 +1,6 @@
-"""The analytic model behind the engine protocol of `validate.engines`."""
-from .hybrid import AnalyticSettings as Settings
+"""The analytic model's SciPy reference path (registry name "analytic-reference"), which
+the compiled engine "analytic" is tested against."""
 from .hybrid import simulate
+from .settings import AnalyticSettings as Settings
 
 __all__ = ["Settings", "simulate"]

@@ -1,7 +1,7 @@
-"""The compiled analytic kernel (analytic.fast) behind the engine protocol of
-`validate.engines`: same settings as the reference path, same Trajectory."""
+"""The analytic model's engine (registry name "analytic"): the compiled kernel
+(analytic.fast), with the settings and Trajectory of the reference path ("analytic-reference")."""
 from .fast import simulate_fast
-from .hybrid import AnalyticSettings as Settings
+from .settings import AnalyticSettings as Settings
 
 
 def simulate(system, motion=None, *, progress=None, **kwargs):
