@@ -958,9 +958,10 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
     mp, acc = _motion_params(motion)
     y0 = np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0])
     cap = int(2.5 * duration / odt) + 256  # grid points, step ends and events
-    args = (sp, mp, acc, _breaks(motion, duration), duration, y0, settings.rtol, settings.atol,
-            settings.max_step, settings.max_events, odt, True, cap, impact_threshold,
-            settings.overturn == physics.AT_ALPHA, motion.end_time)
+    # plain float/int/bool, so that one compiled signature serves every call
+    args = (sp, mp, acc, _breaks(motion, duration), float(duration), y0, float(settings.rtol),
+            float(settings.atol), float(settings.max_step), int(settings.max_events), float(odt), True, cap,
+            float(impact_threshold), settings.overturn == physics.AT_ALPHA, float(motion.end_time))
     try:
         r = call_kernel(_integrate, *args)
     except ArithmeticError as e:  # a failed run is a status, not a traceback
@@ -1125,8 +1126,8 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
     out = np.zeros((n, _N_OUT))
     motion_end = np.array([m.end_time for m in motions], dtype=np.float64)
     args = (sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys.astype(np.int64),
-            case_mot.astype(np.int64), case_brk, T, y_init, settings.rtol, settings.atol,
-            settings.max_step, settings.max_events, impact_threshold,
+            case_mot.astype(np.int64), case_brk, T, y_init, float(settings.rtol), float(settings.atol),
+            float(settings.max_step), int(settings.max_events), float(impact_threshold),
             settings.overturn == physics.AT_ALPHA, motion_end, out)
     failures = {}  # case: why the kernel raised
     if workers == 1 or n == 1:
@@ -1177,8 +1178,9 @@ def _run_cases(args, lo, hi, failures):
         i, j, kb = case_sys[n], case_mot[n], case_brk[n]
         try:
             r = call_kernel(_integrate, sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
-                            brk_all[brk_off[kb]:brk_off[kb + 1]], T[n], y_init[n], rtol, atol, max_step,
-                            max_events, 1.0, False, 1, impact_frac, rule_alpha, motion_end[j])
+                            brk_all[brk_off[kb]:brk_off[kb + 1]], float(T[n]), y_init[n], rtol, atol,
+                            max_step, max_events, 1.0, False, 1, impact_frac, rule_alpha,
+                            float(motion_end[j]))
         except ArithmeticError as e:  # one case's failure is its row's status, never the batch's
             out[n, 0] = _FAILED
             out[n, 1:] = math.nan

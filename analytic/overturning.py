@@ -70,7 +70,9 @@ def judge_overturning(t, theta, alpha: float, *, motion_end: float | None = None
     the message whether the block was still moving after it. side_angle: |θ| at which
     the block lies on its side (π/2; a contact engine whose block rests on its side a
     little short of it, by penetration or rounding, may pass a slightly smaller angle).
-    Times are interpolated linearly between samples.
+    Times are interpolated linearly between samples. A sample within a relative 1e-9
+    of α (or of side_angle) has reached it: an engine that stops at α, located as an
+    event, stores it to rounding, either side.
     """
     require(rule in OVERTURN_RULES, "overturn", rule, f"one of {', '.join(OVERTURN_RULES)}")
     require(math.isfinite(alpha) and 0 < alpha < side_angle, "alpha", alpha, f"in (0, {side_angle:.6g}) rad")
@@ -79,14 +81,15 @@ def judge_overturning(t, theta, alpha: float, *, motion_end: float | None = None
     require(t.shape == a.shape and t.ndim == 1, "t/theta", (t.shape, a.shape), "1-D arrays of one length")
     if t.size == 0:
         return Overturning(False, None, REASONS[0], "no history")
-    over = np.nonzero(a >= alpha)[0]
+    reach = alpha * (1 - 1e-9)
+    over = np.nonzero(a >= reach)[0]
     if rule == AT_ALPHA:
         if over.size == 0:
             return Overturning(False, None, REASONS[0], describe(0, float(t[-1]), None, a[-1] / alpha))
         i = int(over[0])
         when = _crossing(t, a, i, alpha)
         return Overturning(True, when, REASONS[1], describe(1, when, when, a[i] / alpha))
-    side = np.nonzero(a >= side_angle)[0]
+    side = np.nonzero(a >= side_angle * (1 - 1e-9))[0]
     end = int(side[0]) if side.size else t.size - 1
     rises = np.nonzero((a[1:end + 1] >= alpha) & (a[:end] < alpha))[0] + 1
     last_rise = _crossing(t, a, int(rises[-1]), alpha) if rises.size else (float(t[0]) if a[0] >= alpha else None)
