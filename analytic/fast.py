@@ -1,5 +1,7 @@
-"""The hybrid model (analytic/hybrid.py) compiled with numba: the same physics, the
-same integrator and the same event logic, two to three orders of magnitude faster.
+"""The analytic engine ("analytic"): the hybrid model compiled with numba. The physics is
+analytic/physics.py, which the SciPy reference path (analytic/hybrid.py, engine
+"analytic-reference") calls too; here it is compiled into the kernel. Same integrator
+and event logic as the reference, two to three orders of magnitude faster.
 
 Why it matches the reference to rounding (~1e-13 rad on Kobe) rather than only to its
 tolerance (1e-10 relative): the kernel
@@ -20,17 +22,23 @@ at every sample). These change results only at rounding level.
 
 Beyond the reference: extremes of u (u̇ = 0) are located as events too, so u_max is
 exact and those times are stored (the reference reads u_max off its stored points;
-the two agree to ~1e-5 relative).
+the two agree to ~1e-5 relative). Where the reference leaves SciPy to IEEE arithmetic
+(Brent's step and the error norm dividing by an underflowed zero, once a free vibration
+has decayed into denormals), the kernel says what C would have done instead of raising
+ZeroDivisionError.
 
 Public entry points:
-- `simulate_fast(system, motion, ...) -> Trajectory`, engine "analytic-fast";
+- `simulate_fast(system, motion, ...) -> Trajectory`, engine "analytic" (formerly
+  "analytic-fast", a name that still works);
 - `simulate_batch(systems, motions, ...) -> list[dict]`, summaries over many cases
   on all cores (threads over the GIL-free kernel; prange and processes on request);
 - `benchmark_against_solve_ivp(...) -> dict`, the kernel against the reference,
   timed in one process.
 
-The kernel is compiled on first use and cached on disk (`cache=True`), so a new
-process loads it instead of compiling again.
+The kernel is compiled on first use (said on stderr, with how long it took) and cached on
+disk (analytic/kernel_cache.py: stamped with physics.py too, a writable folder found for
+a read-only install, a damaged cache rebuilt), so a new process loads it instead of
+compiling again.
 """
 from __future__ import annotations
 
@@ -1181,7 +1189,7 @@ def _run_cases(args, lo, hi, failures):
                             brk_all[brk_off[kb]:brk_off[kb + 1]], float(T[n]), y_init[n], rtol, atol,
                             max_step, max_events, 1.0, False, 1, impact_frac, rule_alpha,
                             float(motion_end[j]))
-        except ArithmeticError as e:  # one case's failure is its row's status, never the batch's
+        except Exception as e:  # noqa: BLE001 - one case's failure is its row's status, never the batch's
             out[n, 0] = _FAILED
             out[n, 1:] = math.nan
             failures[n] = f"the compiled kernel failed: {type(e).__name__}: {e}"
