@@ -13,7 +13,7 @@ SYSTEM = System.fixed(height=2.0, width=0.7, mass=3800.0)
 FIRST_IMPACT = 0.5014170  # model.md, exact integral, θ0 = α/2
 # how closely each engine can place an impact in time: the analytic engines to
 # integrator tolerance, contact engines to a few steps of contact transient
-TIME_TOLERANCE = {"analytic": 1e-7, "analytic-fast": 1e-7, "mujoco": 5e-3, "bullet": 5e-3}
+TIME_TOLERANCE = {"analytic": 1e-7, "analytic-reference": 1e-7, "analytic-fast": 1e-7, "mujoco": 5e-3, "bullet": 5e-3}
 
 
 def _importable(name):
