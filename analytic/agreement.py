@@ -33,6 +33,20 @@ def random_cases(seed: int, n: int) -> list[tuple[System, GroundMotion]]:
     return cases
 
 
+def safe_band_cases(seed: int, n: int) -> list[tuple[System, GroundMotion]]:
+    """n one-sine cases on a fixed base (α = 0.25 rad) near the safe region of the
+    overturning spectrum (docs/images/overturning_spectrum_fixed.png), where blocks lean
+    past α and return: ω_p/p in 4–9, a_p/(g·tanα) = 1.55·ω_p/p − 0.5 ± 0.8."""
+    rng = np.random.default_rng(seed)
+    block = System.fixed(height=2.0, width=2 * math.tan(0.25), mass=1000.0)
+    cases = []
+    for _ in range(n):
+        w = rng.uniform(4, 9)
+        a = 1.55 * w - 0.5 + rng.uniform(-0.8, 0.8)
+        cases.append((block, GroundMotion.from_pulse(Pulse("sine", a * math.tan(0.25), w * block.p / (2 * math.pi)))))
+    return cases
+
+
 def compare_paths(cases, settings: AnalyticSettings | None = None) -> dict:
     """Run every case on both paths; the per-case rows and the worst disagreements."""
     from .fast import simulate_fast
