@@ -82,7 +82,8 @@ class _Integrator:
         self.breaks = list(motion.breakpoints(duration)) + [duration]
         # the physics takes packed parameters (analytic.physics); plain floats here
         self.sp = tuple(physics.system_params(system, settings.rest_velocity).tolist())
-        self.mp, self.acc = physics.motion_params(motion)
+        mp, self.acc = physics.motion_params(motion)
+        self.mp = tuple(mp.tolist())  # Python floats: numpy scalars would slow every right-hand side
         self.motion_end = motion.end_time
         self.out_t, self.out_y, self.out_mode = [], [], []
         self.impacts, self.uplifts = [], []
