@@ -65,7 +65,9 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: An
     motion is zero. impact_threshold: model.md's counting rule, as a fraction of α.
     progress: optional callable(t, duration) called about once a second. Returns a Trajectory whose `impacts` are every impact the model
     made (`counted` marks those model.md's rule counts) and whose `energy` holds the
-    balance. A run that overturns stops at the overturning time.
+    balance. Overturning follows settings.overturn (model.md, "Past α"): by default the
+    run goes on past α and stops when |θ| reaches π/2 (or, on a fixed base after the
+    motion, once the block is past α and falling); under "alpha" it stops at α.
     """
     settings = settings or AnalyticSettings()
     motion, duration = run_inputs(system, motion, duration, theta0, impact_threshold,
