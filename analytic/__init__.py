@@ -10,7 +10,7 @@ _HOMES = {
     "beta": "coefficients", "beta2": "coefficients", "beta3": "coefficients", "beta_housner": "coefficients",
     "no_bounce_slenderness": "coefficients",
     "InputError": "errors",
-    "AnalyticSettings": "hybrid", "simulate": "hybrid",
+    "AnalyticSettings": "settings", "simulate": "hybrid",
     "GroundMotion": "motion", "Pulse": "motion", "load_motion": "motion", "parse_pulse": "motion",
     "read_at2": "motion", "read_jma": "motion", "read_two_column": "motion",
     "Status": "status",

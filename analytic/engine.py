@@ -1,8 +1,8 @@
-"""The analytic model (the SciPy reference path, `hybrid.py`) as an engine
-(`isorock.analytic.engine_protocol`)."""
+"""The analytic model's SciPy reference path (registry name "analytic-reference"), which
+the compiled engine "analytic" is tested against."""
 from .engine_protocol import Capabilities, EngineSpec
-from .hybrid import AnalyticSettings as Settings
 from .hybrid import simulate
+from .settings import AnalyticSettings as Settings
 
 
 def ladder(quick: bool):
@@ -13,8 +13,10 @@ def ladder(quick: bool):
 
 
 ENGINE = EngineSpec(
-    name="analytic", label="analytic", settings_type=Settings, simulate=simulate,
-    capabilities=Capabilities(isolated_base=True, past_alpha=False, batch=False, exact_impacts=True),
-    presets={"default": Settings}, ladder=ladder)
+    name="analytic-reference", label="analytic (SciPy reference)", settings_type=Settings, simulate=simulate,
+    # a run takes a second where the compiled engine takes milliseconds: no grid engine
+    capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=True,
+                              campaigns=False),
+    presets={"default": Settings, "conservative": lambda: Settings(overturn="alpha")}, ladder=ladder)
 
 __all__ = ["ENGINE", "Settings", "simulate", "ladder"]

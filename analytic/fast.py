@@ -1,5 +1,7 @@
-"""The hybrid model (analytic/hybrid.py) compiled with numba: the same physics, the
-same integrator and the same event logic, two to three orders of magnitude faster.
+"""The analytic engine ("analytic"): the hybrid model compiled with numba. The physics is
+analytic/physics.py, which the SciPy reference path (analytic/hybrid.py, engine
+"analytic-reference") calls too; here it is compiled into the kernel. Same integrator
+and event logic as the reference, two to three orders of magnitude faster.
 
 Why it matches the reference to rounding (~1e-13 rad on Kobe) rather than only to its
 tolerance (1e-10 relative): the kernel
@@ -20,23 +22,30 @@ at every sample). These change results only at rounding level.
 
 Beyond the reference: extremes of u (u̇ = 0) are located as events too, so u_max is
 exact and those times are stored (the reference reads u_max off its stored points;
-the two agree to ~1e-5 relative).
+the two agree to ~1e-5 relative). Where the reference leaves SciPy to IEEE arithmetic
+(Brent's step and the error norm dividing by an underflowed zero, once a free vibration
+has decayed into denormals), the kernel says what C would have done instead of raising
+ZeroDivisionError.
 
 Public entry points:
-- `simulate_fast(system, motion, ...) -> Trajectory`, engine "analytic-fast";
+- `simulate_fast(system, motion, ...) -> Trajectory`, engine "analytic" (formerly
+  "analytic-fast", a name that still works);
 - `simulate_batch(systems, motions, ...) -> list[dict]`, summaries over many cases
   on all cores (threads over the GIL-free kernel; prange and processes on request);
 - `benchmark_against_solve_ivp(...) -> dict`, the kernel against the reference,
   timed in one process.
 
-The kernel is compiled on first use and cached on disk (`cache=True`), so a new
-process loads it instead of compiling again.
+The kernel is compiled on first use (said on stderr, with how long it took) and cached on
+disk (analytic/kernel_cache.py: stamped with physics.py too, a writable folder found for
+a read-only install, a damaged cache rebuilt), so a new process loads it instead of
+compiling again.
 """
 from __future__ import annotations
 
 import math
 import os
 import time
+import types
 
 import numpy as np
 
@@ -49,18 +58,38 @@ except ImportError as e:  # pragma: no cover - numba is a declared dependency
         "install it with `pip install numba` (it is listed in pyproject.toml's dependencies)"
     ) from e
 
-from scipy.integrate._ivp import dop853_coefficients as _dop
 
+from . import physics
 from .errors import InputError, require, require_positive_finite
-from .hybrid import AnalyticSettings
+from .kernel_cache import cached_jit, call_kernel
+from .overturning import describe
+from .settings import AnalyticSettings
 from .motion import GroundMotion
 from .protocol import run_inputs
 from .status import Status
-from .system import STANDARD_GRAVITY, System
+from .system import System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
-ENGINE = "analytic-fast"
+ENGINE = "analytic"
 
+
+
+def _dop853_coefficients():
+    """SciPy's DOP853 tableau module, loaded from its file: importing it by name would
+    first import all of scipy.integrate (~0.3 s of a new process's start)."""
+    import importlib.util
+    spec = importlib.util.find_spec("scipy")
+    path = os.path.join(os.path.dirname(spec.origin), "integrate", "_ivp", "dop853_coefficients.py")
+    if not os.path.exists(path):  # pragma: no cover - a SciPy that moved it
+        from scipy.integrate._ivp import dop853_coefficients
+        return dop853_coefficients
+    spec = importlib.util.spec_from_file_location("_isorock_dop853_coefficients", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+_dop = _dop853_coefficients()
 # DOP853 tableau, exactly SciPy's (which is Hairer's)
 _A = np.ascontiguousarray(_dop.A, dtype=np.float64)  # (16, 16), rows 13-15 for dense output
 _B = np.ascontiguousarray(_dop.B, dtype=np.float64)
@@ -89,81 +118,62 @@ _D_IDX, _D_NNZ = _nonzero_rows((_D != 0).any(axis=0))
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0  # scipy.integrate._ivp.rk
 _EPS = float(np.finfo(float).eps)
 
-# system parameters, packed for the kernel
-(_M_BLOCK, _M_TOTAL, _H, _B_HALF, _G, _K, _C_DAMP, _FIXED, _ALPHA, _J, _THR, _BETA, _BETA2,
- _BETA3, _REST, _INV_M, _INV_J, _M_BASE, _INERTIA, _N_SP) = range(20)
-# motion parameters
-(_KIND, _DT, _END, _AMP, _OMEGA, _FREQ, _PEND, _SCALE, _SHIFT,
- _PIECE, _PI, _PA0, _PA1, _INV_DT, _N_MP) = range(15)
-# _PIECE: how the current piece between restarts reads a record: 0 the general way,
-# 1 one sample interval (i = _PI, samples _PA0, _PA1), 2 after the last sample
-_SAMPLED, _SINE, _COSINE, _RICKER = 0, 1, 2, 3
+# packed system and motion parameters: analytic.physics's layout
+from .physics import (GRAZE_MARGIN as _GRAZE, ALPHA as _ALPHA, FIXED as _FIXED, INV_DT as _INV_DT, KIND as _KIND,  # noqa: E402
+                      M_BLOCK as _M_BLOCK, M_TOTAL as _M_TOTAL, PA0 as _PA0, PA1 as _PA1, PI as _PI,
+                      PIECE as _PIECE, DT as _DT, END as _END, SAMPLED as _SAMPLED, THR as _THR, SIDE_ANGLE as _SIDE,
+                      C_DAMP as _C_DAMP)
+
 # statuses
 _COMPLETED, _OVERTURNED, _EVENT_LIMIT, _FAILED = 0, 1, 2, 3
 STATUS_NAMES = (Status.COMPLETED, Status.OVERTURNED, Status.EVENT_LIMIT, Status.FAILED)
-# event slots: translation (0 lift about O, 1 lift about O', 3 u̇ = 0);
-# rocking (0 impact, 1 overturn, 2 θ̇ = 0, 3 u̇ = 0). Slot 3 only on an isolated base:
-# it locates the extremes of u so that u_max is exact (the reference reads it off
-# its stored points).
-_TERMINAL = np.array([[1, 1, 0, 0], [1, 1, 0, 0]], dtype=np.int64)
-_DIRECTION = np.array([[1, 1, 0, 0], [-1, 1, 0, 0]], dtype=np.int64)
+# event slots: translation (0 lift about O, 1 lift about O', 3 u̇ = 0); rocking (0 impact,
+# 1 |θ| rising through α, 2 θ̇ = 0, 3 u̇ = 0, 4 |θ| reaching π/2). Slot 3 only on an
+# isolated base: it locates the extremes of u so that u_max is exact (the reference
+# reads it off its stored points). Slot 1 ends the run under the rule "alpha" (and on a
+# fixed base after the motion), slot 4 under "past-alpha"; otherwise slot 1 is noted only.
+_N_EV = 5
+_DIRECTION = np.array([[1, 1, 0, 0, 0], [-1, 1, 0, 0, 1]], dtype=np.int64)
 
 
-# --- ground motion and equations of motion ------------------------------------------
+# --- the physics: analytic.physics, compiled --------------------------------------------
 
-@njit(cache=True, inline="always")
-def _xg(t, mp, acc):
-    """ẍg(t) in m/s², GroundMotion.at(t) line by line."""
-    kind = int(mp[_KIND])
-    if kind == _SAMPLED:
-        piece = mp[_PIECE]
-        if piece == 1.0:  # a piece lies within one sample interval: no search
-            f = t * mp[_INV_DT] - mp[_PI]
-            return (1.0 - f) * mp[_PA0] + f * mp[_PA1]
-        if piece == 2.0 and t > mp[_END]:
-            return 0.0
-        if t < 0.0 or t > mp[_END]:
-            return 0.0
-        n = acc.size
-        if n == 1:
-            return acc[0] if t == 0.0 else 0.0
-        x = t / mp[_DT]
-        i = min(int(x), n - 2)
-        f = x - i
-        return (1.0 - f) * acc[i] + f * acc[i + 1]
-    tt = t + mp[_SHIFT]
-    if tt < 0.0 or tt > mp[_PEND]:
-        return 0.0
-    if kind == _SINE:
-        a = mp[_AMP] * math.sin(mp[_OMEGA] * tt)
-    elif kind == _COSINE:
-        a = mp[_AMP] * math.cos(mp[_OMEGA] * tt)
-    else:
-        tau = tt - 1.0 / mp[_FREQ]
-        x = (math.pi * mp[_FREQ] * tau) ** 2
-        a = mp[_AMP] * (1.0 - 2.0 * x) * math.exp(-x)
-    return mp[_SCALE] * a
+def _compile_physics():
+    """analytic.physics's functions, compiled: each is rebuilt over a copy of the physics
+    module's globals in which the functions it calls are the compiled ones (numba can
+    only call compiled functions), then wrapped with njit. Nothing is compiled here;
+    numba compiles them into the kernel (inlined where small) when the kernel compiles."""
+    table = dict(vars(physics))
+    inline = ("ground_acceleration", "pulse_acceleration", "translation_acceleration",
+              "rocking_accelerations", "base_acceleration")
+    for name in ("ground_acceleration", "pulse_acceleration", "translation_acceleration",
+                 "rocking_accelerations", "base_acceleration", "uplift_direction", "relift",
+                 "impact_function_order", "impact_continues", "impact_map", "kinetic_energy",
+                 "impact_energy_loss", "pivot_force_ratio", "overturn_code", "_bisect_ricker",
+                 "_pulse_crossings", "first_uplift"):
+        f = getattr(physics, name)
+        rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
+        table[name] = njit(inline="always")(rebuilt) if name in inline else njit(rebuilt)
+    return table
 
 
-@njit(cache=True, inline="always")
-def _theta_dd(sp, s, theta, theta_dot, u, u_dot, xg):
-    """(ü, θ̈, L1) in rocking mode s (hybrid.rocking_accelerations)."""
-    h, b, m, g = sp[_H], sp[_B_HALF], sp[_M_BLOCK], sp[_G]
-    st, ct = math.sin(theta), math.cos(theta)
-    L1 = h * ct + s * b * st
-    L2 = s * b * ct - h * st
-    J = sp[_J]
-    if sp[_FIXED] != 0.0:
-        return 0.0, (-m * L1 * xg - m * g * L2) * sp[_INV_J], L1
-    M = sp[_M_TOTAL]
-    f_u = -M * xg - m * L2 * theta_dot * theta_dot - sp[_C_DAMP] * u_dot - sp[_K] * u
-    f_t = -m * L1 * xg - m * g * L2
-    det = M * J - (m * L1) ** 2
-    inv = 1.0 / det
-    return (J * f_u - m * L1 * f_t) * inv, (M * f_t - m * L1 * f_u) * inv, L1
+_P = _compile_physics()
+_xg = _P["ground_acceleration"]
+_translation_acc = _P["translation_acceleration"]
+_rocking_acc = _P["rocking_accelerations"]
+_base_acc = _P["base_acceleration"]
+_uplift_dir = _P["uplift_direction"]
+_relift = _P["relift"]
+_impact_order = _P["impact_function_order"]
+_impact_continues = _P["impact_continues"]
+_impact_map = _P["impact_map"]
+_impact_loss = _P["impact_energy_loss"]
+_friction = _P["pivot_force_ratio"]
+_overturn_code = _P["overturn_code"]
+_first_uplift = _P["first_uplift"]
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def _rhs(mode, t, y0, y1, y2, y3, sp, mp, acc):
     """Right-hand side of (u, u̇, θ, θ̇, ground work, dashpot loss) in `mode`."""
     xg = _xg(t, mp, acc)
@@ -171,15 +181,13 @@ def _rhs(mode, t, y0, y1, y2, y3, sp, mp, acc):
     if mode == 0:
         if sp[_FIXED] != 0.0:
             return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-        M = sp[_M_TOTAL]
-        udd = -xg - (c * y1 + sp[_K] * y0) * sp[_INV_M]
-        return y1, udd, 0.0, 0.0, -xg * M * y1, c * y1 * y1
-    udd, thdd, L1 = _theta_dd(sp, float(mode), y2, y3, y0, y1, xg)
+        return y1, _translation_acc(sp, y0, y1, xg), 0.0, 0.0, -xg * sp[_M_TOTAL] * y1, c * y1 * y1
+    udd, thdd, L1 = _rocking_acc(sp, float(mode), y2, y3, y0, y1, xg)
     Mw = 0.0 if sp[_FIXED] != 0.0 else sp[_M_TOTAL]
     return y1, udd, y3, thdd, -xg * (Mw * y1 + sp[_M_BLOCK] * L1 * y3), c * y1 * y1
 
 
-@njit(cache=True)
+@njit
 def _eval_rhs(mode, t, y, out, sp, mp, acc):
     r = _rhs(mode, t, y[0], y[1], y[2], y[3], sp, mp, acc)
     out[0] = r[0]
@@ -190,22 +198,9 @@ def _eval_rhs(mode, t, y, out, sp, mp, acc):
     out[5] = r[5]
 
 
-@njit(cache=True, inline="always")
-def _base_acc(sp, u, u_dot, xg):
-    if sp[_FIXED] != 0.0:
-        return xg
-    return -(sp[_C_DAMP] * u_dot + sp[_K] * u) / sp[_M_TOTAL]
-
-
-@njit(cache=True)
-def _uplift_dir(sp, a):
-    thr = sp[_THR]
-    return 1 if a < -thr else (-1 if a > thr else 0)
-
-
 # --- events -------------------------------------------------------------------------
 
-@njit(cache=True)
+@njit
 def _impact_fun(s, theta, t, t0, kpow, limit):
     """hybrid._Integrator.impact_function: s·θ, divided by (t − t0)^k on a piece that
     starts at θ = 0 so that the root at t0 itself is not found."""
@@ -217,13 +212,14 @@ def _impact_fun(s, theta, t, t0, kpow, limit):
     return limit
 
 
-@njit(cache=True)
-def _event(e, mode, t, u, ud, th, thd, sp, mp, acc, t0, kpow, limit):
+@njit
+def _event(e, mode, t, u, ud, th, thd, sp, mp, acc, t0, kpow, limit, thr):
+    """Event slot e's function (see _DIRECTION) in `mode`; thr: the uplift threshold."""
     if mode == 0:
         if e == 3:
             return ud
         a = _base_acc(sp, u, ud, _xg(t, mp, acc))
-        return (-a - sp[_THR]) if e == 0 else (a - sp[_THR])
+        return (-a - thr) if e == 0 else (a - thr)
     s = float(mode)
     if e == 0:
         return _impact_fun(s, th, t, t0, kpow, limit)
@@ -231,10 +227,12 @@ def _event(e, mode, t, u, ud, th, thd, sp, mp, acc, t0, kpow, limit):
         return s * th - sp[_ALPHA]
     if e == 2:
         return thd
+    if e == 4:
+        return s * th - _SIDE
     return ud
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def _dense1(F, y_old, x, i):
     """One component of SciPy's Dop853DenseOutput at x = (t − t_old)/h."""
     y = 0.0
@@ -248,7 +246,7 @@ def _dense1(F, y_old, x, i):
     return y + y_old[i]
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def _dense_all(F, y_old, t_old, h, t, out, full):
     x = (t - t_old) / h
     for i in range(6):
@@ -258,8 +256,8 @@ def _dense_all(F, y_old, t_old, h, t, out, full):
             out[i] = y_old[i]  # zero rates in translation
 
 
-@njit(cache=True)
-def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit):
+@njit
+def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, thr):
     x = (t - t_old) / h
     if mode == 0:
         if e == 3:
@@ -268,25 +266,27 @@ def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit):
             a = _xg(t, mp, acc)
         else:
             a = _base_acc(sp, _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1), 0.0)
-        return (-a - sp[_THR]) if e == 0 else (a - sp[_THR])
+        return (-a - thr) if e == 0 else (a - thr)
     if e == 0:
         return _impact_fun(float(mode), _dense1(F, y_old, x, 2), t, t0, kpow, limit)
     if e == 1:
         return float(mode) * _dense1(F, y_old, x, 2) - sp[_ALPHA]
     if e == 2:
         return _dense1(F, y_old, x, 3)
+    if e == 4:
+        return float(mode) * _dense1(F, y_old, x, 2) - _SIDE
     return _dense1(F, y_old, x, 1)
 
 
-@njit(cache=True)
-def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit):
+@njit
+def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, thr):
     """scipy.optimize.brentq (Zeros/brentq.c) with xtol = rtol = 4·eps, on the dense
     output, as solve_ivp's solve_event_equation calls it; fpre is f(xa)."""
     xtol = 4.0 * _EPS
     rtol = 4.0 * _EPS
     xpre, xcur = xa, xb
     xblk, fblk, spre, scur = 0.0, 0.0, 0.0, 0.0
-    fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit)
+    fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, thr)
     if fpre == 0.0:
         return xpre
     if fcur == 0.0:
@@ -310,12 +310,16 @@ def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, acc, t0, kpow, li
         if fcur == 0.0 or abs(sbis) < delta:
             return xcur
         if abs(spre) > delta and abs(fcur) < abs(fpre):
+            # C's brentq divides by zero silently (inf, then bisection); event values in
+            # denormals (a free vibration ~250 s old) make these denominators underflow
             if xpre == xblk:
-                stry = -fcur * (xcur - xpre) / (fcur - fpre)
+                den = fcur - fpre
+                stry = -fcur * (xcur - xpre) / den if den != 0.0 else math.inf
             else:
                 dpre = (fpre - fcur) / (xpre - xcur)
                 dblk = (fblk - fcur) / (xblk - xcur)
-                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
+                den = dblk * dpre * (fblk - fpre)
+                stry = -fcur * (fblk * dblk - fpre * dpre) / den if den != 0.0 else math.inf
             if 2.0 * abs(stry) < min(abs(spre), 3.0 * abs(sbis) - delta):
                 spre = scur
                 scur = stry
@@ -331,18 +335,18 @@ def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, acc, t0, kpow, li
             xcur += scur
         else:
             xcur += delta if sbis > 0 else -delta
-        fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit)
+        fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, thr)
     return xcur
 
 
 # --- DOP853 (scipy.integrate._ivp.rk.DOP853) ----------------------------------------
 
-@njit(cache=True)
+@njit
 def _rms(x0, x1, x2, x3, x4, x5):
     return math.sqrt(x0 * x0 + x1 * x1 + x2 * x2 + x3 * x3 + x4 * x4 + x5 * x5) / math.sqrt(6.0)
 
 
-@njit(cache=True)
+@njit
 def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, mp, acc):
     """scipy.integrate._ivp.common.select_initial_step for order 7."""
     interval = abs(t_bound - t0)
@@ -369,7 +373,7 @@ def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, 
     return min(100.0 * h0, h1, interval, max_step)
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def _stage(K, s, y, h, tmp, full):
     """tmp = y + h·Σ_j A[s, j] K[j] over the non-zero A[s, j] (rk.rk_step's np.dot).
     In translation (full False) θ and θ̇ have zero rates and are carried as they are."""
@@ -402,7 +406,7 @@ def _stage(K, s, y, h, tmp, full):
     tmp[5] = y[5] + a5 * h
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def _set_row(K, s, r):
     K[s, 0] = r[0]
     K[s, 1] = r[1]
@@ -412,7 +416,7 @@ def _set_row(K, s, r):
     K[s, 5] = r[5]
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp, acc):
     """One DOP853 step from (t, y) with K[0] = f(t, y) already set; fills K[1..12] and
     y_new (rk.rk_step)."""
@@ -431,7 +435,7 @@ def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp, acc):
     _set_row(K, 12, _rhs(mode, t + h, y_new[0], y_new[1], y_new[2], y_new[3], sp, mp, acc))
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def _error_norm(K, h, y, y_new, rtol, atol, full):
     e5sq = 0.0
     e3sq = 0.0
@@ -449,12 +453,13 @@ def _error_norm(K, h, y, y_new, rtol, atol, full):
         e3 /= sc
         e5sq += e5 * e5
         e3sq += e3 * e3
-    if e5sq == 0.0 and e3sq == 0.0:
+    den = (e5sq + 0.01 * e3sq) * 6.0
+    if den == 0.0:  # both zero, or underflowed to zero from denormals: no error to speak of
         return 0.0
-    return abs(h) * e5sq / math.sqrt((e5sq + 0.01 * e3sq) * 6.0)
+    return abs(h) * e5sq / math.sqrt(den)
 
 
-@njit(cache=True)
+@njit
 def _dense_coeffs(mode, t_old, h, y_old, y_new, K, F, tmp, sp, mp, acc):
     """Extra stages 13-15 and the 7 interpolant rows (DOP853._dense_output_impl)."""
     for s in range(13, 16):
@@ -477,15 +482,7 @@ def _dense_coeffs(mode, t_old, h, y_old, y_new, K, F, tmp, sp, mp, acc):
             F[3 + r_, i] = h * acc_
 
 
-@njit(cache=True)
-def _kinetic_at_zero(sp, u_dot, theta_dot):
-    """hybrid.energy at θ = 0, u = 0 (the potential is zero there), J."""
-    h, b, m = sp[_H], sp[_B_HALF], sp[_M_BLOCK]
-    return (0.5 * sp[_M_BASE] * u_dot * u_dot + 0.5 * m * ((u_dot + theta_dot * h) ** 2 + (b * theta_dot) ** 2)
-            + 0.5 * sp[_INERTIA] * theta_dot * theta_dot)
-
-
-@njit(cache=True)
+@njit
 def _spacing(t):
     """np.nextafter(t, inf) − t for t ≥ 0, without the libm call."""
     if t == 0.0:
@@ -496,14 +493,14 @@ def _spacing(t):
 
 # --- growable outputs ---------------------------------------------------------------
 
-@njit(cache=True)
+@njit
 def _grow_rows(a, n):
     b = np.empty((max(2 * a.shape[0], 16), a.shape[1]), dtype=a.dtype)
     b[:n] = a[:n]
     return b
 
 
-@njit(cache=True, inline="always")
+@njit(inline="always")
 def _store(out_t, out_y, out_m, n, t, y, mode):
     """Append one stored point (arrays grow by doubling); returns the arrays."""
     if n == out_t.size:
@@ -519,7 +516,7 @@ def _store(out_t, out_y, out_m, n, t, y, mode):
     return out_t, out_y, out_m
 
 
-@njit(cache=True)
+@njit
 def _grow(a, n):
     b = np.empty(max(2 * a.size, 16), dtype=a.dtype)
     b[:n] = a[:n]
@@ -528,17 +525,19 @@ def _grow(a, n):
 
 # --- the driver ---------------------------------------------------------------------
 
-@njit(cache=True, nogil=True)
+@cached_jit(nogil=True)
 def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events, odt,
-               history, cap, impact_frac):
+               history, cap, impact_frac, rule_alpha, motion_end):
     """hybrid._Integrator.run. Returns (status, t_last, overturn_time, n_out, out_t,
-    out_y, out_mode, n_imp, impacts, n_upl, uplifts, theta_max, u_max).
+    out_y, out_mode, n_imp, impacts, n_upl, uplifts, theta_max, u_max, verdict,
+    friction_demand).
 
     history: store points (every odt, at every step end and event) in out_*;
     otherwise only the summary is kept. impacts rows: t, θ̇⁻, θ̇⁺, u̇⁻, u̇⁺, continued,
-    amplitude, counted, kinetic energy lost (J)."""
+    amplitude, counted, kinetic energy lost (J). rule_alpha: the overturning rule
+    "alpha" (else "past-alpha"); verdict: physics.overturn_code's, 0 if it survived.
+    overturn_time: when |θ| last rose through α (nan if never)."""
     fixed = sp[_FIXED] != 0.0
-    n_ev = 3 if fixed else 4
     mp = mp.copy()  # its piece slots change as the run goes
     mp[_PIECE] = 0.0
     mp[_INV_DT] = 1.0 / mp[_DT] if mp[_DT] > 0.0 else 0.0
@@ -555,15 +554,17 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     n_upl = 0
     K = np.empty((16, 6))
     F = np.zeros((7, 6))
-    active = np.zeros(4, dtype=np.bool_)
+    active = np.zeros(_N_EV, dtype=np.bool_)
+    use = np.zeros(_N_EV, dtype=np.bool_)
+    terminal = np.zeros(_N_EV, dtype=np.bool_)
     tmp = np.empty(6)
     y_new = np.empty(6)
     f1 = np.empty(6)
     yq = np.empty(6)
-    g_old = np.zeros(4)
-    g_new = np.zeros(4)
-    roots = np.empty(4)
-    root_ev = np.empty(4, dtype=np.int64)
+    g_old = np.zeros(_N_EV)
+    g_new = np.zeros(_N_EV)
+    roots = np.empty(_N_EV)
+    root_ev = np.empty(_N_EV, dtype=np.int64)
 
     if y[2] != 0.0:
         mode = 1 if y[2] > 0.0 else -1
@@ -576,13 +577,16 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             n_upl = 1
 
     status = _COMPLETED
-    t_over = np.nan
+    verdict = 0
+    t_alpha = np.nan
     n_events = 0
     ibreak = 1
     nb = breaks.size
     peak = 0.0
     th_max = 0.0
     u_max = 0.0
+    demand = 0.0
+    graze = False  # a grazing uplift stayed down: re-lift only clearly above g·tanα
     while t < T:
         while ibreak < nb and breaks[ibreak] <= t + 1e-12:
             ibreak += 1
@@ -601,30 +605,59 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 mp[_PA1] = acc[i + 1]
             else:
                 mp[_PIECE] = 0.0
+        if mode == 0 and fixed:
+            # the state cannot change: the first uplift is found from the motion itself
+            mp[_PIECE] = 0.0
+            t_up, side = _first_uplift(sp, mp, acc, t, t1, _GRAZE if graze else 0.0)
+            kg = math.ceil(t / odt - 1e-9)
+            tq = t
+            while True:  # stored points: the piece's start, grid points, its end
+                if history and (n_out == 0 or tq > out_t[n_out - 1]):
+                    out_t, out_y, out_m = _store(out_t, out_y, out_m, n_out, tq, y, 0)
+                    n_out += 1
+                demand = max(demand, _friction(sp, 0, 0.0, 0.0, y[0], y[1], _xg(tq, mp, acc)))
+                if tq >= t_up:
+                    break
+                while kg * odt <= tq:
+                    kg += 1
+                tq = min(kg * odt, t_up)
+            t = t_up
+            if side != 0:
+                n_events += 1
+                if n_events > max_events:
+                    status = _EVENT_LIMIT
+                    break
+                mode = side
+                if n_upl == upl.size:
+                    upl = _grow(upl, n_upl)
+                upl[n_upl] = t
+                n_upl += 1
+                peak = 0.0
+                graze = False
+            continue
+        if (mode != 0 and not rule_alpha and fixed and t >= motion_end and s * y[2] > sp[_ALPHA]
+                and s * y[3] > 0.0):
+            verdict = 3  # past α and falling after the motion: nothing can pull it back
+            break
+        thr = sp[_THR] * (1.0 + (_GRAZE if graze else 0.0))
         kpow = 0
         limit = 0.0
         if mode != 0 and y[2] == 0.0:
-            if y[3] != 0.0:
-                kpow = 1
-                limit = s * y[3]
-            else:
-                thdd = _theta_dd(sp, s, 0.0, 0.0, y[0], y[1], _xg(t, mp, acc))[1]
-                if s * thdd > 1e-9 * sp[_THR]:
-                    kpow = 2
-                    limit = 0.5 * s * thdd
-                else:
-                    kpow = 3
-                    limit = 1e-300
+            kpow, limit = _impact_order(sp, s, y[0], y[1], y[3], _xg(t, mp, acc))
         mi = 0 if mode == 0 else 1
+        for e in range(_N_EV):
+            use[e] = not ((e == 3 and fixed) or (mode == 0 and (e == 2 or e == 4))
+                          or (e == 4 and rule_alpha))
+            terminal[e] = e == 0 or e == 4 or (e == 1 and (mode == 0 or rule_alpha
+                                                            or (fixed and tp0 >= motion_end)))
         # piece start: f, first step, events
         _eval_rhs(mode, t, y, tmp, sp, mp, acc)
         for i in range(6):
             K[0, i] = tmp[i]
         h_abs = _initial_step(mode, t, y, tmp, t1, max_step, rtol, atol, yq, f1, sp, mp, acc)
-        for e in range(n_ev):
-            if mode == 0 and e == 2:
-                continue
-            g_old[e] = _event(e, mode, t, y[0], y[1], y[2], y[3], sp, mp, acc, tp0, kpow, limit)
+        for e in range(_N_EV):
+            if use[e]:
+                g_old[e] = _event(e, mode, t, y[0], y[1], y[2], y[3], sp, mp, acc, tp0, kpow, limit, thr)
         piece_out = n_out
         if history:
             out_t, out_y, out_m = _store(out_t, out_y, out_m, n_out, t, y, mode)
@@ -633,6 +666,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             peak = max(peak, abs(y[2]))
             th_max = max(th_max, abs(y[2]))
         u_max = max(u_max, abs(y[0]))
+        demand = max(demand, _friction(sp, mode, y[2], y[3], y[0], y[1], _xg(t, mp, acc)))
         kg = math.ceil(t / odt - 1e-9)
         last_t = t
         term = -1
@@ -674,12 +708,12 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             # events that fired in this step (ivp.find_active_events); the dense output
             # is built once, if a root or a stored grid point needs it
             need_dense = history and kg * odt < t_new
-            for e in range(n_ev):
+            for e in range(_N_EV):
                 active[e] = False
-                if mode == 0 and e == 2:
+                if not use[e]:
                     continue
                 g_new[e] = _event(e, mode, t_new, y_new[0], y_new[1], y_new[2], y_new[3],
-                                  sp, mp, acc, tp0, kpow, limit)
+                                  sp, mp, acc, tp0, kpow, limit, thr)
                 d = _DIRECTION[mi, e]
                 go, gn = g_old[e], g_new[e]
                 up = go <= 0.0 and gn >= 0.0
@@ -691,7 +725,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mp, acc)
             # their roots, in time order (ivp.handle_events, np.argsort)
             n_root = 0
-            for e in range(n_ev):
+            for e in range(_N_EV):
                 if not active[e]:
                     continue
                 go = g_old[e]
@@ -699,7 +733,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     r = t_old  # brentq returns the bracket end where f is zero
                 else:
                     r = _brentq(e, mode, t_old, t_new, go, F, y, t_old, h, sp, mp, acc,
-                                tp0, kpow, limit)
+                                tp0, kpow, limit, thr)
                 k = n_root
                 while k > 0 and roots[k - 1] > r:
                     roots[k] = roots[k - 1]
@@ -710,10 +744,13 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 n_root += 1
             cut = n_root
             for k in range(n_root):
-                if _TERMINAL[mi, root_ev[k]] != 0:
+                if terminal[root_ev[k]]:
                     cut = k  # roots before it are kept; it ends the piece
                     term = root_ev[k]
                     break
+            for k in range(cut):
+                if root_ev[k] == 1:
+                    t_alpha = roots[k]  # |θ| rose through α, and the run goes on
             t_stop = roots[cut] if term >= 0 else t_new
             # stored points inside the step: grid points and non-terminal roots, in order
             if history:
@@ -740,6 +777,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                         peak = max(peak, abs(yq[2]))
                         th_max = max(th_max, abs(yq[2]))
                     u_max = max(u_max, abs(yq[0]))
+                    demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1], _xg(tq, mp, acc)))
             else:
                 for k in range(cut):
                     if roots[k] <= t_old:
@@ -749,6 +787,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                         peak = max(peak, abs(yq[2]))
                         th_max = max(th_max, abs(yq[2]))
                     u_max = max(u_max, abs(yq[0]))
+                    demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1],
+                                                   _xg(roots[k], mp, acc)))
             # the step end, or the event that ends the piece
             if term >= 0 and t_stop == t_old:
                 for i in range(6):
@@ -766,11 +806,12 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 peak = max(peak, abs(yq[2]))
                 th_max = max(th_max, abs(yq[2]))
             u_max = max(u_max, abs(yq[0]))
+            demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1], _xg(t_stop, mp, acc)))
             t = t_stop
             for i in range(6):
                 y[i] = yq[i]
                 K[0, i] = K[12, i]  # f at the new step start (unused after a terminal event)
-            for e in range(4):
+            for e in range(_N_EV):
                 g_old[e] = g_new[e]
             if term >= 0 or finished:
                 break
@@ -786,22 +827,17 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             status = _EVENT_LIMIT
             break
         if mode != 0 and term == 1:
-            status = _OVERTURNED
-            t_over = t
+            t_alpha = t
+            verdict = 1 if rule_alpha else 3
+            break
+        if mode != 0 and term == 4:
+            verdict = 2
             break
         if mode != 0:  # impact at θ = 0 (hybrid._Integrator.impact)
             y[2] = 0.0
             thd_pre, ud_pre = y[3], y[1]
-            # below the no-bounce slenderness (β ≤ 0) every impact ends rocking, as in the reference
-            continued = abs(thd_pre) >= sp[_REST] and sp[_BETA] > 0
-            if continued:
-                thd_post = sp[_BETA] * thd_pre
-                ud_post = ud_pre + sp[_BETA2] * thd_pre
-            else:
-                thd_post = 0.0
-                ud_post = ud_pre + sp[_BETA3] * thd_pre
-            if fixed:
-                ud_post = 0.0
+            continued = _impact_continues(sp, thd_pre)
+            thd_post, ud_post = _impact_map(sp, thd_pre, ud_pre, continued)
             if n_imp == imp.shape[0]:
                 imp = _grow_rows(imp, n_imp)
             imp[n_imp, 0] = t
@@ -812,7 +848,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             imp[n_imp, 5] = 1.0 if continued else 0.0
             imp[n_imp, 6] = peak
             imp[n_imp, 7] = 1.0 if peak > impact_frac * sp[_ALPHA] else 0.0
-            imp[n_imp, 8] = _kinetic_at_zero(sp, ud_pre, thd_pre) - _kinetic_at_zero(sp, ud_post, thd_post)
+            imp[n_imp, 8] = _impact_loss(sp, ud_pre, thd_pre, ud_post, thd_post)
             n_imp += 1
             peak = 0.0
             y[3] = thd_post
@@ -821,12 +857,15 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 mode = -mode
             else:
                 y[3] = 0.0
-                mode = _uplift_dir(sp, _base_acc(sp, y[0], y[1], _xg(t, mp, acc)))
+                mode = _relift(sp, y[0], y[1], _xg(t, mp, acc))
                 if mode != 0:
                     if n_upl == upl.size:
                         upl = _grow(upl, n_upl)
                     upl[n_upl] = t
                     n_upl += 1
+                    graze = False
+                else:
+                    graze = True
         else:  # uplift
             mode = 1 if term == 0 else -1
             if n_upl == upl.size:
@@ -834,127 +873,59 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             upl[n_upl] = t
             n_upl += 1
             peak = 0.0
-    return (status, t, t_over, n_out, out_t, out_y, out_m, n_imp, imp, n_upl, upl, th_max, u_max)
+            graze = False
+    if status == _COMPLETED and verdict == 0:
+        verdict = _overturn_code(rule_alpha, y[2], sp[_ALPHA], False)
+    if verdict != 0:
+        status = _OVERTURNED
+    return (status, t, t_alpha, n_out, out_t, out_y, out_m, n_imp, imp, n_upl, upl, th_max, u_max,
+            verdict, demand)
 
 
-@njit(cache=True)
-def _record_breaks(n, dt, end, T):
-    """GroundMotion.breakpoints(T) + [T] for a record of n > 1 samples: every sample
-    time up to T and the record's end, clipped to [0, T], without repeats."""
-    out = np.empty(n + 2)
-    m = 0
-    for k in range(n):
-        tk = k * dt
-        if tk <= T:
-            out[m] = tk
-            m += 1
-    last = min(max(end, 0.0), T)
-    if m == 0 or last != out[m - 1]:
-        out[m] = last
-        m += 1
-    out[m] = T
-    return out[:m + 1].copy()
-
-
-@njit(cache=True)
-def _energies(sp, y, mode):
-    """hybrid.energy on stored points y (rows u, u̇, θ, θ̇): (kinetic, potential), J."""
-    n = y.shape[1]
-    kin = np.empty(n)
-    pot = np.empty(n)
-    h, b, m, g = sp[_H], sp[_B_HALF], sp[_M_BLOCK], sp[_G]
-    spring = 0.0 if sp[_FIXED] != 0.0 else sp[_K]
-    for k in range(n):
-        s = 1.0 if mode[k] == 0 else float(mode[k])
-        u, ud, th, thd = y[0, k], y[1, k], y[2, k], y[3, k]
-        if th == 0.0:
-            ct, st = 1.0, 0.0
-        else:
-            ct, st = math.cos(th), math.sin(th)
-        xd = thd * (h * ct + s * b * st)
-        zd = thd * (s * b * ct - h * st)
-        kin[k] = (0.5 * sp[_M_BASE] * ud * ud + 0.5 * m * ((ud + xd) ** 2 + zd * zd)
-                  + 0.5 * sp[_INERTIA] * thd * thd)
-        pot[k] = 0.5 * spring * u * u + m * g * (s * b * st + h * ct - h)
-    return kin, pot
-
-
-@njit(cache=True, parallel=True)
+@cached_jit(parallel=True)
 def _batch(sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys, case_mot, case_brk, T, y_init, rtol,
-           atol, max_step, max_events, impact_frac, out):
-    """Summaries of many runs, one per prange iteration. out rows: status, θmax, counted
-    impacts, all impacts, uplifts, overturn time, u_max, end time."""
+           atol, max_step, max_events, impact_frac, rule_alpha, motion_end, out):
+    """Summaries of many runs, one per prange iteration (rows: see _summary_row); a case
+    whose integration raises is status 'failed' in its row, the others go on."""
     for n in prange(case_sys.size):
         i, j, kb = case_sys[n], case_mot[n], case_brk[n]
-        r = _integrate(sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
-                       brk_all[brk_off[kb]:brk_off[kb + 1]], T[n], y_init[n], rtol, atol, max_step,
-                       max_events, 1.0, False, 1, impact_frac)
-        n_imp = r[7]
-        out[n, 0] = r[0]
-        out[n, 1] = r[11]
-        out[n, 2] = r[8][:n_imp, 7].sum()
-        out[n, 3] = n_imp
-        out[n, 4] = r[9]
-        out[n, 5] = r[2]
-        out[n, 6] = r[12]
-        out[n, 7] = r[1]
+        try:
+            r = _integrate(sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
+                           brk_all[brk_off[kb]:brk_off[kb + 1]], T[n], y_init[n], rtol, atol, max_step,
+                           max_events, 1.0, False, 1, impact_frac, rule_alpha, motion_end[j])
+            n_imp = r[7]
+            out[n, 0] = r[0]
+            out[n, 1] = r[11]
+            out[n, 2] = r[8][:n_imp, 7].sum()
+            out[n, 3] = n_imp
+            out[n, 4] = r[9]
+            out[n, 5] = r[2]
+            out[n, 6] = r[12]
+            out[n, 7] = r[1]
+            out[n, 8] = r[13]
+            out[n, 9] = r[14]
+        except Exception:  # noqa: BLE001 - numba catches only this way
+            out[n, 0] = _FAILED
+            out[n, 1:] = np.nan
 
 
 # --- Python side: packing, the public wrapper, batches --------------------------------
 
-_PULSE_KIND = {"sine": _SINE, "cosine": _COSINE, "ricker": _RICKER}
 _FAILED_MESSAGE = "Required step size is less than spacing between numbers."
+_N_OUT = 10  # summary row: status, θmax, counted impacts, all impacts, uplifts,
+#              last time past α, u_max, end time, overturning verdict, friction demand
 
 
 def _system_params(system: System, settings: AnalyticSettings) -> np.ndarray:
-    from .coefficients import beta, beta2, beta3
-    lam, mu, h = system.slenderness, system.mu, system.h
-    sp = np.zeros(_N_SP)
-    sp[_M_BLOCK] = system.mass
-    sp[_M_TOTAL] = system.total_mass
-    sp[_H] = h
-    sp[_B_HALF] = system.b
-    sp[_G] = system.gravity
-    sp[_K] = system.stiffness
-    sp[_C_DAMP] = system.damping
-    sp[_FIXED] = 1.0 if system.fixed_base else 0.0
-    sp[_ALPHA] = system.alpha
-    sp[_J] = system.mass * system.R**2 + system.inertia
-    sp[_THR] = system.uplift_acceleration
-    sp[_BETA] = beta(lam, mu)
-    sp[_BETA2] = beta2(lam, mu, h)
-    sp[_BETA3] = beta3(mu, h)
-    sp[_REST] = settings.rest_velocity * system.p * system.alpha
-    sp[_INV_M] = 1.0 / system.total_mass
-    sp[_INV_J] = 1.0 / sp[_J]
-    sp[_M_BASE] = 0.0 if system.fixed_base else system.base_mass
-    sp[_INERTIA] = system.inertia
-    return sp
+    return physics.system_params(system, settings.rest_velocity)
 
 
 def _motion_params(motion: GroundMotion):
-    """(parameters, samples): pulses in closed form, records as their samples."""
-    mp = np.zeros(_N_MP)
-    if motion.pulse is not None:
-        p = motion.pulse
-        mp[_KIND] = _PULSE_KIND[p.kind]
-        mp[_AMP] = p.amp * STANDARD_GRAVITY
-        mp[_OMEGA] = 2 * math.pi * p.freq
-        mp[_FREQ] = p.freq
-        mp[_PEND] = p.end_time
-        mp[_SCALE] = motion.scale
-        mp[_SHIFT] = motion._pulse_shift
-        return mp, np.zeros(1)
-    mp[_KIND] = _SAMPLED
-    mp[_DT] = motion.dt
-    mp[_END] = motion.end_time
-    return mp, np.array(motion.acceleration, dtype=np.float64)
+    return physics.motion_params(motion)
 
 
 def _breaks(motion: GroundMotion, duration: float) -> np.ndarray:
     """hybrid._Integrator's restart times: motion.breakpoints(duration) + [duration]."""
-    if motion.pulse is None and motion.n > 1:
-        return _record_breaks(motion.n, float(motion.dt), float(motion.end_time), float(duration))
     return np.append(motion.breakpoints(duration), duration).astype(np.float64)
 
 
@@ -986,50 +957,67 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
     is stored from its start, so an event time appears twice, before and after.
     Only settings.method = "DOP853" is implemented.
     """
+    start = time.perf_counter()  # runtime_s: everything this call takes, the kernel's loading included
     settings = _check_settings(settings)
     motion, duration = _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0,
                                   impact_threshold)
     odt = settings.output_dt if output_dt is None else require_positive_finite("output_dt", output_dt)
-    start = time.perf_counter()
     sp = _system_params(system, settings)
     mp, acc = _motion_params(motion)
     y0 = np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0])
     cap = int(2.5 * duration / odt) + 256  # grid points, step ends and events
-    r = _integrate(sp, mp, acc, _breaks(motion, duration), duration, y0, settings.rtol,
-                   settings.atol, settings.max_step, settings.max_events, odt, True, cap,
-                   impact_threshold)
-    return _trajectory(system, settings, sp, r, impact_threshold, start)
+    # plain float/int/bool, so that one compiled signature serves every call
+    args = (sp, mp, acc, _breaks(motion, duration), float(duration), y0, float(settings.rtol),
+            float(settings.atol), float(settings.max_step), int(settings.max_events), float(odt), True, cap,
+            float(impact_threshold), settings.overturn == physics.AT_ALPHA, float(motion.end_time))
+    try:
+        r = call_kernel(_integrate, *args)
+    except ArithmeticError as e:  # a failed run is a status, not a traceback
+        return _failed_trajectory(system, settings, impact_threshold, start, f"{type(e).__name__}: {e}")
+    return _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start)
 
 
-def _trajectory(system, settings, sp, r, impact_threshold, start) -> Trajectory:
-    status_code, t_last, t_over, n_out, out_t, out_y, out_m, n_imp, imp, n_upl, upl = r[:11]
+def _failed_trajectory(system, settings, impact_threshold, start, why) -> Trajectory:
+    z = np.zeros(1)
+    return Trajectory(
+        engine=ENGINE, system=system, t=z, u=z, u_dot=z, theta=z, theta_dot=z, mode=np.zeros(1, np.int8),
+        impact_threshold=impact_threshold, runtime_s=time.perf_counter() - start, status=Status.FAILED,
+        message=f"the compiled kernel failed: {why}", extras={"overturn_rule": settings.overturn})
+
+
+def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start) -> Trajectory:
+    status_code, t_last, t_alpha, n_out, out_t, out_y, out_m, n_imp, imp, n_upl, upl = r[:11]
+    verdict, demand = int(r[13]), float(r[14])
     status = STATUS_NAMES[status_code]
+    t_alpha = None if math.isnan(t_alpha) else float(t_alpha)
+    t = out_t[:n_out]
+    y = out_y[:, :n_out]
+    mode = out_m[:n_out]
     if status == "completed":
         message = "reached the end time"
     elif status == "overturned":
-        message = f"|θ| reached α at t = {t_over:.6g} s"
+        message = describe(verdict, t_last, t_alpha, float(y[2, -1]) / system.alpha)
     elif status == "event-limit":
         message = f"stopped after {settings.max_events} events at t = {t_last:.6g} s (max_events)"
     else:
         message = f"integration failed at t = {t_last:.6g} s: {_FAILED_MESSAGE}"
-    t = out_t[:n_out]
-    y = out_y[:, :n_out]
-    mode = out_m[:n_out]
     imp = imp[:n_imp]
     impacts = tuple(
         Impact(t=row[0], theta_dot_pre=row[1], theta_dot_post=row[2], u_dot_pre=row[3],
                u_dot_post=row[4], continued=bool(row[5]), amplitude=row[6], counted=bool(row[7]))
         for row in imp.tolist())
-    kin, pot = _energies(sp, y, mode)
+    s = np.where(mode == 0, 1.0, mode)
+    kin = physics.kinetic_energy(sp, s, y[1], y[2], y[3])
+    pot = physics.potential_energy(sp, s, y[0], y[2])
     cum = cumulative_impact_loss(t, imp[:, 0], imp[:, 8])
     log = EnergyLog(kinetic=kin, potential=pot, ground_work=y[4], dashpot_loss=y[5], impact_loss=cum,
                     per_impact=tuple(imp[:, 8].tolist()))
     return Trajectory(
         engine=ENGINE, system=system, t=t, u=y[0], u_dot=y[1], theta=y[2], theta_dot=y[3],
         mode=mode, impacts=impacts, uplift_times=tuple(upl[:n_upl].tolist()),
-        overturned=status == "overturned", overturn_time=t_over if status == "overturned" else None,
+        overturned=status == "overturned", overturn_time=t_alpha if status == "overturned" else None,
         impact_threshold=impact_threshold, runtime_s=time.perf_counter() - start, status=status,
-        message=message, energy=log)
+        message=message, energy=log, extras={"overturn_rule": settings.overturn, "friction_demand": demand})
 
 
 # --- many runs ---------------------------------------------------------------------
@@ -1143,14 +1131,17 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
     brk_all = np.concatenate(brk_list)
     y_init = np.zeros((n, 6))
     y_init[:, 2] = th0
-    out = np.zeros((n, 8))
+    out = np.zeros((n, _N_OUT))
+    motion_end = np.array([m.end_time for m in motions], dtype=np.float64)
     args = (sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys.astype(np.int64),
-            case_mot.astype(np.int64), case_brk, T, y_init, settings.rtol, settings.atol,
-            settings.max_step, settings.max_events, impact_threshold, out)
+            case_mot.astype(np.int64), case_brk, T, y_init, float(settings.rtol), float(settings.atol),
+            float(settings.max_step), int(settings.max_events), float(impact_threshold),
+            settings.overturn == physics.AT_ALPHA, motion_end, out)
+    failures = {}  # case: why the kernel raised
     if workers == 1 or n == 1:
-        _run_cases(args, 0, n)
+        _run_cases(args, 0, n, failures)
     elif backend == "threads":
-        _batch_pool(args, workers or os.cpu_count() or 1)
+        _batch_pool(args, workers or os.cpu_count() or 1, failures)
     else:
         old = numba.get_num_threads()
         threads = min(workers or numba.config.NUMBA_NUM_THREADS, numba.config.NUMBA_NUM_THREADS)
@@ -1158,7 +1149,7 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
             numba.set_num_threads(threads)
             # small chunks: runs differ in cost by orders of magnitude (Zeno tails)
             with numba.parallel_chunksize(max(1, n // (threads * 16))):
-                _batch(*args)
+                call_kernel(_batch, *args)
         finally:
             numba.set_num_threads(old)
     alphas = np.array([s.alpha for s in systems])
@@ -1166,38 +1157,55 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
     for c in range(n):
         r = out[c]
         status = STATUS_NAMES[int(r[0])]
+        if status == Status.FAILED and math.isnan(r[1]):  # the kernel raised: nothing measured
+            rows.append({
+                "system": int(case_sys[c]), "motion": int(case_mot[c]), "status": status,
+                "theta_max_over_alpha": math.nan, "impacts": 0, "impacts_all": 0, "uplifts": 0,
+                "overturned": False, "overturn_time": None, "u_max": math.nan, "duration": math.nan,
+                "overturn_rule": settings.overturn, "friction_demand": math.nan,
+                "message": failures.get(c, "the compiled kernel failed"),
+            })
+            continue
         rows.append({
             "system": int(case_sys[c]), "motion": int(case_mot[c]), "status": status,
             "theta_max_over_alpha": float(r[1] / alphas[case_sys[c]]), "impacts": int(r[2]),
             "impacts_all": int(r[3]), "uplifts": int(r[4]), "overturned": status == "overturned",
-            "overturn_time": float(r[5]) if status == "overturned" else None, "u_max": float(r[6]),
-            "duration": float(r[7]),
+            "overturn_time": float(r[5]) if status == "overturned" and math.isfinite(r[5]) else None,
+            "u_max": float(r[6]), "duration": float(r[7]), "overturn_rule": settings.overturn,
+            "friction_demand": float(r[9]),
         })
     return rows
 
 
-def _run_cases(args, lo, hi):
+def _run_cases(args, lo, hi, failures):
     """Cases lo..hi-1, one kernel call each from Python: the call costs ~10 µs against
     milliseconds of integration, and the kernel (nogil) lets other threads run."""
     (sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys, case_mot, case_brk, T, y_init,
-     rtol, atol, max_step, max_events, impact_frac, out) = args
+     rtol, atol, max_step, max_events, impact_frac, rule_alpha, motion_end, out) = args
     for n in range(lo, hi):
         i, j, kb = case_sys[n], case_mot[n], case_brk[n]
-        r = _integrate(sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
-                       brk_all[brk_off[kb]:brk_off[kb + 1]], T[n], y_init[n], rtol, atol, max_step,
-                       max_events, 1.0, False, 1, impact_frac)
+        try:
+            r = call_kernel(_integrate, sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
+                            brk_all[brk_off[kb]:brk_off[kb + 1]], float(T[n]), y_init[n], rtol, atol,
+                            max_step, max_events, 1.0, False, 1, impact_frac, rule_alpha,
+                            float(motion_end[j]))
+        except Exception as e:  # noqa: BLE001 - one case's failure is its row's status, never the batch's
+            out[n, 0] = _FAILED
+            out[n, 1:] = math.nan
+            failures[n] = f"the compiled kernel failed: {type(e).__name__}: {e}"
+            continue
         n_imp = r[7]
-        out[n] = (r[0], r[11], r[8][:n_imp, 7].sum(), n_imp, r[9], r[2], r[12], r[1])
+        out[n] = (r[0], r[11], r[8][:n_imp, 7].sum(), n_imp, r[9], r[2], r[12], r[1], r[13], r[14])
 
 
-def _batch_pool(args, workers):
+def _batch_pool(args, workers, failures):
     """Python threads over the GIL-free kernel, cases handed out in small chunks (runs
     differ in cost by orders of magnitude: Zeno tails, overturning)."""
     from concurrent.futures import ThreadPoolExecutor
     n = args[6].size
     bounds = np.linspace(0, n, min(n, workers * 16) + 1).astype(int)
     with ThreadPoolExecutor(max_workers=workers) as pool:
-        list(pool.map(lambda k: _run_cases(args, bounds[k], bounds[k + 1]), range(bounds.size - 1)))
+        list(pool.map(lambda k: _run_cases(args, bounds[k], bounds[k + 1], failures), range(bounds.size - 1)))
 
 
 def _batch_chunk(payload):
@@ -1272,7 +1280,8 @@ def benchmark_against_solve_ivp(system: System, motion: GroundMotion, *,
     for _ in range(repeats):
         a = time.perf_counter()
         _integrate(sp, mp, acc, brk, duration, y0, settings.rtol, settings.atol, settings.max_step,
-                   settings.max_events, settings.output_dt, True, cap, DEFAULT_IMPACT_THRESHOLD)
+                   settings.max_events, settings.output_dt, True, cap, DEFAULT_IMPACT_THRESHOLD,
+                   settings.overturn == physics.AT_ALPHA, (motion or GroundMotion.zero()).end_time)
         kern_t.append(time.perf_counter() - a)
     ref_t = []
     for _ in range(reference_repeats):

@@ -1,9 +1,9 @@
-"""The compiled analytic kernel (analytic.fast) as an engine: same settings as the
-reference path, same Trajectory."""
+"""The analytic model's engine (registry name "analytic"): the compiled kernel
+(analytic.fast), with the settings and Trajectory of the reference path ("analytic-reference")."""
 from .engine import ladder
 from .engine_protocol import Capabilities, EngineSpec
 from .fast import simulate_fast
-from .hybrid import AnalyticSettings as Settings
+from .settings import AnalyticSettings as Settings
 
 
 def simulate(system, motion=None, *, progress=None, **kwargs):
@@ -12,8 +12,8 @@ def simulate(system, motion=None, *, progress=None, **kwargs):
 
 
 ENGINE = EngineSpec(
-    name="analytic-fast", label="analytic (compiled)", settings_type=Settings, simulate=simulate,
-    capabilities=Capabilities(isolated_base=True, past_alpha=False, batch=True, exact_impacts=True),
-    presets={"default": Settings}, ladder=ladder)
+    name="analytic", label="analytic", settings_type=Settings, simulate=simulate,
+    capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=True, exact_impacts=True),
+    presets={"default": Settings, "conservative": lambda: Settings(overturn="alpha")}, ladder=ladder)
 
 __all__ = ["ENGINE", "Settings", "simulate", "ladder"]

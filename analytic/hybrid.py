@@ -12,15 +12,15 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .coefficients import beta, beta2, beta3
-from .errors import require, require_positive_finite
+from . import physics
 from .motion import GroundMotion
+from .overturning import describe
 from .protocol import run_inputs
+from .settings import AnalyticSettings
 from .status import Status
 from .system import System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
@@ -29,85 +29,28 @@ from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory,
 U, UD, TH, THD, W, D = range(6)
 
 
-@dataclass(frozen=True)
-class AnalyticSettings:
-    """How to integrate the analytic model.
+# --- the physics, for callers holding a System (analytic.physics has it all) -----------
 
-    rtol, atol: solve_ivp tolerances (atol applies to u in m and θ in rad alike).
-    rest_velocity: rocking ends at an impact whose |θ̇⁻| is below rest_velocity·p·α
-        (dimensionless). Free rocking with inelastic impacts is a Zeno sequence;
-        this floor is a numerical setting, not physics (model.md). Rocking also ends
-        at every impact of a block below the no-bounce slenderness (β ≤ 0).
-    output_dt: stored points are at most this far apart (s), for plotting.
-    max_step: largest integrator step (s); bounds how long a threshold crossing of
-        the base acceleration can hide inside one step.
-    max_events: a run with more events than this stops with status 'event-limit'.
-    """
+def _params(sys: System) -> tuple:
+    return tuple(physics.system_params(sys, AnalyticSettings.rest_velocity).tolist())
 
-    rtol: float = 1e-10
-    atol: float = 1e-12
-    method: str = "DOP853"
-    rest_velocity: float = 1e-5
-    output_dt: float = 0.005
-    max_step: float = 0.01
-    max_events: int = 200_000
-
-    def __post_init__(self):
-        for name in ("rtol", "atol", "rest_velocity", "output_dt", "max_step"):
-            require_positive_finite(name, getattr(self, name))
-        require(self.method in ("DOP853", "RK45", "Radau", "LSODA", "BDF", "RK23"),
-                "method", self.method, "a solve_ivp method name")
-
-
-# --- the equations of motion ------------------------------------------------------
 
 def rocking_accelerations(sys: System, s: int, theta, theta_dot, u, u_dot, xg_dd):
-    """(ü, θ̈) in rocking mode s = ±1 (model.md's 2-DOF equations); fixed base: ü = 0."""
-    h, b, m, g = sys.h, sys.b, sys.mass, sys.gravity
-    L1 = h * math.cos(theta) + s * b * math.sin(theta)
-    L2 = s * b * math.cos(theta) - h * math.sin(theta)
-    J = m * sys.R**2 + sys.inertia
-    if sys.fixed_base:
-        return 0.0, (-m * L1 * xg_dd - m * g * L2) / J
-    M = sys.total_mass
-    f_u = -M * xg_dd - m * L2 * theta_dot**2 - sys.damping * u_dot - sys.stiffness * u
-    f_t = -m * L1 * xg_dd - m * g * L2
-    det = M * J - (m * L1) ** 2
-    return (J * f_u - m * L1 * f_t) / det, (M * f_t - m * L1 * f_u) / det
-
-
-def base_acceleration(sys: System, u, u_dot, xg_dd):
-    """Absolute base acceleration in pure translation, a = ü + ẍg (m/s²)."""
-    if sys.fixed_base:
-        return xg_dd
-    return -(sys.damping * u_dot + sys.stiffness * u) / sys.total_mass
-
-
-def uplift_direction(sys: System, a: float) -> int:
-    """+1 / −1 if an absolute base acceleration a lifts the block about O / O', else 0."""
-    thr = sys.uplift_acceleration
-    return 1 if a < -thr else (-1 if a > thr else 0)
+    """(ü, θ̈) in rocking mode s = ±1 (physics.rocking_accelerations); fixed base: ü = 0."""
+    return physics.rocking_accelerations(_params(sys), s, theta, theta_dot, u, u_dot, xg_dd)[:2]
 
 
 def energy(sys: System, s, u, u_dot, theta, theta_dot):
-    """(kinetic, potential) in J, velocities relative to the ground (model.md)."""
-    h, b, m = sys.h, sys.b, sys.mass
+    """(kinetic, potential) in J, velocities relative to the ground (model.md); s None:
+    the corner of θ's sign."""
+    sp = _params(sys)
     s = np.where(np.asarray(theta) >= 0, 1.0, -1.0) if s is None else s
-    xd = theta_dot * (h * np.cos(theta) + s * b * np.sin(theta))
-    zd = theta_dot * (s * b * np.cos(theta) - h * np.sin(theta))
-    mb = 0.0 if sys.fixed_base else sys.base_mass
-    kin = 0.5 * mb * u_dot**2 + 0.5 * m * ((u_dot + xd) ** 2 + zd**2) + 0.5 * sys.inertia * theta_dot**2
-    pot = 0.5 * sys.stiffness * u**2 * (not sys.fixed_base) + m * sys.gravity * (
-        s * b * np.sin(theta) + h * np.cos(theta) - h)
-    return kin, pot
+    return physics.kinetic_energy(sp, s, u_dot, theta, theta_dot), physics.potential_energy(sp, s, u, theta)
 
 
 def impact_map(sys: System, theta_dot_pre: float, u_dot_pre: float, *, continued: bool):
     """Post-impact (θ̇⁺, u̇⁺) at θ = 0 (perfectly inelastic, no bounce, no slide)."""
-    lam, mu, h = sys.slenderness, sys.mu, sys.h
-    if continued:
-        return beta(lam, mu) * theta_dot_pre, u_dot_pre + beta2(lam, mu, h) * theta_dot_pre
-    return 0.0, u_dot_pre + beta3(mu, h) * theta_dot_pre
+    return physics.impact_map(_params(sys), theta_dot_pre, u_dot_pre, continued)
 
 
 # --- the driver -------------------------------------------------------------------
@@ -122,7 +65,9 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: An
     motion is zero. impact_threshold: model.md's counting rule, as a fraction of α.
     progress: optional callable(t, duration) called about once a second. Returns a Trajectory whose `impacts` are every impact the model
     made (`counted` marks those model.md's rule counts) and whose `energy` holds the
-    balance. A run that overturns stops at the overturning time.
+    balance. Overturning follows settings.overturn (model.md, "Past α"): by default the
+    run goes on past α and stops when |θ| reaches π/2 (or, on a fixed base after the
+    motion, once the block is past α and falling); under "alpha" it stops at α.
     """
     settings = settings or AnalyticSettings()
     motion, duration = run_inputs(system, motion, duration, theta0, impact_threshold,
@@ -137,38 +82,42 @@ class _Integrator:
         self.sys, self.motion, self.cfg, self.T = system, motion, settings, duration
         self.progress = progress
         self.breaks = list(motion.breakpoints(duration)) + [duration]
-        self.rest = settings.rest_velocity * system.p * system.alpha
-        self.beta = beta(system.slenderness, system.mu)
+        # the physics takes packed parameters (analytic.physics); plain floats here
+        self.sp = tuple(physics.system_params(system, settings.rest_velocity).tolist())
+        mp, self.acc = physics.motion_params(motion)
+        self.mp = tuple(mp.tolist())  # Python floats: numpy scalars would slow every right-hand side
+        self.motion_end = motion.end_time
         self.out_t, self.out_y, self.out_mode = [], [], []
         self.impacts, self.uplifts = [], []
         self.impact_loss = 0.0
         self.losses = []  # energy lost in each impact (J), in the order of self.impacts
         self.peak = 0.0  # largest |θ| of the current half-cycle
+        self.graze = False  # a grazing uplift stayed down: re-lift only clearly above g·tanα
+        self.last_past_alpha = None  # when |θ| last rose through α
         # located only so that max |u| is exact, not read off stored points
         self.base_peak = _event(lambda t, y: y[UD], "base-peak", 0)
         self.base_peak.terminal = False
 
+    def xg(self, t):
+        return physics.ground_acceleration(t, self.mp, self.acc)
+
     # right-hand sides ---------------------------------------------------------------
     def rhs_translation(self, t, y):
-        sys = self.sys
-        xg = self.motion.at(t)
-        if sys.fixed_base:
-            return (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
-        M = sys.total_mass
-        udd = -xg - (sys.damping * y[UD] + sys.stiffness * y[U]) / M
-        return (y[UD], udd, 0.0, 0.0, -xg * M * y[UD], sys.damping * y[UD] ** 2)
+        sp = self.sp
+        xg = self.xg(t)
+        udd = physics.translation_acceleration(sp, y[U], y[UD], xg)
+        return (y[UD], udd, 0.0, 0.0, -xg * sp[physics.M_TOTAL] * y[UD], sp[physics.C_DAMP] * y[UD] ** 2)
 
     def rhs_rocking(self, s):
-        sys = self.sys
-        m, h, b = sys.mass, sys.h, sys.b
-        M = 0.0 if sys.fixed_base else sys.total_mass
+        sp = self.sp
+        m = sp[physics.M_BLOCK]
+        M = 0.0 if self.sys.fixed_base else sp[physics.M_TOTAL]
+        c = sp[physics.C_DAMP]
 
         def f(t, y):
-            xg = self.motion.at(t)
-            udd, thdd = rocking_accelerations(sys, s, y[TH], y[THD], y[U], y[UD], xg)
-            L1 = h * math.cos(y[TH]) + s * b * math.sin(y[TH])
-            return (y[UD], udd, y[THD], thdd, -xg * (M * y[UD] + m * L1 * y[THD]),
-                    sys.damping * y[UD] ** 2)
+            xg = self.xg(t)
+            udd, thdd, L1 = physics.rocking_accelerations(sp, s, y[TH], y[THD], y[U], y[UD], xg)
+            return (y[UD], udd, y[THD], thdd, -xg * (M * y[UD] + m * L1 * y[THD]), c * y[UD] ** 2)
         return f
 
     # one smooth piece -----------------------------------------------------------------
@@ -201,6 +150,15 @@ class _Integrator:
         if mode != 0:
             self.peak = max(self.peak, float(np.max(np.abs(ys[TH]))))
 
+    def store_at_rest(self, t0, t1, y):
+        """A fixed base in translation does not move: its state is stored on the grid."""
+        dt = self.cfg.output_dt
+        grid = np.arange(math.ceil(t0 / dt - 1e-9), math.floor(t1 / dt + 1e-9) + 1) * dt
+        ts = np.union1d(grid[(grid > t0) & (grid < t1)], [t0, t1])
+        self.out_t.append(ts)
+        self.out_y.append(np.repeat(y[:, None], ts.size, axis=1))
+        self.out_mode.append(np.zeros(ts.size, dtype=np.int8))
+
     def run(self, theta0, theta_dot0, u0, u_dot0):
         sys, cfg = self.sys, self.cfg
         start = time.perf_counter()
@@ -215,14 +173,33 @@ class _Integrator:
             if mode:
                 self.uplifts.append(0.0)
         status, message = Status.COMPLETED, "reached the end time"
-        overturn_time = None
+        verdict = 0
         events = 0
         ibreak = 1
         last_report = start
+        past_alpha_rule = cfg.overturn == physics.PAST_ALPHA
         while t < self.T:
             while ibreak < len(self.breaks) and self.breaks[ibreak] <= t + 1e-12:
                 ibreak += 1
             t_end = self.breaks[ibreak] if ibreak < len(self.breaks) else self.T
+            if mode == 0 and sys.fixed_base:
+                # the state cannot change: the first uplift is found from the motion itself
+                margin = physics.GRAZE_MARGIN if self.graze else 0.0
+                t_up, side = physics.first_uplift(self.sp, self.mp, self.acc, t, t_end, margin)
+                self.store_at_rest(t, t_up, y)
+                t = t_up
+                if side:
+                    events += 1
+                    if events > cfg.max_events:
+                        status, message = Status.EVENT_LIMIT, (
+                            f"stopped after {cfg.max_events} events at t = {t:.6g} s (max_events)")
+                        break
+                    mode = self.lift(t, side)
+                continue
+            if (mode and past_alpha_rule and sys.fixed_base and t >= self.motion_end
+                    and mode * y[TH] > sys.alpha and mode * y[THD] > 0):
+                verdict = 3  # past α and falling, nothing left to pull it back
+                break
             if mode == 0:
                 fun, evs = self.rhs_translation, self.uplift_events()
             else:
@@ -235,6 +212,10 @@ class _Integrator:
                 status, message = Status.FAILED, f"integration failed at t = {t:.6g} s: {sol.message}"
                 break
             hit = self.first_terminal(sol, evs)
+            t_cut = sol.t[-1] if hit is None else hit[1]
+            for te, ev in zip(sol.t_events, evs):
+                if ev.kind == "alpha" and len(te) and te[te <= t_cut].size:
+                    self.last_past_alpha = float(te[te <= t_cut][-1])
             if hit is None:
                 self.store(sol, t, sol.t[-1], mode)
                 t, y = float(sol.t[-1]), sol.y[:, -1].copy()
@@ -250,58 +231,73 @@ class _Integrator:
                     f"stopped after {cfg.max_events} events at t = {t:.6g} s (max_events)")
                 break
             kind = evs[k].kind
-            if kind == "overturn":
-                status, message = Status.OVERTURNED, f"|θ| reached α at t = {t:.6g} s"
-                overturn_time = t
+            if kind == "alpha":
+                self.last_past_alpha = t
+                verdict = 1 if not past_alpha_rule else 3
+                break
+            if kind == "side":
+                verdict = 2
                 break
             if kind == "impact":
                 mode, y = self.impact(t, y, mode)
             else:  # uplift
-                mode = evs[k].side
-                self.uplifts.append(t)
-                self.peak = 0.0
+                mode = self.lift(t, evs[k].side)
             if self.progress and time.perf_counter() - last_report > 1.0:
                 self.progress(t, self.T)
                 last_report = time.perf_counter()
+        if status == Status.COMPLETED and verdict == 0:
+            verdict = physics.overturn_code(not past_alpha_rule, float(y[TH]), sys.alpha, False)
+        overturn_time = None
+        if verdict:
+            status, overturn_time = Status.OVERTURNED, self.last_past_alpha
+            message = describe(verdict, t, overturn_time, float(y[TH]) / sys.alpha)
         return self.trajectory(status, message, overturn_time, time.perf_counter() - start)
 
+    def lift(self, t, side):
+        self.uplifts.append(t)
+        self.peak = 0.0
+        self.graze = False
+        return side
+
     def uplift_mode(self, t, y):
-        return uplift_direction(self.sys, base_acceleration(self.sys, y[U], y[UD], self.motion.at(t)))
+        return physics.uplift_direction(
+            self.sp, physics.base_acceleration(self.sp, y[U], y[UD], self.xg(t)))
 
     def impact(self, t, y, mode):
-        sys = self.sys
+        sp = self.sp
         y[TH] = 0.0
         thd_pre, ud_pre = float(y[THD]), float(y[UD])
         # Below the no-bounce slenderness β ≤ 0: the model has no rocking continuation
         # (the block would bounce back), so such an impact ends rocking (model.md).
-        continued = abs(thd_pre) >= self.rest and self.beta > 0
-        thd_post, ud_post = impact_map(sys, thd_pre, ud_pre, continued=continued)
-        if sys.fixed_base:
-            ud_post = 0.0
-        k_pre = sum(energy(sys, mode, 0.0, ud_pre, 0.0, thd_pre))
-        k_post = sum(energy(sys, -mode, 0.0, ud_post, 0.0, thd_post))
-        self.impact_loss += float(k_pre - k_post)
-        self.losses.append(float(k_pre - k_post))
+        continued = physics.impact_continues(sp, thd_pre)
+        thd_post, ud_post = physics.impact_map(sp, thd_pre, ud_pre, continued)
+        loss = physics.impact_energy_loss(sp, ud_pre, thd_pre, ud_post, thd_post)
+        self.impact_loss += loss
+        self.losses.append(loss)
         self.impacts.append(Impact(
             t=t, theta_dot_pre=thd_pre, theta_dot_post=thd_post, u_dot_pre=ud_pre,
             u_dot_post=ud_post, continued=continued, amplitude=self.peak,
-            counted=self.peak > self.impact_threshold * sys.alpha))
+            counted=self.peak > self.impact_threshold * self.sys.alpha))
         self.peak = 0.0
         y[THD], y[UD] = thd_post, ud_post
         if continued:
             return -mode, y
         y[THD] = 0.0
-        new = self.uplift_mode(t, y)  # a base still accelerating past g·tanα re-lifts at once
+        # a base still accelerating past g·tanα re-lifts at once, if it lifts clearly;
+        # a grazing one stays down (no rocking phases of zero length)
+        new = physics.relift(sp, y[U], y[UD], self.xg(t))
         if new:
-            self.uplifts.append(t)
-        return new, y
+            return self.lift(t, new), y
+        self.graze = True
+        return 0, y
 
     # events ---------------------------------------------------------------------------
     def uplift_events(self):
-        sys, thr = self.sys, self.sys.uplift_acceleration
+        sp = self.sp
+        thr = sp[physics.THR] * (1.0 + (physics.GRAZE_MARGIN if self.graze else 0.0))
 
         def a(t, y):
-            return base_acceleration(sys, y[U], y[UD], self.motion.at(t))
+            return physics.base_acceleration(sp, y[U], y[UD], self.xg(t))
         # a < −thr lifts about O (θ > 0); a > thr about O' (θ < 0)
         e_pos = _event(lambda t, y: -a(t, y) - thr, "uplift", +1, side=1)
         e_neg = _event(lambda t, y: a(t, y) - thr, "uplift", +1, side=-1)
@@ -311,11 +307,15 @@ class _Integrator:
         alpha = self.sys.alpha
         peak = _event(lambda t, y: y[THD], "peak", 0)
         peak.terminal = False  # located only so θmax is exact, not read off samples
-        return [
-            _event(self.impact_function(s, t0, y0), "impact", -1),
-            _event(lambda t, y: s * y[TH] - alpha, "overturn", +1),
-            peak,
-        ]
+        # |θ| rising through α: the end of the run under the rule "alpha", and on a fixed
+        # base after the motion (nothing can pull the block back); otherwise only noted
+        past = _event(lambda t, y: s * y[TH] - alpha, "alpha", +1)
+        past.terminal = (self.cfg.overturn == physics.AT_ALPHA
+                         or (self.sys.fixed_base and t0 >= self.motion_end))
+        evs = [_event(self.impact_function(s, t0, y0), "impact", -1), past, peak]
+        if self.cfg.overturn == physics.PAST_ALPHA:
+            evs.append(_event(lambda t, y: s * y[TH] - physics.SIDE_ANGLE, "side", +1))
+        return evs
 
     def impact_function(self, s, t0, y0):
         """s·θ, divided by (t − t0)^k when a piece starts at θ = 0 (after an impact or
@@ -325,16 +325,11 @@ class _Integrator:
         at its positive limit and vanishes only when the block really lands."""
         if y0[TH] != 0:
             return lambda t, y: s * y[TH]
-        if y0[THD] != 0:
-            k, limit = 1, s * y0[THD]
-        else:
-            _, thdd = rocking_accelerations(self.sys, s, 0.0, 0.0, y0[U], y0[UD], self.motion.at(t0))
-            # at an uplift found as an event θ̈ is ~0 and θ grows as (t − t0)³
-            k, limit = (2, 0.5 * s * thdd) if s * thdd > 1e-9 * self.sys.uplift_acceleration else (3, 1e-300)
+        kpow, limit = physics.impact_function_order(self.sp, s, y0[U], y0[UD], y0[THD], self.xg(t0))
 
         def g(t, y):
             dt = t - t0
-            return s * y[TH] / dt**k if dt > 0 else limit
+            return s * y[TH] / dt**kpow if dt > 0 else limit
         return g
 
     @staticmethod
@@ -347,20 +342,25 @@ class _Integrator:
 
     # result ---------------------------------------------------------------------------
     def trajectory(self, status, message, overturn_time, runtime):
-        sys = self.sys
+        sys, sp = self.sys, self.sp
         t = np.concatenate(self.out_t) if self.out_t else np.zeros(1)
         y = np.concatenate(self.out_y, axis=1) if self.out_y else np.zeros((6, 1))
         mode = np.concatenate(self.out_mode) if self.out_mode else np.zeros(1, np.int8)
-        kin, pot = energy(sys, np.where(mode == 0, 1, mode), y[U], y[UD], y[TH], y[THD])
+        s = np.where(mode == 0, 1.0, mode)
+        kin = physics.kinetic_energy(sp, s, y[UD], y[TH], y[THD])
+        pot = physics.potential_energy(sp, s, y[U], y[TH])
+        demand = max((physics.pivot_force_ratio(sp, int(mode[i]), y[TH, i], y[THD, i], y[U, i], y[UD, i],
+                                                self.xg(t[i])) for i in range(t.size)), default=0.0)
         cum = cumulative_impact_loss(t, [i.t for i in self.impacts], self.losses)
         log = EnergyLog(kinetic=kin, potential=pot, ground_work=y[W], dashpot_loss=y[D], impact_loss=cum,
                         per_impact=tuple(self.losses))
         return Trajectory(
-            engine="analytic", system=sys, t=t, u=y[U], u_dot=y[UD], theta=y[TH], theta_dot=y[THD],
+            engine="analytic-reference", system=sys, t=t, u=y[U], u_dot=y[UD], theta=y[TH], theta_dot=y[THD],
             mode=mode, impacts=tuple(self.impacts), uplift_times=tuple(self.uplifts),
             overturned=status == Status.OVERTURNED, overturn_time=overturn_time,
             impact_threshold=self.impact_threshold, runtime_s=runtime, status=status,
-            message=message, energy=log)
+            message=message, energy=log,
+            extras={"overturn_rule": self.cfg.overturn, "friction_demand": float(demand)})
 
 
 class _Failed:

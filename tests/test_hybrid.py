@@ -132,10 +132,20 @@ def test_isolated_uplift_at_threshold_of_base_acceleration():
 
 
 def test_overturning_is_located():
-    tr = simulate(FIXED, load_motion("sine:amp=0.9,freq=0.8,cycles=1"), duration=5.0)
-    assert tr.overturned and tr.status == "overturned"
-    assert tr.theta_max_over_alpha == pytest.approx(1.0, abs=1e-9)
-    assert tr.t[-1] == pytest.approx(tr.overturn_time)
+    """Rule "alpha" stops where |θ| reaches α; the default rule goes on past α, and a
+    fixed base past α and falling after the motion stops early, overturned at the same
+    (only) time it rose through α."""
+    motion = load_motion("sine:amp=0.9,freq=0.8,cycles=1")
+    at_alpha = simulate(FIXED, motion, duration=5.0, settings=AnalyticSettings(overturn="alpha"))
+    assert at_alpha.overturned and at_alpha.status == "overturned"
+    assert at_alpha.theta_max_over_alpha == pytest.approx(1.0, abs=1e-9)
+    assert at_alpha.t[-1] == pytest.approx(at_alpha.overturn_time)
+    assert at_alpha.summary()["overturn_rule"] == "alpha"
+    past = simulate(FIXED, motion, duration=5.0)
+    assert past.overturned and past.summary()["overturn_rule"] == "past-alpha"
+    assert past.overturn_time == pytest.approx(at_alpha.overturn_time, abs=1e-9)
+    assert past.theta_max_over_alpha > 1.0 and past.t[-1] >= motion.end_time
+    assert past.theta[-1] * past.theta_dot[-1] > 0  # falling
 
 
 def test_energy_balance_with_damping_and_ground_motion():

@@ -10,7 +10,7 @@ from isorock.analytic import AnalyticSettings, GroundMotion, System, simulate
 from isorock.analytic.coefficients import beta
 from isorock.analytic.status import Status
 from isorock.analytic.trajectory import RawHistory
-from isorock.validate.measure import CONTACT_WINDOW, judge_overturning, measure
+from isorock.validate.measure import CONTACT_WINDOW, measure
 
 FIXED = System.fixed(height=2.0, width=0.7, mass=3800.0)
 ISOLATED = System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.5, damping_ratio=0.2)
@@ -74,23 +74,21 @@ def _lean(peak, end):
 
 
 def test_overturning_past_alpha_follows_model_md():
-    t, th = _lean(1.3, 0.2)  # leaned past α and came back: survives by the π/2 rule
-    assert judge_overturning(t, th, FIXED.alpha) == (False, None)
-    over, at = judge_overturning(t, th, FIXED.alpha, rule="alpha")  # the conservative rule
-    assert over and at == pytest.approx(1 / 1.3, abs=2e-3)
+    t, th = _lean(1.3, 0.2)  # leaned past α and came back: survives by the past-α rule
+    assert not measure(raw(FIXED, t, th), ZERO).overturned
+    conservative = measure(raw(FIXED, t, th), ZERO, overturn_rule="alpha")  # the conservative rule
+    assert conservative.overturned and conservative.overturn_time == pytest.approx(1 / 1.3, abs=2e-3)
+    assert conservative.summary()["overturn_rule"] == "alpha"
     t, th = _lean(0.8, 1.2)  # ends beyond α: overturned, at the last time it passed α
-    over, at = judge_overturning(t, th, FIXED.alpha)
-    assert over and at == pytest.approx(1 + 2 * 0.2 / 0.4, abs=2e-3)
-    t, th = _lean(1.1, 1.1)
-    assert judge_overturning(t, th, FIXED.alpha, lying=True)[0]
-    with pytest.raises(ValueError, match="overturn rule"):
-        judge_overturning(t, th, FIXED.alpha, rule="sometimes")
+    over = measure(raw(FIXED, t, th), ZERO)
+    assert over.overturned and over.overturn_time == pytest.approx(1 + 2 * 0.2 / 0.4, abs=2e-3)
+    assert over.summary()["overturn_rule"] == "past-alpha"
 
 
 def test_measure_reports_overturning_in_the_status_and_keeps_failures():
     t, th = _lean(0.8, 1.2)
     tr = measure(raw(FIXED, t, th), ZERO)
-    assert tr.overturned and tr.status == Status.OVERTURNED and "last passed α" in tr.message
+    assert tr.overturned and tr.status == Status.OVERTURNED and "> α" in tr.message
     failed = measure(raw(FIXED, t, th, status=Status.FAILED, message="blew up"), ZERO)
     assert failed.status == Status.FAILED and failed.message == "blew up"  # a failure is never renamed
 

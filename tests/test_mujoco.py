@@ -300,7 +300,7 @@ def test_finite(joint, make):
     assert traj.status == "completed" and traj.theta_max_over_alpha > 0.05  # it rocked
     for name in ("t", "u", "u_dot", "theta", "theta_dot"):
         assert np.all(np.isfinite(getattr(traj, name))), name
-    assert traj.extras and all(np.isfinite(v) for v in traj.extras.values())
+    assert traj.extras and all(np.isfinite(v) for v in traj.extras.values() if not isinstance(v, str))
     assert all(np.isfinite(v) for v in traj.summary().values() if isinstance(v, float))
 
 

@@ -32,7 +32,7 @@ def test_a_hang_is_reported_as_timeout():
     # 300 s of 1 ms record on the reference path cannot finish in 0.5 s
     case = StressCase(Scenario("slow", System.fixed(height=2, width=0.5, mass=1),
                                "noise:dt=0.001,pga=0.3,seconds=300,seed=0", 300.0), "forced time-out")
-    r = run_case("analytic", case, time_limit=0.5)
+    r = run_case("analytic-reference", case, time_limit=0.5)
     assert r["status"] == "timeout" and r["verdict"] == "FAIL"
 
 

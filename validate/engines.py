@@ -25,12 +25,15 @@ if TYPE_CHECKING:
 DEFAULT_IMPACT_THRESHOLD = 0.01
 
 ENGINE_MODULES = {
-    "analytic": "isorock.analytic.engine",
+    # the analytic model, compiled (analytic.fast); its SciPy reference path, which the
+    # compiled kernel is tested against, is "analytic-reference"
+    "analytic": "isorock.analytic.fast_engine",
+    "analytic-reference": "isorock.analytic.engine",
     "mujoco": "isorock.mujoco_models",
     "bullet": "isorock.bullet_models",
     # Drake's point contact: an independent, slower formulation, asked for by name (docs/drake.md)
     "drake": "isorock.drake_models",
-    # the same model as "analytic", compiled (analytic.fast): for speed, by name
+    # the former name of the compiled engine, kept so that nothing breaks
     "analytic-fast": "isorock.analytic.fast_engine",
 }
 #: The engine every other is compared with.
@@ -88,13 +91,23 @@ class Engine:
         return self.spec.scene_text(system, settings)
 
     def simulate(self, system, motion=None, *, settings=None, duration=None, theta0=0.0,
-                 impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule="pi/2",
+                 impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule=None,
                  progress=None) -> Trajectory:
         """Run the engine and measure its history: θ0 in rad; impact_threshold as a
-        fraction of α (model.md's counting rule); contact_window (s) and overturn_rule
-        are how a contact engine's history is measured (validate.measure)."""
+        fraction of α (model.md's counting rule); contact_window (s) is how a contact
+        engine's history is measured (validate.measure); overturn_rule ("past-alpha" or
+        "alpha", model.md) judges every engine the same way: the analytic engines take it
+        as their `overturn` setting, a contact engine's history is judged by it (default:
+        the analytic setting's, else "past-alpha")."""
+        from dataclasses import replace
+
+        from isorock.analytic.overturning import PAST_ALPHA
         from isorock.analytic.trajectory import RawHistory
         from isorock.validate import measure
+        if settings is None:
+            settings = self.settings()
+        if overturn_rule is not None and hasattr(settings, "overturn"):
+            settings = replace(settings, overturn=overturn_rule)
         kwargs = dict(settings=settings, duration=duration, theta0=theta0, progress=progress)
         if self.capabilities.exact_impacts:
             kwargs["impact_threshold"] = impact_threshold
@@ -103,7 +116,7 @@ class Engine:
             from isorock.analytic.motion import GroundMotion
             out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
                                   window=measure.CONTACT_WINDOW if contact_window is None else contact_window,
-                                  overturn_rule=overturn_rule)
+                                  overturn_rule=overturn_rule or PAST_ALPHA)
         return out
 
 

@@ -8,7 +8,8 @@
   are biased by about 1%); impacts that are not counted (contact chatter) carry NaN
   velocities, since their β measures the contact more than the block;
 - uplifts: where |θ| leaves the band REST_FRACTION·α after resting;
-- overturning: judged from the history by the run's rule (`judge_overturning`).
+- overturning: judged from the history by the run's rule, with the judge every engine
+  shares (`isorock.analytic.overturning.judge_overturning`).
 """
 from __future__ import annotations
 
@@ -19,6 +20,7 @@ import numpy as np
 from isorock.analytic.coefficients import beta as beta_closed_form
 from isorock.analytic.hybrid import map_to_impact
 from isorock.analytic.kinematics import LYING, LYING_SLACK
+from isorock.analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
@@ -36,13 +38,10 @@ REST_FRACTION = 1e-3
 #: with friction 1 slides 0.6–0.7·b): the run then breaks the analytic model's
 #: no-sliding assumption and says so in its status.
 SLIDING_FRACTION = 0.01
-#: model.md's overturning rules: "pi/2" (the default: overturned when |θ| reaches π/2, or
-#: the run ends with |θ| > α) and the conservative "alpha" (overturned once |θ| reaches α).
-OVERTURN_RULES = ("pi/2", "alpha")
 
 
 def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = DEFAULT_IMPACT_THRESHOLD,
-            window: float = CONTACT_WINDOW, overturn_rule: str = "pi/2") -> Trajectory:
+            window: float = CONTACT_WINDOW, overturn_rule: str = PAST_ALPHA) -> Trajectory:
     """The shared Trajectory of a contact engine's raw history: modes from |θ|, every
     impact with model.md's `counted` flag, effective β of the counted ones, uplifts,
     and overturning by `overturn_rule`."""
@@ -51,15 +50,13 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
     system = raw.system
     rest = REST_FRACTION * system.alpha
     mode = np.where(theta > rest, 1, np.where(theta < -rest, -1, 0)).astype(np.int8)
-    overturned, overturn_time = judge_overturning(t, theta, system.alpha, rule=overturn_rule,
-                                                  lying=raw.stop_reason in ("lying", "falling"))
+    # a contact engine's block rests on its side through a compliant contact, a little short of π/2
+    verdict = judge_overturning(t, theta, system.alpha, motion_end=motion.end_time, rule=overturn_rule,
+                                side_angle=LYING - LYING_SLACK)
+    overturned, overturn_time = verdict.overturned, verdict.time
     status, message = raw.status, raw.message
     if overturned and status == Status.COMPLETED:
-        status = Status.OVERTURNED
-        message = (f"|θ| reached α at t = {overturn_time:.6g} s" if overturn_rule == "alpha" else
-                   f"overturned: last passed α at t = {overturn_time:.6g} s"
-                   + {"lying": " and came to lie on its side", "falling": " and falls (fixed base, motion over)"}
-                   .get(raw.stop_reason, " and ended beyond it"))
+        status, message = Status.OVERTURNED, verdict.message
     slip = raw.extras.get("pivot_slip_max")
     if slip is not None and slip > SLIDING_FRACTION * system.b and not status.is_failure:
         status = Status.SLID
@@ -71,28 +68,7 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
                       mode=mode, impacts=impacts, uplift_times=_uplifts(t, mode, window), overturned=overturned,
                       overturn_time=overturn_time, impact_threshold=impact_threshold, runtime_s=raw.runtime_s,
-                      status=status, message=message, extras=dict(raw.extras))
-
-
-def judge_overturning(t, theta, alpha: float, *, rule: str = "pi/2", lying: bool = False):
-    """(overturned, time) of a sampled history by model.md's rule. "pi/2": overturned when
-    |θ| reaches π/2 (or `lying`: the engine stopped the run because the block lies on its
-    side or, on a fixed base after the motion, falls) or the history ends with |θ| > α;
-    the time is the last time |θ| passed α upwards. "alpha": overturned once |θ| reaches
-    α, at the first such time."""
-    if rule not in OVERTURN_RULES:
-        raise ValueError(f"overturn rule {rule!r}: must be one of {', '.join(OVERTURN_RULES)}")
-    t, a = np.asarray(t, dtype=float), np.abs(np.asarray(theta, dtype=float))
-    beyond = a >= alpha
-    if not beyond.any():
-        return False, None
-    if rule == "alpha":
-        return True, float(t[int(np.argmax(beyond))])
-    if not (lying or beyond[-1] or np.max(a) >= LYING - LYING_SLACK):
-        return False, None
-    rising = np.flatnonzero(beyond[1:] & ~beyond[:-1]) + 1
-    k = int(rising[-1]) if rising.size else 0
-    return True, float(t[k])
+                      status=status, message=message, extras={**raw.extras, "overturn_rule": overturn_rule})
 
 
 def _uplifts(t, mode, rest_time):
@@ -168,5 +144,4 @@ def beta_errors(traj: Trajectory, n: int | None = None) -> list[float]:
     return errs[:n] if n is not None else errs
 
 
-__all__ = ["measure", "judge_overturning", "effective_impacts", "beta_errors", "CONTACT_WINDOW",
-           "REST_FRACTION", "OVERTURN_RULES"]
+__all__ = ["measure", "effective_impacts", "beta_errors", "CONTACT_WINDOW", "REST_FRACTION", "OVERTURN_RULES"]
