@@ -220,7 +220,8 @@ def add_parser(sub) -> None:
                        description=__doc__.split("\n\n")[1])
     p.add_argument("--quick", action="store_true", help="the quick subset (under 2 minutes)")
     p.add_argument("--out", default="isorock-stress", metavar="DIR",
-                   help="folder for stress.md, stress.csv, stress.json (default: %(default)s)")
+                   help="folder for stress.md, stress.csv, stress.json: new, empty or an earlier isorock "
+                        "output (default: %(default)s)")
     p.add_argument("--engines", nargs="+", metavar="ENGINE", help="engines to stress (default: all)")
     p.add_argument("--time-limit", type=float, help="wall-time limit per case, s (default 30 quick, 120 full)")
     p.set_defaults(func=cmd_stress)
@@ -237,6 +238,8 @@ def cmd_stress(a) -> int:
         get_engine(e)  # an unknown name is an InputError before anything runs
     if a.time_limit is not None and not a.time_limit > 0:
         raise InputError(f"time-limit = {a.time_limit!r}: must be a positive number of seconds")
+    from isorock.validate.output import check_folder
+    check_folder(a.out)  # a folder we may not write is refused before the grid runs
     start = time.perf_counter()
     results = run_stress(quick=a.quick, engines=a.engines, time_limit=a.time_limit)
 
