@@ -81,7 +81,7 @@ class ReportConfig:
     duration: float | None = None        # s; default: pulse end + tail, records RECORD_WINDOW
     scales: tuple[float, float, int] | None = None
     format: str | None = None
-    units: str = "m/s2"
+    units: str | None = None            # a record's units when the file does not state them
 
     def __post_init__(self):
         require(len(self.motions) > 0, "motion", self.motions, "at least one motion")
