@@ -366,6 +366,7 @@ def read_at2(path, units: str | None = None) -> GroundMotion:
     stated = _UNITS_STATED.search(header)
     units = _stated_units(path, stated.group(1) if stated else None, "header", units, None)
     npts = int(m.group(1))
+    check_record_samples(f"{path}:4: NPTS = {npts}", npts)  # before reading millions of values
     try:
         dt = float(m.group(2))
     except ValueError:

@@ -81,6 +81,8 @@ def run(args) -> int:
                           units=args.units)
     log = (lambda line: None) if args.quiet else (lambda line: print(line, file=sys.stderr, flush=True))
     results = build(config, log=log)
+    for motion in {id(sc.motion): sc.motion for sc in results.scenarios}.values():
+        log(f"motion {motion.name}: PGA {motion.pga_g:.4g} g (read in {motion.units})")
     write_report(results, args.out)
     log(f"wrote {args.out}/report.md, report.html, metrics.json ({results.wall_s:.0f} s)")
     print(verdict(results))
