@@ -248,6 +248,10 @@ def cases() -> list[Case]:
     add(Case("work", "--stiffness 1e30", [*ISOLATED[:-4], "--stiffness", "1e30"]))
     add(Case("work", "validate --scales 0.1,1,1e9", ["validate", "--engines", "analytic", "--scales", "0.1,1,1e9"]))
     add(Case("work", "validate --scales 0.1,1e9,3", ["validate", "--engines", "analytic", "--scales", "0.1,1e9,3"]))
+    for extra in (["--engine", "mujoco", "--timestep", "0"], ["--engine", "bullet", "--substeps", "-5"],
+                  ["--rtol", "0"], ["--max-step", "inf"], ["--scale", "nan"], ["--impact-threshold", "2"],
+                  ["--engine", "mujoco", "--friction", "nan"]):
+        add(Case("work", " ".join(extra), [*FIXED, *SHORT, *extra]))
     add(Case("work", "isolated, 2 s of a pulse", [*ISOLATED, "--motion", "sine:amp=0.5,freq=2", "--duration", "2"],
              "ok", check=lambda d, out: json.loads(out)["status"] in ("completed", "overturned")))
     return c
