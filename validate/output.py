@@ -346,7 +346,7 @@ class FolderOutput:
 
     def _replace_in_place(self, staging: Path, names: list[str]) -> None:
         # re-checked now: a file the user put there during the run must not be lost
-        foreign = _foreign_entries(self.target, ignore={staging.name})
+        foreign = _foreign_entries(self.target)
         if foreign:
             _refuse(self.field, self.given, f"now holds files isorock did not write ({', '.join(sorted(foreign))})")
         old = Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=self.target))
@@ -384,10 +384,10 @@ class FolderOutput:
         self._created = []
 
 
-def _foreign_entries(folder: Path, ignore=frozenset()) -> set[str]:
-    """Entries of `folder` that its marker does not list (all of them without a marker)."""
-    entries = {e.name for e in folder.iterdir()} - set(ignore)
-    entries = {n for n in entries if not n.startswith(STAGING_PREFIX) or n in ignore}
+def _foreign_entries(folder: Path) -> set[str]:
+    """Entries of `folder` that its marker does not list (all of them without a marker).
+    Staging entries are ours: a run killed by SIGKILL may leave one behind."""
+    entries = {e.name for e in folder.iterdir() if not e.name.startswith(STAGING_PREFIX)}
     if not entries:
         return set()
     marker = folder / MARKER
@@ -432,7 +432,7 @@ class Outputs:
         # streams first: a full device or a closed pipe fails before any file is replaced
         with _signals_held():
             try:
-                for t in sorted(self.targets, key=lambda t: getattr(t, "kind", "folder") == "file"):
+                for t in sorted(self.targets, key=lambda t: getattr(t, "kind", None) not in ("stdout", "stream")):
                     t.commit()
             except BaseException:
                 self.discard()
