@@ -5,9 +5,13 @@ zero after the last sample) or one of model.md's closed-form pulses (evaluated
 exactly). Every engine asks the same object for ẍg(t), so all three see the same
 input.
 
-Readers: PEER NGA AT2 (units of g), the JMA text format (gal, `dt` on the third
-line), two-column text (t, a) with a units option. Malformed files raise
-`InputError` naming the file, the line and what was expected.
+Readers: PEER NGA AT2 (the units its header states: g, cm/s² or m/s²; a velocity or
+displacement series is refused), the JMA text format (gal, `dt` on the third line),
+two-column text (t, a) whose units must be given (`units=`, the CLI's `--units`) or
+stated in the file (see `read_two_column`). Units given for a file that states its
+own must agree with it. Malformed files raise `InputError` naming the file, the line
+and what was expected. Sizes are bounded by analytic.limits (record samples, pulse
+length).
 """
 from __future__ import annotations
 
@@ -19,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from .errors import InputError, require, require_nonnegative_finite, require_positive_finite
+from .limits import MAX_DURATION, MAX_SAMPLES, check_record_samples
 from .system import STANDARD_GRAVITY
 
 UNITS = {"m/s2": 1.0, "g": STANDARD_GRAVITY, "gal": 0.01, "cm/s2": 0.01}
@@ -40,6 +45,10 @@ class Pulse:
         object.__setattr__(self, "amp", _finite("amp", self.amp))
         object.__setattr__(self, "freq", require_positive_finite("freq", self.freq))
         object.__setattr__(self, "cycles", require_positive_finite("cycles", self.cycles))
+        if self.end_time > MAX_DURATION:
+            length = "3/freq" if self.kind == "ricker" else "cycles/freq"
+            raise InputError(f"{self.spec()}: lasts {length} = {self.end_time:.3g} s; a pulse must end within "
+                             f"{MAX_DURATION:g} s (MAX_DURATION): raise freq or lower cycles")
 
     @property
     def end_time(self) -> float:
@@ -91,6 +100,7 @@ class GroundMotion:
     pulse: Pulse | None = None
     scale: float = 1.0
     _pulse_shift: float = field(default=0.0, repr=False)  # time trimmed off a pulse's start
+    units: str = "m/s2"  # the units the source was read in (its samples are always m/s²)
 
     def __post_init__(self):
         require_positive_finite("dt", self.dt)
@@ -103,6 +113,11 @@ class GroundMotion:
             i = int(np.argmax(bad))
             raise InputError(f"{self.name or 'acceleration'}: sample {i} is {a[i]}: "
                              "every sample must be a finite number")
+        if self.pulse is None:
+            check_record_samples(self.name or "acceleration", a.size)
+            if (a.size - 1) * self.dt > MAX_DURATION:
+                raise InputError(f"{self.name or 'acceleration'}: lasts {(a.size - 1) * self.dt:.3g} s; a record "
+                                 f"must end within {MAX_DURATION:g} s (MAX_DURATION)")
         a.setflags(write=False)
         object.__setattr__(self, "acceleration", a)
 
@@ -120,13 +135,16 @@ class GroundMotion:
             raise InputError(f"{name}: give exactly one of dt or t")
         if t is not None:
             dt = _uniform_step(np.asarray(t, dtype=float), a.size, name)
-        return cls(dt=require_positive_finite("dt", dt), acceleration=a * UNITS[units], name=name)
+        return cls(dt=require_positive_finite("dt", dt), acceleration=a * UNITS[units], name=name, units=units)
 
     @classmethod
     def from_pulse(cls, pulse: Pulse, *, dt: float | None = None) -> "GroundMotion":
         dt = dt or min(1e-3, 1 / (200 * pulse.freq))
-        n = int(math.floor(pulse.end_time / dt + 1e-9)) + 1
-        return cls(dt=dt, acceleration=pulse(np.arange(n) * dt), name=pulse.spec(), pulse=pulse)
+        n = math.floor(pulse.end_time / dt + 1e-9) + 1
+        if n > MAX_SAMPLES:
+            raise InputError(f"{pulse.spec()}: sampled every {dt:.3g} s it takes {n:.3g} samples; must be at most "
+                             f"{MAX_SAMPLES:.0e} (MAX_SAMPLES): fewer cycles")
+        return cls(dt=dt, acceleration=pulse(np.arange(n) * dt), name=pulse.spec(), pulse=pulse, units="g")
 
     @classmethod
     def zero(cls) -> "GroundMotion":
@@ -203,8 +221,9 @@ class GroundMotion:
         f = _finite("scale", factor)
         if self.pulse is not None:
             return GroundMotion(dt=self.dt, acceleration=self.acceleration * f, name=self.name,
-                                pulse=self.pulse, scale=self.scale * f, _pulse_shift=self._pulse_shift)
-        return GroundMotion(dt=self.dt, acceleration=self.acceleration * f, name=self.name)
+                                pulse=self.pulse, scale=self.scale * f, _pulse_shift=self._pulse_shift,
+                                units=self.units)
+        return GroundMotion(dt=self.dt, acceleration=self.acceleration * f, name=self.name, units=self.units)
 
     def scaled_to_pga(self, pga_g: float) -> "GroundMotion":
         target = require_positive_finite("pga", pga_g)
@@ -219,21 +238,22 @@ class GroundMotion:
         if self.pulse is not None:
             shift = self._pulse_shift + start
             return GroundMotion(dt=self.dt, acceleration=self.acceleration, name=self.name,
-                                pulse=self.pulse, scale=self.scale, _pulse_shift=shift)._clip(end - start)
+                                pulse=self.pulse, scale=self.scale, _pulse_shift=shift,
+                                units=self.units)._clip(end - start)
         i0 = int(math.ceil(start / self.dt - 1e-9))
         i1 = int(math.floor(end / self.dt + 1e-9))
         require(i1 >= i0, "end", end, "at least one sample after start")
-        return GroundMotion(dt=self.dt, acceleration=self.acceleration[i0:i1 + 1], name=self.name)
+        return GroundMotion(dt=self.dt, acceleration=self.acceleration[i0:i1 + 1], name=self.name, units=self.units)
 
     def _clip(self, length):
         # a trimmed pulse keeps its closed form; samples are refreshed for engines
         t = np.arange(int(math.floor(length / self.dt + 1e-9)) + 1) * self.dt
         return GroundMotion(dt=self.dt, acceleration=self(t), name=self.name, pulse=self.pulse,
-                            scale=self.scale, _pulse_shift=self._pulse_shift)
+                            scale=self.scale, _pulse_shift=self._pulse_shift, units=self.units)
 
     def describe(self) -> dict:
         return {"name": self.name, "dt": self.dt, "points": self.n,
-                "end_time": self.end_time, "pga_g": self.pga_g}
+                "end_time": self.end_time, "pga_g": self.pga_g, "units_read": self.units}
 
 
 # --- readers ----------------------------------------------------------------------
@@ -275,34 +295,98 @@ def _read_lines(path) -> list[str]:
     if not p.is_file():
         raise InputError(f"motion file {str(path)!r}: no such file")
     try:
-        return p.read_text(encoding="utf-8", errors="replace").splitlines()
+        # utf-8-sig: a byte-order mark is not part of the first value
+        return p.read_text(encoding="utf-8-sig", errors="replace").splitlines()
     except OSError as e:
         raise InputError(f"motion file {str(path)!r}: cannot be read ({e.strerror})") from None
 
 
-_AT2_HEADER = re.compile(r"NPTS\s*=\s*([0-9]+)\s*,\s*DT\s*=\s*([0-9.Ee+-]+)", re.IGNORECASE)
+_AT2_HEADER = re.compile(r"NPTS\s*=\s*([0-9]+)\s*,\s*DT\s*=\s*([^\s,]+)", re.IGNORECASE)
+# "UNITS OF G", "IN UNITS OF CM/SEC/SEC", "UNITS: m/s2", "(UNITS = GAL)"
+_UNITS_STATED = re.compile(r"\bUNITS?\s*(?:OF|IN|:|=)?\s*([A-Za-z][A-Za-z0-9/*^.²]*(?:\s*/\s*[A-Za-z0-9*^²]+)*)",
+                           re.IGNORECASE)
+_NOT_ACCELERATION = re.compile(r"\b(VELOCITY|DISPLACEMENT)\b", re.IGNORECASE)
 
 
-def read_at2(path) -> GroundMotion:
-    """PEER NGA AT2: 3 text lines, then `NPTS = n, DT = dt SEC`, then values in g."""
+def units_from_text(text: str) -> str | None:
+    """One of UNITS for an acceleration unit as records write it (G, GAL, CM/SEC/SEC,
+    CM/S2, CM/S^2, CM/S**2, M/S/S, …), None for anything else (not an acceleration,
+    or unknown)."""
+    s = re.sub(r"\s+", "", text).upper().rstrip(".").replace("²", "2")
+    if s in ("G", "GS", "G'S"):
+        return "g"
+    if s in ("GAL", "GALS"):
+        return "gal"
+    m = re.fullmatch(r"(CM|M)/(?:S|SEC)(?:/(?:S|SEC)|\^?2|\*\*2)", s)
+    if m:
+        return "cm/s2" if m.group(1) == "CM" else "m/s2"
+    return None
+
+
+def _same_units(a: str, b: str) -> bool:
+    return UNITS[a] == UNITS[b]
+
+
+def _stated_units(path, stated_text: str | None, where: str, given: str | None, default: str | None) -> str:
+    """The units to read a file in: those it states (which `given` must agree with),
+    else `given`, else `default`; a file with none of these is refused."""
+    if stated_text is not None:
+        stated = units_from_text(stated_text)
+        if stated is None:
+            raise InputError(f"{path}: {where} states units {stated_text!r}: not an acceleration in known units "
+                             f"(accepted: g, gal or cm/s², m/s²)")
+        if given is not None and not _same_units(stated, given):
+            raise InputError(f"units = {given!r}: contradicts {path}, whose {where} states {stated_text!r}")
+        return stated
+    if given is not None:
+        require(given in UNITS, "units", given, f"one of {', '.join(UNITS)}")
+        return given
+    if default is not None:
+        return default
+    raise InputError(f"{path}: its units are not stated: give --units ({', '.join(UNITS)}) "
+                     "or a line '# units: g' in the file")
+
+
+def read_at2(path, units: str | None = None) -> GroundMotion:
+    """PEER NGA AT2: 3 text lines (the third says what the series is and its units,
+    e.g. `ACCELERATION TIME SERIES IN UNITS OF G`), then `NPTS = n, DT = dt SEC`,
+    then the values. The header's units are read (g, cm/s², m/s²); a velocity or
+    displacement series, or a header without units and without `units`, is refused."""
     lines = _read_lines(path)
     if len(lines) < 4:
         raise InputError(f"{path}: an AT2 file has 4 header lines; this one has {len(lines)} lines")
+    header = " ".join(lines[:3])
+    kind = _NOT_ACCELERATION.search(header)
+    if kind:
+        raise InputError(f"{path}: the header says it is a {kind.group(1).lower()} series; "
+                         "a ground motion must be an acceleration series")
     m = _AT2_HEADER.search(lines[3])
     if not m:
         raise InputError(f"{path}:4: expected 'NPTS = n, DT = dt SEC', found {lines[3].strip()!r}")
-    npts, dt = int(m.group(1)), float(m.group(2))
+    stated = _UNITS_STATED.search(header)
+    units = _stated_units(path, stated.group(1) if stated else None, "header", units, None)
+    npts = int(m.group(1))
+    check_record_samples(f"{path}:4: NPTS = {npts}", npts)  # before reading millions of values
+    try:
+        dt = float(m.group(2))
+    except ValueError:
+        dt = None
+    if dt is None or not (math.isfinite(dt) and dt > 0):
+        raise InputError(f"{path}:4: DT = {m.group(2)!r}: must be a positive number of seconds")
     values = []
     for k, line in enumerate(lines[4:], start=5):
         values.extend(_numbers(line.split(), path, k))
     if len(values) != npts:
         raise InputError(f"{path}: header says NPTS = {npts} but the file has {len(values)} values")
-    return GroundMotion.from_array(values, dt=dt, units="g", name=Path(path).name)
+    return GroundMotion.from_array(values, dt=dt, units=units, name=Path(path).name)
 
 
-def read_jma(path) -> GroundMotion:
+def read_jma(path, units: str | None = None) -> GroundMotion:
     """JMA text as in shared/data/records/KOBE_NS: `;` comment lines, a line
-    `dt x` (the second number is unused), then values in gal (cm/s²)."""
+    `dt x` (the second number is unused), then values in gal (cm/s², the format's
+    units: `units`, when given, must agree)."""
+    if units is not None:
+        _stated_units(path, "gal", "format (JMA)", units, None)
     lines = [(k, ln) for k, ln in enumerate(_read_lines(path), start=1)
              if ln.strip() and not ln.lstrip().startswith(";")]
     if not lines:
@@ -318,18 +402,34 @@ def read_jma(path) -> GroundMotion:
     return GroundMotion.from_array(values, dt=dt, units="gal", name=Path(path).name)
 
 
-def read_two_column(path, units="m/s2") -> GroundMotion:
-    """Two columns t (s), a (units) separated by commas, spaces or tabs; `#` comments
-    and one non-numeric header line are allowed."""
-    require(units in UNITS, "units", units, f"one of {', '.join(UNITS)}")
+_COMMENT_UNITS = re.compile(r"^\s*#\s*units?\s*[:=]\s*(\S+)\s*$", re.IGNORECASE)
+_COLUMN_UNITS = re.compile(r"[\[(]\s*([^\])]+?)\s*[\])]\s*$")
+
+
+def read_two_column(path, units: str | None = None) -> GroundMotion:
+    """Two columns t (s), a separated by commas, spaces or tabs; `#` comments and one
+    non-numeric header line are allowed. The units of a must be known: `units`, or
+    stated in the file by a comment line `# units: g` (g, gal, cm/s2, m/s2, or as
+    records write them, CM/SEC/SEC …) or by the header's second column name ending in
+    brackets or parentheses, `t [s], a [g]` or `time (s), acc (cm/s2)`; both given
+    must agree. A file without units is refused: read as m/s², a file in g would be
+    981 times too weak and look like a plausible quiet record."""
     t, a = [], []
+    stated, where = None, ""
     lines = _read_lines(path)
     for k, line in enumerate(lines, start=1):
+        c = _COMMENT_UNITS.match(line)
+        if c and stated is None:
+            stated, where = c.group(1), f"line {k}"
         s = line.split("#", 1)[0].strip()
         if not s:
             continue
         parts = [p for p in re.split(r"[,\s;]+", s) if p]
         if not t and not a and parts and not _looks_numeric(parts[0]):
+            columns = [col.strip() for col in re.split(r"[,;\t]", s) if col.strip()]
+            named = _COLUMN_UNITS.search(columns[-1]) if len(columns) == 2 else None
+            if named and stated is None:
+                stated, where = named.group(1), f"header (line {k})"
             continue  # header line
         if len(parts) != 2:
             raise InputError(f"{path}:{k}: expected two columns (t, a), found {len(parts)}")
@@ -338,6 +438,7 @@ def read_two_column(path, units="m/s2") -> GroundMotion:
         a.append(y)
     if not a:
         raise InputError(f"{path}: no data rows (expected two columns t, a)")
+    units = _stated_units(path, stated, where, units, None)
     return GroundMotion.from_array(a, t=t, units=units, name=Path(path).name)
 
 
@@ -362,6 +463,9 @@ def parse_pulse(spec: str) -> Pulse:
         if not eq or key not in allowed:
             raise InputError(f"motion = {spec!r}: parameter {item!r} unknown; "
                              f"{kind} takes {', '.join(sorted(allowed))} as key=value")
+        if key in params:
+            raise InputError(f"motion = {spec!r}: {key} is given twice; give each of "
+                             f"{', '.join(sorted(allowed))} once")
         params[key] = _finite(f"{kind} {key}", value)
     for key in ("amp", "freq"):
         if key not in params:
@@ -369,10 +473,13 @@ def parse_pulse(spec: str) -> Pulse:
     return Pulse(kind=kind, **params)
 
 
-def load_motion(spec: str | None, *, format: str | None = None, units: str = "m/s2") -> GroundMotion:
+def load_motion(spec: str | None, *, format: str | None = None, units: str | None = None) -> GroundMotion:
     """A motion from a command-line SPEC: `none`, a pulse, or a file path (format
     from --format, or guessed: .AT2 → at2, otherwise JMA if it starts like one,
-    else two columns)."""
+    else two columns). `units`: the file's units when it does not state them; a file
+    that states them must agree (pulses are in g by definition)."""
+    if units is not None:
+        require(units in UNITS, "units", units, f"one of {', '.join(UNITS)}")
     if spec is None or spec.strip().lower() in ("", "none"):
         return GroundMotion.zero()
     if format is not None:
@@ -391,7 +498,7 @@ def load_motion(spec: str | None, *, format: str | None = None, units: str = "m/
             first = next((ln for ln in _read_lines(path) if ln.strip()), "")
             format = "jma" if first.lstrip().startswith(";") else "csv"
     if format == "at2":
-        return read_at2(path)
+        return read_at2(path, units=units)
     if format == "jma":
-        return read_jma(path)
+        return read_jma(path, units=units)
     return read_two_column(path, units=units)

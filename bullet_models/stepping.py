@@ -41,7 +41,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     +x) for `duration` s (default: motion end + 5 s, or 10 s without motion).
     progress: callable(t, duration), called about once a second."""
     settings = settings or Settings()
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD)
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
     settings.check_isolator(system)
 
     dt = settings.control_step

@@ -47,8 +47,9 @@ def load_suite(motions: dict) -> dict[str, GroundMotion]:
     else:
         records = {}
         for path in _folder_files(Path(motions["folder"])):
-            m = load_motion(str(path), units=motions.get("units", "m/s2"))
-            records[path.name] = m
+            # a file states its units (AT2, JMA, a two-column header) or the campaign's `units` gives them
+            kwargs = {"units": motions["units"]} if motions.get("units") else {}
+            records[path.name] = load_motion(str(path), **kwargs)
     names = sorted(records)
     if motions.get("limit"):
         names = names[:motions["limit"]]

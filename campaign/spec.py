@@ -285,9 +285,9 @@ def _motions(t, source: Path) -> dict:
             if not folder.is_dir():
                 raise _where("motions.folder", str(t["folder"]), f"a folder of records (looked in {folder})")
             out["folder"] = str(folder)
-        units = t.get("units", "m/s2")
+        units = t.get("units")  # None: each file states its own (AT2, JMA, a two-column header)
         from isorock.analytic.motion import UNITS
-        if units not in UNITS:
+        if units is not None and units not in UNITS:
             raise _where("motions.units", units, f"one of {', '.join(UNITS)} (for two-column files)")
         out["units"] = units
         scale_by = t.get("scale_by", "pga")

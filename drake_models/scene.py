@@ -473,7 +473,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: optional callable(t, duration), called between AdvanceTo chunks about once
     a second."""
     settings = settings or Settings()
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD)
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
     _check_radius(system, settings.corner_radius)
     start = time.perf_counter()
     built = _Built(system, motion, settings, duration)

@@ -137,7 +137,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: optional callable(t, duration), called between rollout chunks about
     once a second."""
     settings = settings or Settings()
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD)
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
     model = build_model(system, settings)
     return run_model(model, system, motion, settings=settings, duration=duration, theta0=theta0,
                      progress=progress)

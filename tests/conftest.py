@@ -38,3 +38,24 @@ def kobe_at2(records_dir) -> Path:
 def kobe_jma(records_dir) -> Path:
     """The same record as JMA distributes it (gal), 2567 points at 0.02 s."""
     return _record(records_dir, "KOBE_NS")
+
+
+@pytest.fixture
+def char_device(tmp_path):
+    """char_device("null" | "full"): a character device to write to. As root, a node of
+    its own in tmp_path (a regression that replaces the path must not replace the machine's
+    /dev/null); as another user, /dev/null or /dev/full, which that user cannot replace."""
+    import os
+    import stat
+    numbers = {"null": (1, 3), "full": (1, 7)}
+
+    def make(name):
+        if os.geteuid() != 0:
+            return Path("/dev") / name
+        node = tmp_path / f"dev-{name}"
+        try:
+            os.mknod(node, stat.S_IFCHR | 0o666, os.makedev(*numbers[name]))
+        except OSError as e:
+            pytest.skip(f"cannot make a device node as root here ({e.strerror})")
+        return node
+    return make

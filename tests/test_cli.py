@@ -1,6 +1,8 @@
 """The `isorock` command line: contract field names, exit codes, no partial files."""
 import csv
 import json
+import os
+import stat
 import subprocess
 import sys
 
@@ -98,8 +100,7 @@ def _option_help(help_text: str, option: str) -> str:
     ("--theta0-over-alpha", "fraction of α"), ("--duration", ", s"), ("--motion", "in g"),
 ])
 def test_every_physical_option_names_its_unit(option, unit, capsys):
-    with pytest.raises(SystemExit):
-        main(["run", "--help"])
+    assert main(["run", "--help"]) == 0
     assert unit in _option_help(capsys.readouterr().out, option)
 
 
@@ -117,3 +118,153 @@ def test_beta_loads_no_heavy_module():
             "print(sorted(m for m in sys.modules if m.split('.')[0] in heavy))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     assert out.strip().splitlines()[-1] == "[]"
+
+
+# --- issue 13: outputs, one-line errors, input read honestly, bounded work ------------------
+
+FIXED = [*PAPER, "--fixed-base"]
+
+
+def _one_line_error(code, err, *needles):
+    assert code == 2, err
+    assert err.count("\n") == 1 and "Traceback" not in err and "usage:" not in err, err
+    for n in needles:
+        assert n in err, (n, err)
+
+
+@pytest.mark.parametrize("args,needles", [
+    (["run", *PAPER, "--height", "abc", "--fixed-base"], ["--height", "'abc'", "number"]),
+    (["run", "--fixed-base"], ["--height", "required"]),
+    (["run", *FIXED, "--duration", "-inf"], ["duration", "-inf", "positive"]),
+    (["run", *FIXED, "--substeps", "1.5"], ["--substeps", "whole number"]),
+    (["validate", "--scales", "-1,2,3", "--engines", "analytic"], ["scales", "-1,2,3", "positive"]),
+    (["beta", "--slenderness", "x", "--mass-ratio", "1"], ["--slenderness", "'x'"]),
+])
+def test_argument_errors_are_one_line(tmp_path, monkeypatch, capsys, args, needles):
+    monkeypatch.chdir(tmp_path)
+    code, _, err = run_cli(args, capsys)
+    _one_line_error(code, err, *needles)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args,needles", [
+    (["--duration", "1e9"], ["duration", "3600"]),
+    (["--motion", "sine:amp=0.5,freq=1,cycles=1e9"], ["cycles/freq", "3600"]),
+    (["--motion", "sine:amp=0.5,freq=1e-6"], ["cycles/freq", "3600"]),
+    (["--max-step", "1e-9"], ["max-step", "MAX_STEPS"]),
+    (["--rest-velocity", "1e-300"], ["rest-velocity", "MIN_REST_VELOCITY"]),
+    (["--engine", "mujoco", "--timestep", "1e-7", "--duration", "200"], ["timestep", "MAX_STEPS"]),
+    (["--engine", "bullet", "--substeps", "1000000"], ["substeps", "control step"]),
+    (["--csv-dt", "1e-9", "--csv", "x.csv", "--json", "x.json"], ["csv-dt", "MAX_SAMPLES"]),
+    (["--motion", "sine:amp=0.1,amp=5,freq=1"], ["amp", "twice"]),
+    (["--json", ""], ["json", "file path"]),
+    (["--json", "same", "--csv", "same"], ["csv", "also given as json"]),
+])
+def test_run_bad_input_is_refused_before_any_work(tmp_path, monkeypatch, capsys, args, needles):
+    monkeypatch.chdir(tmp_path)
+    code, _, err = run_cli(["run", *FIXED, *args], capsys)
+    _one_line_error(code, err, *needles)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_stiff_isolator_period_is_bounded(tmp_path, capsys):
+    code, _, err = run_cli(["run", *PAPER, "--period", "1e-9", "--damping", "0.1"], capsys)
+    _one_line_error(code, err, "period", "MAX_ISOLATOR_CYCLES")
+
+
+def test_outputs_at_bad_paths_exit_2_and_write_nothing(tmp_path, capsys, char_device):
+    full = char_device("full")
+    (tmp_path / "afile").write_text("keep")
+    (tmp_path / "adir").mkdir()
+    for flag, path in (("--json", tmp_path / "afile" / "x.json"), ("--json", tmp_path / "adir"),
+                       ("--csv", tmp_path / "adir"), ("--json", full)):
+        code, _, err = run_cli(["run", *FIXED, "--duration", "0.5", flag, str(path)], capsys)
+        _one_line_error(code, err, flag[2:])
+    code, _, err = run_cli(["scene", "--engine", "mujoco", "--out", str(tmp_path / "adir")], capsys)
+    _one_line_error(code, err, "out", "folder")
+    assert sorted(p.name for p in tmp_path.iterdir() if p != full) == ["adir", "afile"]
+    assert list((tmp_path / "adir").iterdir()) == [] and (tmp_path / "afile").read_text() == "keep"
+    assert stat.S_ISCHR(os.stat(full).st_mode)
+
+
+def test_json_written_only_if_csv_is_too(tmp_path, capsys, char_device):
+    full = char_device("full")
+    j = tmp_path / "x.json"
+    code, _, err = run_cli(["run", *FIXED, "--duration", "0.5", "--json", str(j), "--csv", str(full)], capsys)
+    _one_line_error(code, err, "csv")
+    assert not j.exists()
+
+
+def test_dash_is_stdout_and_devices_stay_devices(tmp_path, monkeypatch, capsys, char_device):
+    null = char_device("null")
+    monkeypatch.chdir(tmp_path)
+    code, out, _ = run_cli(["run", *FIXED, "--theta0", "0.5", "--duration", "1", "--json", "-"], capsys)
+    assert code == 0 and json.loads(out)["theta_max_over_alpha"] == pytest.approx(0.5, abs=1e-12)
+    code, out, _ = run_cli(["run", *FIXED, "--duration", "0.5", "--json", str(null), "--quiet"], capsys)
+    assert code == 0 and out == ""
+    assert stat.S_ISCHR(os.stat(null).st_mode)
+    code, out, _ = run_cli(["scene", "--engine", "mujoco", "--out", "-"], capsys)
+    assert code == 0 and out.lstrip().startswith("<mujoco")
+    expected = [null.name] if null.parent == tmp_path else []
+    assert [p.name for p in tmp_path.iterdir()] == expected  # no file named '-', nothing else
+
+
+def test_run_prints_the_pga_it_used(tmp_path, capsys):
+    code, out, _ = run_cli(["run", *FIXED, "--motion", "sine:amp=0.05,freq=2", "--duration", "1"], capsys)
+    assert code == 0
+    assert json.loads(out)["motion"]["pga_g"] == pytest.approx(0.05, rel=1e-3)
+
+
+def test_two_column_record_needs_units(tmp_path, capsys):
+    rec = tmp_path / "rec.csv"
+    rec.write_text("0,0\n0.01,0.3\n0.02,-0.3\n0.03,0\n")
+    code, _, err = run_cli(["run", *FIXED, "--motion", str(rec), "--duration", "0.5"], capsys)
+    _one_line_error(code, err, "units")
+    code, out, _ = run_cli(["run", *FIXED, "--motion", str(rec), "--units", "g", "--duration", "0.5"], capsys)
+    assert code == 0 and json.loads(out)["motion"]["pga_g"] == pytest.approx(0.3)
+
+
+def test_at2_units_option_contradicting_the_header_is_an_error(tmp_path, capsys):
+    rec = tmp_path / "x.AT2"
+    rec.write_text("PEER\nrec\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   3, DT=  .0100 SEC\n .1 .2 .0\n")
+    code, _, err = run_cli(["run", *FIXED, "--motion", str(rec), "--units", "m/s2", "--duration", "0.5"], capsys)
+    _one_line_error(code, err, "units", "contradicts")
+
+
+def test_validate_refuses_a_foreign_out_folder_before_running(tmp_path, monkeypatch, capsys):
+    (tmp_path / "src").mkdir()
+    (tmp_path / "NOTES.md").write_text("mine")
+    monkeypatch.chdir(tmp_path)
+    for out in (".", ""):
+        code, _, err = run_cli(["validate", "--quick", "--quiet", "--engines", "analytic", "--out", out], capsys)
+        _one_line_error(code, err, "out")
+    for cmd in (["bench", "--engines", "analytic"], ["stress", "--engines", "analytic"]):
+        code, _, err = run_cli([*cmd, "--out", "NOTES.md"], capsys)
+        _one_line_error(code, err, "NOTES.md")
+        code, _, err = run_cli([*cmd, "--out", "."], capsys)
+        _one_line_error(code, err, "did not write")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["NOTES.md", "src"]
+    assert (tmp_path / "NOTES.md").read_text() == "mine"
+
+
+def test_sigterm_mid_run_exits_cleanly_and_leaves_nothing(tmp_path):
+    import signal
+    import time
+    args = [sys.executable, "-m", "isorock.validate.cli", "run", *FIXED, "--motion", "sine:amp=0.3,freq=2,cycles=400",
+            "--json", "x.json", "--csv", "x.csv"]
+    proc = subprocess.Popen(args, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # wait until the command catches SIGTERM (the kernel's SigCgt mask), then a little more
+    def catches_sigterm():
+        for line in open(f"/proc/{proc.pid}/status"):
+            if line.startswith("SigCgt:"):
+                return bool(int(line.split()[1], 16) & (1 << (signal.SIGTERM - 1)))
+        return False
+    deadline = time.monotonic() + 60
+    while not catches_sigterm() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    time.sleep(1.0)
+    proc.send_signal(signal.SIGTERM)
+    out, err = proc.communicate(timeout=60)
+    assert proc.returncode == 128 + signal.SIGTERM, err
+    assert "Traceback" not in err and "SIGTERM" in err
+    assert list(tmp_path.iterdir()) == []

@@ -84,7 +84,7 @@ def test_two_column_units(tmp_path):
     p = _write(tmp_path, "a.csv", "t,a\n0,0\n0.5,1\n1.0,-1\n")
     assert read_two_column(p, units="g").acceleration[1] == pytest.approx(G)
     assert read_two_column(p, units="gal").acceleration[1] == pytest.approx(0.01)
-    m = read_two_column(p)
+    m = read_two_column(p, units="m/s2")
     assert m.dt == 0.5 and m(0.25) == pytest.approx(0.5)
 
 
@@ -100,7 +100,7 @@ def test_two_column_units(tmp_path):
 ])
 def test_two_column_malformed(tmp_path, text, match):
     with pytest.raises(InputError, match=match):
-        read_two_column(_write(tmp_path, "bad.csv", text))
+        read_two_column(_write(tmp_path, "bad.csv", text), units="m/s2")
 
 
 def test_from_array_checks():
@@ -162,3 +162,89 @@ def test_scaling_and_trimming():
     assert load_motion("sine:amp=1,freq=1").scaled(0.5)(0.25) == pytest.approx(0.5 * G)
     with pytest.raises(InputError, match="end"):
         m.trimmed(0.6, 0.3)
+
+
+# --- issue 13: read honestly or refuse --------------------------------------------------
+
+@pytest.mark.parametrize("dt", [".", "1.2.3", "-0.01", "0", "nan", "x"])
+def test_at2_bad_dt_is_an_input_error(tmp_path, dt):
+    text = "PEER\nrec\nACCELERATION TIME SERIES IN UNITS OF G\n" + f"NPTS=    3, DT= {dt} SEC\n .1 .2 .3\n"
+    with pytest.raises(InputError, match="DT"):
+        read_at2(_write(tmp_path, "x.AT2", text))
+
+
+@pytest.mark.parametrize("stated,factor", [
+    ("UNITS OF G", G), ("IN UNITS OF CM/SEC/SEC", 0.01), ("UNITS OF CM/S/S", 0.01), ("UNITS OF CM/S2", 0.01),
+    ("UNITS OF CM/SEC^2", 0.01), ("UNITS OF GAL", 0.01), ("UNITS OF M/S/S", 1.0), ("UNITS: m/s2", 1.0),
+    ("units of g", G),
+])
+def test_at2_reads_the_units_its_header_states(tmp_path, stated, factor):
+    text = f"PEER\nrec\nACCELERATION TIME SERIES {stated}\nNPTS=    3, DT= .01 SEC\n 1 2 3\n"
+    m = read_at2(_write(tmp_path, "x.AT2", text))
+    np.testing.assert_allclose(m.acceleration, np.array([1, 2, 3]) * factor, rtol=1e-3 if factor == G else 1e-15)
+
+
+@pytest.mark.parametrize("line3,match", [
+    ("VELOCITY TIME SERIES IN UNITS OF CM/S", "velocity series"),
+    ("DISPLACEMENT TIME SERIES IN UNITS OF CM", "displacement series"),
+    ("ACCELERATION TIME SERIES IN UNITS OF CM/S", "not an acceleration"),
+    ("ACCELERATION TIME SERIES IN UNITS OF FURLONGS", "not an acceleration"),
+    ("ACCELERATION TIME SERIES", "units are not stated"),
+])
+def test_at2_refuses_what_is_not_an_acceleration_in_known_units(tmp_path, line3, match):
+    text = f"PEER\nrec\n{line3}\nNPTS=    3, DT= .01 SEC\n 1 2 3\n"
+    with pytest.raises(InputError, match=match):
+        read_at2(_write(tmp_path, "x.AT2", text))
+
+
+def test_units_given_must_agree_with_the_file(tmp_path):
+    at2 = _write(tmp_path, "x.AT2", AT2_HEAD.format(n=3) + " .1 .2 .3\n")
+    assert load_motion(str(at2), units="g").pga_g == pytest.approx(0.3, rel=1e-3)
+    with pytest.raises(InputError, match="contradicts"):
+        load_motion(str(at2), units="m/s2")
+    bare = _write(tmp_path, "y.AT2", "PEER\nrec\nACCELERATION TIME SERIES\nNPTS=    3, DT= .01 SEC\n 1 2 3\n")
+    assert load_motion(str(bare), units="cm/s2").pga == pytest.approx(0.03)
+    jma = _write(tmp_path, "j", ";c\n0.01 0.5\n 100. -200.\n")
+    assert load_motion(str(jma), units="gal").pga == pytest.approx(2.0)
+    with pytest.raises(InputError, match="contradicts"):
+        load_motion(str(jma), units="g")
+
+
+def test_two_column_units_must_be_known(tmp_path):
+    p = _write(tmp_path, "a.csv", "0,0\n0.5,0.3\n1.0,-0.3\n")
+    with pytest.raises(InputError, match="units are not stated"):
+        load_motion(str(p))
+    for text, factor in (("# units: g\n0,0\n0.5,0.3\n1.0,-0.3\n", G),
+                         ("t [s], a [cm/s2]\n0,0\n0.5,0.3\n1.0,-0.3\n", 0.01),
+                         ("time (s),acc (g)\n0,0\n0.5,0.3\n1.0,-0.3\n", G)):
+        m = load_motion(str(_write(tmp_path, "b.csv", text)))
+        assert m.pga == pytest.approx(0.3 * factor, rel=1e-3)
+    with pytest.raises(InputError, match="contradicts"):
+        load_motion(str(_write(tmp_path, "c.csv", "# units: g\n0,0\n0.5,0.3\n")), units="m/s2")
+
+
+def test_byte_order_mark_keeps_the_first_row(tmp_path):
+    p = tmp_path / "bom.csv"
+    p.write_bytes("\ufeff0,0.5\n0.5,1\n1.0,-1\n".encode("utf-8"))
+    m = read_two_column(p, units="m/s2")
+    assert m.n == 3 and m.acceleration[0] == 0.5
+
+
+@pytest.mark.parametrize("spec,match", [
+    ("sine:amp=0.1,amp=5,freq=1", "amp is given twice"),
+    ("ricker:amp=1,freq=2,freq=3", "freq is given twice"),
+    ("sine:amp=0.5,freq=1e-6", "MAX_DURATION"),
+    ("cosine:amp=0.5,freq=1,cycles=1e9", "MAX_DURATION"),
+    ("sine:amp=0.5,freq=1e6,cycles=1e5", "MAX_SAMPLES"),
+])
+def test_pulse_specs_are_read_honestly_and_bounded(spec, match):
+    with pytest.raises(InputError, match=match):
+        load_motion(spec)
+
+
+def test_record_size_is_bounded():
+    from isorock.analytic.limits import MAX_DURATION, MAX_RECORD_SAMPLES
+    with pytest.raises(InputError, match="MAX_RECORD_SAMPLES"):
+        GroundMotion.from_array(np.zeros(MAX_RECORD_SAMPLES + 1), dt=1e-5)
+    with pytest.raises(InputError, match="MAX_DURATION"):
+        GroundMotion.from_array(np.zeros(3), dt=MAX_DURATION)

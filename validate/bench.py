@@ -220,7 +220,8 @@ def add_parser(sub) -> None:
                        description=__doc__.split("\n\n")[0])
     p.add_argument("--quick", action="store_true", help="fewer settings, one repeat (a few minutes)")
     p.add_argument("--out", default="isorock-bench", metavar="DIR",
-                   help="folder for bench.csv, bench.md, bench.png, bench.json (default: %(default)s)")
+                   help="folder for bench.csv, bench.md, bench.png, bench.json: new, empty or an earlier "
+                        "isorock output (default: %(default)s)")
     p.add_argument("--engines", nargs="+", metavar="ENGINE",
                    help="engines to bench (default: those fast enough for grids; others, e.g. drake, by name; "
                         "registered: %s)" % ", ".join(_engine_names()))
@@ -233,8 +234,10 @@ def cmd_bench(a) -> int:
 
     from isorock.validate.engines import get_engine
     from isorock.validate.output import to_json, write_folder_atomic
+    from isorock.validate.output import check_folder
     for e in a.engines or []:
         get_engine(e)  # an unknown name is an InputError before anything runs
+    check_folder(a.out)  # so is a folder we may not write
     start = time.perf_counter()
     rows, extra = run_bench(quick=a.quick, engines=a.engines)
 

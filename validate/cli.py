@@ -7,13 +7,18 @@
     isorock bench    work-precision benchmarks
     isorock stress   the stability stress grid
     isorock view     replay a run in MuJoCo's viewer (or as a GIF without a display)
+    isorock calibrate  fit a contact engine's contact parameters to the closed-form β
+    isorock sweep    campaigns: spectra, fragility curves, agreement maps (Dask)
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
+Outputs go through validate.output: checked before the work, written all or none.
+SIGTERM or SIGHUP end a command cleanly: nothing staged is left, exit 128 + signal.
 """
 from __future__ import annotations
 
 import argparse
 import importlib
+import re
 import sys
 
 from isorock.analytic.errors import InputError
@@ -37,6 +42,36 @@ ENGINE_OPTIONS = ("timestep", "solref", "solimp", "cone", "integrator", "frictio
                   "solver_iterations", "substeps", "rtol", "atol", "rest_velocity", "max_step")
 
 
+class OneLineParser(argparse.ArgumentParser):
+    """argparse with model.md's error convention: one line naming the option, the value
+    and what is allowed, exit 2 (not the usage block). A value may start with '-'
+    (`--duration -inf`, `--scales -1,2,3`): it is a value, checked like any other."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # argparse's own pattern takes only -12 and -1.5 as values; -1e3, -inf, -1,2,3 are
+        # values too (no isorock option looks like a number)
+        self._negative_number_matcher = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def number(text: str) -> float:
+    """argparse type: a real number (finite or not; the checks that follow say what is allowed)."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a number") from None
+
+
+def whole_number(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a whole number") from None
+
+
 def _floats(n_min, n_max, name):
     def parse(text):
         try:
@@ -52,19 +87,19 @@ def _floats(n_min, n_max, name):
 def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=None) -> None:
     d = defaults or {}
     g = p.add_argument_group("system (SI units)")
-    g.add_argument("--height", type=float, required=required and "height" not in d, default=d.get("height"),
+    g.add_argument("--height", type=number, required=required and "height" not in d, default=d.get("height"),
                    help="block height H = 2h, m")
-    g.add_argument("--width", type=float, required=required and "width" not in d, default=d.get("width"),
+    g.add_argument("--width", type=number, required=required and "width" not in d, default=d.get("width"),
                    help="block width B = 2b, m")
-    g.add_argument("--mass", type=float, required=required and "mass" not in d, default=d.get("mass"),
+    g.add_argument("--mass", type=number, required=required and "mass" not in d, default=d.get("mass"),
                    help="block mass m, kg")
-    g.add_argument("--base-mass", type=float, required=required and "base_mass" not in d,
+    g.add_argument("--base-mass", type=number, required=required and "base_mass" not in d,
                    default=d.get("base_mass"), help="base plate mass m_b, kg (μ = m/m_b)")
-    g.add_argument("--period", type=float, help="isolation period T = 2π√(M/k), s")
-    g.add_argument("--damping-ratio", "--damping", dest="damping_ratio", type=float,
+    g.add_argument("--period", type=number, help="isolation period T = 2π√(M/k), s")
+    g.add_argument("--damping-ratio", "--damping", dest="damping_ratio", type=number,
                    help="isolator damping ratio ξ = c/(2Mω), dimensionless (--damping is an alias)")
-    g.add_argument("--stiffness", type=float, help="isolator stiffness k, N/m (instead of --period)")
-    g.add_argument("--dashpot", type=float, help="isolator dashpot c, N·s/m (with --stiffness)")
+    g.add_argument("--stiffness", type=number, help="isolator stiffness k, N/m (instead of --period)")
+    g.add_argument("--dashpot", type=number, help="isolator dashpot c, N·s/m (with --stiffness)")
     g.add_argument("--fixed-base", action="store_true", help="fixed (non-isolated) base: μ = 0")
 
 
@@ -99,9 +134,15 @@ def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
     g.add_argument("--format", choices=("at2", "jma", "csv"),
                    help="record format: at2 (PEER, g), jma (gal), csv (two columns t, a); "
                         "guessed from the file when omitted")
-    g.add_argument("--units", default="m/s2", choices=("m/s2", "g", "gal", "cm/s2"),
-                   help="units of a two-column (csv) record (default: %(default)s)")
-    g.add_argument("--scale", type=float, default=1.0, help="factor applied to the motion (default: 1)")
+    add_units_option(g)
+    g.add_argument("--scale", type=number, default=1.0, help="factor applied to the motion (default: 1)")
+
+
+def add_units_option(g) -> None:
+    g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
+                   help="units of a record: required for a two-column (csv) file unless the file states them "
+                        "('# units: g', or a header 't [s], a [g]'); for an AT2 or JMA file, which state "
+                        "theirs, it must agree")
 
 
 def motion_from_args(a):
@@ -112,7 +153,7 @@ def motion_from_args(a):
 
 def add_engine_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("engine settings (defaults chosen by measurement; see each engine's docs)")
-    g.add_argument("--timestep", type=float,
+    g.add_argument("--timestep", type=number,
                    help="the physics step, s, for every contact engine. mujoco: its contact solref/solimp "
                         "follow it unless given; bullet: the ground motion and isolator force are updated every "
                         "--substeps physics steps, which follow it (keeping that control step near 4 ms) unless "
@@ -121,18 +162,22 @@ def add_engine_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--solimp", type=_floats(3, 5, "solimp"), help="mujoco: contact solimp 'dmin,dmax,width[,mid,power]'")
     g.add_argument("--cone", choices=("pyramidal", "elliptic"), help="mujoco: friction cone")
     g.add_argument("--integrator", choices=("Euler", "implicit", "implicitfast", "RK4"), help="mujoco: integrator")
-    g.add_argument("--friction", type=float, help="mujoco, bullet: block–base friction coefficient")
-    g.add_argument("--noslip", type=int, dest="noslip", metavar="N", help="mujoco: noslip iterations")
-    g.add_argument("--solver-iterations", type=int, help="bullet: constraint solver iterations")
-    g.add_argument("--substeps", type=int,
+    g.add_argument("--friction", type=number, help="mujoco, bullet: block–base friction coefficient")
+    g.add_argument("--noslip", type=whole_number, dest="noslip", metavar="N", help="mujoco: noslip iterations")
+    g.add_argument("--solver-iterations", type=whole_number, help="bullet: constraint solver iterations")
+    g.add_argument("--substeps", type=whole_number,
                    help="bullet: physics steps per control step (ground motion and isolator force updated)")
-    g.add_argument("--rtol", type=float, help="analytic: relative tolerance (default 1e-10)")
-    g.add_argument("--atol", type=float, help="analytic: absolute tolerance, m and rad (default 1e-12)")
-    g.add_argument("--max-step", type=float,
+    g.add_argument("--rtol", type=number, help="analytic: relative tolerance (default 1e-10)")
+    g.add_argument("--atol", type=number, help="analytic: absolute tolerance, m and rad (default 1e-12)")
+    g.add_argument("--max-step", type=number,
                    help="analytic: largest integrator step, s (default 0.01; bounds how long a threshold "
                         "crossing of the base acceleration can hide inside one step)")
-    g.add_argument("--rest-velocity", type=float,
+    g.add_argument("--rest-velocity", type=number,
                    help="analytic: rocking ends at an impact with |θ̇| below this × p·α (default 1e-5)")
+    g.add_argument("--overturn", choices=("past-alpha", "alpha"),
+                   help="the overturning rule (model.md, 'Past α'), for every engine: past-alpha (default: the "
+                        "block has overturned when |θ| reaches π/2 or the run ends with |θ| > α) or alpha "
+                        "(conservative: once |θ| reaches α)")
 
 
 def engine_settings_from_args(engine, a):
@@ -146,14 +191,14 @@ def engine_settings_from_args(engine, a):
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The whole parser; the options of the extra commands other than `command` are
     left out (their module is not imported), unless no command is known (top-level help)."""
-    parser = argparse.ArgumentParser(prog="isorock", description=__doc__.split("\n\n")[0],
+    parser = OneLineParser(prog="isorock", description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     p = sub.add_parser("beta", help="closed-form impact coefficients β, β₂, β₃ (JSON)")
-    p.add_argument("--slenderness", type=float, required=True, help="λ = h/b = H/B")
-    p.add_argument("--mass-ratio", type=float, required=True, help="μ = m/m_b (0: fixed base)")
-    p.add_argument("--height", type=float, default=2.0, help="block height H, m; β₂, β₃ use h = H/2 (default 2.0)")
+    p.add_argument("--slenderness", type=number, required=True, help="λ = h/b = H/B")
+    p.add_argument("--mass-ratio", type=number, required=True, help="μ = m/m_b (0: fixed base)")
+    p.add_argument("--height", type=number, default=2.0, help="block height H, m; β₂, β₃ use h = H/2 (default 2.0)")
     p.set_defaults(func=cmd_beta)
 
     p = sub.add_parser("run", help="simulate one system with one engine",
@@ -164,29 +209,33 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
                         "the first (default: %(default)s)")
     add_system_options(p)
     add_motion_options(p)
-    p.add_argument("--duration", type=float,
+    p.add_argument("--duration", type=number,
                    help="end time from t = 0, s (default: motion end + 5 s, or 10 s without motion)")
-    p.add_argument("--theta0-over-alpha", "--theta0", dest="theta0_over_alpha", type=float, default=0.0,
+    p.add_argument("--theta0-over-alpha", "--theta0", dest="theta0_over_alpha", type=number, default=0.0,
                    help="initial tilt as a fraction of α (default 0; --theta0 is an alias)")
-    p.add_argument("--impact-threshold", type=float, default=0.01,
+    p.add_argument("--impact-threshold", type=number, default=0.01,
                    help="an impact counts when its half-cycle's peak |θ| exceeds this × α (default 0.01)")
-    p.add_argument("--json", metavar="FILE", help="write the metrics and impact log as JSON")
-    p.add_argument("--csv", metavar="FILE", help="write the history t,u,u_dot,theta,theta_dot (s, m, m/s, rad, rad/s); "
-                                                 "several engines: one file each, FILE.ENGINE.csv")
-    p.add_argument("--csv-dt", type=float, help="resample the CSV history at this interval, s")
+    p.add_argument("--json", metavar="FILE", help="write the metrics and impact log as JSON ('-': standard output)")
+    p.add_argument("--csv", metavar="FILE", help="write the history t,u,u_dot,theta,theta_dot (s, m, m/s, rad, rad/s; "
+                                                 "'-': standard output); several engines: one file each, "
+                                                 "FILE.ENGINE.csv")
+    p.add_argument("--csv-dt", type=number, help="resample the CSV history at this interval, s")
     p.add_argument("--plot", metavar="FILE.png",
                    help="draw ẍg, θ/α with the counted impacts, θ̇ and u (several engines: overlaid, with each "
                         "engine's difference from the first); the format follows the suffix")
-    p.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    p.add_argument("--quiet", action="store_true",
+                   help="print nothing but errors (the summary, with the motion's PGA, is on standard output "
+                        "otherwise, unless --json or --csv is '-')")
     add_engine_options(p)
     p.set_defaults(func=cmd_run)
 
-    p = sub.add_parser("scene", help="write the model file a contact engine runs (MuJoCo: MJCF, PyBullet: SDF)",
+    p = sub.add_parser("scene", help="write the model file a contact engine runs (MuJoCo: MJCF, PyBullet and "
+                                     "Drake: SDFormat)",
                        description="Write the model file a contact engine runs. Without system options it is "
                                    "the paper's block (H 2.0 m, B 0.7 m, m = m_b = 3800 kg, T 1.5 s, ξ 0.2).")
-    p.add_argument("--engine", required=True, help="mujoco or bullet")
+    p.add_argument("--engine", required=True, help="a contact engine: mujoco, bullet or drake")
     add_system_options(p, defaults=dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0))
-    p.add_argument("--out", required=True, metavar="FILE", help="where to write the model file")
+    p.add_argument("--out", required=True, metavar="FILE", help="where to write the model file ('-': standard output)")
     add_engine_options(p)
     p.set_defaults(func=cmd_scene)
 
@@ -233,41 +282,64 @@ def _progress(quiet):
 
 
 def cmd_run(a) -> int:
-    from isorock.validate.engines import get_engine
+    from isorock.analytic.limits import check_resample
+    from isorock.analytic.protocol import run_inputs
     from isorock.validate import run_cli
-    from isorock.validate.output import to_json, write_atomic, write_json
+    from isorock.validate.engines import get_engine
+    from isorock.validate.output import Outputs, to_json
     specs = run_cli.parse_engines(a.engine)
-    engine = get_engine(specs[0][0])
-    system = system_from_args(a)
-    motion = motion_from_args(a)
-    if a.duration is not None and not a.duration > 0:
-        raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
-    if not (abs(a.theta0_over_alpha) < 1):
-        raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
-    if a.csv_dt is not None and not a.csv_dt > 0:
-        raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")
-    if len(specs) > 1:
+    if len(specs) > 1:  # several engines on one system and motion, compared with the first
+        system, motion = system_from_args(a), motion_from_args(a)
+        if a.duration is not None and not a.duration > 0:
+            raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
+        if not (abs(a.theta0_over_alpha) < 1):
+            raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
+        run_inputs(system, motion, a.duration, a.theta0_over_alpha * system.alpha, a.impact_threshold)
         return run_cli.run_engines(a, specs, system, motion, progress=_progress(a.quiet))
-    if specs[0][1] is not None:  # ENGINE:PRESET, with the engine options on top
-        settings = run_cli.load_engines(specs, a)[0][2]
-    else:
-        settings = engine_settings_from_args(engine, a)
-    if a.plot:
-        run_cli.plot_format(a.plot)  # a bad --plot name fails before the simulation
-    traj = engine.simulate(system, motion, settings=settings, duration=a.duration, theta0=a.theta0_over_alpha * system.alpha,
-                           impact_threshold=a.impact_threshold, progress=_progress(a.quiet))
-    summary = traj.summary()
-    report = dict(summary, system=system.describe(), motion=motion.describe(), settings=_settings_dict(settings))
-    if a.json:
-        from isorock.validate.provenance import provenance
-        write_json(a.json, dict(report, provenance=provenance(record_paths=[a.motion])))
-    if a.csv:
-        hist = traj.resample(a.csv_dt) if a.csv_dt else traj
-        write_atomic(a.csv, hist.to_csv)
-    if a.plot:
-        run_cli.write_plot(a.plot, {a.engine: traj}, motion)
-    if not a.quiet:
+    with Outputs() as outputs:
+        # every output path is checked before the run, so a bad one costs nothing
+        json_out = outputs.file("json", a.json) if a.json is not None else None
+        csv_out = outputs.file("csv", a.csv) if a.csv is not None else None
+        plot_out = outputs.file("plot", a.plot) if a.plot is not None else None
+        if a.plot is not None:
+            plot_kind = run_cli.plot_format(a.plot)  # a bad --plot name fails before the simulation
+        engine = get_engine(specs[0][0])
+        system = system_from_args(a)
+        motion = motion_from_args(a)
+        if specs[0][1] is not None:  # ENGINE:PRESET, with the engine options on top
+            settings = run_cli.load_engines(specs, a)[0][2]
+        else:
+            settings = engine_settings_from_args(engine, a)
+        if a.duration is not None and not a.duration > 0:
+            raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
+        if not (abs(a.theta0_over_alpha) < 1):
+            raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
+        theta0 = a.theta0_over_alpha * system.alpha
+        # the work bounds (duration, isolator, engine steps) before any work
+        motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold, settings=settings)
+        if a.csv_dt is not None:
+            if not (a.csv_dt > 0 and a.csv_dt < float("inf")):
+                raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")
+            check_resample("csv-dt", a.csv_dt, duration)
+        traj = engine.simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
+                               impact_threshold=a.impact_threshold, overturn_rule=a.overturn,
+                               progress=_progress(a.quiet))
+        summary = traj.summary()
+        report = dict(summary, system=system.describe(), motion=motion.describe(), settings=_settings_dict(settings))
+        if json_out:
+            from isorock.validate.provenance import provenance
+            json_out.write_text(to_json(dict(report, provenance=provenance(record_paths=[a.motion]))) + "\n")
+        if csv_out:
+            hist = traj.resample(a.csv_dt) if a.csv_dt else traj
+            csv_out.write(hist.to_csv)
+        if plot_out:
+            from isorock.validate.run_plot import plot_runs
+            plot_out.write(lambda tmp: plot_runs({a.engine: traj}, motion, tmp, format=plot_kind))
+        outputs.commit()
+    to_stdout = "-" in (a.json, a.csv)
+    if not a.quiet and not to_stdout:
         brief = {k: v for k, v in summary.items() if k != "impact_log"}
+        brief["motion"] = {k: report["motion"][k] for k in ("name", "pga_g", "units_read")}
         print(to_json(brief))
     return 1 if traj.status.is_failure else 0
 
@@ -285,14 +357,19 @@ def _settings_dict(settings):
 
 def cmd_scene(a) -> int:
     from isorock.validate.engines import get_engine
-    from isorock.validate.output import write_text
-    engine = get_engine(a.engine)
-    if not engine.has_scene:
-        raise InputError(f"engine = {a.engine!r}: has no model file to write (those that do: "
-                         f"{', '.join(_engines_with_scenes())})")
-    system = system_from_args(a, default_isolator=(1.5, 0.2))
-    settings = engine_settings_from_args(engine, a)
-    write_text(a.out, engine.scene_text(system, settings))
+    from isorock.validate.output import Outputs
+    with Outputs() as outputs:
+        out = outputs.file("out", a.out)
+        engine = get_engine(a.engine)
+        if not engine.has_scene:
+            raise InputError(f"engine = {a.engine!r}: has no model file to write (those that do: "
+                             f"{', '.join(_engines_with_scenes())})")
+        system = system_from_args(a, default_isolator=(1.5, 0.2))
+        settings = engine_settings_from_args(engine, a)
+        out.write_text(engine.scene_text(system, settings))
+        outputs.commit()
+    if a.out == "-":
+        return 0
     kind, suffix = engine.spec.scene_format
     if not str(a.out).lower().endswith(suffix):
         print(f"note: {a.engine} scenes are {kind} files ({suffix}); {a.out} holds {kind}", file=sys.stderr)
@@ -318,18 +395,28 @@ def _engines_with_scenes():
 
 
 def main(argv=None) -> int:
+    from isorock.validate.output import Terminated, signals_end_cleanly
     argv = sys.argv[1:] if argv is None else list(argv)
-    command = next((a for a in argv if not a.startswith("-")), None)
+    command = next((x for x in argv if not x.startswith("-")), None)
     parser = build_parser(command)
-    args = parser.parse_args(argv)
-    try:
-        return int(args.func(args) or 0)
-    except InputError as e:
-        print(f"isorock {args.command}: error: {e}", file=sys.stderr)
-        return 2
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+    with signals_end_cleanly():
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as e:  # argparse: --help (0) or one error line (2)
+            return e.code if isinstance(e.code, int) else 2
+        try:
+            return int(args.func(args) or 0)
+        except InputError as e:
+            print(f"isorock {args.command}: error: {e}", file=sys.stderr)
+            return 2
+        except KeyboardInterrupt:
+            print(f"isorock {args.command}: interrupted; no output written", file=sys.stderr)
+            return 130
+        except Terminated as e:
+            print(f"isorock {args.command}: terminated by {e.name}; no output written", file=sys.stderr)
+            return 128 + e.signum
+        except BrokenPipeError:
+            return 141
 
 
 if __name__ == "__main__":

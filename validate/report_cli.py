@@ -13,6 +13,10 @@ from isorock.analytic.errors import InputError
 from isorock.validate.engines import ENGINE_NAMES
 
 DEFAULT_OUT = "isorock-report"
+#: ensemble bounds: steps each run every engine on every motion; a factor of 100 turns
+#: the paper's 0.83 g Kobe record into 83 g, far past overturning
+MAX_SCALE_STEPS = 200
+MAX_SCALE = 100.0
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
@@ -34,16 +38,17 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                         f"(default: {' and '.join(DEFAULT_MOTIONS)})")
     p.add_argument("--format", choices=("at2", "jma", "csv"),
                    help="record format; guessed from the file when omitted")
-    p.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
-                   help="units of a two-column (csv) record")
+    from isorock.validate.cli import add_units_option, number
+    add_units_option(p)
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
-                   help="report folder, replaced whole when the report is done (default: %(default)s)")
+                   help="report folder: a new or empty folder, or one an earlier isorock run wrote (replaced "
+                        "whole when the report is done); any other folder is refused (default: %(default)s)")
     p.add_argument("--engines", nargs="+", metavar="ENGINE",
                    help=f"engines to run, space- or comma-separated, each ENGINE or ENGINE:PRESET (a preset "
                         f"is its own column); must include analytic (default: {' '.join(ENGINE_NAMES)})")
     p.add_argument("--quick", action="store_true",
                    help="fewer ensemble steps (6), shorter tails after pulses, Figure 4 at μ = 1 only")
-    p.add_argument("--duration", type=float,
+    p.add_argument("--duration", type=number,
                    help=f"end time of every run, s (default: pulse end + 4 s, 2 s with --quick; "
                         f"records: the first {RECORD_WINDOW:g} s)")
     p.add_argument("--scales", metavar="FIRST,LAST,STEPS",
@@ -68,8 +73,13 @@ def _scales(text):
         first, last, steps = float(parts[0]), float(parts[1]), float(parts[2])
     except ValueError:
         raise InputError(f"scales = {text!r}: must be FIRST,LAST,STEPS, e.g. 0.25,1.5,21") from None
-    if steps != int(steps) or steps < 1:
-        raise InputError(f"scales = {text!r}: STEPS must be a whole number ≥ 1")
+    if steps != int(steps) or not 1 <= steps <= MAX_SCALE_STEPS:
+        raise InputError(f"scales = {text!r}: STEPS must be a whole number from 1 to {MAX_SCALE_STEPS} "
+                         "(MAX_SCALE_STEPS: each step runs every engine on every motion)")
+    for name, x in (("FIRST", first), ("LAST", last)):
+        if not 0 < x <= MAX_SCALE:
+            raise InputError(f"scales = {text!r}: {name} = {x:g} must be a positive factor of the PGA, "
+                             f"at most {MAX_SCALE:g} (MAX_SCALE)")
     return first, last, int(steps)
 
 
@@ -120,9 +130,11 @@ def _system(args, config: dict):
 
 def run(args) -> int:
     from isorock.validate.cli import ENGINE_OPTIONS
+    from isorock.validate.output import check_folder
     from isorock.validate.progress import ProgressBar
     from isorock.validate.report_render import verdict, write_report
     from isorock.validate.report_run import DEFAULT_MOTIONS, ReportConfig, build
+    check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     config = _read_config(args.config) if args.config else {}
     engines = tuple(e for item in (args.engines or config.get("engines") or ENGINE_NAMES)
                     for e in str(item).split(",") if e)
@@ -137,7 +149,7 @@ def run(args) -> int:
                           duration=args.duration if args.duration is not None else config.get("duration"),
                           scales=_scales(args.scales), format=args.format or config.get("format"),
                           units=args.units or config.get("units"), system=_system(args, config),
-                          overrides=overrides, workers=args.workers)
+                          overrides=overrides, workers=args.workers, overturn_rule=args.overturn)
     from isorock.validate.runner import resolve
     for name in report.engines:  # an unknown setting or preset is bad input before anything runs
         try:
@@ -153,6 +165,9 @@ def run(args) -> int:
     results = build(report, progress=progress)
     for bar in bars:
         bar.close()
+    if not args.quiet:
+        for motion in {id(sc.motion): sc.motion for sc in results.scenarios}.values():
+            print(f"motion {motion.name}: PGA {motion.pga_g:.4g} g (read in {motion.units})", file=sys.stderr)
     write_report(results, args.out)
     print(f"wrote {args.out}/report.md, report.html, metrics.json in {results.wall_s:.0f} s")
     print(verdict(results))

@@ -88,6 +88,7 @@ class ReportConfig:
     system: System | None = None
     overrides: dict = field(default_factory=dict)
     workers: int | None = None
+    overturn_rule: str | None = None
 
     def __post_init__(self):
         require(len(self.motions) > 0, "motion", self.motions, "at least one motion")
@@ -300,12 +301,13 @@ def build(config: ReportConfig, *, progress=None) -> Results:
     tasks = []
     for name in engines:
         o = config.overrides_for(name)
-        tasks += [Task(("free", i, name), name, sc.system, GroundMotion.zero(), sc.duration, sc.theta0, o)
+        rule = config.overturn_rule
+        tasks += [Task(("free", i, name), name, sc.system, GroundMotion.zero(), sc.duration, sc.theta0, o, rule)
                   for i, sc in enumerate(free)]
-        tasks += [Task(("history", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o)
+        tasks += [Task(("history", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o, rule)
                   for i, sc in enumerate(histories)]
-        tasks += [Task(("ensemble", i, k, name), name, sc.system, sc.motion.scaled(float(f)), sc.duration, 0.0, o)
-                  for i, sc in enumerate(histories) for k, f in enumerate(scales[i])]
+        tasks += [Task(("ensemble", i, k, name), name, sc.system, sc.motion.scaled(float(f)), sc.duration, 0.0, o,
+                       rule) for i, sc in enumerate(histories) for k, f in enumerate(scales[i])]
     done = [0]
 
     def tick(_key):

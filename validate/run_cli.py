@@ -130,6 +130,7 @@ def run_engines(a, specs, system, motion, *, progress=None) -> int:
         if not a.quiet and sys.stderr.isatty():
             print(f"\r{label} …", file=sys.stderr)
         runs[label] = engine.simulate(system, motion, settings=settings, duration=a.duration,
+                                      overturn_rule=getattr(a, "overturn", None),
                                       theta0=a.theta0_over_alpha * system.alpha,
                                       impact_threshold=a.impact_threshold, progress=progress)
         used[label] = settings

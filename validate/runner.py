@@ -26,6 +26,7 @@ class Task:
     duration: float
     theta0: float = 0.0           # rad
     overrides: dict = field(default_factory=dict)  # settings of the engine that differ
+    overturn_rule: str | None = None  # model.md's rule, the same for every engine (None: the default)
 
 
 def resolve(engine: str, overrides: dict | None = None):
@@ -49,7 +50,7 @@ def run_task(task: Task):
     try:
         engine, settings = resolve(task.engine, task.overrides)
         traj = engine.simulate(task.system, task.motion, settings=settings, duration=task.duration,
-                               theta0=task.theta0)
+                               theta0=task.theta0, overturn_rule=task.overturn_rule)
         return task.key, traj, None
     except InputError:
         raise

@@ -366,7 +366,8 @@ def add_parser(sub) -> None:
                    help=f"property-based cases to draw (default {DRAWN_FULL}, {DRAWN_QUICK} with --quick)")
     p.add_argument("--workers", type=int, default=2, help="runs at a time (default: %(default)s)")
     p.add_argument("--out", default="isorock-stress", metavar="DIR",
-                   help="folder for stress.md, stress.csv, stress.json (default: %(default)s)")
+                   help="folder for stress.md, stress.csv, stress.json: new, empty or an earlier isorock "
+                        "output (default: %(default)s)")
     p.add_argument("--engines", nargs="+", metavar="ENGINE",
                    help="engines to stress (default: every engine fast enough for grids; Drake by name)")
     p.add_argument("--time-limit", type=float, help="wall-time limit per case, s (default 30 quick, 120 full)")
@@ -384,6 +385,8 @@ def cmd_stress(a) -> int:
         get_engine(e)  # an unknown name is an InputError before anything runs
     if a.time_limit is not None and not a.time_limit > 0:
         raise InputError(f"time-limit = {a.time_limit!r}: must be a positive number of seconds")
+    from isorock.validate.output import check_folder
+    check_folder(a.out)  # a folder we may not write is refused before the grid runs
     start = time.perf_counter()
     if a.drawn is not None and not 0 <= a.drawn <= 100_000:
         raise InputError(f"drawn = {a.drawn!r}: must be a number of cases from 0 to 100000")

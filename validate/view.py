@@ -130,6 +130,7 @@ def run(a) -> int:
         os.environ["MUJOCO_GL"] = backend  # read when mujoco is first imported, which is below
     label, engine, settings = load_engines(specs, a)[0]
     traj = engine.simulate(system, motion, settings=settings, duration=a.duration,
+                           overturn_rule=getattr(a, "overturn", None),
                            theta0=a.theta0_over_alpha * system.alpha)
     if interactive:
         return replay_in_viewer(traj, speed=a.speed)

@@ -1,0 +1,102 @@
+"""Bounds on the amount of work one run may ask for, in one place.
+
+Every input that sets how much a run computes or stores (its duration, a pulse's
+length, a record's samples, an engine's step, the isolator's period against the
+duration, the Zeno floor) is checked here before any work starts, so a typo such as
+`--duration 1e9` or `--timestep 1e-7` is a one-line InputError naming the bound
+instead of a run that never ends or dies hours later for lack of memory.
+
+The bounds are generous for the physics: the longest strong-motion records last a
+few minutes, and the free vibration after them decays in seconds to minutes.
+"""
+from __future__ import annotations
+
+import math
+
+from .errors import InputError
+
+#: longest simulated time (s): an hour, ten times the longest earthquake records
+MAX_DURATION = 3600.0
+#: most integration steps one run may take (MuJoCo ~5 µs a step: under two minutes;
+#: an hour at MuJoCo's default 0.5 ms step is 7.2e6)
+MAX_STEPS = 20_000_000
+#: most samples one run may hold or write (a record, a resampled CSV history, the stored
+#: output): 1e7 points of five histories is 400 MB
+MAX_SAMPLES = 10_000_000
+#: most samples of a ground-motion record: an hour at 250 Hz. The reference integrator
+#: restarts at every sample (about 5 ms each), so 1e6 samples is already over an hour
+MAX_RECORD_SAMPLES = 1_000_000
+#: most isolator periods one run may span: an integrator resolves each period with tens
+#: of steps, so a period of 1e-9 s (k ≈ 3e22 N/m) over 10 s would need ~1e12 steps
+MAX_ISOLATOR_CYCLES = 100_000
+#: smallest Zeno floor (× p·α): below it the impact sequence is resolved beneath the
+#: reference integrator's tolerance (rtol 1e-10 on θ ~ α) and never reaches the floor
+MIN_REST_VELOCITY = 1e-9
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.3g}"
+
+
+def check_duration(field: str, duration: float, what: str = "") -> float:
+    """`duration` (s) must be at most MAX_DURATION."""
+    if duration > MAX_DURATION:
+        raise InputError(f"{field} = {_fmt(duration)} s{what}: must be at most {MAX_DURATION:g} s "
+                         f"(MAX_DURATION, an hour of simulated time)")
+    return duration
+
+
+def check_count(field: str, value, count: float, limit: int, noun: str, how: str) -> None:
+    """`count` (the work `value` of `field` implies, described by `how`) within `limit`."""
+    if not count <= limit:
+        raise InputError(f"{field} = {value!r}: the run would take {_fmt(count)} {noun} ({how}); "
+                         f"must be at most {limit:.0e}")
+
+
+def check_record_samples(name: str, n: int) -> None:
+    if n > MAX_RECORD_SAMPLES:
+        raise InputError(f"{name}: {n} samples: a record must have at most {MAX_RECORD_SAMPLES:.0e} "
+                         "(MAX_RECORD_SAMPLES); resample or trim it")
+
+
+def check_isolator(system, duration: float) -> None:
+    """The isolator's period against the run's length: at most MAX_ISOLATOR_CYCLES periods."""
+    if getattr(system, "fixed_base", True):
+        return
+    period = system.period
+    cycles = duration / period if period > 0 else math.inf
+    if not cycles <= MAX_ISOLATOR_CYCLES:
+        raise InputError(f"period = {_fmt(period)} s (stiffness {_fmt(system.stiffness)} N/m): a run of "
+                         f"{_fmt(duration)} s spans {_fmt(cycles)} isolator periods; must be at most "
+                         f"{MAX_ISOLATOR_CYCLES:.0e} (MAX_ISOLATOR_CYCLES): a period of at least "
+                         f"{_fmt(duration / MAX_ISOLATOR_CYCLES)} s, or a shorter duration")
+
+
+def check_settings(settings, duration: float) -> None:
+    """An engine's numerical settings against the run's duration: the steps they imply
+    (the physics timestep of the contact engines, max_step and output_dt of the
+    analytic model) and the Zeno floor. Any engine's Settings: fields it lacks are skipped."""
+    if settings is None:
+        return
+    get = lambda name: getattr(settings, name, None)  # noqa: E731
+    timestep = get("timestep")  # the physics step of every engine (PyBullet's sub-steps fill its control step)
+    if timestep is not None and timestep > 0:
+        check_count("timestep", timestep, duration / timestep, MAX_STEPS, "steps",
+                    f"duration {_fmt(duration)} s / timestep, MAX_STEPS")
+    max_step = get("max_step")
+    if max_step is not None and max_step > 0:
+        check_count("max-step", max_step, duration / max_step, MAX_STEPS, "steps at least",
+                    f"duration {_fmt(duration)} s / max-step, MAX_STEPS")
+    output_dt = get("output_dt")
+    if output_dt is not None and output_dt > 0:
+        check_count("output-dt", output_dt, duration / output_dt, MAX_SAMPLES, "stored points",
+                    f"duration {_fmt(duration)} s / output-dt, MAX_SAMPLES")
+    rest = get("rest_velocity")
+    if rest is not None and rest < MIN_REST_VELOCITY:
+        raise InputError(f"rest-velocity = {rest!r}: must be at least {MIN_REST_VELOCITY:g} (× p·α, "
+                         "MIN_REST_VELOCITY): slower impacts are below what the integrator resolves")
+
+
+def check_resample(field: str, dt: float, duration: float) -> None:
+    """A history resampled at `dt` over `duration` holds at most MAX_SAMPLES rows."""
+    check_count(field, dt, duration / dt, MAX_SAMPLES, "rows", f"duration {_fmt(duration)} s / {field}, MAX_SAMPLES")
