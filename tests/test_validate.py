@@ -141,6 +141,11 @@ def test_ensemble_agreement_counts_overturning():
     assert a["median_theta_max_diff"] == pytest.approx(0.05)
     assert a["max_theta_max_diff"] == pytest.approx(0.1)
     assert a["rocking_cases"] == 2 and a["median_theta_max_diff_rocking"] == pytest.approx(0.05)
+    # a chaotic reference peak (not robust under ±1% of the motion) tests no engine: left out
+    chaotic = Ensemble(system=system, motion="m", pga_g=1.0, duration=1.0, scales=ens.scales,
+                       theta_max=ens.theta_max, overturned=ens.overturned, robust=np.array([1, 0, 1, 1], bool))
+    b = chaotic.agreement("x")
+    assert b["rocking_cases"] == 1 and b["median_theta_max_diff_rocking"] == pytest.approx(0.1)
 
 
 def test_scale_factors():

@@ -91,7 +91,7 @@ def compare(traj: Trajectory, ref: Trajectory, *, dt: float = COMPARE_DT) -> Com
         horizon=horizon, parted=parted, theta_rms_error=rms, theta_max_error=worst,
         theta_max_over_alpha=traj.theta_max_over_alpha,
         theta_max_over_alpha_ref=ref.theta_max_over_alpha,
-        theta_max_diff=traj.theta_max_over_alpha - ref.theta_max_over_alpha,
+        theta_max_diff=_peak(traj, ref) - _peak(ref, traj),
         impacts=traj.impact_count, impacts_ref=ref.impact_count,
         first_uplift=up, first_uplift_ref=up_ref,
         first_uplift_diff=None if up is None or up_ref is None else up - up_ref,
@@ -102,6 +102,16 @@ def compare(traj: Trajectory, ref: Trajectory, *, dt: float = COMPARE_DT) -> Com
         u_max_rel_error=None if fixed or ref.u_max == 0 else traj.u_max / ref.u_max - 1,
         beta_errors=tuple(beta_errors(traj)), runtime_s=traj.runtime_s,
     )
+
+
+def _peak(traj: Trajectory, other: Trajectory) -> float:
+    """θmax/α for differencing: capped at 1 when either run overturned, since past α an
+    overturning block's peak is its fall onto its side (π/2 in the rigid model, a little
+    short of it through a compliant contact), not its rocking; overturning itself is
+    compared on its own (overturn_agree)."""
+    if traj.overturned or other.overturned:
+        return min(traj.theta_max_over_alpha, 1.0)
+    return traj.theta_max_over_alpha
 
 
 def first_tilt(traj: Trajectory, fraction: float = REST_FRACTION) -> float | None:

@@ -43,6 +43,9 @@ class Ensemble:
     theta_max: dict = field(default_factory=dict)   # engine → array of θmax/α
     overturned: dict = field(default_factory=dict)  # engine → bool array
     failed: dict = field(default_factory=dict)      # engine → list of (scale, message)
+    #: per scale: does the reference's θmax/α hold (spread < ROBUST_SPREAD, no overturning
+    #: flip) under ±1% of the motion? None: not measured, every case counts
+    robust: np.ndarray | None = None
 
     def agreement(self, engine: str) -> dict:
         """Fraction of scales where `engine` overturns as the analytic model does, and
@@ -52,8 +55,11 @@ class Ensemble:
         ok = np.isfinite(t) & np.isfinite(ref_t)
         d = np.abs(np.minimum(t, 1.0) - np.minimum(ref_t, 1.0))[ok]
         # cases where the reference rocks and neither overturns: the median over all
-        # cases is mostly zeros (no uplift at small scales, both overturned at large)
+        # cases is mostly zeros (no uplift at small scales, both overturned at large); and,
+        # where measured, where the reference is robust (a chaotic peak tests no engine)
         rocking = (ok & (ref_t > ROCKING) & ~o & ~ref_o)
+        if self.robust is not None:
+            rocking &= self.robust
         dr = np.abs(t - ref_t)[rocking]
         return {
             "overturn_agreement": float(np.mean(o[ok] == ref_o[ok])) if ok.any() else math.nan,
@@ -75,7 +81,8 @@ class Ensemble:
                "theta_max_over_alpha": {k: v.tolist() for k, v in self.theta_max.items()},
                "overturned": {k: v.tolist() for k, v in self.overturned.items()},
                "failed": {k: [list(x) for x in v] for k, v in self.failed.items()},
-               "rocking_cases": self.rocking_count()}
+               "rocking_cases": self.rocking_count(),
+               "robust": None if self.robust is None else self.robust.tolist()}
         out["agreement"] = {e: self.agreement(e) for e in self.theta_max if e != REFERENCE}
         return out
 

@@ -25,7 +25,8 @@ def paper_blocks(results, kobe, fmt):
         for name in results.engines:
             tr = sc.runs.get(name)
             rows.append([base, name, fmt(PAPER_FIGURE5[base], ".2f"),
-                         fmt(tr.theta_max_over_alpha) if tr else "error",
+                         ("≥ 1 (overturned: " + fmt(tr.theta_max_over_alpha, ".2f") + " as it falls on its side)")
+                         if tr and tr.overturned else fmt(tr.theta_max_over_alpha) if tr else "error",
                          fmt(tr.overturned) if tr else "–", str(tr.impact_count) if tr else "–"])
     B.append(("table", ["base", "engine", "paper θmax/α", "ours θmax/α", "overturned", "impacts"], rows))
     ours = {("fixed" if sc.system.fixed_base else "isolated"): sc.runs.get(REFERENCE) for sc in kobe}
