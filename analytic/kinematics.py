@@ -92,9 +92,10 @@ def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_
 
 #: |θ| at which the block lies on its side: the rocking equations end there (model.md).
 LYING = 0.5 * math.pi
-#: A contact engine's block lands on its side face through a compliant contact and may
-#: come to rest a little short of π/2: within this (rad) it is lying.
-LYING_SLACK = 0.01
+#: A contact engine's block lands on its side face through a compliant contact and comes
+#: to rest a little short of π/2 (MuJoCo and PyBullet rest 0.003–0.035 rad short, measured on
+#: the Kobe ensembles): within this (rad) it is lying, and the run stops there.
+LYING_SLACK = 0.05
 
 
 def first_stop(t, theta, theta_dot, finite, *, system: System, motion_end: float) -> tuple[int | None, str | None]:

@@ -14,7 +14,7 @@ import importlib.metadata
 import math
 import platform
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from datetime import datetime, timezone
 
 import numpy as np
@@ -406,7 +406,7 @@ def _ensemble(i: int, sc: HistoryRuns, scales, engines, results) -> Ensemble:
     """The ensemble of history scenario i from the task results; a failed case is NaN
     with its message in `failed`."""
     ens = Ensemble(system=sc.system, motion=describe_motion(sc.motion), pga_g=sc.motion.pga_g, duration=sc.duration,
-                   scales=np.asarray(scales, dtype=float), robust=np.array([_robust(sc, f) for f in scales]))
+                   scales=np.asarray(scales, dtype=float))
     for name in engines:
         tmax = np.full(len(scales), math.nan)
         over = np.zeros(len(scales), dtype=bool)
@@ -417,6 +417,12 @@ def _ensemble(i: int, sc: HistoryRuns, scales, engines, results) -> Ensemble:
             else:
                 tmax[k], over[k] = tr.theta_max_over_alpha, tr.overturned
         ens.theta_max[name], ens.overturned[name] = tmax, over
+    # robustness matters only where the reference rocks without overturning (the cases the
+    # median is taken over): elsewhere the two extra runs are not made
+    ref_t, ref_o = ens.theta_max.get(REFERENCE), ens.overturned.get(REFERENCE)
+    if ref_t is not None:
+        rocks = (np.nan_to_num(ref_t) > ROCKING) & ~ref_o
+        return replace(ens, robust=np.array([bool(r) and _robust(sc, f) for r, f in zip(rocks, scales)]))
     return ens
 
 
