@@ -189,8 +189,8 @@ def engine_settings_from_args(engine, a):
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
-    """The whole parser; the options of the extra commands other than `command` are
-    left out (their module is not imported), unless no command is known (top-level help)."""
+    """The parser of `command`: the other extra commands are listed with their one-line
+    help, their modules not imported, so `isorock --help` and light commands stay fast."""
     parser = OneLineParser(prog="isorock", description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
@@ -239,10 +239,9 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     add_engine_options(p)
     p.set_defaults(func=cmd_scene)
 
-    builtin = {"beta", "run", "scene"}
     for name, (module, help_) in EXTRA_COMMANDS.items():
-        if command in builtin or (command in EXTRA_COMMANDS and command != name):
-            sub.add_parser(name, help=help_)  # listed, its options not loaded
+        if command != name:  # listed (top-level help, another command), its module not imported
+            sub.add_parser(name, help=help_)
             continue
         try:
             mod = importlib.import_module(module)

@@ -191,7 +191,7 @@ def describe_system(results: Results) -> str:
     cfg = results.config
     if not cfg.own_system:
         return ("the paper's block (H 2.0 m, B 0.7 m, m = m_b = 3800 kg), isolated with T 1.5 s, ξ 0.2 (the reading "
-                "of the paper that fits its figure, model.md), and on a fixed base")
+                "of the paper that fits its figure: the paper's own values are unreadable in our copy), and on a fixed base")
     s = cfg.system
     base = ("a fixed base" if s.fixed_base else
             f"an isolated base (m_b {s.base_mass:g} kg, T {s.period:.3g} s, ξ {s.damping_ratio:.3g}), and the same "
@@ -216,7 +216,7 @@ def _blocks(results: Results, images: dict) -> list:
                    "inside the limit, as a share of it; negative: outside). Skipped: the analytic history is "
                    "chaotic there (θmax/α moves a lot under ±1% of PGA), so the ensemble judges it. Not exercised: "
                    "no engine lifted the block, so nothing about contact was tested; counted apart, never passed. "
-                   "Every tolerance and its reason is in validate/tolerances.py and in the folded table at the end."))
+                   "Every tolerance and its reason is in the folded table at the end (and in isorock's validate/tolerances.py)."))
     B.append(("h2", "Where the engines part from the analytic model"))
     for sc, key in zip(results.scenarios, images["histories"]):
         B.append(("img", key, f"{sc.name}: ground acceleration, θ/α of every engine, each engine − analytic, "
