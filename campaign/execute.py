@@ -30,8 +30,11 @@ import numpy as np
 
 from .spec import Case, EngineSetting
 
-#: Engines that run through the compiled kernel's batch (the same model).
-BATCH_ENGINES = ("analytic", "analytic-fast")
+def runs_as_batch(engine: str) -> bool:
+    """Does the engine run many cases in one call (its capabilities say so: the compiled
+    analytic kernel's `simulate_batch`)? The registry answers; no engine is named here."""
+    from isorock.validate.engines import get_engine
+    return get_engine(engine).capabilities.batch
 
 # The table's schema: one home. Inputs first (what defines a case), then results.
 INPUT_COLUMNS = {
@@ -95,7 +98,7 @@ def chunk_id(setting: EngineSetting, cases) -> str:
 def make_tasks(cases: list[Case], settings, *, analytic_chunk: int, contact_chunk: int) -> list[Task]:
     tasks = []
     for setting in settings:
-        size = analytic_chunk if setting.engine in BATCH_ENGINES else contact_chunk
+        size = analytic_chunk if runs_as_batch(setting.engine) else contact_chunk
         for lo in range(0, len(cases), size):
             chunk = tuple(cases[lo:lo + size])
             tasks.append(Task(chunk_id(setting, chunk), setting, chunk))
@@ -113,7 +116,7 @@ def _overturn_mode(overturned: bool, impacts_before: int) -> str:
 def run_task(task: Task, threads: int | None = 1) -> list[dict]:
     """The rows of one chunk. threads: the analytic kernel's threads (1 in a Dask
     worker, which is one core; None: all cores, for the serial path)."""
-    if task.setting.engine in BATCH_ENGINES:
+    if runs_as_batch(task.setting.engine):
         return _run_batch(task, threads)
     return _run_contact(task)
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .execute import BATCH_ENGINES
+from .execute import runs_as_batch
 
 #: Columns an agreement map may use as an axis.
 AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
@@ -56,8 +56,8 @@ def _groups(cols, keys):
 
 def _engine_settings(cols):
     pairs = sorted(set(zip(cols["engine"].tolist(), cols["setting"].tolist())))
-    reference = next((p for p in pairs if p[0] in BATCH_ENGINES), None)
-    return reference, [p for p in pairs if p[0] not in BATCH_ENGINES]
+    reference = next((p for p in pairs if runs_as_batch(p[0])), None)
+    return reference, [p for p in pairs if not runs_as_batch(p[0])]
 
 
 def _is(cols, pair):
@@ -192,7 +192,7 @@ def fragility_figure(fits, path: Path) -> None:
     for ax, system in zip(axes[0], systems):
         for f in (f for f in fits if f["system"] == system):
             j = pairs.index((f["engine"], f["setting"]))
-            color = "k" if f["engine"] in BATCH_ENGINES else f"C{j}"
+            color = "k" if runs_as_batch(f["engine"]) else f"C{j}"
             # curves that coincide (engines agreeing run for run) stay visible: each pair
             # its own dash pattern, later ones thinner
             style = ("-", "--", "-.", ":")[j % 4]

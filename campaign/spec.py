@@ -403,7 +403,8 @@ def _check_size(spec: CampaignSpec) -> None:
     if n_runs > MAX_RUNS:
         raise InputError(f"campaign size = {n_runs} runs ({spec.n_cases} cases × {len(spec.engines)} "
                          f"engine settings): must be at most {MAX_RUNS}")
-    n_contact = spec.n_cases * sum(e.engine not in ("analytic", "analytic-fast") for e in spec.engines)
+    from isorock.validate.engines import get_engine
+    n_contact = spec.n_cases * sum(not get_engine(e.engine).capabilities.batch for e in spec.engines)
     if n_contact > MAX_CONTACT_RUNS:
         raise InputError(f"campaign size = {n_contact} contact-engine runs: must be at most "
                          f"{MAX_CONTACT_RUNS} (each takes 0.1–10 s; use a coarser grid for them)")
