@@ -59,3 +59,17 @@ def char_device(tmp_path):
             pytest.skip(f"cannot make a device node as root here ({e.strerror})")
         return node
     return make
+
+
+@pytest.fixture(scope="session", autouse=True)
+def compiled_analytic_kernel():
+    """Load (on a new machine: compile, ~1–2 min) the analytic kernel once, before any test
+    reads what a command printed: its one-time 'compiling …' lines on stderr belong to no
+    test's output."""
+    try:
+        from isorock.analytic.system import paper_system
+        from isorock.validate.engines import get_engine
+        system = paper_system(fixed_base=True)
+        get_engine("analytic").simulate(system, None, duration=0.5, theta0=0.3 * system.alpha)
+    except ImportError:  # numba missing: the tests that need the kernel say so themselves
+        pass
