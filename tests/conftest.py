@@ -67,9 +67,16 @@ def compiled_analytic_kernel():
     reads what a command printed: its one-time 'compiling …' lines on stderr belong to no
     test's output."""
     try:
+        import numpy as np
+
+        from isorock.analytic.motion import GroundMotion, load_motion
         from isorock.analytic.system import paper_system
         from isorock.validate.engines import get_engine
-        system = paper_system(fixed_base=True)
-        get_engine("analytic").simulate(system, None, duration=0.5, theta0=0.3 * system.alpha)
+        # every kind of input the kernel specializes on: no motion, a pulse, a record
+        motions = (None, load_motion("sine:amp=0.6,freq=1.3,cycles=1"),
+                   GroundMotion.from_array(np.array([0.0, 0.5, -0.5, 0.0]), dt=0.02, units="g"))
+        for system in (paper_system(), paper_system(fixed_base=True)):
+            for motion in motions:
+                get_engine("analytic").simulate(system, motion, duration=0.5, theta0=0.3 * system.alpha)
     except ImportError:  # numba missing: the tests that need the kernel say so themselves
         pass
