@@ -176,10 +176,8 @@ def add_parser(sub) -> None:
 
 
 def cmd_calibrate(a) -> int:
-    from types import SimpleNamespace
-
     from isorock.analytic.system import paper_system
-    from isorock.validate.cli import engine_settings_from_args, system_from_args
+    from isorock.validate.cli import engine_settings_from_args, system_from_options
     from isorock.validate.engines import get_engine
     from isorock.validate.output import write_text
     engine = get_engine(a.engine)
@@ -187,12 +185,7 @@ def cmd_calibrate(a) -> int:
         raise InputError(f"engine = {a.engine!r}: has no contact parameters to calibrate")
     if not 5 <= a.max_evals <= 2000:
         raise InputError(f"max-evals = {a.max_evals!r}: must be a whole number from 5 to 2000")
-    given = {k: getattr(a, k) for k in ("height", "width", "mass", "base_mass", "period", "damping_ratio",
-                                        "stiffness", "dashpot", "fixed_base")}
-    if any(v not in (None, False) for v in given.values()):
-        system = system_from_args(SimpleNamespace(**given))
-    else:
-        system = paper_system(fixed_base=True)
+    system = system_from_options(a) or paper_system(fixed_base=True)
     if a.out:
         from pathlib import Path
         if Path(a.out).exists():

@@ -126,6 +126,32 @@ def system_from_args(a, *, default_isolator=None):
     raise InputError("isolator: give --period T --damping-ratio XI, or --stiffness K --dashpot C, or --fixed-base")
 
 
+#: The system options, as argparse names them (and a TOML [system] table does).
+SYSTEM_KEYS = ("height", "width", "mass", "base_mass", "period", "damping_ratio", "stiffness", "dashpot",
+               "fixed_base")
+
+
+def system_from_options(a, defaults: dict | None = None):
+    """The System of the system options given with optional ones (`add_system_options(p,
+    required=False)`), over `defaults` (a TOML [system] table); None when none is given,
+    for the command's own default system."""
+    from types import SimpleNamespace
+    values = {k: (defaults or {}).get(k) for k in SYSTEM_KEYS}
+    for k in SYSTEM_KEYS:
+        v = getattr(a, k, None)
+        if v not in (None, False):
+            values[k] = v
+    if not any(v not in (None, False) for v in values.values()):
+        return None
+    missing = [k for k in ("height", "width", "mass") if values[k] is None]
+    if missing:
+        raise InputError(f"--{missing[0].replace('_', '-')}: give the block's height, width and mass "
+                         "(and its base) for your own system")
+    if values["base_mass"] is None and not values["fixed_base"]:
+        raise InputError("--base-mass: give the base plate's mass for an isolated base (or --fixed-base)")
+    return system_from_args(SimpleNamespace(**values))
+
+
 def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
     g = p.add_argument_group("ground motion")
     g.add_argument("--motion", default=default, metavar="SPEC",

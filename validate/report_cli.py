@@ -83,12 +83,10 @@ def _scales(text):
     return first, last, int(steps)
 
 
-SYSTEM_KEYS = ("height", "width", "mass", "base_mass", "period", "damping_ratio", "stiffness", "dashpot",
-               "fixed_base")
-
-
 def _read_config(path) -> dict:
     import tomllib
+
+    from isorock.validate.cli import SYSTEM_KEYS
     try:
         with open(path, "rb") as f:
             data = tomllib.load(f)
@@ -106,30 +104,8 @@ def _read_config(path) -> dict:
     return data
 
 
-def _system(args, config: dict):
-    """The user's System from the options (or the config's [system]), None for the paper's block."""
-    from types import SimpleNamespace
-
-    from isorock.validate.cli import system_from_args
-    values = {k: config.get("system", {}).get(k) for k in SYSTEM_KEYS}
-    for k in SYSTEM_KEYS:
-        v = getattr(args, k, None)
-        if v not in (None, False):
-            values[k] = v
-    if not any(v not in (None, False) for v in values.values()):
-        return None
-    missing = [k for k in ("height", "width", "mass") if values[k] is None]
-    if missing:
-        raise InputError(f"--{missing[0].replace('_', '-')}: give the block's height, width and mass "
-                         "(and its base) to validate your own system")
-    if values["base_mass"] is None:
-        if not values["fixed_base"]:
-            raise InputError("--base-mass: give the base plate's mass for an isolated base (or --fixed-base)")
-    return system_from_args(SimpleNamespace(**{k: values[k] for k in SYSTEM_KEYS}))
-
-
 def run(args) -> int:
-    from isorock.validate.cli import ENGINE_OPTIONS
+    from isorock.validate.cli import ENGINE_OPTIONS, system_from_options
     from isorock.validate.output import check_folder
     from isorock.validate.progress import ProgressBar
     from isorock.validate.report_render import verdict, write_report
@@ -148,7 +124,7 @@ def run(args) -> int:
                           quick=args.quick or bool(config.get("quick")),
                           duration=args.duration if args.duration is not None else config.get("duration"),
                           scales=_scales(args.scales), format=args.format or config.get("format"),
-                          units=args.units or config.get("units"), system=_system(args, config),
+                          units=args.units or config.get("units"), system=system_from_options(args, config.get("system")),
                           overrides=overrides, workers=args.workers, overturn_rule=args.overturn)
     from isorock.validate.runner import resolve
     for name in report.engines:  # an unknown setting or preset is bad input before anything runs
