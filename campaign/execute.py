@@ -66,6 +66,8 @@ class Task:
     id: str
     setting: EngineSetting
     cases: tuple[Case, ...]
+    #: model.md's overturning rule for every engine (None: each engine's default, past α)
+    overturn_rule: str | None = None
 
 
 def _schema():
@@ -89,19 +91,26 @@ def _case_inputs(case: Case) -> dict:
     return row
 
 
-def chunk_id(setting: EngineSetting, cases) -> str:
-    body = json.dumps([setting.engine, [list(o) for o in setting.overrides],
-                       [_case_inputs(c) for c in cases]], sort_keys=True, default=str)
+def chunk_id(setting: EngineSetting, cases, overturn_rule: str | None = None) -> str:
+    head = [setting.engine, [list(o) for o in setting.overrides]]
+    # a preset and a rule join the hash only when given, so that the ids (and parts) of
+    # campaigns made before they existed stay valid
+    if setting.preset:
+        head.append(["preset", setting.preset])
+    if overturn_rule is not None:
+        head.append(["overturn_rule", overturn_rule])
+    body = json.dumps([*head, [_case_inputs(c) for c in cases]], sort_keys=True, default=str)
     return hashlib.sha256(body.encode()).hexdigest()[:20]
 
 
-def make_tasks(cases: list[Case], settings, *, analytic_chunk: int, contact_chunk: int) -> list[Task]:
+def make_tasks(cases: list[Case], settings, *, analytic_chunk: int, contact_chunk: int,
+               overturn_rule: str | None = None) -> list[Task]:
     tasks = []
     for setting in settings:
         size = analytic_chunk if runs_as_batch(setting.engine) else contact_chunk
         for lo in range(0, len(cases), size):
             chunk = tuple(cases[lo:lo + size])
-            tasks.append(Task(chunk_id(setting, chunk), setting, chunk))
+            tasks.append(Task(chunk_id(setting, chunk, overturn_rule), setting, chunk, overturn_rule))
     return tasks
 
 
@@ -123,11 +132,14 @@ def run_task(task: Task, threads: int | None = 1) -> list[dict]:
 
 
 def _run_batch(task: Task, threads) -> list[dict]:
+    from dataclasses import replace
+
     from isorock.analytic.fast import simulate_batch
-    from isorock.validate.engines import get_engine
 
     from .build import motion_of
-    settings = get_engine(task.setting.engine).settings(**task.setting.settings_kwargs)
+    settings = task.setting.settings()
+    if task.overturn_rule is not None:
+        settings = replace(settings, overturn=task.overturn_rule)
     cases = task.cases
     start = time.perf_counter()
     out = simulate_batch([c.system for c in cases], [motion_of(c) for c in cases],
@@ -157,10 +169,10 @@ def _run_contact(task: Task, threads: int | None) -> list[dict]:
 
     from .build import motion_of
     engine = get_engine(task.setting.engine)
-    settings = engine.settings(**task.setting.settings_kwargs)
     start = time.perf_counter()
     results = engine.simulate_many([(c.system, motion_of(c), c.duration, c.theta0) for c in task.cases],
-                                   settings=settings, effective_beta=False,
+                                   settings=task.setting.settings(), overturn_rule=task.overturn_rule,
+                                   effective_beta=False,
                                    threads=default_workers() if threads is None else threads)
     # runs overlap in threads, so a run's own wall time says little: each row gets the
     # chunk's time shared equally, as an analytic chunk's rows do
@@ -248,33 +260,43 @@ class Progress:
 
 # --- executing a list of tasks ----------------------------------------------------------
 
-def execute(tasks: list[Task], *, client=None, threads: int | None = None, on_done, progress=None) -> int:
-    """Run `tasks`, calling on_done(task, rows) here as each one finishes (in the order
+def execute(tasks: list, *, client=None, threads: int | None = None, on_done, progress=None, here=None,
+            run=None, weight=None) -> int:
+    """Run `tasks`, calling on_done(task, result) here as each one finishes (in the order
     they finish). client: a dask.distributed Client, or None to run serially in this
-    process. Returns the number of tasks run."""
-    if client is None:
-        for task in tasks:
-            rows = run_task(task, threads)
-            on_done(task, rows)
-            if progress:
-                progress.update(len(task.cases))
-        return len(tasks)
-    from dask.distributed import as_completed
-    by_key = {}
-    futures = []
-    for task in tasks:
-        fut = client.submit(run_task, task, 1, key=f"isorock-chunk-{task.id}", pure=False)
+    process. run(task, threads): a task's result (default: `run_task`, a chunk's rows;
+    `isorock validate` runs its histories through here too). here(task): tasks that run
+    in this process even with a client (e.g. the analytic model's, loaded here already and
+    done in milliseconds), while the cluster works on the others. progress.update(n) after
+    each task, n = weight(task) (default: its number of cases). Returns the number of
+    tasks run."""
+    run = run or run_task
+    weight = weight or (lambda task: len(task.cases))
+    local = [t for t in tasks if client is None or (here is not None and here(t))]
+    remote = [t for t in tasks if client is not None and not (here is not None and here(t))]
+
+    def finished(task, result):
+        on_done(task, result)
+        if progress:
+            progress.update(weight(task))
+
+    by_key, futures = {}, []
+    for task in remote:  # submitted first, so that the cluster works while this process does its part
+        fut = client.submit(run, task, 1, pure=False)
         by_key[fut.key] = task
         futures.append(fut)
     try:
-        for fut in as_completed(futures):
-            task = by_key[fut.key]
-            on_done(task, fut.result())
-            fut.release()
-            if progress:
-                progress.update(len(task.cases))
+        for task in local:
+            finished(task, run(task, threads))
+        if futures:
+            from dask.distributed import as_completed
+            for fut in as_completed(futures):
+                task = by_key[fut.key]
+                finished(task, fut.result())
+                fut.release()
     except BaseException:
-        client.cancel(futures)
+        if futures:
+            client.cancel(futures)
         raise
     return len(tasks)
 
@@ -288,6 +310,14 @@ def local_client(workers: int):
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                            dashboard_address=None, silence_logs=logging.ERROR)
     return Client(cluster)
+
+
+def close_client(client) -> None:
+    """Close a client opened here, and its LocalCluster if it started one."""
+    cluster = getattr(client, "cluster", None)
+    client.close()
+    if cluster is not None:
+        cluster.close()
 
 
 def default_workers() -> int:
