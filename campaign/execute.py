@@ -318,7 +318,13 @@ def local_client(workers: int):
 
     import dask
     from dask.distributed import Client, LocalCluster
-    with dask.config.set(QUIET_CLUSTER):
+    # Dask's nanny starts workers with MALLOC_TRIM_THRESHOLD_=65536, so that freed memory
+    # goes back to the system at once: for PyBullet's stepping loop (many small Python
+    # objects per step) that is 30% more CPU, in system calls (measured: 32 runs, 2.35 s
+    # → 3.05 s). A campaign's workers hold little memory; glibc's own threshold serves.
+    environ = {k: v for k, v in dask.config.get("distributed.nanny.pre-spawn-environ", {}).items()
+               if k != "MALLOC_TRIM_THRESHOLD_"}
+    with dask.config.set({**QUIET_CLUSTER, "distributed.nanny.pre-spawn-environ": environ}):
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                dashboard_address=None, silence_logs=logging.ERROR)
         return Client(cluster)
