@@ -325,8 +325,12 @@ def local_client(workers: int):
     environ = {k: v for k, v in dask.config.get("distributed.nanny.pre-spawn-environ", {}).items()
                if k != "MALLOC_TRIM_THRESHOLD_"}
     with dask.config.set({**QUIET_CLUSTER, "distributed.nanny.pre-spawn-environ": environ}):
+        # the scheduler serves HTTP routes even without a dashboard, on port 8787 unless
+        # told otherwise: with another cluster on this machine that printed "Port 8787 is
+        # already in use" on stderr. Any free port on this host alone will do.
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.ERROR)
+                               dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+                               silence_logs=logging.ERROR)
         return Client(cluster)
 
 
