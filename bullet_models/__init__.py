@@ -31,10 +31,22 @@ ENGINE = EngineSpec(
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
     presets={
         "default": Settings,
-        # 1 ms physics steps: β within ~1% at three times the speed (docs/bullet.md)
+        # 1 ms physics steps: β within ~1% on the paper's block at three times the speed (docs/bullet.md)
         "fast": lambda: settings_for_timestep(1e-3),
-        # 0.1 ms physics steps: β within ~0.1%
+        # 0.1 ms physics steps: β within ~0.1% on the paper's block
         "fine": lambda: settings_for_timestep(1e-4),
+        # contact ERP a quarter of Bullet's 0.08: a sunk corner is pushed out more slowly, with less kick
+        "erp-low": lambda: Settings(contact_erp=0.02),
+        # contact ERP 0.2, the value most engines default to: faster correction, and a bounce (0.8 bounces)
+        "erp-high": lambda: Settings(contact_erp=0.2),
+        # 10 solver iterations instead of 50: a cheaper solve, unconverged at impacts (docs/bullet.md)
+        "iterations-10": lambda: Settings(solver_iterations=10),
+        # 200 solver iterations: whether the default's 50 leaves the impact unconverged
+        "iterations-200": lambda: Settings(solver_iterations=200),
+        # the isolator force and ground motion updated every 3 physics steps (1 ms), not 12 (4 ms)
+        "substeps-3": lambda: Settings(substeps=3),
+        # every 30 physics steps (10 ms): fewer Python steps, the force held longer
+        "substeps-30": lambda: Settings(substeps=30),
     },
     ladder=ladder, tuning=TUNING)
 

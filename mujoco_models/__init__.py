@@ -44,11 +44,25 @@ ENGINE = EngineSpec(
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
     presets={
         "default": Settings,
-        # the cheapest step whose β stays within ~1% (docs/mujoco.md, bench ladder)
-        "fast": lambda: settings_for_timestep(2e-3),
-        "event-resolved": event_resolved_settings,
-        "corners": lambda: Settings(contact="corners"),
+        # Newton, MuJoCo's own solver and the default's: named so that it reads beside cg
+        "newton": lambda: Settings(solver="Newton"),
+        # conjugate gradient, MuJoCo's other solver for soft contacts: cheaper iterations, more of them
+        "cg": lambda: Settings(solver="CG"),
+        # the elliptic cone, the default's: named so that it reads beside pyramidal
+        "elliptic": lambda: Settings(cone="elliptic"),
+        # the pyramidal cone: cheaper per step, lets the pivot creep 2.3× as far (docs/mujoco.md)
         "pyramidal": lambda: Settings(cone="pyramidal"),
+        # the cheapest step whose β stays within ~1% on the paper's block (docs/mujoco.md, bench ladder)
+        "fast": lambda: settings_for_timestep(2e-3),
+        # soft contact tied to the step, time constant 4·dt, at 1e-4 s: the ladder's most accurate rung
+        "fine": lambda: settings_for_timestep(1e-4),
+        # model.md's feasibility recipe: time constant at MuJoCo's floor 2·dt, impedance dmin 0.99
+        # (the pivot contact flickers at it, docs/mujoco.md; kept to measure it over the atlas)
+        "model-md": lambda: Settings(solref=(2 * Settings.timestep, 2.0), solimp=(0.99, 0.999, 0.001)),
+        # coarse steps in flight, fine ones around each impact: long records, not free rocking
+        "event-resolved": event_resolved_settings,
+        # a small sphere in each bottom corner instead of box–box: cheaper collision, no better per cost
+        "corners": lambda: Settings(contact="corners"),
     },
     ladder=ladder, tuning=TUNING)
 

@@ -62,12 +62,16 @@ def default_workers() -> int:
     return max(1, min(2, os.cpu_count() or 1))
 
 
-def run_tasks(tasks: list[Task], *, workers: int | None = None, in_process=None, on_result=None) -> dict:
+def run_tasks(tasks: list[Task], *, workers: int | None = None, in_process=None, on_result=None,
+              work=run_task) -> dict:
     """Run every task; key → (Trajectory or None, error or None). `in_process(task)` says
     which tasks run here (default: those of engines that run as batches, i.e. the compiled
     analytic model, and any task when workers ≤ 1); the rest go to `workers` processes
     (spawned: a forked copy of a process that loaded numba's threads is not safe).
-    `on_result(key)` is called as each result arrives (a progress bar)."""
+    `on_result(key)` is called as each result arrives (a progress bar). `work(task)` runs
+    one task and returns (key, result, error) (default: run_task, a Trajectory); one that
+    measures its result where it ran (a row instead of a history) must be picklable, a
+    module-level function or a functools.partial of one."""
     workers = default_workers() if workers is None else workers
     in_process = in_process or _light
     out = {}
@@ -77,9 +81,9 @@ def run_tasks(tasks: list[Task], *, workers: int | None = None, in_process=None,
     try:
         if remote:
             pool = ProcessPoolExecutor(max_workers=min(workers, len(remote)), mp_context=mp.get_context("spawn"))
-            futures = [pool.submit(run_task, t) for t in remote]
+            futures = [pool.submit(work, t) for t in remote]
         for t in local:
-            key, traj, err = run_task(t)
+            key, traj, err = work(t)
             out[key] = (traj, err)
             if on_result:
                 on_result(key)
