@@ -62,7 +62,10 @@ class EngineSpec:
     file); `label` is the name figures and reports show; `presets` maps a name a user
     can ask for as ENGINE:PRESET to a zero-argument callable returning Settings;
     `ladder(quick)` lists (label, Settings) from cheapest to most accurate, for
-    work-precision benchmarks; `tuning` is what `isorock calibrate` may move."""
+    work-precision benchmarks; `tuning` is what `isorock calibrate` may move;
+    `simulate_many(runs, *, settings, threads)` (optional) runs many (system, motion,
+    duration, theta0) at once, each result what `simulate` returns for it alone or the
+    exception it raised (without it, the registry runs them one by one)."""
 
     name: str
     label: str
@@ -75,6 +78,7 @@ class EngineSpec:
     presets: dict = field(default_factory=dict)
     ladder: Callable[[bool], list] | None = None
     tuning: Tuning | None = None
+    simulate_many: Callable[..., list] | None = None
 
     def settings(self, **overrides):
         if self.settings_for is not None:

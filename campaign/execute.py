@@ -66,6 +66,8 @@ class Task:
     id: str
     setting: EngineSetting
     cases: tuple[Case, ...]
+    #: model.md's overturning rule for every engine (None: each engine's default, past α)
+    overturn_rule: str | None = None
 
 
 def _schema():
@@ -89,19 +91,26 @@ def _case_inputs(case: Case) -> dict:
     return row
 
 
-def chunk_id(setting: EngineSetting, cases) -> str:
-    body = json.dumps([setting.engine, [list(o) for o in setting.overrides],
-                       [_case_inputs(c) for c in cases]], sort_keys=True, default=str)
+def chunk_id(setting: EngineSetting, cases, overturn_rule: str | None = None) -> str:
+    head = [setting.engine, [list(o) for o in setting.overrides]]
+    # a preset and a rule join the hash only when given, so that the ids (and parts) of
+    # campaigns made before they existed stay valid
+    if setting.preset:
+        head.append(["preset", setting.preset])
+    if overturn_rule is not None:
+        head.append(["overturn_rule", overturn_rule])
+    body = json.dumps([*head, [_case_inputs(c) for c in cases]], sort_keys=True, default=str)
     return hashlib.sha256(body.encode()).hexdigest()[:20]
 
 
-def make_tasks(cases: list[Case], settings, *, analytic_chunk: int, contact_chunk: int) -> list[Task]:
+def make_tasks(cases: list[Case], settings, *, analytic_chunk: int, contact_chunk: int,
+               overturn_rule: str | None = None) -> list[Task]:
     tasks = []
     for setting in settings:
         size = analytic_chunk if runs_as_batch(setting.engine) else contact_chunk
         for lo in range(0, len(cases), size):
             chunk = tuple(cases[lo:lo + size])
-            tasks.append(Task(chunk_id(setting, chunk), setting, chunk))
+            tasks.append(Task(chunk_id(setting, chunk, overturn_rule), setting, chunk, overturn_rule))
     return tasks
 
 
@@ -114,19 +123,23 @@ def _overturn_mode(overturned: bool, impacts_before: int) -> str:
 
 
 def run_task(task: Task, threads: int | None = 1) -> list[dict]:
-    """The rows of one chunk. threads: the analytic kernel's threads (1 in a Dask
-    worker, which is one core; None: all cores, for the serial path)."""
+    """The rows of one chunk. threads: the analytic kernel's threads, or a contact
+    engine's runs side by side (1 in a Dask worker, which is one core; None: all cores,
+    for the serial path)."""
     if runs_as_batch(task.setting.engine):
         return _run_batch(task, threads)
-    return _run_contact(task)
+    return _run_contact(task, threads)
 
 
 def _run_batch(task: Task, threads) -> list[dict]:
+    from dataclasses import replace
+
     from isorock.analytic.fast import simulate_batch
-    from isorock.validate.engines import get_engine
 
     from .build import motion_of
-    settings = get_engine(task.setting.engine).settings(**task.setting.settings_kwargs)
+    settings = task.setting.settings()
+    if task.overturn_rule is not None:
+        settings = replace(settings, overturn=task.overturn_rule)
     cases = task.cases
     start = time.perf_counter()
     out = simulate_batch([c.system for c in cases], [motion_of(c) for c in cases],
@@ -148,25 +161,30 @@ def _run_batch(task: Task, threads) -> list[dict]:
     return rows
 
 
-def _run_contact(task: Task) -> list[dict]:
+def _run_contact(task: Task, threads: int | None) -> list[dict]:
+    """A contact engine's chunk: its batch path (MuJoCo's: one scene per system, `threads`
+    runs side by side) or one run after another; each row what the run alone gives.
+    Impacts are counted, not mapped to effective β: no column reads it."""
     from isorock.validate.engines import get_engine
 
     from .build import motion_of
     engine = get_engine(task.setting.engine)
-    settings = engine.settings(**task.setting.settings_kwargs)
+    start = time.perf_counter()
+    results = engine.simulate_many([(c.system, motion_of(c), c.duration, c.theta0) for c in task.cases],
+                                   settings=task.setting.settings(), overturn_rule=task.overturn_rule,
+                                   effective_beta=False,
+                                   threads=default_workers() if threads is None else threads)
+    # runs overlap in threads, so a run's own wall time says little: each row gets the
+    # chunk's time shared equally, as an analytic chunk's rows do
+    share = (time.perf_counter() - start) / max(len(task.cases), 1)
     rows = []
-    for case in task.cases:
-        start = time.perf_counter()
+    for case, tr in zip(task.cases, results):
         base = {**_case_inputs(case), "engine": task.setting.engine, "setting": task.setting.label}
-        try:
-            tr = engine.simulate(case.system, motion_of(case), settings=settings, duration=case.duration,
-                                 theta0=case.theta0)
-        except Exception as e:  # one failed case is a row saying so, not a lost chunk
-            rows.append({**base, "status": "failed", "message": f"{type(e).__name__}: {e}",
+        if isinstance(tr, Exception):  # one failed case is a row saying so, not a lost chunk
+            rows.append({**base, "status": "failed", "message": f"{type(tr).__name__}: {tr}",
                          "theta_max_over_alpha": math.nan, "overturned": False,
                          "overturn_mode": NOT_OVERTURNED, "overturn_time": math.nan, "impacts": 0,
-                         "uplift": False, "uplifts": 0, "u_max": math.nan,
-                         "runtime_s": time.perf_counter() - start})
+                         "uplift": False, "uplifts": 0, "u_max": math.nan, "runtime_s": share})
             continue
         t_fall = tr.overturn_time if tr.overturned and tr.overturn_time is not None else math.inf
         before = sum(1 for i in tr.counted_impacts if i.t <= t_fall)
@@ -175,7 +193,7 @@ def _run_contact(task: Task) -> list[dict]:
                      "overturn_mode": _overturn_mode(tr.overturned, before),
                      "overturn_time": math.nan if tr.overturn_time is None else float(tr.overturn_time),
                      "impacts": tr.impact_count, "uplift": tr.uplifts > 0, "uplifts": tr.uplifts,
-                     "u_max": tr.u_max, "runtime_s": time.perf_counter() - start})
+                     "u_max": tr.u_max, "runtime_s": share})
     return rows
 
 
@@ -242,33 +260,43 @@ class Progress:
 
 # --- executing a list of tasks ----------------------------------------------------------
 
-def execute(tasks: list[Task], *, client=None, threads: int | None = None, on_done, progress=None) -> int:
-    """Run `tasks`, calling on_done(task, rows) here as each one finishes (in the order
+def execute(tasks: list, *, client=None, threads: int | None = None, on_done, progress=None, here=None,
+            run=None, weight=None) -> int:
+    """Run `tasks`, calling on_done(task, result) here as each one finishes (in the order
     they finish). client: a dask.distributed Client, or None to run serially in this
-    process. Returns the number of tasks run."""
-    if client is None:
-        for task in tasks:
-            rows = run_task(task, threads)
-            on_done(task, rows)
-            if progress:
-                progress.update(len(task.cases))
-        return len(tasks)
-    from dask.distributed import as_completed
-    by_key = {}
-    futures = []
-    for task in tasks:
-        fut = client.submit(run_task, task, 1, key=f"isorock-chunk-{task.id}", pure=False)
+    process. run(task, threads): a task's result (default: `run_task`, a chunk's rows;
+    `isorock validate` runs its histories through here too). here(task): tasks that run
+    in this process even with a client (e.g. the analytic model's, loaded here already and
+    done in milliseconds), while the cluster works on the others. progress.update(n) after
+    each task, n = weight(task) (default: its number of cases). Returns the number of
+    tasks run."""
+    run = run or run_task
+    weight = weight or (lambda task: len(task.cases))
+    local = [t for t in tasks if client is None or (here is not None and here(t))]
+    remote = [t for t in tasks if client is not None and not (here is not None and here(t))]
+
+    def finished(task, result):
+        on_done(task, result)
+        if progress:
+            progress.update(weight(task))
+
+    by_key, futures = {}, []
+    for task in remote:  # submitted first, so that the cluster works while this process does its part
+        fut = client.submit(run, task, 1, pure=False)
         by_key[fut.key] = task
         futures.append(fut)
     try:
-        for fut in as_completed(futures):
-            task = by_key[fut.key]
-            on_done(task, fut.result())
-            fut.release()
-            if progress:
-                progress.update(len(task.cases))
+        for task in local:
+            finished(task, run(task, threads))
+        if futures:
+            from dask.distributed import as_completed
+            for fut in as_completed(futures):
+                task = by_key[fut.key]
+                finished(task, fut.result())
+                fut.release()
     except BaseException:
-        client.cancel(futures)
+        if futures:
+            client.cancel(futures)
         raise
     return len(tasks)
 
@@ -282,6 +310,14 @@ def local_client(workers: int):
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                            dashboard_address=None, silence_logs=logging.ERROR)
     return Client(cluster)
+
+
+def close_client(client) -> None:
+    """Close a client opened here, and its LocalCluster if it started one."""
+    cluster = getattr(client, "cluster", None)
+    client.close()
+    if cluster is not None:
+        cluster.close()
 
 
 def default_workers() -> int:

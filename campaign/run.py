@@ -14,7 +14,8 @@ from pathlib import Path
 
 from isorock.analytic.errors import InputError
 
-from .execute import Progress, execute, local_client, make_tasks, read_parts, rows_to_table, sort_table, write_part
+from .execute import (Progress, close_client, execute, local_client, make_tasks, read_parts, rows_to_table, runs_as_batch,
+                      sort_table, write_part)
 from .spec import ANALYTIC_CHUNK, CONTACT_CHUNK, CampaignSpec, EngineSetting, load_spec
 
 #: The file that marks a folder as written by `isorock sweep`: a sweep fills a new or
@@ -63,14 +64,6 @@ def _client_for(client, workers, scheduler):
     return None, False
 
 
-def _close(client) -> None:
-    """Close a client this module opened, and its LocalCluster if it started one."""
-    cluster = getattr(client, "cluster", None)
-    client.close()
-    if cluster is not None:
-        cluster.close()
-
-
 def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: str | None = None,
                  progress: bool = True, products: bool = True) -> CampaignResult:
     """Run a campaign (a CampaignSpec or the path of its TOML file).
@@ -113,7 +106,7 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         ran = execute(todo, client=live, threads=None, on_done=on_done, progress=bar)
     finally:
         if close:
-            _close(live)
+            close_client(live)
     if parts_dir is None:
         return CampaignResult(sort_table(rows_to_table(memory)), None, len(tasks), ran)
     # only this campaign's parts: a folder may hold parts of an earlier version of the file
@@ -131,23 +124,39 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
 
 
 def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: int = ANALYTIC_CHUNK,
-              contact_chunk: int = CONTACT_CHUNK, progress: bool = False):
+              contact_chunk: int = CONTACT_CHUNK, progress=False, overturn_rule: str | None = None,
+              threads: int | None = None, batch_here: bool = False):
     """Rows for in-memory `cases` (campaign.spec.Case: system, motion, duration, theta0,
-    optional inputs) under `engines`: names, or (name, {setting: value}) pairs.
-    Nothing is written. Returns a pyarrow.Table sorted by case, engine, setting."""
+    optional inputs) under `engines`: names ("ENGINE" or "ENGINE:PRESET"), (name,
+    {setting: value}) pairs, or EngineSettings. Nothing is written. Returns a
+    pyarrow.Table sorted by case, engine, setting.
+
+    overturn_rule: model.md's rule for every engine (None: past α). threads: the serial
+    path's threads (None: every core). batch_here: with a cluster, the analytic chunks
+    still run in this process (where the kernel is loaded; they take milliseconds) while
+    the cluster runs the contact engines'. progress: True for a bar on stderr, or an
+    object with update(n)."""
+    from isorock.validate.engines import get_engine
     settings = []
     for e in engines:
-        name, overrides = (e, {}) if isinstance(e, str) else e
-        from isorock.validate.engines import get_engine
-        get_engine(name).settings(**overrides)  # an unknown engine or setting fails here
-        settings.append(EngineSetting(name, tuple(sorted(overrides.items()))))
-    tasks = make_tasks(list(cases), settings, analytic_chunk=analytic_chunk, contact_chunk=contact_chunk)
+        if isinstance(e, EngineSetting):
+            setting = e
+        else:
+            name, overrides = (e, {}) if isinstance(e, str) else e
+            base, _, preset = name.partition(":")
+            setting = EngineSetting(base, tuple(sorted(overrides.items())), preset)
+        get_engine(setting.engine)
+        setting.settings()  # an unknown engine, preset or setting fails here
+        settings.append(setting)
+    tasks = make_tasks(list(cases), settings, analytic_chunk=analytic_chunk, contact_chunk=contact_chunk,
+                       overturn_rule=overturn_rule)
     rows = []
     live, close = _client_for(client, workers, None)
-    bar = Progress(sum(len(t.cases) for t in tasks)) if progress else None
+    bar = Progress(sum(len(t.cases) for t in tasks)) if progress is True else (progress or None)
+    here = (lambda task: runs_as_batch(task.setting.engine)) if batch_here else None
     try:
-        execute(tasks, client=live, threads=None, on_done=lambda t, r: rows.extend(r), progress=bar)
+        execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=bar, here=here)
     finally:
         if close:
-            _close(live)
+            close_client(live)
     return sort_table(rows_to_table(rows))

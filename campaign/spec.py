@@ -105,19 +105,31 @@ def _check_keys(key, table, allowed):
 
 @dataclass(frozen=True)
 class EngineSetting:
-    """One engine with one set of setting overrides; `label` names it in the table."""
+    """One engine with one set of setting overrides, on its defaults or on a named preset
+    (ENGINE:PRESET, as `isorock validate` names columns); `label` names it in the table."""
 
     engine: str
     overrides: tuple[tuple[str, object], ...] = ()
+    preset: str = ""
 
     @property
     def label(self) -> str:
-        return ",".join(f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}"
-                        for k, v in self.overrides) or "default"
+        parts = [f"preset={self.preset}"] if self.preset else []
+        parts += [f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in self.overrides]
+        return ",".join(parts) or "default"
 
     @property
     def settings_kwargs(self) -> dict:
         return {k: (tuple(v) if isinstance(v, list) else v) for k, v in self.overrides}
+
+    def settings(self):
+        """The engine's Settings: its defaults (or the preset's) with the overrides."""
+        from isorock.validate.engines import get_engine
+        engine = get_engine(self.engine)
+        if not self.preset:
+            return engine.settings(**self.settings_kwargs)
+        from dataclasses import replace
+        return replace(engine.preset(self.preset), **self.settings_kwargs)
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Tuning
 
 from .scene import SCENE_FORMAT, build_model, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep
-from .stepping import run_model, simulate
+from .stepping import run_model, simulate, simulate_many
 
 
 def ladder(quick: bool):
@@ -64,7 +64,7 @@ ENGINE = EngineSpec(
         # a small sphere in each bottom corner instead of box–box: cheaper collision, no better per cost
         "corners": lambda: Settings(contact="corners"),
     },
-    ladder=ladder, tuning=TUNING)
+    ladder=ladder, tuning=TUNING, simulate_many=simulate_many)
 
-__all__ = ["ENGINE", "Settings", "simulate", "run_model", "scene_text", "build_model", "settings_for",
+__all__ = ["ENGINE", "Settings", "simulate", "simulate_many", "run_model", "scene_text", "build_model", "settings_for",
            "settings_for_timestep", "event_resolved_settings"]

@@ -11,12 +11,17 @@ the rotation about +y (θ > 0 rocks about corner O at x = +b). A run stops by th
 rules of `isorock.analytic.kinematics.first_stop` (a non-finite state, the block lying on
 its side, or falling on a fixed base after the motion); MuJoCo's auto-reset is off, so a
 blow-up cannot pass silently.
+
+`simulate_many` runs many cases (a campaign's chunk, an ensemble) exactly as `simulate`
+runs each: one compiled scene per distinct system, and runs stepped side by side by
+Python threads, since `mujoco.rollout` releases the GIL while it steps.
 """
 from __future__ import annotations
 
 import math
 import re
 import time
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import contextmanager
 
 import mujoco
@@ -146,15 +151,20 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
 def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, settings: Settings,
               duration: float, theta0: float = 0.0, progress=None, chunk_steps: int | None = None) -> RawHistory:
     """`simulate` on an already compiled scene (for measuring variants of the model)."""
+    with warnings_as_status() as warnings:
+        return _run(model, system, motion, settings, duration, theta0, progress, chunk_steps, warnings)
+
+
+def _run(model, system, motion, settings, duration, theta0, progress, chunk_steps, warnings) -> RawHistory:
+    """One run; MuJoCo's warnings arrive in the list `warnings` (the caller's handler)."""
     start = time.perf_counter()
     lay = Layout(model, system, settings.joint)
     dt = model.opt.timestep
     nstep = int(math.floor(duration / dt + 1e-9))
     if settings.impact_timestep is not None:
         from .event_resolved import run_event_resolved
-        with warnings_as_status() as warnings:
-            return run_event_resolved(model, system, motion, settings, lay, nstep, theta0, progress, start,
-                                      duration, warnings)
+        return run_event_resolved(model, system, motion, settings, lay, nstep, theta0, progress, start,
+                                  duration, warnings)
 
     chunk_steps = chunk_steps or CHUNK_STEPS
     data = mujoco.MjData(model)
@@ -163,11 +173,64 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
     throttle = kinematics.Throttle(progress, duration)
-    with warnings_as_status() as warnings:
-        rows, status, message, stop_reason = _roll(model, data, lay, system, motion, forces, state0, warm, rows,
-                                                   nstep, chunk_steps, dt, throttle, warnings)
+    rows, status, message, stop_reason = _roll(model, data, lay, system, motion, forces, state0, warm, rows,
+                                               nstep, chunk_steps, dt, throttle, warnings)
     runtime = time.perf_counter() - start
     return raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
+
+
+def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1) -> list:
+    """Many runs, each exactly as `simulate` makes it: `runs` is a sequence of (system,
+    motion, duration, theta0), as `simulate` takes them; returns, per run, its RawHistory
+    or the exception it raised (one bad case is that case's result, not a lost batch).
+
+    A scene is compiled once per distinct system (a chunk of a campaign shares one or
+    two), and `threads` runs step side by side, each with its own MjData: rollout
+    releases the GIL while it steps, so a process uses that many cores. Each run's steps,
+    forces, warm starts and stop rules are those of `simulate`, so each history is
+    identical to a run made alone (tested). MuJoCo reports warnings through one
+    process-wide handler, which cannot say which thread's run raised one: if any run
+    raised one, every run of the batch is made again alone, so that each run's failure
+    is its own, as `simulate` reports it."""
+    settings = settings or Settings()
+    runs = list(runs)
+    models: dict = {}
+
+    def prepare(run):
+        system, motion, duration, theta0 = run
+        motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
+                                      settings=settings)
+        if system not in models:
+            models[system] = build_model(system, settings)
+        return models[system], system, motion, duration, theta0
+
+    prepared = []
+    for run in runs:
+        try:
+            prepared.append(prepare(run))
+        except Exception as e:  # noqa: BLE001 — returned as this run's result
+            prepared.append(e)
+
+    def one(item, warnings):
+        if isinstance(item, Exception):
+            return item
+        model, system, motion, duration, theta0 = item
+        try:
+            return _run(model, system, motion, settings, duration, theta0, None, None, warnings)
+        except Exception as e:  # noqa: BLE001
+            return e
+
+    def alone(item):
+        with warnings_as_status() as own:
+            return one(item, own)
+
+    if threads <= 1 or len(prepared) <= 1:
+        return [alone(item) for item in prepared]
+    with warnings_as_status() as warnings:
+        with ThreadPoolExecutor(max_workers=min(threads, len(prepared))) as pool:
+            out = list(pool.map(lambda item: one(item, warnings), prepared))
+        warned = bool(warnings)
+    return [alone(item) for item in prepared] if warned else out
 
 
 def _roll(model, data, lay, system, motion, forces, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings):

@@ -258,6 +258,45 @@ def test_run_cases_in_memory_matches_single_runs():
         assert t["theta_max_over_alpha"][i] == pytest.approx(tr.theta_max_over_alpha, rel=1e-9)
 
 
+def test_chunk_ids_of_existing_campaigns_are_kept():
+    """Resuming reads parts by chunk id: a setting without a preset or an overturning rule
+    hashes as before those existed (ids computed by the code of commit b1a707b)."""
+    from isorock.analytic.motion import GroundMotion, Pulse
+    from isorock.analytic.system import System
+    from isorock.campaign import Case, EngineSetting
+    from isorock.campaign.execute import chunk_id
+    s = System.fixed(height=2.0, width=0.7, mass=3800.0)
+    m = GroundMotion.from_pulse(Pulse("sine", amp=0.6, freq=1.0))
+    cases = [Case(0, s, m, 4.0), Case(1, s, m.scaled(1.5), 4.0)]
+    assert chunk_id(EngineSetting("analytic"), cases) == "44362d2bd73e09decd5d"
+    assert chunk_id(EngineSetting("mujoco", (("timestep", 1e-3),)), cases) == "ea5986f0f2dbedbba54a"
+    assert chunk_id(EngineSetting("analytic"), cases, "alpha") != "44362d2bd73e09decd5d"
+    assert chunk_id(EngineSetting("analytic", (), "conservative"), cases) != "44362d2bd73e09decd5d"
+
+
+def test_run_cases_takes_presets_and_the_overturning_rule():
+    """model.md's "Past α" case: α = 0.25, ω_p = 6p, a_p = 9·g·tanα leans the block past α
+    and back. Under the conservative rule it has overturned, past α it has not; each row
+    (MuJoCo through its batch path, a preset as its own setting) is the single run's."""
+    from isorock.analytic.motion import GroundMotion, Pulse
+    from isorock.campaign import Case, run_cases
+    from isorock.campaign.build import build_system, pulse_for
+    from isorock.validate.engines import get_engine
+    system = build_system({"height": 2 * math.cos(0.25), "width": 2 * math.sin(0.25),  # α = 0.25, R = 1 m
+                           "mass": 1000.0, "base": "fixed"})
+    motion = GroundMotion.from_pulse(pulse_for(system, "sine", 6.0, 9.0, 1.0))
+    cases = [Case(0, system, motion, motion.end_time + 3.0)]
+    for rule, analytic_overturns in ((None, False), ("alpha", True)):
+        t = run_cases(cases, ["analytic", "mujoco:fast"], overturn_rule=rule).to_pydict()
+        assert t["setting"] == ["default", "preset=fast"]
+        assert t["overturned"][0] is analytic_overturns and t["theta_max_over_alpha"][0] > 1.0
+        for row, (name, settings) in enumerate((("analytic", None), ("mujoco", get_engine("mujoco").preset("fast")))):
+            alone = get_engine(name).simulate(system, motion, settings=settings, duration=cases[0].duration,
+                                              overturn_rule=rule)
+            assert t["overturned"][row] == alone.overturned and t["impacts"][row] == alone.impact_count
+            assert t["theta_max_over_alpha"][row] == pytest.approx(alone.theta_max_over_alpha, rel=1e-9)
+
+
 # --- records ----------------------------------------------------------------------------
 
 def test_peak_ground_velocity_of_a_sine_record():

@@ -316,6 +316,33 @@ def test_chunked_rollout_is_one_rollout():
     np.testing.assert_array_equal(a.u, b.u)
 
 
+def test_simulate_many_gives_each_run_as_alone(monkeypatch):
+    """The batch path (a campaign's chunk: scenes shared, runs in threads) against runs
+    made one at a time: identical histories, stop points, statuses, and each failure its
+    own — a run that blows up (a warning through the process-wide handler, which makes
+    the batch run again alone) and bad input (an exception as that run's result)."""
+    monkeypatch.setattr(stepping, "CHUNK_STEPS", 701)  # several rollout calls per run, stops mid-run
+    runs = [(fixed(), load_motion("sine:amp=0.5,freq=1,cycles=1"), 3.0, 0.0),      # falls after the motion
+            (isolated(), load_motion("sine:amp=0.8,freq=1,cycles=2"), 3.0, 0.0),   # lies on its side
+            (fixed(), load_motion(PULSE), 2.0, 0.0),                              # rocks and survives
+            (fixed(), None, 1.5, 0.3 * fixed().alpha),                            # free rocking
+            (fixed(), load_motion("sine:amp=1e10,freq=5,cycles=1"), 1.0, 0.0),    # MuJoCo warns: failed
+            (fixed(), None, 1.0, 1.0)]                                            # θ0 > α: bad input
+    for threads in (1, 2):
+        batch = stepping.simulate_many(runs, settings=scene.Settings(), threads=threads)
+        assert len(batch) == len(runs)
+        for (system, motion, duration, theta0), got in zip(runs, batch):
+            try:
+                alone = stepping.simulate(system, motion, duration=duration, theta0=theta0)
+            except InputError as e:
+                assert isinstance(got, InputError) and str(got) == str(e)
+                continue
+            assert (got.status, got.message, got.stop_reason) == (alone.status, alone.message, alone.stop_reason)
+            for name in ("t", "u", "u_dot", "theta", "theta_dot"):
+                np.testing.assert_array_equal(getattr(got, name), getattr(alone, name), err_msg=name)
+    assert [r.stop_reason for r in batch[:3]] == ["falling", "lying", None] and batch[4].status == "failed"
+
+
 def test_rollout_matches_python_loop():
     """The C loop against a plain mj_step loop that sets qfrc_applied each step."""
     system, motion = isolated(), load_motion(PULSE)

@@ -9,17 +9,16 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from isorock.analytic import AnalyticSettings, load_motion, paper_system, simulate
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec
+from isorock.analytic import load_motion, paper_system, simulate
 from isorock.analytic.errors import InputError
 from isorock.analytic.trajectory import Trajectory
 from isorock.validate import engines as engine_registry
 from isorock.validate import figures
 from isorock.validate.cli import main
 from isorock.validate.compare import AGREEMENT_FRACTION, agreement, compare, exact_first_impact_time, first_tilt
-from isorock.validate.engines import CONTACT_ENGINES, Engine, get_engine
+from isorock.validate.engines import CONTACT_ENGINES, get_engine
 from isorock.validate.naming import describe_motion
-from isorock.validate.ensemble import Ensemble, run_ensemble, scale_factors
+from isorock.validate.ensemble import Ensemble, scale_factors
 from isorock.validate.tolerances import TOLERANCES, check, tolerance
 
 PULSE = "ricker:amp=0.5,freq=1"
@@ -105,30 +104,46 @@ def test_check_passes_fails_and_refuses_missing_values():
 
 # --- ensembles -----------------------------------------------------------------------------
 
-def _renamed(name, fail_above=None):
-    """The analytic engine under another name, optionally raising above a scale."""
-    def sim(system, motion, **kw):
-        if fail_above is not None and motion.pga_g > fail_above:
+ENSEMBLE_SCALES = [0.8, 1.0, 1.4]
+
+
+def test_ensembles_equal_runs_made_one_at_a_time(monkeypatch):
+    """The ensembles' runs go through the campaign machinery (the analytic kernel in a
+    batch, MuJoCo's batch path, a preset as its own column): every θmax/α and verdict is
+    the one a single run of that engine gives. A run that raises is NaN with its message."""
+    from isorock.mujoco_models import stepping
+    from isorock.validate.ensemble import run_ensembles
+    real = stepping._run
+
+    def flaky(model, system, motion, *args):  # MuJoCo raises above 0.6 g
+        if motion.pga_g > 0.6:
             raise RuntimeError("boom")
-        return get_engine("analytic").simulate(system, motion, **kw)
-    return Engine(name, EngineSpec(name=name, label=name, settings_type=AnalyticSettings, simulate=sim,
-                                   capabilities=Capabilities(exact_impacts=True)))
-
-
-def test_ensemble_of_identical_engines_agrees_and_failures_are_recorded():
-    system = paper_system(fixed_base=True)
+        return real(model, system, motion, *args)
+    monkeypatch.setattr(stepping, "_run", flaky)
     motion = load_motion(PULSE)
-    lines = []
-    ens = run_ensemble([get_engine("analytic"), _renamed("twin"), _renamed("flaky", fail_above=0.6)], system,
-                       motion, scales=[0.8, 1.0, 1.4], duration=3.0, progress=lines.append)
-    assert len(lines) == 9 and "[9/9]" in lines[-1]
-    assert ens.agreement("twin") == {"overturn_agreement": 1.0, "median_theta_max_diff": 0.0,
-                                     "max_theta_max_diff": 0.0, "cases": 3, "rocking_cases": 2,
-                                     "median_theta_max_diff_rocking": 0.0}
-    assert np.isnan(ens.theta_max["flaky"][2]) and ens.failed["flaky"][0][0] == 1.4
-    assert ens.agreement("flaky")["cases"] == 2
-    d = json.loads(json.dumps(ens.as_dict(), default=float, allow_nan=True))
-    assert d["scales"] == [0.8, 1.0, 1.4] and set(d["agreement"]) == {"twin", "flaky"}
+    specs = [(paper_system(fixed_base=True), motion, "fixed", 2.0, ENSEMBLE_SCALES),
+             (paper_system(), motion, "isolated", 2.0, ENSEMBLE_SCALES[:2])]
+    engines = ["analytic", "mujoco:fast", "analytic:conservative"]
+    ensembles = run_ensembles(specs, engines, threads=2)
+    assert len(ensembles) == 2
+    for (system, m, label, duration, scales), ens in zip(specs, ensembles):
+        assert ens.motion == label and list(ens.scales) == scales
+        for name in engines:
+            base, _, preset = name.partition(":")
+            engine = get_engine(base)
+            for k, f in enumerate(scales):
+                if base == "mujoco" and m.pga_g * f > 0.6:
+                    assert math.isnan(ens.theta_max[name][k]) and (f, "RuntimeError: boom") in ens.failed[name]
+                    continue
+                settings = engine.preset(preset) if preset else engine.settings()
+                alone = engine.simulate(system, m.scaled(f), settings=settings, duration=duration)
+                assert ens.theta_max[name][k] == pytest.approx(alone.theta_max_over_alpha, rel=1e-9, abs=1e-12)
+                assert ens.overturned[name][k] == alone.overturned
+    fixed = ensembles[0]
+    assert fixed.failed["mujoco:fast"] == [(1.4, "RuntimeError: boom")] and "analytic" not in fixed.failed
+    assert fixed.agreement("mujoco:fast")["cases"] == 2
+    d = json.loads(json.dumps(fixed.as_dict(), default=float, allow_nan=True))
+    assert d["scales"] == ENSEMBLE_SCALES and set(d["agreement"]) == {"mujoco:fast", "analytic:conservative"}
 
 
 def test_ensemble_agreement_counts_overturning():
@@ -153,8 +168,9 @@ def test_scale_factors():
     for bad in ((0.0, 1.0, 3), (1.0, 0.5, 3), (0.5, 1.0, 2.5)):
         with pytest.raises(InputError):
             scale_factors(*bad)
+    from isorock.validate.ensemble import run_ensembles
     with pytest.raises(InputError, match="analytic"):
-        run_ensemble([_renamed("twin")], paper_system(), load_motion(PULSE), duration=1.0)
+        run_ensembles([(paper_system(), load_motion(PULSE), "m", 1.0, [1.0])], ["mujoco"])
 
 
 # --- figures ------------------------------------------------------------------------------

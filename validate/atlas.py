@@ -282,7 +282,7 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
           progress=None, overrides: dict | None = None) -> dict:
     """Run every engine label on every cell; the atlas as a dict (rows, summaries, verdict).
     `overrides`: settings applied to every run that has them (a test's way to break one)."""
-    from isorock.validate.runner import Task, run_tasks
+    from isorock.validate.runner import Task, default_workers, run_tasks
     labels, aliases, skipped = distinct(engines)
     cells = grid.cells()
     start = time.perf_counter()
@@ -298,7 +298,7 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
         done.append(key)
         if progress:
             progress(len(done), len(tasks), key[0])
-    results = run_tasks(tasks, workers=workers, on_result=on_result, work=partial(run_cell, budget=budget))
+    results = run_tasks(tasks, workers=default_workers() if workers is None else workers, on_result=on_result, work=partial(run_cell, budget=budget))
     rows = [row(label, c, refs[c.key], results[(label, c.key)][0]) for label in labels for c in cells]
     summaries = [summarize(label, [r for r in rows if r["engine"] == label]) for label in labels]
     return {"grid": grid, "rows": rows, "presets": summaries, "verdict": verdict(summaries),

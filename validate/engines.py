@@ -92,13 +92,15 @@ class Engine:
 
     def simulate(self, system, motion=None, *, settings=None, duration=None, theta0=0.0,
                  impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule=None,
-                 progress=None) -> Trajectory:
+                 progress=None, effective_beta: bool = True) -> Trajectory:
         """Run the engine and measure its history: θ0 in rad; impact_threshold as a
         fraction of α (model.md's counting rule); contact_window (s) is how a contact
         engine's history is measured (validate.measure); overturn_rule ("past-alpha" or
         "alpha", model.md) judges every engine the same way: the analytic engines take it
         as their `overturn` setting, a contact engine's history is judged by it (default:
-        the analytic setting's, else "past-alpha")."""
+        the analytic setting's, else "past-alpha"). effective_beta=False: a contact engine's
+        impacts are located and counted but their velocities not mapped (NaN), for runs
+        read only as summaries (campaign rows, ensembles): the summary is the same."""
         from dataclasses import replace
 
         from isorock.analytic.overturning import PAST_ALPHA
@@ -116,8 +118,34 @@ class Engine:
             from isorock.analytic.motion import GroundMotion
             out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
                                   window=measure.CONTACT_WINDOW if contact_window is None else contact_window,
-                                  overturn_rule=overturn_rule or PAST_ALPHA)
+                                  overturn_rule=overturn_rule or PAST_ALPHA, effective_beta=effective_beta)
         return out
+
+    def simulate_many(self, runs, *, settings=None, overturn_rule=None, effective_beta: bool = True,
+                      threads: int = 1) -> list:
+        """`simulate` of each (system, motion, duration, theta0) in `runs`: per run its
+        Trajectory, or the exception it raised. An engine with a batch path
+        (EngineSpec.simulate_many: MuJoCo's, `threads` runs at a time) runs them
+        together, each exactly as alone; any other runs them one by one."""
+        from isorock.analytic.motion import GroundMotion
+        from isorock.analytic.overturning import PAST_ALPHA
+        from isorock.validate import measure
+        runs = list(runs)
+        if self.spec.simulate_many is None or self.capabilities.exact_impacts:
+            out = []
+            for system, motion, duration, theta0 in runs:
+                try:
+                    out.append(self.simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
+                                             overturn_rule=overturn_rule, effective_beta=effective_beta))
+                except Exception as e:  # noqa: BLE001 — one bad case is that case's result
+                    out.append(e)
+            return out
+        raws = self.spec.simulate_many(runs, settings=settings if settings is not None else self.settings(),
+                                       threads=threads)
+        return [raw if isinstance(raw, Exception) else
+                measure.measure(raw, motion or GroundMotion.zero(), overturn_rule=overturn_rule or PAST_ALPHA,
+                                effective_beta=effective_beta)
+                for raw, (_, motion, _, _) in zip(raws, runs)]
 
 
 def get_engine(name: str) -> Engine:

@@ -7,14 +7,11 @@ over the ensemble, not on one history.
 from __future__ import annotations
 
 import math
-import sys
-import time
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from isorock.analytic.errors import InputError, require
-from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
 from isorock.validate.engines import REFERENCE
 
@@ -87,44 +84,51 @@ class Ensemble:
         return out
 
 
-def run_ensemble(engines, system: System, motion: GroundMotion, *, scales=None, duration: float,
-                 settings: dict | None = None, label: str = "", progress=None) -> Ensemble:
-    """Run every engine (validate.engines.Engine, the analytic one first) on `motion`
-    scaled by each factor. `settings`: engine name → Settings (default: the engine's).
-    `progress`: callable(line) called once per case; default prints to stderr.
-    An engine that raises on one case gets NaN there and the message in `failed`."""
-    scales = scale_factors() if scales is None else np.asarray(scales, dtype=float)
-    names = [e.name for e in engines]
+def run_ensembles(specs, engines, *, overrides_for=None, overturn_rule: str | None = None, client=None,
+                  threads: int | None = None, progress=None) -> list[Ensemble]:
+    """One Ensemble per spec (system, motion, label, duration, scales): every engine
+    ("ENGINE" or "ENGINE:PRESET", the analytic reference among them) on the motion scaled
+    by each factor. The runs are campaign cases (`isorock.campaign.run_cases`): the
+    analytic model's in batches of its compiled kernel in this process, the contact
+    engines' in chunks on the Dask `client`'s workers, or here when there is none (in
+    `threads` threads). overrides_for(name): the settings that differ for that engine
+    (those it lacks are ignored). A run that raised gets NaN and its message in `failed`;
+    one that failed inside the engine (a blow-up) keeps what it measured, as a single
+    run reports it. progress: an object with update(n), called as runs finish."""
+    from isorock.campaign import Case, run_cases
+    from isorock.validate.runner import engine_setting
+    names = list(engines)
     if REFERENCE not in names:
         raise InputError(f"engines = {names}: an ensemble needs the {REFERENCE!r} reference")
-    if motion.pga <= 0:
-        raise InputError(f"motion = {motion.name!r}: an ensemble scales the PGA, which is zero here")
-    progress = progress or _stderr
-    settings = settings or {}
-    result = Ensemble(system=system, motion=motion.name, pga_g=motion.pga_g, duration=duration, scales=scales)
-    total, done = len(engines) * scales.size, 0
-    for engine in engines:
-        tmax = np.full(scales.size, math.nan)
-        over = np.zeros(scales.size, dtype=bool)
-        for i, f in enumerate(scales):
-            start = time.perf_counter()
-            try:
-                tr = engine.simulate(system, motion.scaled(float(f)), settings=settings.get(engine.name),
-                                     duration=duration)
-                tmax[i], over[i] = tr.theta_max_over_alpha, tr.overturned
-                note = f"θmax/α {tr.theta_max_over_alpha:.3f}{' overturned' if tr.overturned else ''}"
-            except InputError:
-                raise
-            except Exception as e:  # an engine's failure on one case is a result, not a crash
-                result.failed.setdefault(engine.name, []).append((float(f), f"{type(e).__name__}: {e}"))
-                note = f"failed: {type(e).__name__}: {e}"
-            done += 1
-            progress(f"ensemble {label} [{done}/{total}] {engine.name} ×{f:.3f} PGA: {note} "
-                     f"({time.perf_counter() - start:.1f} s)")
-        result.theta_max[engine.name] = tmax
-        result.overturned[engine.name] = over
-    return result
-
-
-def _stderr(line):
-    print(line, file=sys.stderr, flush=True)
+    specs = list(specs)
+    for system, motion, label, duration, scales in specs:
+        if motion.pga <= 0:
+            raise InputError(f"motion = {motion.name!r}: an ensemble scales the PGA, which is zero here")
+    settings = {name: engine_setting(name, (overrides_for or (lambda _n: {}))(name)) for name in names}
+    column = {(s.engine, s.label): name for name, s in settings.items()}
+    cases, where = [], []
+    for i, (system, motion, _label, duration, scales) in enumerate(specs):
+        for k, f in enumerate(np.asarray(scales, dtype=float)):
+            where.append((i, k, float(f)))
+            cases.append(Case(len(cases), system, motion.scaled(float(f)), duration))
+    table = run_cases(cases, list(settings.values()), client=client, threads=threads, progress=progress,
+                      overturn_rule=overturn_rule, batch_here=True).to_pydict()
+    out = [Ensemble(system=system, motion=label, pga_g=motion.pga_g, duration=duration,
+                    scales=np.asarray(scales, dtype=float))
+           for system, motion, label, duration, scales in specs]
+    for ens in out:
+        for name in names:
+            ens.theta_max[name] = np.full(ens.scales.size, math.nan)
+            ens.overturned[name] = np.zeros(ens.scales.size, dtype=bool)
+    for row in range(len(table["case"])):
+        i, k, f = where[table["case"][row]]
+        name, ens = column[(table["engine"][row], table["setting"][row])], out[i]
+        tmax = table["theta_max_over_alpha"][row]
+        if tmax is None or math.isnan(tmax):  # the run raised: its row holds the message
+            ens.failed.setdefault(name, []).append((f, table["message"][row]))
+            continue
+        ens.theta_max[name][k], ens.overturned[name][k] = tmax, table["overturned"][row]
+    for ens in out:  # in scale order, as the runs were listed
+        for name in ens.failed:
+            ens.failed[name].sort()
+    return out

@@ -41,10 +41,13 @@ SLIDING_FRACTION = 0.01
 
 
 def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = DEFAULT_IMPACT_THRESHOLD,
-            window: float = CONTACT_WINDOW, overturn_rule: str = PAST_ALPHA) -> Trajectory:
+            window: float = CONTACT_WINDOW, overturn_rule: str = PAST_ALPHA,
+            effective_beta: bool = True) -> Trajectory:
     """The shared Trajectory of a contact engine's raw history: modes from |θ|, every
     impact with model.md's `counted` flag, effective β of the counted ones, uplifts,
-    and overturning by `overturn_rule`."""
+    and overturning by `overturn_rule`. effective_beta=False leaves every impact's
+    velocities NaN: mapping them is a fifth of a short run's cost, and a summary
+    (θmax/α, counted impacts, overturning, a campaign's row) reads none of them."""
     t, u, u_dot, theta, theta_dot = (np.asarray(x, dtype=float)
                                      for x in (raw.t, raw.u, raw.u_dot, raw.theta, raw.theta_dot))
     system = raw.system
@@ -64,7 +67,7 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
                    f"analytic model assumes no sliding (friction above b/h = {1 / system.slenderness:.3g} is needed)"
                    + (f"; it also {message}" if overturned else ""))
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
-                                impact_threshold=impact_threshold, window=window)
+                                impact_threshold=impact_threshold, window=window, mapped=effective_beta)
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
                       mode=mode, impacts=impacts, uplift_times=_uplifts(t, mode, window), overturned=overturned,
                       overturn_time=overturn_time, impact_threshold=impact_threshold, runtime_s=raw.runtime_s,
@@ -91,17 +94,17 @@ def _uplifts(t, mode, rest_time):
 
 
 def effective_impacts(system, motion, t, u, u_dot, theta, theta_dot, *, impact_threshold=DEFAULT_IMPACT_THRESHOLD,
-                      window=CONTACT_WINDOW) -> tuple[Impact, ...]:
+                      window=CONTACT_WINDOW, mapped: bool = True) -> tuple[Impact, ...]:
     """One Impact per sign change of θ. Counted ones (model.md's rule) carry the
     rigid-model images at θ = 0 of the states `window` seconds before and after the
-    crossing; the others NaN velocities."""
+    crossing (mapped=False: they too carry NaN); the others NaN velocities."""
     changes = half_cycles(theta)
     out = []
     for n, (i, peak) in enumerate(changes):
         t_cross = _crossing_time(t, theta, i)
         counted = peak > impact_threshold * system.alpha
         thd_pre = ud_pre = thd_post = ud_post = math.nan
-        if counted:
+        if counted and mapped:
             t_prev = t[changes[n - 1][0]] if n > 0 else t[0]
             t_next = t[changes[n + 1][0]] if n + 1 < len(changes) else t[-1]
             pre = _mapped(system, motion, t, u, u_dot, theta, theta_dot,

@@ -3,8 +3,11 @@ system) under each motion, side by side with the analytic model, each check agai
 tolerance table. `build(config)` runs everything and returns a Results;
 `isorock.validate.report_render` writes it.
 
-All simulations are tasks of `isorock.validate.runner`: the analytic model's in this
-process (compiled, milliseconds each), the contact engines' in worker processes. A
+Every run goes through the campaign machinery (`isorock.campaign`): the histories and
+free rocking as `isorock.validate.runner` tasks (whole Trajectories), the ensembles as
+campaign cases (`validate.ensemble.run_ensembles`: the analytic model in batches of its
+compiled kernel); the analytic model's runs in this process, the contact engines' on one
+Dask LocalCluster of `--workers` processes. A
 scenario in which no engine lifts the block tests nothing about contact: it is "not
 exercised" and counted apart, never passed.
 """
@@ -25,10 +28,10 @@ from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
 from isorock.validate.compare import Comparison, compare, exact_first_impact_time, reference_sensitivity
 from isorock.validate.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine
-from isorock.validate.ensemble import ROCKING, Ensemble, scale_factors
+from isorock.validate.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 from isorock.validate.measure import beta_errors
 from isorock.validate.naming import describe_motion
-from isorock.validate.runner import Task, resolve, run_tasks
+from isorock.validate.runner import Task, default_workers, resolve, run_tasks
 from isorock.validate.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
 from isorock.validate.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, not_exercised, skipped
@@ -303,23 +306,29 @@ def build(config: ReportConfig, *, progress=None) -> Results:
             histories.append(sc)
     scales = [ensemble_scales(config, sc.system, sc.motion, sc.base_acceleration_peak) for sc in histories]
 
+    rule = config.overturn_rule
     tasks = []
     for name in engines:
         o = config.overrides_for(name)
-        rule = config.overturn_rule
         tasks += [Task(("free", i, name), name, sc.system, GroundMotion.zero(), sc.duration, sc.theta0, o, rule)
                   for i, sc in enumerate(free)]
         tasks += [Task(("history", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o, rule)
                   for i, sc in enumerate(histories)]
-        tasks += [Task(("ensemble", i, k, name), name, sc.system, sc.motion.scaled(float(f)), sc.duration, 0.0, o,
-                       rule) for i, sc in enumerate(histories) for k, f in enumerate(scales[i])]
-    done = [0]
-
-    def tick(_key):
-        done[0] += 1
-        if progress:
-            progress(done[0], len(tasks))
-    results = run_tasks(tasks, workers=config.workers, on_result=tick)
+    total = len(tasks) + len(engines) * sum(len(s) for s in scales)
+    bar = _Advance(progress, total)
+    # one pool for every run: a Dask cluster when a contact engine runs on several
+    # processes (its workers start once), nothing when every run is made here
+    client = _cluster(config, engines)
+    try:
+        results = run_tasks(tasks, client=client, on_result=lambda _key: bar.update(1))
+        specs = [(sc.system, sc.motion, describe_motion(sc.motion), sc.duration, scales[i])
+                 for i, sc in enumerate(histories)]
+        ensembles = run_ensembles(specs, list(engines), overrides_for=config.overrides_for, overturn_rule=rule,
+                                  client=client, threads=1 if config.workers == 1 else None, progress=bar)
+    finally:
+        if client is not None:
+            from isorock.campaign.execute import close_client
+            close_client(client)
 
     free_rows, checks = _free_rocking(engines, free, results)
     for i, sc in enumerate(histories):
@@ -334,11 +343,9 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         if ref is not None:
             sc.comparisons = {name: compare(tr, ref) for name, tr in sc.runs.items() if name != REFERENCE}
         checks += _history_checks(sc, engines)
-    ensembles = []
     for i, sc in enumerate(histories):
-        ens = _ensemble(i, sc, scales[i], engines, results)
-        ensembles.append(ens)
-        checks += _ensemble_checks(ens, sc.name, engines)
+        ensembles[i] = _with_robustness(ensembles[i], sc)
+        checks += _ensemble_checks(ensembles[i], sc.name, engines)
     return Results(config=config, engines=engines, skipped=skipped_, free=free_rows, scenarios=histories,
                    ensembles=ensembles, checks=checks, versions=versions(), started=started,
                    wall_s=time.perf_counter() - start, settings=settings,
@@ -407,28 +414,37 @@ def _history_checks(sc: HistoryRuns, engines) -> list[Check]:
     return out
 
 
-def _ensemble(i: int, sc: HistoryRuns, scales, engines, results) -> Ensemble:
-    """The ensemble of history scenario i from the task results; a failed case is NaN
-    with its message in `failed`."""
-    ens = Ensemble(system=sc.system, motion=describe_motion(sc.motion), pga_g=sc.motion.pga_g, duration=sc.duration,
-                   scales=np.asarray(scales, dtype=float))
-    for name in engines:
-        tmax = np.full(len(scales), math.nan)
-        over = np.zeros(len(scales), dtype=bool)
-        for k, f in enumerate(scales):
-            tr, err = results[("ensemble", i, k, name)]
-            if tr is None:
-                ens.failed.setdefault(name, []).append((float(f), err))
-            else:
-                tmax[k], over[k] = tr.theta_max_over_alpha, tr.overturned
-        ens.theta_max[name], ens.overturned[name] = tmax, over
-    # robustness matters only where the reference rocks without overturning (the cases the
-    # median is taken over): elsewhere the two extra runs are not made
+def _with_robustness(ens: Ensemble, sc: HistoryRuns) -> Ensemble:
+    """The ensemble with, per scale, whether the reference's θmax/α is robust there.
+    Robustness matters only where the reference rocks without overturning (the cases the
+    median is taken over): elsewhere the two extra runs are not made."""
     ref_t, ref_o = ens.theta_max.get(REFERENCE), ens.overturned.get(REFERENCE)
-    if ref_t is not None:
-        rocks = (np.nan_to_num(ref_t) > ROCKING) & ~ref_o
-        return replace(ens, robust=np.array([bool(r) and _robust(sc, f) for r, f in zip(rocks, scales)]))
-    return ens
+    if ref_t is None:
+        return ens
+    rocks = (np.nan_to_num(ref_t) > ROCKING) & ~ref_o
+    return replace(ens, robust=np.array([bool(r) and _robust(sc, f) for r, f in zip(rocks, ens.scales)]))
+
+
+class _Advance:
+    """The report's progress(done, total) callback as the campaign's update(n)."""
+
+    def __init__(self, progress, total: int):
+        self.progress, self.total, self.done = progress, total, 0
+
+    def update(self, n: int) -> None:
+        self.done += n
+        if self.progress:
+            self.progress(self.done, self.total)
+
+
+def _cluster(config: ReportConfig, engines):
+    """A LocalCluster of config.workers processes (default: runner.default_workers) when
+    a contact engine runs, else None (the analytic model runs here in milliseconds)."""
+    workers = default_workers() if config.workers is None else config.workers
+    if workers <= 1 or all(e.capabilities.exact_impacts for e in engines.values()):
+        return None
+    from isorock.campaign.execute import local_client
+    return local_client(workers)
 
 
 def _robust(sc: HistoryRuns, scale: float) -> bool:

@@ -1,17 +1,16 @@
-"""Running many simulations for a command: the engines whose runs take milliseconds (the
-analytic model) in this process, the contact engines in worker processes, every result
-keyed by its task, so the outcome does not depend on the order in which they finish.
+"""Runs whose whole history a command reads (the report's histories and free rocking):
+each a task naming its engine as "ENGINE" or "ENGINE:PRESET" plus setting overrides, so
+it is small and can be sent to another process; an engine that raises on one task gets
+the message in that task's result, never a lost batch.
 
-A task names its engine as "ENGINE" or "ENGINE:PRESET" plus setting overrides, so it is
-small and can be sent to another process; an engine that raises on one task gets the
-message in that task's result, never a lost batch.
+Where and how tasks run is the campaign machinery's (`isorock.campaign.execute.execute`:
+serially, or on a Dask cluster with the analytic model's runs kept in this process); runs
+read only as summaries (ensembles) are campaign cases (`isorock.campaign.run_cases`).
 """
 from __future__ import annotations
 
-import multiprocessing as mp
 import os
-from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 from isorock.analytic.errors import InputError
@@ -29,24 +28,29 @@ class Task:
     overturn_rule: str | None = None  # model.md's rule, the same for every engine (None: the default)
 
 
-def resolve(engine: str, overrides: dict | None = None):
-    """(Engine, Settings) of "ENGINE" or "ENGINE:PRESET" with `overrides` applied to the
-    settings that the engine has (others are ignored: a friction given for every engine
+def engine_setting(engine: str, overrides: dict | None = None):
+    """The campaign's EngineSetting of "ENGINE" or "ENGINE:PRESET" with those of
+    `overrides` the engine has (others are ignored: a friction given for every engine
     means nothing to the analytic model)."""
-    from dataclasses import fields, replace
-
+    from isorock.campaign.spec import EngineSetting
     from isorock.validate.engines import get_engine
     name, _, preset = engine.partition(":")
-    e = get_engine(name)
-    settings = e.preset(preset) if preset else e.settings()
-    mine = {k: v for k, v in (overrides or {}).items() if k in {f.name for f in fields(settings)}}
-    if mine:
-        settings = replace(settings, **mine) if preset else e.settings(**mine)
-    return e, settings
+    known = {f.name for f in fields(get_engine(name).Settings)}
+    mine = {k: (tuple(v) if isinstance(v, list) else v) for k, v in (overrides or {}).items() if k in known}
+    return EngineSetting(name, tuple(sorted(mine.items())), preset)
 
 
-def run_task(task: Task):
-    """(key, Trajectory or None, error message or None)."""
+def resolve(engine: str, overrides: dict | None = None):
+    """(Engine, Settings) of "ENGINE" or "ENGINE:PRESET" with `overrides` applied to the
+    settings that the engine has (engine_setting)."""
+    from isorock.validate.engines import get_engine
+    setting = engine_setting(engine, overrides)
+    return get_engine(setting.engine), setting.settings()
+
+
+def run_task(task: Task, threads: int | None = None):
+    """(key, Trajectory or None, error message or None). `threads` is the executor's
+    (campaign.execute) and means nothing to one run."""
     try:
         engine, settings = resolve(task.engine, task.overrides)
         traj = engine.simulate(task.system, task.motion, settings=settings, duration=task.duration,
@@ -62,41 +66,42 @@ def default_workers() -> int:
     return max(1, min(2, os.cpu_count() or 1))
 
 
-def run_tasks(tasks: list[Task], *, workers: int | None = None, in_process=None, on_result=None,
-              work=run_task) -> dict:
-    """Run every task; key → (Trajectory or None, error or None). `in_process(task)` says
-    which tasks run here (default: those of engines that run as batches, i.e. the compiled
-    analytic model, and any task when workers ≤ 1); the rest go to `workers` processes
-    (spawned: a forked copy of a process that loaded numba's threads is not safe).
-    `on_result(key)` is called as each result arrives (a progress bar). `work(task)` runs
-    one task and returns (key, result, error) (default: run_task, a Trajectory); one that
-    measures its result where it ran (a row instead of a history) must be picklable, a
-    module-level function or a functools.partial of one."""
-    workers = default_workers() if workers is None else workers
-    in_process = in_process or _light
+def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, on_result=None,
+              work=None) -> dict:
+    """Run every task; key → (result or None, error or None). client: a Dask client
+    (campaign.execute.local_client) for the contact engines' tasks, the analytic model's
+    staying here; None: with workers > 1 a local cluster of that many processes is started
+    for them and closed after, otherwise all run here. `on_result(key)`
+    is called as each result arrives. `work(task)` runs one task and returns (key, result,
+    error) (default: run_task, a Trajectory); one that measures its result where it ran (a
+    row instead of a history) must be picklable, a module-level function or a
+    functools.partial of one."""
+    from functools import partial
+
+    from isorock.campaign.execute import close_client, execute, local_client
     out = {}
-    local = [t for t in tasks if workers <= 1 or in_process(t)]
-    remote = [t for t in tasks if not (workers <= 1 or in_process(t))]
-    pool = None
+    own = None
+    if client is None and workers > 1 and not all(_light(t) for t in tasks):
+        own = client = local_client(workers)
+
+    def done(_task, result):
+        key, traj, err = result
+        out[key] = (traj, err)
+        if on_result:
+            on_result(key)
     try:
-        if remote:
-            pool = ProcessPoolExecutor(max_workers=min(workers, len(remote)), mp_context=mp.get_context("spawn"))
-            futures = [pool.submit(work, t) for t in remote]
-        for t in local:
-            key, traj, err = work(t)
-            out[key] = (traj, err)
-            if on_result:
-                on_result(key)
-        if remote:
-            for f in as_completed(futures):
-                key, traj, err = f.result()
-                out[key] = (traj, err)
-                if on_result:
-                    on_result(key)
+        execute(tasks, client=client, on_done=done, run=partial(_one, work or run_task), here=_light,
+                weight=lambda _t: 1)
     finally:
-        if pool is not None:
-            pool.shutdown(wait=True, cancel_futures=True)
+        if own is not None:
+            close_client(own)
     return out
+
+
+def _one(work, task: Task, threads: int | None = None):
+    """work(task), called as the campaign executor calls a task's runner (threads means
+    nothing to one run)."""
+    return work(task)
 
 
 def _light(task: Task) -> bool:
@@ -106,5 +111,4 @@ def _light(task: Task) -> bool:
     except ImportError:
         return True  # reported by run_task in this process
 
-
-__all__ = ["Task", "resolve", "run_task", "run_tasks", "default_workers"]
+__all__ = ["Task", "engine_setting", "resolve", "run_task", "run_tasks", "default_workers"]
