@@ -68,6 +68,24 @@ def test_mujocos_calibration_coordinates_are_its_own_timeconst_and_dampratio():
     assert np.max(np.abs(np.asarray(a.theta) - np.asarray(b.theta))) < 1e-12
 
 
+def test_a_run_that_hops_after_its_impacts_has_failed_whatever_its_beta():
+    """An underdamped contact of 2.2 steps (ζ 0.7) at dt 2e-3 throws the block 0.35 mm up
+    after its impacts from 0.3α, with β within 0.8% of the closed form: the impact law
+    says perfectly inelastic, so the run counts as failed."""
+    from isorock.mujoco_models import ENGINE
+    from isorock.validate.calibrate import Case, lift_off_limit, run_case
+    from isorock.validate.engines import get_engine
+    system = paper_system(fixed_base=True)
+    case = Case("hop", system, 0.3, 4, 2.1)
+    good = get_engine("mujoco").settings(timestep=2e-3)
+    hopping = ENGINE.tuning.apply(good, [math.log2(2.2), 0.7, 0.9])
+    tr = get_engine("mujoco").simulate(system, None, settings=hopping, duration=2.1, theta0=0.3 * system.alpha)
+    betas = [i.theta_dot_post / i.theta_dot_pre / housner_beta(system) - 1 for i in tr.counted_impacts[:4]]
+    assert max(map(abs, betas)) < 0.01 and tr.extras["lift_off_max_after_impact"] > 2 * lift_off_limit("mujoco")
+    assert run_case("mujoco", hopping, case) is None
+    assert len(run_case("mujoco", good, case)) == 4
+
+
 @pytest.fixture(scope="module")
 def small_calibration(tmp_path_factory):
     """MuJoCo at dt 2e-3 from a bad start, a contact time constant of 12 steps, heavily

@@ -51,6 +51,9 @@ IMPACTS = 4
 #: The objective of settings under which some run gives fewer impacts than the rigid
 #: model or an unmeasurable β (it hops, slides or breaks): worse than any real error.
 PENALTY = 1.0
+#: m: a run whose block hops higher than this after an impact has failed, where the engine
+#: has no lift-off tolerance of its own (MuJoCo's and PyBullet's are this too).
+LIFT_OFF = 1e-4
 #: s simulated past the rigid model's first uncounted impact: the last counted impact's
 #: state after it is measured 0.03 s on (validate.measure.CONTACT_WINDOW).
 MARGIN = 0.1
@@ -212,7 +215,9 @@ def _resampled_bounds(score: Score, picks: np.ndarray) -> np.ndarray:
 
 def run_case(engine_name: str, settings, case: Case):
     """The signed β errors of the case's first compared impacts, or None when the run
-    does not give them (the settings are a bad point, not a crash)."""
+    does not give them (the settings are a bad point, not a crash) or the block hops
+    after an impact by more than the engine's lift-off tolerance: the impact law is
+    perfectly inelastic, and a hopping contact can still give a plausible β."""
     from isorock.validate.engines import get_engine
     from isorock.validate.measure import beta_errors
     try:
@@ -225,7 +230,18 @@ def run_case(engine_name: str, settings, case: Case):
         return None
     if len(errs) < case.impacts or not all(math.isfinite(e) for e in errs):
         return None
+    if tr.extras.get("lift_off_max_after_impact", 0.0) > lift_off_limit(engine_name):
+        return None
     return tuple(float(e) for e in errs)
+
+
+def lift_off_limit(engine_name: str) -> float:
+    """m: the engine's tolerance on the lift-off after an impact (validate/tolerances.py),
+    or LIFT_OFF where it has none."""
+    from isorock.validate.tolerances import has_tolerance, tolerance
+    if has_tolerance(engine_name, "lift_off_after_impact"):
+        return tolerance(engine_name, "lift_off_after_impact").limit
+    return LIFT_OFF
 
 
 class Runner:
@@ -468,8 +484,8 @@ def report_lines(result: dict, system, command: str) -> list[str]:
     for s, where in ((f["before"], "fitted before"), (f["after"], "fitted after"), (h["before"], "held out before"),
                      (h["after"], "held out after")):
         if s.failed:
-            lines.append(f"{where}: {s.failed} run(s) gave fewer impacts or no measurable β (counted as "
-                         f"{100 * PENALTY:g}%)")
+            lines.append(f"{where}: {s.failed} run(s) gave fewer impacts, no measurable β, or hopped after an "
+                         f"impact (counted as {100 * PENALTY:g}%)")
     for part, where in ((f, "fitted"), (h, "held-out")):
         spread = part["bound_change_spread"]
         if math.isfinite(spread):
