@@ -322,6 +322,7 @@ def summarize(label: str, rows: list[dict]) -> dict:
     loop = sum(r["loop_s"] for r in rows if math.isfinite(r["loop_s"]))
     wall = sum(r["wall_s"] for r in rows)
     cpu = sum(r["cpu_s"] for r in rows)
+    hops = [r["lift_off_after_impact"] for r in judged if r["lift_off_after_impact"] is not None]
     return {
         "engine": label, "engine_name": label.partition(":")[0], "preset": label.partition(":")[2] or "default",
         "cells": len(rows), "judged": len(judged), "failures": failures,
@@ -336,6 +337,9 @@ def summarize(label: str, rows: list[dict]) -> dict:
         "sim_per_wall": sim / loop if loop > 0 else None,
         "sim_per_wall_whole": sim / wall if wall > 0 else None,
         "sim_per_cpu_whole": sim / cpu if cpu > 0 else None,
+        # m; the lowest corner's height after an impact: above 0 the block hopped (not the
+        # perfectly inelastic impact of model.md), which is where the largest β errors come from
+        "largest_hop": max(hops) if hops else None,
         "sim_s": sim, "loop_s": loop, "wall_s": wall, "cpu_s": cpu,
     }
 
@@ -376,6 +380,15 @@ def _pct(x, digits=3) -> str:
 
 def _speed(x) -> str:
     return "—" if x is None else f"{x:.3g}"
+
+
+#: m; a corner that rises less than this after an impact rides on the contact's own
+#: compliance (MuJoCo's rest penetration moves by ~1e-5 mm), it does not hop.
+HOP_FLOOR = 1e-5
+
+
+def _hop(x) -> str:
+    return "—" if x is None else "none" if x <= HOP_FLOOR else f"{1000 * x:.2g} mm"
 
 
 def _failures_text(failures: dict) -> str:
@@ -421,8 +434,8 @@ def markdown(atlas: dict, *, quick: bool) -> str:
               "history measured); per CPU s of the whole call (the process's CPU time, what other jobs on "
               "the machine change least).", "",
               "| preset | judged cells | worst β error (cell) | median β error | worst t₁ error | sim s / wall s "
-              "| whole call | per CPU s, whole call | not judged |",
-              "|---|---|---|---|---|---|---|---|---|"]
+              "| whole call | per CPU s, whole call | largest hop after an impact | not judged |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
     by_height = ["", "Worst β error by the block's height (judged cells):", "",
                  "| preset | " + " | ".join(f"H {h:g} m" for h in grid.heights) + " |",
                  "|---|" + "---|" * len(grid.heights)]
@@ -431,6 +444,7 @@ def markdown(atlas: dict, *, quick: bool) -> str:
         lines.append(f"| {s['engine']} | {s['judged']}/{s['cells']} | {_pct(s['worst_beta_error'])}{where} | "
                      f"{_pct(s['median_beta_error'])} | {_pct(s['worst_t1_error'])} | {_speed(s['sim_per_wall'])} | "
                      f"{_speed(s['sim_per_wall_whole'])} | {_speed(s['sim_per_cpu_whole'])} | "
+                     f"{_hop(s['largest_hop'])} | "
                      f"{_failures_text(s['failures']) or '—'} |")
         by_height.append(f"| {s['engine']} | " + " | ".join(_pct(s["worst_beta_error_by_height"].get(h))
                                                            for h in grid.heights) + " |")
