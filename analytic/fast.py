@@ -529,13 +529,12 @@ def _grow(a, n):
 # --- the driver ---------------------------------------------------------------------
 
 def _integrate_signature():
-    """_integrate's one signature, for its ahead-of-time build (kernel_cache.ahead_of_time):
-    every array C-contiguous float64 (call_kernel copies one that is not, or is read-only)."""
+    """_integrate's argument types, for its ahead-of-time build (kernel_cache.ahead_of_time;
+    numba infers what it returns): every array C-contiguous float64, which call_kernel
+    makes them (a copy of one that is not, or is read-only)."""
     from numba import types as nt
-    f8, i8, b1 = nt.float64, nt.int64, nt.boolean
-    vec, mat = nt.float64[::1], nt.float64[:, ::1]
-    returns = nt.Tuple((i8, f8, f8, i8, vec, mat, nt.int8[::1], i8, mat, i8, vec, f8, f8, i8, f8))
-    return returns(vec, vec, vec, vec, f8, vec, f8, f8, f8, i8, f8, b1, i8, f8, b1, f8)
+    f8, i8, b1, vec = nt.float64, nt.int64, nt.boolean, nt.float64[::1]
+    return (vec, vec, vec, vec, f8, vec, f8, f8, f8, i8, f8, b1, i8, f8, b1, f8)
 
 
 @ahead_of_time(_integrate_signature())

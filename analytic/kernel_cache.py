@@ -205,8 +205,9 @@ _aot_loaded: dict = {}  # dispatcher -> the extension's function, or None (use t
 
 
 def ahead_of_time(signature):
-    """Also build the decorated cached_jit function ahead of time, with this signature
-    (every array C-contiguous and writable; call_kernel makes them so)."""
+    """Also build the decorated cached_jit function ahead of time, with this signature: a
+    numba signature, or a tuple of argument types (numba infers the return type). Every
+    array C-contiguous and writable; call_kernel makes them so."""
     def wrap(dispatcher):
         _aot_exports[dispatcher] = signature
         return dispatcher
