@@ -24,7 +24,8 @@ import numpy as np
 # --- packed motion parameters -------------------------------------------------------
 (KIND, DT, END, AMP, OMEGA, FREQ, PEND, SCALE, SHIFT, PIECE, PI, PA0, PA1, INV_DT, N_MP) = range(15)
 # PIECE: how the current integration piece reads a record: 0 the general way,
-# 1 within one sample interval (index PI, samples PA0, PA1), 2 after the last sample
+# 1 within one sample interval (index PI, samples PA0, PA1), 2 after the last sample (PA0:
+# the value at the last sample itself); see piece_acceleration and record_piece
 SAMPLED, SINE, COSINE, RICKER = 0, 1, 2, 3
 PULSE_KIND = {"sine": SINE, "cosine": COSINE, "ricker": RICKER}
 
@@ -100,13 +101,24 @@ def pulse_acceleration(kind, amp, omega, freq, tt):
     return amp * (1.0 - 2.0 * x) * math.exp(-x)
 
 
+def piece_acceleration(t, mp):
+    """ẍg(t) in m/s² inside one integration piece, from the motion's parameters alone: a
+    closed-form pulse, or a record's piece as `record_piece` set it up (its one sample
+    interval, linear; or after the record's end, zero but at the end itself)."""
+    if int(mp[KIND]) == SAMPLED:
+        if mp[PIECE] == 2.0:
+            return mp[PA0] if t <= mp[END] else 0.0
+        f = t * mp[INV_DT] - mp[PI]
+        return (1.0 - f) * mp[PA0] + f * mp[PA1]
+    tt = t + mp[SHIFT]
+    if tt < 0.0 or tt > mp[PEND]:
+        return 0.0
+    return mp[SCALE] * pulse_acceleration(int(mp[KIND]), mp[AMP], mp[OMEGA], mp[FREQ], tt)
+
+
 def ground_acceleration(t, mp, acc):
     """ẍg(t) in m/s² (GroundMotion.at): records linearly interpolated, zero outside."""
-    if int(mp[KIND]) == SAMPLED:
-        piece = mp[PIECE]
-        if piece == 1.0:  # a piece lies within one sample interval: no search
-            f = t * mp[INV_DT] - mp[PI]
-            return (1.0 - f) * mp[PA0] + f * mp[PA1]
+    if int(mp[KIND]) == SAMPLED and mp[PIECE] == 0.0:
         if t < 0.0 or t > mp[END]:
             return 0.0
         n = acc.size
@@ -116,10 +128,25 @@ def ground_acceleration(t, mp, acc):
         i = min(int(x), n - 2)
         f = x - i
         return (1.0 - f) * acc[i] + f * acc[i + 1]
-    tt = t + mp[SHIFT]
-    if tt < 0.0 or tt > mp[PEND]:
-        return 0.0
-    return mp[SCALE] * pulse_acceleration(int(mp[KIND]), mp[AMP], mp[OMEGA], mp[FREQ], tt)
+    return piece_acceleration(t, mp)
+
+
+def record_piece(mp, acc, t0, t1):
+    """Set mp's piece slots (PIECE, PI, PA0, PA1) for an integration piece [t0, t1] of a
+    record that lies within one sample interval or after the record's end (pieces restart
+    at every sample), so that piece_acceleration reads it without the samples."""
+    n = acc.size
+    tm = 0.5 * (t0 + t1)
+    if tm > mp[END] or n < 2:
+        mp[PIECE] = 0.0
+        mp[PA0] = ground_acceleration(mp[END], mp, acc)  # the value at the end itself
+        mp[PIECE] = 2.0
+    else:
+        i = min(int(tm / mp[DT]), n - 2)
+        mp[PIECE] = 1.0
+        mp[PI] = i
+        mp[PA0] = acc[i]
+        mp[PA1] = acc[i + 1]
 
 
 # --- equations of motion -----------------------------------------------------------------
