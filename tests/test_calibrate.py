@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from isorock.analytic import paper_system
-from isorock.validate.calibrate import (IMPACTS, PENALTY, Score, bootstrap_change, calibrate, cases, holds,
+from isorock.validate.calibrate import (IMPACTS, PENALTY, Score, bootstrap_change, cases, holds,
                                         settings_toml, tilts)
 from isorock.validate.cli import main
 from isorock.validate.runner import resolve
@@ -82,8 +82,10 @@ def test_a_run_that_hops_after_its_impacts_has_failed_whatever_its_beta():
     tr = get_engine("mujoco").simulate(system, None, settings=hopping, duration=2.1, theta0=0.3 * system.alpha)
     betas = [i.theta_dot_post / i.theta_dot_pre / housner_beta(system) - 1 for i in tr.counted_impacts[:4]]
     assert max(map(abs, betas)) < 0.01 and tr.extras["lift_off_max_after_impact"] > 2 * lift_off_limit("mujoco")
-    assert run_case("mujoco", hopping, case) is None
-    assert len(run_case("mujoco", good, case)) == 4
+    assert run_case("mujoco", hopping, case)[0] is None
+    assert len(run_case("mujoco", good, case)[0]) == 4
+    # and a run over its time limit has failed too
+    assert run_case("mujoco", good, case, time_limit=0.0)[0] is None
 
 
 @pytest.fixture(scope="module")
@@ -97,7 +99,7 @@ def small_calibration(tmp_path_factory):
     return main(args), out, json.loads(js.read_text())
 
 
-def test_a_bad_start_is_calibrated_and_holds_on_runs_it_was_not_fitted_on(small_calibration, capsys):
+def test_a_bad_start_is_calibrated_and_holds_on_runs_it_was_not_fitted_on(small_calibration):
     rc, out, r = small_calibration
     assert rc == 0 and r["holds"] and r["preset"] and r["evaluations"] == 12
     fitted, held = r["fitted"], r["held_out"]
@@ -154,7 +156,12 @@ def test_a_preset_must_hold_on_the_held_out_runs_and_gain_there_beyond_the_noise
         assert main(["calibrate", "--engine", "mujoco", "--quiet", "--out", str(out)]) == 1
         assert not out.exists()
         text = capsys.readouterr().out
-        assert verdict in text and "not written" in text
+        assert verdict in text and "not written" in text and "a preset needs" in text
+    # the whole result as JSON on standard output, the text beside it on stderr
+    assert main(["calibrate", "--engine", "mujoco", "--quiet", "--json", "-"]) == 1
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["held_out"]["after"]["worst"] == pytest.approx(0.029)  # the last fake
+    assert "verdict" in captured.err
 
 
 def test_an_engine_without_contact_parameters_is_refused(capsys):

@@ -54,6 +54,11 @@ PENALTY = 1.0
 #: m: a run whose block hops higher than this after an impact has failed, where the engine
 #: has no lift-off tolerance of its own (MuJoCo's and PyBullet's are this too).
 LIFT_OFF = 1e-4
+#: A run of other settings may take this many times the starting settings' slowest run
+#: (at least MIN_TIME_LIMIT s), or it has failed: Drake's point contact at 1e11 N/m costs
+#: tens of times its default's, and the search is for contact laws, not for slow ones.
+TIME_FACTOR = 5.0
+MIN_TIME_LIMIT = 2.0
 #: s simulated past the rigid model's first uncounted impact: the last counted impact's
 #: state after it is measured 0.03 s on (validate.measure.CONTACT_WINDOW).
 MARGIN = 0.1
@@ -90,7 +95,8 @@ def tilts(n: int = DEFAULT_TILTS) -> tuple[tuple[float, ...], tuple[float, ...]]
         raise InputError(f"tilts = {n!r}: must be a whole number of at least 2")
     lo, hi = TILT_RANGE
     fitted = np.linspace(lo, hi, n)
-    return tuple(round(float(x), 6) for x in fitted), tuple(round(float(x), 6) for x in 0.5 * (fitted[1:] + fitted[:-1]))
+    held = 0.5 * (fitted[1:] + fitted[:-1])
+    return tuple(round(float(x), 6) for x in fitted), tuple(round(float(x), 6) for x in held)
 
 
 def other_base(system):
@@ -213,26 +219,40 @@ def _resampled_bounds(score: Score, picks: np.ndarray) -> np.ndarray:
 
 # --- running the cases --------------------------------------------------------------------
 
-def run_case(engine_name: str, settings, case: Case):
-    """The signed β errors of the case's first compared impacts, or None when the run
-    does not give them (the settings are a bad point, not a crash) or the block hops
-    after an impact by more than the engine's lift-off tolerance: the impact law is
-    perfectly inelastic, and a hopping contact can still give a plausible β."""
+def run_case(engine_name: str, settings, case: Case, time_limit: float | None = None):
+    """(the signed β errors of the case's first compared impacts, wall seconds). The
+    errors are None when the run does not give them (the settings are a bad point, not a
+    crash), when the block hops after an impact by more than the engine's lift-off
+    tolerance (the impact law is perfectly inelastic, and a hopping contact can still
+    give a plausible β), or when the run takes longer than `time_limit` s."""
     from isorock.validate.engines import get_engine
     from isorock.validate.measure import beta_errors
+    start = time.perf_counter()
+
+    def watch(t, duration):  # the engines call it between chunks of their own loops
+        if time_limit is not None and time.perf_counter() - start > time_limit:
+            raise _TooSlow
+
     try:
         tr = get_engine(engine_name).simulate(case.system, None, settings=settings, duration=case.duration,
-                                              theta0=case.theta0_over_alpha * case.system.alpha)
+                                              theta0=case.theta0_over_alpha * case.system.alpha, progress=watch)
         errs = beta_errors(tr, case.impacts)
     except InputError:
         raise
-    except Exception:  # a setting that breaks the engine is a bad point, not a crash
-        return None
+    except Exception:  # a setting that breaks the engine (or is too slow) is a bad point, not a crash
+        return None, time.perf_counter() - start
+    seconds = time.perf_counter() - start
+    if time_limit is not None and seconds > time_limit:  # a short run ends before its first progress call
+        return None, seconds
     if len(errs) < case.impacts or not all(math.isfinite(e) for e in errs):
-        return None
+        return None, seconds
     if tr.extras.get("lift_off_max_after_impact", 0.0) > lift_off_limit(engine_name):
-        return None
-    return tuple(float(e) for e in errs)
+        return None, seconds
+    return tuple(float(e) for e in errs), seconds
+
+
+class _TooSlow(Exception):
+    """A run took longer than its time limit."""
 
 
 def lift_off_limit(engine_name: str) -> float:
@@ -247,28 +267,39 @@ def lift_off_limit(engine_name: str) -> float:
 class Runner:
     """Runs sets of cases for one engine, here or in `workers` spawned processes (a
     forked copy of a process that loaded numba's threads is not safe). `on_run()` is
-    called after each run (a progress bar)."""
+    called after each run (a progress bar). `time_limit` (s) ends a run that takes longer
+    (the search sets it from the starting settings' runs); `slowest` is the longest run
+    of the last set."""
 
     def __init__(self, engine_name: str, workers: int = 1, on_run=None):
         self.engine_name, self.on_run, self.pool = engine_name, on_run, None
+        self.time_limit, self.slowest = None, 0.0
         if workers > 1:
             import multiprocessing as mp
             from concurrent.futures import ProcessPoolExecutor
             self.pool = ProcessPoolExecutor(max_workers=workers, mp_context=mp.get_context("spawn"))
 
-    def score(self, settings, case_list) -> Score:
+    def score(self, settings, case_list, *, until_failure: bool = False) -> Score:
+        """The Score of the runs. `until_failure`: stop at the first failed run (the rest
+        count as failed too): the search's objective is PENALTY from the first one on, and
+        the other runs of a bad point would cost as much as a good point's."""
+        args = (self.engine_name, settings)
+        out, self.slowest = [], 0.0
         if self.pool is None:
-            out = []
-            for c in case_list:
-                out.append(run_case(self.engine_name, settings, c))
-                self._ran()
-            return Score(tuple(out))
-        futures = [self.pool.submit(run_case, self.engine_name, settings, c) for c in case_list]
-        out = []
-        for f in futures:
-            out.append(f.result())
+            results = (run_case(*args, c, self.time_limit) for c in case_list)
+        else:
+            futures = [self.pool.submit(run_case, *args, c, self.time_limit) for c in case_list]
+            results = (f.result() for f in futures)
+        for errors, seconds in results:
+            out.append(errors)
+            self.slowest = max(self.slowest, seconds)
             self._ran()
-        return Score(tuple(out))
+            if errors is None and until_failure:
+                break
+        if self.pool is not None:
+            for f in futures[len(out):]:
+                f.cancel()  # those not started; a running one finishes in its worker
+        return Score(tuple(out) + (None,) * (len(case_list) - len(out)))
 
     def _ran(self):
         if self.on_run:
@@ -380,7 +411,7 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
             except InputError:  # outside what the engine accepts: a bad point
                 evaluated.append((PENALTY, x, None, None))
                 return PENALTY
-            sc = runner.score(s, fitted)
+            sc = runner.score(s, fitted, until_failure=True)
             value = sc.bound
             evaluated.append((value, x, s, sc))
             best[0] = min(best[0], value)
@@ -388,6 +419,7 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
 
         # the start itself, exactly (its coordinates may not give back the very same settings)
         before_fit = runner.score(start_settings, fitted)
+        runner.time_limit = max(TIME_FACTOR * runner.slowest, MIN_TIME_LIMIT)
         evaluated.append((before_fit.bound, x0, start_settings, before_fit))
         best[0] = before_fit.bound
         span = np.where(hi > lo, hi - lo, 1.0)
@@ -470,7 +502,8 @@ def report_lines(result: dict, system, command: str) -> list[str]:
              f"also on its {names[1]}",
              f"cases: free rocking, the first {result['impacts']} impacts of each run against the closed-form β; "
              f"fitted: {len(fit_t)} tilts {fit_t[0]:g}–{fit_t[-1]:g}·α on both bases ({len(f['cases'])} runs); "
-             f"held out: the {len(held_t)} tilt{'s' if len(held_t) > 1 else ''} halfway between them ({len(h['cases'])} runs)",
+             f"held out: the {len(held_t)} tilt{'s' if len(held_t) > 1 else ''} halfway between them "
+             f"({len(h['cases'])} runs)",
              "objective: the 2σ bound |mean| + 2·sd of the fitted impacts' signed β errors (the worst error of a "
              "few runs is mostly where each impact falls within a step, and over-fits)",
              f"searched: {', '.join(result['coordinates'])}; a coarse Sobol design, then Nelder–Mead; "
@@ -484,8 +517,9 @@ def report_lines(result: dict, system, command: str) -> list[str]:
     for s, where in ((f["before"], "fitted before"), (f["after"], "fitted after"), (h["before"], "held out before"),
                      (h["after"], "held out after")):
         if s.failed:
-            lines.append(f"{where}: {s.failed} run(s) gave fewer impacts, no measurable β, or hopped after an "
-                         f"impact (counted as {100 * PENALTY:g}%)")
+            lines.append(f"{where}: {s.failed} run(s) gave fewer impacts, no measurable β, hopped after an "
+                         f"impact or ran {TIME_FACTOR:g}× longer than the slowest run at the start (counted as "
+                         f"{100 * PENALTY:g}%)")
     for part, where in ((f, "fitted"), (h, "held-out")):
         spread = part["bound_change_spread"]
         if math.isfinite(spread):
@@ -499,6 +533,8 @@ def report_lines(result: dict, system, command: str) -> list[str]:
                 lines.append(f"{k}: {_show(before[k])} → {_show(after[k])}")
         lines.append("coordinates: " + ", ".join(f"{n} {result['start'][n]:.4g} → {result['parameters'][n]:.4g}"
                                                  for n in result["coordinates"]))
+    lines.append("a preset needs, on the held-out runs: the worst error and the 2σ bound no worse than before, and "
+                 f"the bound lower by more than {NOISE_SIGMAS:g} bootstrap spread of its change")
     if preset_worthy(result):
         lines.append("verdict: the calibrated settings hold on the held-out runs (worst error and 2σ bound no "
                      f"worse than before) and gain there more than {NOISE_SIGMAS:g} bootstrap spread")
@@ -513,17 +549,23 @@ def report_lines(result: dict, system, command: str) -> list[str]:
     return lines
 
 
-def _command(a) -> str:
-    """The command line that gives this result again (the options that were given)."""
-    from isorock.validate.cli import ENGINE_OPTIONS, SYSTEM_KEYS
-    words = ["isorock calibrate", f"--engine {a.engine}"]
-    for k in (*SYSTEM_KEYS, *ENGINE_OPTIONS):
+def _options(a, keys) -> list[str]:
+    """The options among `keys` that were given, as they would be typed."""
+    words = []
+    for k in keys:
         v = getattr(a, k, None)
         if v is True:
             words.append(f"--{k.replace('_', '-')}")
         elif v not in (None, False):
             v = ",".join(f"{x:g}" for x in v) if isinstance(v, tuple) else (f"{v:g}" if isinstance(v, float) else v)
             words.append(f"--{k.replace('_', '-')} {v}")
+    return words
+
+
+def _command(a) -> str:
+    """The command line that gives this result again (the options that were given)."""
+    from isorock.validate.cli import ENGINE_OPTIONS, SYSTEM_KEYS
+    words = ["isorock calibrate", f"--engine {a.engine}", *_options(a, SYSTEM_KEYS), *_options(a, ENGINE_OPTIONS)]
     if a.tilts != DEFAULT_TILTS:
         words.append(f"--tilts {a.tilts}")
     words.append(f"--max-evals {a.max_evals}")
@@ -577,7 +619,7 @@ def cmd_calibrate(a) -> int:
     from pathlib import Path
 
     from isorock.analytic.system import paper_system
-    from isorock.validate.cli import engine_settings_from_args, system_from_options
+    from isorock.validate.cli import SYSTEM_KEYS, engine_settings_from_args, system_from_options
     from isorock.validate.engines import get_engine
     from isorock.validate.output import Outputs, to_json
     from isorock.validate.progress import ProgressBar
@@ -606,6 +648,7 @@ def cmd_calibrate(a) -> int:
             bar.advance(done - bar.done, f"best 2σ bound {100 * best:.3f}%")
         r = calibrate(a.engine, system, settings=settings, n_tilts=a.tilts, max_evals=a.max_evals,
                       workers=workers, progress=progress)
+        bar.advance(bar.total - bar.done)  # Nelder–Mead may converge before the budget is spent
         bar.close()
         lines = report_lines(r, system, _command(a))
         ok = preset_worthy(r)
@@ -613,12 +656,12 @@ def cmd_calibrate(a) -> int:
             if ok:
                 preset.write_text(settings_toml(a.engine, r["settings_after"], lines))
                 lines.append(f"wrote {a.out} (use it with: isorock validate --config {a.out} --engines analytic "
-                             f"{a.engine})")
+                             f"{' '.join([a.engine, *_options(a, SYSTEM_KEYS)])})")
             else:
-                lines.append(f"{a.out} not written: only settings that hold on runs they were not fitted on make "
-                             "a preset")
+                lines.append(f"{a.out} not written: the calibrated settings do not meet the preset's criterion above")
         if report is not None:
             report.write_text(to_json(result_json(r)) + "\n")
-        print("\n".join(lines))
+        # the JSON on standard output stays parseable: the text goes to stderr then
+        print("\n".join(lines), file=sys.stderr if a.json == "-" else sys.stdout)
         outputs.commit()
     return 0 if ok else 1
