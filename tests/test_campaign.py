@@ -310,7 +310,7 @@ def test_peak_ground_velocity_of_a_sine_record():
 
 
 def test_records_folder_scaled_by_pgv(tmp_path, records_dir):
-    from isorock.campaign.build import peak_ground_velocity
+    from isorock.campaign.build import motion_of, peak_ground_velocity
     from isorock.campaign.records import load_suite
     suite = tmp_path / "suite"
     suite.mkdir()
@@ -329,7 +329,7 @@ def test_records_folder_scaled_by_pgv(tmp_path, records_dir):
     cases = s.cases(records)
     assert [c.inputs["intensity"] for c in cases] == [0.2, 0.4]
     for c in cases:
-        assert peak_ground_velocity(c.motion) == pytest.approx(c.inputs["intensity"], rel=1e-12)
+        assert peak_ground_velocity(motion_of(c)) == pytest.approx(c.inputs["intensity"], rel=1e-12)
 
 
 def _fema():
