@@ -38,7 +38,10 @@ Public entry points:
 The kernel is compiled on first use (said on stderr, with how long it took) and cached on
 disk (analytic/kernel_cache.py: stamped with physics.py too, a writable folder found for
 a read-only install, a damaged cache rebuilt), so a new process loads it instead of
-compiling again.
+compiling again. It is compiled ahead of time (numba.pycc) into an extension module: a
+new process's first run then takes its own run time plus milliseconds, not the ~1 s
+numba's JIT needs to start; the JIT kernel is the fallback where no C compiler is found,
+and what the prange batch backend compiles.
 """
 from __future__ import annotations
 
@@ -61,7 +64,7 @@ except ImportError as e:  # pragma: no cover - numba is a declared dependency
 
 from . import physics
 from .errors import InputError, require, require_positive_finite
-from .kernel_cache import cached_jit, call_kernel
+from .kernel_cache import ahead_of_time, cached_jit, call_kernel
 from .overturning import describe
 from .settings import AnalyticSettings
 from .motion import GroundMotion
@@ -525,6 +528,16 @@ def _grow(a, n):
 
 # --- the driver ---------------------------------------------------------------------
 
+def _integrate_signature():
+    """_integrate's argument types, for its ahead-of-time build (kernel_cache.ahead_of_time;
+    numba infers what it returns): every array C-contiguous float64, which call_kernel
+    makes them (a copy of one that is not, or is read-only)."""
+    from numba import types as nt
+    f8, i8, b1, vec = nt.float64, nt.int64, nt.boolean, nt.float64[::1]
+    return (vec, vec, vec, vec, f8, vec, f8, f8, f8, i8, f8, b1, i8, f8, b1, f8)
+
+
+@ahead_of_time(_integrate_signature())
 @cached_jit(nogil=True)
 def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events, odt,
                history, cap, impact_frac, rule_alpha, motion_end):
@@ -1279,7 +1292,7 @@ def benchmark_against_solve_ivp(system: System, motion: GroundMotion, *,
     kern_t = []
     for _ in range(repeats):
         a = time.perf_counter()
-        _integrate(sp, mp, acc, brk, duration, y0, settings.rtol, settings.atol, settings.max_step,
+        call_kernel(_integrate, sp, mp, acc, brk, duration, y0, settings.rtol, settings.atol, settings.max_step,
                    settings.max_events, settings.output_dt, True, cap, DEFAULT_IMPACT_THRESHOLD,
                    settings.overturn == physics.AT_ALPHA, (motion or GroundMotion.zero()).end_time)
         kern_t.append(time.perf_counter() - a)

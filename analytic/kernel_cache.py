@@ -12,7 +12,11 @@ stamps a cache with the source file of the jitted function only. Here:
   none writable `cached_jit` compiles without a cache (and says so once);
 - `call_kernel` checks the cache before the first call: a damaged one is emptied with one
   line on stderr and rebuilt; the first compilation says on stderr what it is doing and
-  how long it took (instead of a silent half minute).
+  how long it took (instead of a silent half minute);
+- a function marked `ahead_of_time(signature)` (the kernel's `_integrate`) is compiled by
+  numba.pycc into an extension module in the same cache folder, and `call_kernel` runs
+  that: a new process loads it in milliseconds, where numba's JIT needs ~1 s to start
+  (see the section at the end of this file). The JIT kernel stays the fallback.
 """
 from __future__ import annotations
 
@@ -147,7 +151,12 @@ def _empty(dispatcher, error) -> None:
 def call_kernel(dispatcher, *args):
     """dispatcher(*args), after making sure its cache is loadable: a damaged cache is
     emptied and rebuilt; a compilation (first use, or sources changed) is announced on
-    stderr with its duration."""
+    stderr with its duration. A dispatcher built ahead of time (`ahead_of_time`) runs as
+    that extension module's function where it can be built."""
+    if dispatcher in _aot_exports:
+        fn = _aot_function(dispatcher)
+        if fn is not None:
+            return fn(*[_c_writable(a) for a in args])
     if dispatcher in _ready:
         return dispatcher(*args)
     cf = _cache_file(dispatcher)
@@ -175,3 +184,161 @@ def call_kernel(dispatcher, *args):
         _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")
     _ready.add(dispatcher)
     return out
+
+
+# --- the kernel compiled ahead of time: a new process loads it in milliseconds ------------
+#
+# Why: numba's first call in a process initialises its CPU target (its typing and lowering
+# registries, numba.np.arraymath importing scipy.linalg to probe BLAS): ~1 s on this
+# machine before the cached kernel is even looked at, for a 40 s Kobe run that takes
+# ~0.07 s. The same kernel compiled by numba.pycc into a CPython extension module needs
+# none of that: importing it takes milliseconds. It is built once (on first use, instead
+# of the JIT compilation, said on stderr) into the same cache folder, named after a stamp
+# of the kernel's sources and of the toolchain and CPU it was built for, so a change to
+# any of them builds a new one. Its Python wrapper releases the GIL like the JIT kernel's
+# (nogil), so threads over it run in parallel. Where it cannot be built (no C compiler, a
+# numba without pycc) the JIT kernel is used, said once on stderr;
+# ISOROCK_KERNEL=jit asks for the JIT kernel outright.
+
+_aot_exports: dict = {}  # dispatcher -> numba signature of its ahead-of-time export
+_aot_loaded: dict = {}  # dispatcher -> the extension's function, or None (use the JIT)
+
+
+def ahead_of_time(signature):
+    """Also build the decorated cached_jit function ahead of time, with this signature: a
+    numba signature, or a tuple of argument types (numba infers the return type). Every
+    array C-contiguous and writable; call_kernel makes them so."""
+    def wrap(dispatcher):
+        _aot_exports[dispatcher] = signature
+        return dispatcher
+    return wrap
+
+
+def _stamp(dispatcher) -> str:
+    import hashlib
+    import platform
+
+    import llvmlite.binding as llvm
+    import numba
+    import numpy
+    h = hashlib.sha256()
+    for path in KERNEL_SOURCES:
+        with open(path, "rb") as f:
+            h.update(f.read())
+    h.update(str(_aot_exports[dispatcher]).encode())
+    for part in (numba.__version__, numpy.__version__, sys.version, platform.machine(),
+                 llvm.get_host_cpu_name(), llvm.get_host_cpu_features().flatten()):
+        h.update(part.encode())
+    return h.hexdigest()[:16]
+
+
+def _module_name(dispatcher) -> str:
+    return f"isorock_{dispatcher.__name__.strip('_')}_{_stamp(dispatcher)}"
+
+
+def _find_module(name: str) -> str | None:
+    import importlib.machinery
+    for folder in cache_dirs():
+        for suffix in importlib.machinery.EXTENSION_SUFFIXES:
+            path = os.path.join(folder, name + suffix)
+            if os.path.isfile(path):
+                return path
+    return None
+
+
+def _load_module(name: str, path: str):
+    import importlib.util
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _build_module(dispatcher, name: str) -> str:
+    """Compile dispatcher's Python function with numba.pycc into `name`'s extension module,
+    in a temporary folder renamed into the first writable cache folder: whole or absent,
+    and two processes building at once each leave a whole file."""
+    import shutil
+    import warnings
+
+    from numba.core import compiler as numba_compiler
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # numba.pycc's pending-deprecation notice
+        from numba.pycc import CC
+        from numba.pycc import compiler as pycc_compiler
+    folder = next((d for d in cache_dirs() if _writable(d)), None)
+    if folder is None:
+        raise OSError("no writable cache folder")
+
+    class NoGilFlags(numba_compiler.Flags):
+        """pycc's flags with the GIL released around the call, as njit(nogil=True) does."""
+
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            self.release_gil = True
+
+    tmp = tempfile.mkdtemp(prefix=".build-", dir=folder)
+    try:
+        cc = CC(name)
+        cc.output_dir = tmp
+        cc.target_cpu = "host"  # the stamp names the CPU: a copy on another CPU is not loaded
+        cc.verbose = False
+        cc.export("run", _aot_exports[dispatcher])(dispatcher.py_func)
+        old = pycc_compiler.Flags
+        pycc_compiler.Flags = NoGilFlags
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                cc.compile()
+        finally:
+            pycc_compiler.Flags = old
+        built = [f for f in os.listdir(tmp) if f.startswith(name + ".") and f.endswith((".so", ".pyd"))]
+        if not built:
+            raise OSError(f"numba.pycc wrote no module in {tmp}")
+        target = os.path.join(folder, built[0])
+        os.replace(os.path.join(tmp, built[0]), target)
+        return target
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+
+
+def _aot_function(dispatcher):
+    """The extension module's function for dispatcher, built first if needed; None where
+    the JIT kernel is to be used instead (said once)."""
+    if dispatcher in _aot_loaded:
+        return _aot_loaded[dispatcher]
+    fn = None
+    if os.environ.get("ISOROCK_KERNEL", "aot") != "jit":
+        try:
+            name = _module_name(dispatcher)
+            path = _find_module(name)
+            if path is not None:
+                try:
+                    fn = _load_module(name, path).run
+                except (ImportError, OSError) as e:  # a damaged file: rebuilt below
+                    _say(f"the compiled kernel {path} does not load ({type(e).__name__}: {e}); rebuilding it")
+                    try:
+                        os.remove(path)
+                    except OSError:
+                        pass
+            if fn is None:
+                _say(f"compiling the analytic kernel {dispatcher.__name__} ahead of time (first use, cached in "
+                     f"{next((d for d in cache_dirs() if _writable(d)), '?')}; about 1-2 minutes)...")
+                start = time.perf_counter()
+                fn = _load_module(name, _build_module(dispatcher, name)).run
+                _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")
+        except Exception as e:  # noqa: BLE001 - any failure to build leaves the JIT kernel, which always works
+            _say(f"cannot compile the analytic kernel ahead of time ({type(e).__name__}: {e}); "
+                 "using numba's JIT kernel (about 1 s to load in each new process)")
+            fn = None
+    _aot_loaded[dispatcher] = fn
+    return fn
+
+
+def _c_writable(a):
+    import numpy as np
+    if isinstance(a, np.ndarray):
+        if a.flags.c_contiguous and a.flags.writeable:
+            return a
+        return np.array(a, order="C")
+    return a

@@ -18,24 +18,34 @@ def ladder(quick: bool):
     return [(f"dt={dt:.3g}", settings_for_timestep(dt)) for dt in steps]
 
 
-def _direct(settings):
-    """(log10 K, log10 D, dmin) of the direct contact form solref = (−K/dt², −D/dt),
-    solimp (dmin, dmin, 0.001); positive solref is converted at its critical damping."""
-    dt = settings.timestep
+def _contact(settings):
+    """(log2 of the contact time constant in steps, damping ratio, solimp dmin) of the
+    settings: solref (timeconst τ, dampratio ζ) as given, or from the direct form
+    (−K, −D) by MuJoCo's own conversion K = 1/(τζ)², D = 2/τ."""
     a, b = settings.solref
-    if a > 0:  # (timeconst, dampratio): stiffness 1/(tc²·dr²), damping 2/tc
-        a, b = -1.0 / (a * a * b * b), -2.0 / a
-    return [math.log10(-a * dt * dt), math.log10(-b * dt), settings.solimp[0]]
+    tau, zeta = (a, b) if a > 0 else (2.0 / -b, -b / (2.0 * math.sqrt(-a)))
+    return [math.log2(tau / settings.timestep), zeta, settings.solimp[0]]
 
 
-#: Calibration moves the direct form's stiffness and damping (in units of the step) and
-#: the constraint impedance dmin (docs/mujoco.md: the direct form measured best from 1 ms up).
+def _with_contact(settings, x):
+    """The settings at those coordinates, in the direct form (not bound to τ ≥ 2 steps);
+    the rest of solimp is kept."""
+    tau, zeta = 2.0 ** x[0] * settings.timestep, float(x[1])
+    return replace(settings, solref=(-1.0 / (tau * zeta) ** 2, -2.0 / tau),
+                   solimp=(float(x[2]), *settings.solimp[1:]))
+
+
+#: Calibration moves the contact's time constant in units of the step (log2: 1.5–12
+#: steps; 1 step hops by metres, and the rungs measured best sit at 3.3–4), its damping
+#: ratio (0.7–3: below 1 it rings, above 2 the impact lasts long enough to lose β) and
+#: the impedance dmin (0.7–0.99; 0.99 lets the pivot contact flicker). Physical
+#: coordinates tied to the step, not raw stiffness and damping, whose useful ratio moves
+#: with both (docs/mujoco.md, "Calibration").
 TUNING = Tuning(
-    names=("log10 stiffness·dt²", "log10 damping·dt", "solimp dmin"),
-    bounds=((-3.0, 0.5), (-2.0, 1.0), (0.5, 0.99)),
-    start=_direct,
-    apply=lambda s, x: replace(s, solref=(-(10 ** x[0]) / s.timestep ** 2, -(10 ** x[1]) / s.timestep),
-                               solimp=(x[2], x[2], 0.001)))
+    names=("log2 contact time constant / timestep", "damping ratio", "solimp dmin"),
+    bounds=((math.log2(1.5), math.log2(12.0)), (0.7, 3.0), (0.7, 0.99)),
+    start=_contact,
+    apply=_with_contact)
 
 
 ENGINE = EngineSpec(
@@ -44,11 +54,25 @@ ENGINE = EngineSpec(
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
     presets={
         "default": Settings,
-        # the cheapest step whose β stays within ~1% (docs/mujoco.md, bench ladder)
-        "fast": lambda: settings_for_timestep(2e-3),
-        "event-resolved": event_resolved_settings,
-        "corners": lambda: Settings(contact="corners"),
+        # Newton, MuJoCo's own solver and the default's: named so that it reads beside cg
+        "newton": lambda: Settings(solver="Newton"),
+        # conjugate gradient, MuJoCo's other solver for soft contacts: cheaper iterations, more of them
+        "cg": lambda: Settings(solver="CG"),
+        # the elliptic cone, the default's: named so that it reads beside pyramidal
+        "elliptic": lambda: Settings(cone="elliptic"),
+        # the pyramidal cone: cheaper per step, lets the pivot creep 2.3× as far (docs/mujoco.md)
         "pyramidal": lambda: Settings(cone="pyramidal"),
+        # the cheapest step whose β stays within ~1% on the paper's block (docs/mujoco.md, bench ladder)
+        "fast": lambda: settings_for_timestep(2e-3),
+        # soft contact tied to the step, time constant 4·dt, at 1e-4 s: the ladder's most accurate rung
+        "fine": lambda: settings_for_timestep(1e-4),
+        # model.md's feasibility recipe: time constant at MuJoCo's floor 2·dt, impedance dmin 0.99
+        # (the pivot contact flickers at it, docs/mujoco.md; kept to measure it over the atlas)
+        "model-md": lambda: Settings(solref=(2 * Settings.timestep, 2.0), solimp=(0.99, 0.999, 0.001)),
+        # coarse steps in flight, fine ones around each impact: long records, not free rocking
+        "event-resolved": event_resolved_settings,
+        # a small sphere in each bottom corner instead of box–box: cheaper collision, no better per cost
+        "corners": lambda: Settings(contact="corners"),
     },
     ladder=ladder, tuning=TUNING, simulate_many=simulate_many)
 

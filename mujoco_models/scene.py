@@ -51,6 +51,7 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     opt.set("timestep", repr(settings.timestep))
     opt.set("integrator", settings.integrator)
     opt.set("cone", settings.cone)
+    opt.set("solver", settings.solver)
     opt.set("gravity", _fmt(0, 0, -system.gravity))
     opt.set("noslip_iterations", str(settings.noslip))
 

@@ -13,6 +13,9 @@ from isorock.analytic.errors import InputError, require, require_positive_finite
 
 INTEGRATORS = ("Euler", "implicit", "implicitfast", "RK4")
 CONES = ("pyramidal", "elliptic")
+#: MuJoCo's constraint solvers; Newton (MuJoCo's own default) converges in 1–3 iterations
+#: here, CG changes histories by ~3e-4 and PGS by 0.5 (docs/mujoco.md, "Speed").
+SOLVERS = ("Newton", "CG", "PGS")
 JOINTS = ("planar", "free")
 CONTACTS = ("box", "corners")
 
@@ -33,7 +36,8 @@ class Settings:
     impact_timestep). joint: "planar" (slide x, slide z, hinge y) or
     "free". contact: "box" (box–box, the default) or "corners" (a small sphere in
     each bottom corner of the block against the base box, scene.CORNER_RADIUS:
-    cheaper collision, no better per unit of cost, docs/mujoco.md).
+    cheaper collision, no better per unit of cost, docs/mujoco.md). solver: the
+    constraint solver, one of Newton (the default), CG, PGS (MJCF `<option solver>`).
     """
 
     timestep: float = 5e-4
@@ -46,6 +50,7 @@ class Settings:
     joint: str = "planar"
     contact: str = "box"
     impact_timestep: float | None = None
+    solver: str = "Newton"
 
     def __post_init__(self):
         dt = require_positive_finite("timestep", self.timestep)
@@ -54,6 +59,7 @@ class Settings:
         require(self.cone in CONES, "cone", self.cone, f"one of {', '.join(CONES)}")
         require(self.joint in JOINTS, "joint", self.joint, f"one of {', '.join(JOINTS)}")
         require(self.contact in CONTACTS, "contact", self.contact, f"one of {', '.join(CONTACTS)}")
+        require(self.solver in SOLVERS, "solver", self.solver, f"one of {', '.join(SOLVERS)}")
         if self.impact_timestep is not None:
             fine = require_positive_finite("impact_timestep", self.impact_timestep)
             ratio = dt / fine

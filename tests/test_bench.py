@@ -2,6 +2,8 @@
 reference are small for the analytic engines, and the outputs are written whole."""
 import json
 
+import pytest
+
 from isorock.analytic import paper_system
 from isorock.validate import bench
 from isorock.validate.cli import main
@@ -28,4 +30,24 @@ def test_quick_analytic_bench_writes_tables(tmp_path, capsys, monkeypatch):
 
 def test_unknown_engine_is_bad_input(tmp_path, capsys):
     assert main(["bench", "--engines", "ode45", "--out", str(tmp_path / "x")]) == 2
+    assert not (tmp_path / "x").exists()
+
+
+def test_presets_are_rows_of_their_own(tmp_path, monkeypatch):
+    sc = Scenario("free-rocking", paper_system(fixed_base=True), "none", 1.0, 0.5)
+    monkeypatch.setattr(bench, "bench_scenarios", lambda quick: [sc])
+    out = tmp_path / "b"
+    assert main(["bench", "--quick", "--engines", "analytic:default", "analytic:conservative", "--out", str(out)]) == 0
+    rows = json.loads((out / "bench.json").read_text())["rows"]
+    assert [(r["engine"], r["setting"]) for r in rows] == [("analytic:default", "default"),
+                                                          ("analytic:conservative", "conservative")]
+    md = (out / "bench.md").read_text()
+    assert "| analytic:default | default |" in md and "| analytic:conservative | conservative |" in md
+
+
+@pytest.mark.parametrize("engines, named", [(["mujoco:warp"], "'warp'"), (["mujoco:fast,ode45"], "'ode45'")])
+def test_an_unknown_engine_or_preset_is_one_line_and_exit_2(tmp_path, capsys, engines, named):
+    assert main(["bench", "--engines", *engines, "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and named in err and ("its presets: default" in err or "must be one of" in err)
     assert not (tmp_path / "x").exists()

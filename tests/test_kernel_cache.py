@@ -86,3 +86,109 @@ def test_first_compilation_is_announced(tmp_path, capsys):
     assert err[0].startswith("isorock: compiling") and err[-1].startswith("isorock: compiled")
     assert len(err) == 2
     sys.modules.pop("tiny_announce", None)
+
+
+# --- the kernel built ahead of time (numba.pycc) ----------------------------------------
+
+TINY_AOT = ("from numba import njit\n\n@njit\ndef halve(x, a):\n"
+            "    a[0] = x / 2.0\n    return a[0] + a.size\n")
+
+
+@pytest.fixture
+def aot_cache(tmp_path, monkeypatch):
+    """The ahead-of-time registry and cache folder of a test of its own."""
+    folder = tmp_path / "cache"
+    folder.mkdir()
+    monkeypatch.setattr(kernel_cache, "cache_dirs", lambda: [str(folder)])
+    monkeypatch.setattr(kernel_cache, "_aot_exports", {})
+    monkeypatch.setattr(kernel_cache, "_aot_loaded", {})
+    monkeypatch.delenv("ISOROCK_KERNEL", raising=False)
+    return folder
+
+
+def tiny_aot(tmp_path, name):
+    from numba import types as nt
+    path = tmp_path / f"{name}.py"
+    path.write_text(TINY_AOT)
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return kernel_cache.ahead_of_time(nt.float64(nt.float64, nt.float64[::1]))(module.halve)
+
+
+def in_new_process(tmp_path, folder, name, x):
+    """call_kernel(halve, x, zeros(3)) in a new Python process using `folder` as its cache:
+    (printed result, stderr). A new process because Python keeps an extension module it
+    has loaded: a damaged file is only seen by the next process."""
+    import subprocess
+    code = (
+        "import importlib.util, sys\nimport numpy as np\nfrom numba import types as nt\n"
+        "from isorock.analytic import kernel_cache as kc\n"
+        f"kc.cache_dirs = lambda: [{str(folder)!r}]\n"
+        f"spec = importlib.util.spec_from_file_location({name!r}, {str(tmp_path / (name + '.py'))!r})\n"
+        "m = importlib.util.module_from_spec(spec); spec.loader.exec_module(m)\n"
+        "f = kc.ahead_of_time(nt.float64(nt.float64, nt.float64[::1]))(m.halve)\n"
+        f"print(kc.call_kernel(f, {x!r}, np.zeros(3)))\n")
+    env = {k: v for k, v in os.environ.items() if k != "ISOROCK_KERNEL"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300)
+    assert out.returncode == 0, out.stderr
+    return out.stdout.strip(), out.stderr
+
+
+def test_ahead_of_time_build_is_announced_cached_and_rebuilt_when_damaged(tmp_path, aot_cache, capsys):
+    import numpy as np
+    halve = tiny_aot(tmp_path, "tiny_aot")
+    a = np.zeros(3)
+    assert kernel_cache.call_kernel(halve, 5.0, a) == 2.5 + 3 and a[0] == 2.5  # built, then run
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 2 and "ahead of time" in err[0] and err[1].startswith("isorock: compiled"), err
+    built = list(aot_cache.glob("isorock_halve_*"))
+    assert len(built) == 1 and not list(aot_cache.glob(".build-*"))  # whole, no leftovers
+    # a read-only, non-contiguous array is passed as a contiguous copy, never misread
+    ro = np.arange(6.0)[::2]
+    ro.flags.writeable = False
+    assert kernel_cache.call_kernel(halve, 1.0, ro) == 0.5 + 3 and ro[0] == 0.0
+    # a new process loads the module, silently, instead of building it again
+    assert in_new_process(tmp_path, aot_cache, "tiny_aot", 1.0) == ("3.5", "")
+    # a damaged module is said in one line and rebuilt (a new file, as another process
+    # would leave it: overwriting the one this process has mapped would crash this one)
+    damaged = tmp_path / "damaged"
+    damaged.write_bytes(os.urandom(500))
+    os.replace(damaged, built[0])
+    result, err = in_new_process(tmp_path, aot_cache, "tiny_aot", 4.0)
+    assert result == "5.0" and "does not load" in err and "Traceback" not in err, err
+    assert len(list(aot_cache.glob("isorock_halve_*"))) == 1
+    assert in_new_process(tmp_path, aot_cache, "tiny_aot", 2.0) == ("4.0", "")
+
+
+def test_a_failed_ahead_of_time_build_falls_back_to_the_jit_kernel(tmp_path, aot_cache, monkeypatch, capsys):
+    import numpy as np
+    halve = tiny_aot(tmp_path, "tiny_aot_fallback")
+
+    def no_compiler(dispatcher, name):
+        raise OSError("no C compiler")
+    monkeypatch.setattr(kernel_cache, "_build_module", no_compiler)
+    assert kernel_cache.call_kernel(halve, 3.0, np.zeros(2)) == 1.5 + 2
+    err = capsys.readouterr().err
+    assert "cannot compile the analytic kernel ahead of time (OSError: no C compiler)" in err
+    assert "JIT" in err and "Traceback" not in err
+    assert not list(aot_cache.iterdir())  # nothing half-built left behind
+
+
+def test_a_new_process_runs_the_kernel_without_initialising_numba(tmp_path):
+    """The point of the ahead-of-time module: a new process's first run does not pay
+    numba's ~1 s target initialisation (which imports numba.np.arraymath and scipy.linalg).
+    Structural, not timed: that module is never imported."""
+    import subprocess
+    from isorock.analytic import fast
+    if kernel_cache._aot_function(fast._integrate) is None:
+        pytest.skip("the kernel cannot be built ahead of time here (see the stderr line above)")
+    code = ("import sys\nfrom isorock.analytic.fast import simulate_fast\n"
+            "from isorock.analytic.motion import load_motion\nfrom isorock.analytic.system import paper_system\n"
+            "t = simulate_fast(paper_system(fixed_base=True), load_motion('sine:amp=0.6,freq=1.3,cycles=1'), "
+            "duration=3.0)\nprint(t.status != 'failed', len(t.impacts) > 0, 'numba.np.arraymath' in sys.modules)\n")
+    env = {k: v for k, v in os.environ.items() if k != "ISOROCK_KERNEL"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["True", "True", "False"], (out.stdout, out.stderr)
+    assert "compiling" not in out.stderr

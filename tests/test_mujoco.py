@@ -94,8 +94,9 @@ def test_scene_fixed_base_and_free_joint():
 
 def test_scene_carries_settings():
     s = scene.Settings(timestep=2e-4, solref=(0.001, 1.0), solimp=(0.95, 0.99, 0.002), cone="pyramidal",
-                       integrator="RK4", friction=2.0, noslip=3)
+                       integrator="RK4", friction=2.0, noslip=3, solver="CG")
     model = scene.build_model(isolated(), s)
+    assert model.opt.solver == mujoco.mjtSolver.mjSOL_CG
     assert model.opt.timestep == 2e-4
     assert model.opt.integrator == mujoco.mjtIntegrator.mjINT_RK4
     assert model.opt.cone == mujoco.mjtCone.mjCONE_PYRAMIDAL
@@ -126,7 +127,7 @@ def test_coarse_rung_rocks_without_hopping():
 
 
 @pytest.mark.parametrize("field, value", [
-    ("timestep", 0.0), ("timestep", 0.1), ("integrator", "rk4"), ("cone", "round"),
+    ("timestep", 0.0), ("timestep", 0.1), ("integrator", "rk4"), ("cone", "round"), ("solver", "newton"),
     ("solref", (0.002,)), ("solref", (0.002, -1.0)), ("solref", (0.0005, 1.0)),
     ("solimp", (0.9, 0.99)), ("solimp", (1.5, 0.99, 0.001)), ("friction", 0.0),
     ("noslip", -1), ("noslip", 1.5), ("joint", "ball"),

@@ -2,7 +2,8 @@
 
 For each engine a ladder of settings (analytic: tolerances 1e-4 to 1e-10, reference
 path and compiled kernel; MuJoCo: timesteps 2e-3 to 1e-4 with contact parameters
-tied to the timestep; PyBullet: 1/500 to 1/10000 s) runs on each scenario (free
+tied to the timestep; PyBullet: 1/500 to 1/10000 s), or for ENGINE:PRESET that preset
+alone (rows of their own, labelled ENGINE:PRESET), runs on each scenario (free
 rocking; a pulse; Kobe, first 40 s, when the shared records are there). Errors are
 taken against a tight analytic reference (rtol 1e-12): effective β error per impact
 against the closed form, θmax/α error, and the θ/α history error up to the agreement
@@ -36,16 +37,22 @@ FAST_REPEATS = 5
 
 
 def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
-    """(label, settings) from cheapest to most accurate: the engine's own ladder."""
+    """(label, settings) from cheapest to most accurate: the engine's own ladder; for
+    ENGINE:PRESET the preset alone (a row of its own, labelled by it)."""
     from isorock.validate.engines import get_engine
-    spec = get_engine(engine).spec
+    from isorock.validate.runner import resolve
+    name, _, preset = engine.partition(":")
+    if preset:
+        return [(preset, resolve(engine)[1])]
+    spec = get_engine(name).spec
     return spec.ladder(quick) if spec.ladder else [("default", spec.settings())]
 
 
 def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
+    """One (engine or ENGINE:PRESET, setting) on one scenario; the row's engine is the label."""
     from isorock.validate.compare import compare
     from isorock.validate.engines import get_engine
-    run = get_engine(engine).simulate
+    run = get_engine(engine.partition(":")[0]).simulate
     motion = sc.ground_motion()
     kwargs = dict(settings=settings, duration=sc.duration, theta0=sc.theta0)
     walls, loops, traj = [], [], None
@@ -75,20 +82,20 @@ def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
 
 def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], dict]:
     from isorock.validate.engines import campaign_engines, get_engine
-    engines = [e for e in (engines or campaign_engines()) if _importable(e)]
+    engines = [e for e in (engines or campaign_engines()) if _importable(e.partition(":")[0])]
     rows = []
     for sc in bench_scenarios(quick):
         motion = sc.ground_motion()
         ref = reference_simulate(sc.system, motion, settings=REFERENCE, duration=sc.duration, theta0=sc.theta0)
         for engine in engines:
             # once outside the timing: a compiled kernel loads (or compiles) on its first call
-            get_engine(engine).simulate(sc.system, motion, duration=min(sc.duration, 1.0), theta0=sc.theta0)
+            get_engine(engine.partition(":")[0]).simulate(sc.system, motion, duration=min(sc.duration, 1.0), theta0=sc.theta0)
             for label, settings in ladder(engine, quick):
                 row = measure(engine, label, settings, sc, ref, 1 if quick else 3)
                 rows.append(row)
                 if progress:
-                    print(f"  {sc.name:13s} {engine:13s} {label:12s} {row['sim_per_wall']:10.1f} sim s/wall s "
-                          f"({row['sim_per_loop']:.0f} in the loop)  "
+                    print(f"  {sc.name:13s} {engine:22s} {label:14s} {row['sim_per_wall']:10.3g} sim s/wall s "
+                          f"({row['sim_per_loop']:.3g} in the loop)  "
                           f"β err {_pct(row['beta_error_max']):>8s}  θmax err {row['theta_max_error']:.2e}",
                           file=sys.stderr, flush=True)
     extra = {"solve_ivp_ratio": speed_ratio(quick)} if _fast_available() else {}
@@ -152,27 +159,29 @@ def markdown(rows, extra) -> str:
               "| engine | ≤ 1% | sim s / wall s | ≤ 0.1% | sim s / wall s |", "|---|---|---|---|---|"]
     for engine in dict.fromkeys(r["engine"] for r in rows):
         a, b = fastest(rows, engine, 0.01), fastest(rows, engine, 0.001)
-        lines.append(f"| {engine} | {a['setting'] if a else 'none'} | {a['sim_per_wall']:.0f} |" if a else
+        lines.append(f"| {engine} | {a['setting'] if a else 'none'} | {a['sim_per_wall']:.3g} |" if a else
                      f"| {engine} | none | — |")
-        lines[-1] += (f" {b['setting']} | {b['sim_per_wall']:.0f} |" if b else " none | — |")
+        lines[-1] += (f" {b['setting']} | {b['sim_per_wall']:.3g} |" if b else " none | — |")
     if not KOBE.is_file():
         lines += ["", f"The Kobe scenario was not run: {KOBE} not found (the shared records sit beside the "
                       "repository)."]
     if GOALS:
         lines += ["", "## Speed goals", ""]
         for engine, (speed, err) in GOALS.items():
-            ok = [r for r in rows if r["engine"] == engine and r["scenario"] == "free-rocking"
-                  and r["beta_error_max"] is not None and r["beta_error_max"] <= err]
+            # the engine's ladder and its presets (ENGINE:PRESET rows) alike
+            mine = [r for r in rows if r["engine"].partition(":")[0] == engine and r["scenario"] == "free-rocking"]
+            ok = [r for r in mine if r["beta_error_max"] is not None and r["beta_error_max"] <= err]
             if not ok:
-                lines.append(f"- {engine}: no setting reaches β error ≤ {100 * err:g}% (or the engine was not run)")
+                lines.append(f"- {engine}: " + (f"no setting run reaches β error ≤ {100 * err:g}%" if mine else
+                                                "not run"))
                 continue
             best = max(ok, key=lambda r: r["sim_per_loop"])
             whole = max(ok, key=lambda r: r["sim_per_wall"])
             verdict = ("met" if whole["sim_per_wall"] >= speed else
                        "met in the loop only" if best["sim_per_loop"] >= speed else "not met")
             lines.append(f"- {engine}: ≥ {speed:g} simulated s per wall s at β error ≤ {100 * err:g}%: {verdict} "
-                         f"(best: {whole['setting']} {whole['sim_per_wall']:.0f} whole call, "
-                         f"{best['setting']} {best['sim_per_loop']:.0f} in the loop)")
+                         f"(best: {whole['engine']} {whole['setting']} {whole['sim_per_wall']:.3g} whole call, "
+                         f"{best['engine']} {best['setting']} {best['sim_per_loop']:.3g} in the loop)")
     ratio = extra.get("solve_ivp_ratio")
     if ratio:
         lines += ["", "## Compiled analytic kernel against solve_ivp (Kobe 40 s isolated, same tolerance)", ""]
@@ -222,8 +231,10 @@ def add_parser(sub) -> None:
     p.add_argument("--out", default="isorock-bench", metavar="DIR",
                    help="folder for bench.csv, bench.md, bench.png, bench.json: new, empty or an earlier "
                         "isorock output (default: %(default)s)")
-    p.add_argument("--engines", nargs="+", metavar="ENGINE",
-                   help="engines to bench (default: those fast enough for grids; others, e.g. drake, by name; "
+    p.add_argument("--engines", nargs="+", metavar="ENGINE[:PRESET]",
+                   help="engines to bench, space- or comma-separated: ENGINE runs its ladder of settings, "
+                        "ENGINE:PRESET that preset alone, as rows of its own (e.g. mujoco:default mujoco:fast "
+                        "drake:sap; default: the engines fast enough for grids; others, e.g. drake, by name; "
                         "registered: %s)" % ", ".join(_engine_names()))
     p.set_defaults(func=cmd_bench)
 
@@ -232,14 +243,13 @@ def cmd_bench(a) -> int:
     import csv
     import io
 
-    from isorock.validate.engines import get_engine
-    from isorock.validate.output import to_json, write_folder_atomic
-    from isorock.validate.output import check_folder
-    for e in a.engines or []:
-        get_engine(e)  # an unknown name is an InputError before anything runs
+    from isorock.validate.output import check_folder, to_json, write_folder_atomic
+    from isorock.validate.run_cli import engine_labels
+    # an unknown engine or preset is an InputError before anything runs
+    engines = engine_labels(a.engines) if a.engines else None
     check_folder(a.out)  # so is a folder we may not write
     start = time.perf_counter()
-    rows, extra = run_bench(quick=a.quick, engines=a.engines)
+    rows, extra = run_bench(quick=a.quick, engines=engines)
 
     def fill(tmp: Path):
         (tmp / "bench.md").write_text(markdown(rows, extra))

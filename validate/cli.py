@@ -8,6 +8,7 @@
     isorock stress   the stability stress grid
     isorock view     replay a run in MuJoCo's viewer (or as a GIF without a display)
     isorock calibrate  fit a contact engine's contact parameters to the closed-form β
+    isorock atlas    the contact-model atlas: every preset's β and t₁ error over λ × μ × size, and its cost
     isorock sweep    campaigns: spectra, fragility curves, agreement maps (Dask)
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
@@ -32,6 +33,8 @@ EXTRA_COMMANDS = {
     "bench": ("isorock.validate.bench", "work-precision benchmarks of every engine"),
     "stress": ("isorock.validate.stress", "the stability stress grid (exits non-zero on any failure)"),
     "calibrate": ("isorock.validate.calibrate", "fit a contact engine's contact parameters to the closed-form β"),
+    "atlas": ("isorock.validate.atlas", "the contact-model atlas: every preset's β and t₁ error over slenderness "
+                                        "× mass ratio × size, with its cost"),
     "view": ("isorock.validate.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
                                       "display"),
     "sweep": ("isorock.campaign.cli", "run a campaign (TOML): overturning spectra, fragility curves, agreement maps"),

@@ -195,12 +195,17 @@ def load_engines(names):
     return ok, skipped_
 
 
+def beta_impacts(traj) -> list:
+    """The impacts whose effective β a free-rocking run is judged by: the first
+    BETA_IMPACTS counted impacts that peaked above BETA_MIN_AMPLITUDE·α."""
+    return [i for i in traj.counted_impacts if i.amplitude >= BETA_MIN_AMPLITUDE * traj.system.alpha][:BETA_IMPACTS]
+
+
 def effective_beta(traj) -> dict:
-    """Effective β and β₂/h of a free-rocking run: means over the first BETA_IMPACTS
-    counted impacts that peaked above BETA_MIN_AMPLITUDE·α, with the largest errors
-    against the closed forms among them."""
+    """Effective β and β₂/h of a free-rocking run: means over its `beta_impacts`, with
+    the largest errors against the closed forms among them."""
     sys_ = traj.system
-    used = [i for i in traj.counted_impacts if i.amplitude >= BETA_MIN_AMPLITUDE * sys_.alpha][:BETA_IMPACTS]
+    used = beta_impacts(traj)
     b_ref = beta_closed(sys_.slenderness, sys_.mu)
     b2_ref = beta2_closed(sys_.slenderness, sys_.mu, sys_.h) / sys_.h
     betas = np.array([i.beta for i in used])

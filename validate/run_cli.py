@@ -40,6 +40,21 @@ def spec_label(name: str, preset: str | None) -> str:
     return name if preset is None else f"{name}:{preset}"
 
 
+def engine_labels(items) -> list[str]:
+    """`--engines` as bench and atlas take it (each item ENGINE or ENGINE:PRESET, space- or
+    comma-separated, as validate takes it) → labels, each checked before any work: an
+    unknown engine or preset is an InputError naming it and what is allowed. An engine
+    that cannot be imported here is kept; the command reports it as not run."""
+    from isorock.validate.runner import resolve
+    specs = parse_engines(",".join(str(item) for item in items))
+    for name, preset in specs:
+        try:
+            resolve(spec_label(name, preset))
+        except ImportError:
+            pass
+    return [spec_label(name, preset) for name, preset in specs]
+
+
 def _overrides(a) -> dict:
     return {k: getattr(a, k) for k in ENGINE_OPTIONS if getattr(a, k, None) is not None}
 

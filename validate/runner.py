@@ -66,20 +66,42 @@ def default_workers() -> int:
     return max(1, min(2, os.cpu_count() or 1))
 
 
-def run_tasks(tasks: list[Task], *, client=None, on_result=None) -> dict:
-    """Run every task; key → (Trajectory or None, error or None). client: a Dask client
+def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, on_result=None,
+              work=None) -> dict:
+    """Run every task; key → (result or None, error or None). client: a Dask client
     (campaign.execute.local_client) for the contact engines' tasks, the analytic model's
-    staying here; None: all here. `on_result(key)` is called as each result arrives."""
-    from isorock.campaign.execute import execute
+    staying here; None: with workers > 1 a local cluster of that many processes is started
+    for them and closed after, otherwise all run here. `on_result(key)`
+    is called as each result arrives. `work(task)` runs one task and returns (key, result,
+    error) (default: run_task, a Trajectory); one that measures its result where it ran (a
+    row instead of a history) must be picklable, a module-level function or a
+    functools.partial of one."""
+    from functools import partial
+
+    from isorock.campaign.execute import close_client, execute, local_client
     out = {}
+    own = None
+    if client is None and workers > 1 and not all(_light(t) for t in tasks):
+        own = client = local_client(workers)
 
     def done(_task, result):
         key, traj, err = result
         out[key] = (traj, err)
         if on_result:
             on_result(key)
-    execute(tasks, client=client, on_done=done, run=run_task, here=_light, weight=lambda _t: 1)
+    try:
+        execute(tasks, client=client, on_done=done, run=partial(_one, work or run_task), here=_light,
+                weight=lambda _t: 1)
+    finally:
+        if own is not None:
+            close_client(own)
     return out
+
+
+def _one(work, task: Task, threads: int | None = None):
+    """work(task), called as the campaign executor calls a task's runner (threads means
+    nothing to one run)."""
+    return work(task)
 
 
 def _light(task: Task) -> bool:

@@ -1,0 +1,136 @@
+"""isorock atlas: its grid and oracles (model.md's closed forms, never an engine), the
+engines judged over the quick grid against the tolerance table, every way a run can go
+wrong reported as such (slid, too slow) rather than as a small error, and the command's
+outputs: whole, consistent with each other, never over a user's folder."""
+import csv
+import json
+import math
+
+import pytest
+
+from isorock.analytic import kinematics
+from isorock.analytic.coefficients import beta
+from isorock.validate import atlas
+from isorock.validate.atlas import FULL, LEVELS, QUICK, Cell, Grid, build, qualifies, reference, run_cell
+from isorock.validate.cli import main
+from isorock.validate.runner import Task
+from isorock.validate.tolerances import tolerance
+
+
+def test_the_full_grid_spans_issue_12s_ranges():
+    assert (min(FULL.slenderness), max(FULL.slenderness)) == (1.5, 10.0)
+    assert 0.0 in FULL.mass_ratios and (min(m for m in FULL.mass_ratios if m), max(FULL.mass_ratios)) == (0.25, 4.0)
+    assert (min(FULL.heights), max(FULL.heights)) == (0.2, 5.0)
+    for c in FULL.cells() + QUICK.cells():
+        s = c.system()
+        assert s.slenderness == pytest.approx(c.slenderness) and s.height == c.height
+        assert s.fixed_base == (c.mass_ratio == 0) and s.mu == pytest.approx(c.mass_ratio)
+
+
+def test_the_reference_is_the_closed_forms():
+    # the paper's block on a fixed base: model.md's β (Housner) and its exact t₁, 0.5014170 s
+    ref = reference(Cell(2.0 / 0.7, 0.0, 2.0))
+    assert ref["beta_closed"] == pytest.approx(1 - 1.5 * math.sin(math.atan(0.35)) ** 2, rel=1e-12)
+    assert ref["t1_reference"] == pytest.approx(0.5014170, abs=5e-8) and ref["t1_reference_from"] == "closed form"
+    # isolated, μ = 1 (model.md's paper example 0.75418 at λ 2.857); t₁ has no closed form there
+    ref = reference(Cell(2.0 / 0.7, 1.0, 2.0))
+    assert ref["beta_closed"] == pytest.approx(0.75418, abs=5e-6) and ref["t1_reference_from"] == "analytic model"
+    assert 1 <= ref["impacts_expected"] <= 3 and ref["duration"] > ref["t1_reference"]
+
+
+def test_the_analytic_model_meets_the_closed_forms_over_the_quick_grid():
+    a = build(["analytic"], QUICK, workers=1)
+    assert [r["status"] for r in a["rows"]] == ["ok"] * len(QUICK.cells())
+    for r in a["rows"]:
+        assert abs(r["beta_error"]) <= tolerance("analytic", "beta_rel_error").limit, r
+        if r["base"] == "fixed":  # against model.md's integral, not against itself
+            assert abs(r["t1_error"]) <= tolerance("analytic", "first_impact_time_rel_error").limit, r
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "bullet"])
+def test_contact_defaults_over_the_quick_grid_stay_within_the_table(engine):
+    a = build([f"{engine}:default"], QUICK, workers=1)
+    s = a["presets"][0]
+    assert s["complete"] and s["judged"] == len(QUICK.cells()), s["failures"]
+    assert s["worst_beta_error"] <= tolerance(engine, "atlas_quick_beta_rel_error").limit, s["worst_cell"]
+    for r in a["rows"]:
+        assert r["beta_closed"] == beta(r["slenderness"], r["mass_ratio"])
+        assert abs(r["t1_error"]) <= tolerance(engine, "first_impact_time_rel_error").limit, r
+    assert s["sim_per_wall"] > 0 and s["sim_s"] > 0
+
+
+def test_a_run_that_slides_is_reported_as_sliding_never_as_a_small_error():
+    # friction 0.3 under a λ 2.5 block: PyBullet's pivot slides (tens of mm)
+    a = build(["bullet:default"], Grid((2.5,), (0.0,), (1.0,)), workers=1, overrides={"friction": 0.3})
+    r, s = a["rows"][0], a["presets"][0]
+    assert r["status"] == "slid" and r["beta_error"] is None and r["t1_error"] is None
+    assert not s["complete"] and s["failures"] == {"slid": 1} and s["worst_beta_error"] is None
+    assert not any(qualifies(s, lv) for lv in LEVELS)
+    assert all(best is None for best in a["verdict"][0]["levels"].values())
+    assert "slid in 1" in atlas.markdown(a, quick=True)
+
+
+def test_a_run_past_its_budget_is_too_slow(monkeypatch):
+    monkeypatch.setattr(kinematics, "PROGRESS_INTERVAL", 0.0)  # progress after every chunk
+    ref = reference(Cell(2.5, 0.0, 1.0))
+    task = Task(key="k", engine="mujoco:default", system=ref["system"], motion=None, duration=12.0,
+                theta0=ref["theta0"])
+    _, measured, _ = run_cell(task, budget=0.0)
+    assert measured["status"] == "too slow" and 0 < measured["sim_s"] < 12.0
+    assert atlas.judge(measured, ref)[0] == "too slow"
+
+
+def test_an_unknown_engine_or_preset_is_one_line_and_exit_2(tmp_path, capsys):
+    for engines in (["mujoco:warp"], ["ode45"]):
+        assert main(["atlas", "--quick", "--engines", *engines, "--out", str(tmp_path / "x")]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and engines[0].partition(":")[2 if ":" in engines[0] else 0] in err
+        assert "its presets: default" in err or "must be one of" in err
+    assert not (tmp_path / "x").exists()
+
+
+def test_a_users_folder_is_never_written_into(tmp_path, capsys):
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("mine\n")
+    assert main(["atlas", "--quick", "--engines", "analytic", "--out", str(mine)]) == 2
+    assert [p.name for p in mine.iterdir()] == ["notes.txt"]
+
+
+def test_quick_outputs_exist_and_the_verdict_is_the_csvs(tmp_path, capsys):
+    out = tmp_path / "a"
+    assert main(["atlas", "--quick", "--workers", "1", "--quiet", "--engines", "mujoco:default,mujoco:fast",
+                 "bullet:fast", "--out", str(out)]) == 0
+    labels = ["mujoco:default", "mujoco:fast", "bullet:fast"]
+    for name in ["atlas.csv", "atlas.json", "atlas.md", "pareto.png"] + [
+            f"map_{x.replace(':', '_')}.png" for x in labels]:
+        assert (out / name).stat().st_size > 0, name
+    rows = list(csv.DictReader((out / "atlas.csv").open()))
+    assert len(rows) == len(labels) * len(QUICK.cells())
+    data = json.loads((out / "atlas.json").read_text())
+    md = (out / "atlas.md").read_text()
+    assert md.startswith("# isorock atlas") and md.index("## Verdict") < md.index("## Every preset")
+    # the verdict recomputed from the CSV alone: per engine, the preset with the most simulated s
+    # per wall s of stepping among those judged on every cell within each level
+    for engine in ("mujoco", "bullet"):
+        speed, worst, complete = {}, {}, {}
+        for r in (r for r in rows if r["engine_name"] == engine):
+            label = r["engine"]
+            speed.setdefault(label, [0.0, 0.0])
+            speed[label][0] += float(r["sim_s"])
+            speed[label][1] += float(r["loop_s"])
+            complete[label] = complete.get(label, True) and r["status"] == "ok"
+            if r["status"] == "ok":
+                worst[label] = max(worst.get(label, 0.0), abs(float(r["beta_error"])))
+        verdict = next(v for v in data["verdict"] if v["engine"] == engine)
+        line = next(x for x in md.splitlines() if x.startswith(f"| {engine} |"))
+        for level in LEVELS:
+            ok = [x for x in speed if complete[x] and worst[x] <= level]
+            best = max(ok, key=lambda x: speed[x][0] / speed[x][1]) if ok else None
+            got = verdict["levels"][f"{level:g}"]
+            assert (got and got["engine"]) == best
+            if best:
+                assert got["sim_per_wall"] == pytest.approx(speed[best][0] / speed[best][1], rel=1e-9)
+                assert f"{best} (" in line
+    stdout = capsys.readouterr().out
+    assert "| engine | cheapest at ≤ 0.5% worst β error" in stdout and "| mujoco |" in stdout

@@ -1,0 +1,580 @@
+"""`isorock atlas`: the contact-model atlas (issue 12). For each engine and preset, the
+effective β error and the first-impact time error of free rocking over a grid of
+slenderness λ = H/B × mass ratio μ = m/m_b (0: a fixed base) × size H, with the cost in
+simulated seconds per wall second: which contact formulation reproduces the impact law,
+where, and at which cost.
+
+Every cell is one free-rocking run from θ0 = FREE_THETA0_OVER_ALPHA·α, measured as every
+contact run is (validate.measure). Its β is judged on the impacts the report judges free
+rocking by (report_run.beta_impacts: the first ≤ 3 that peaked above 0.1α), chosen in the
+rigid model's history and matched by their order among the engine's counted impacts (so
+an impact whose peak sits at 0.1α is judged in every engine or in none). The oracles are the
+closed forms of model.md: β(λ, μ) (analytic.coefficients) on every cell, the exact t₁
+integral (compare.exact_first_impact_time) on a fixed base; on an isolated base t₁ has no
+closed form and the analytic model (its impact an event located to rtol 1e-10) is the
+reference. A run that fails, slides, overturns, misses impacts the rigid model has, or
+runs past its wall budget is reported as such in its row and in the verdict, never as a
+small error.
+
+Data flow: System (one per cell) → engine → raw history → measure → effective β and t₁
+against the oracles (in the worker that ran it) → rows → summaries per preset → verdict,
+tables and figures.
+"""
+from __future__ import annotations
+
+import math
+import statistics
+import sys
+import time
+from dataclasses import dataclass
+from functools import partial
+
+from isorock.analytic.errors import InputError
+
+#: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's:
+#: λ 1.5–10, μ 0 and 0.25–4, H 0.2–5 m.
+FULL_SLENDERNESS = (1.5, 2.5, 4.0, 6.0, 10.0)
+FULL_MASS_RATIOS = (0.0, 0.25, 1.0, 4.0)
+FULL_HEIGHTS = (0.2, 1.0, 5.0)
+#: --quick: 8 cells inside the full grid's range, fixed and isolated, two sizes (the tests'
+#: grid: under a minute for every MuJoCo and PyBullet preset on 2 cores).
+QUICK_SLENDERNESS = (2.5, 6.0)
+QUICK_MASS_RATIOS = (0.0, 1.0)
+QUICK_HEIGHTS = (0.5, 2.0)
+#: kg/m³: the paper's block (3800 kg, 2.0 × 0.7 × 0.7 m), so that an engine's absolute
+#: contact parameters (Drake's stiffness in N/m, MuJoCo's impedance width in m) meet the
+#: mass and size a statue of that shape would have.
+DENSITY = 3800.0 / (2.0 * 0.7 * 0.7)
+#: The paper's isolator (T s, ξ): β does not depend on it, the base's motion between impacts does.
+ISOLATOR = (1.5, 0.2)
+#: How many of a run's counted impacts it sends back (β error and time of each).
+KEPT_IMPACTS = 12
+#: A contact run lasts this factor × the time of the reference's last judged impact, plus
+#: DURATION_PAD s: room for a contact engine's impacts to come a little late and for the
+#: measuring window after the last one.
+DURATION_FACTOR, DURATION_PAD = 1.2, 0.1
+#: The rigid model rocks to its last judged impact well within this many 1/p.
+REFERENCE_SPAN = 40.0
+#: Worst β error levels of the verdict (issue 12: 0.5% and 0.1%).
+LEVELS = (0.005, 0.001)
+#: Default CPU-time budget of one run (s): past it the run stops and is reported "too
+#: slow" (Drake's continuous plant takes minutes for a second of a 0.2 m block, docs/atlas.md).
+#: CPU time, not wall time: on a shared machine the wall clock would judge the other jobs.
+RUN_BUDGET = 300.0
+#: The row status of a run whose β is judged.
+OK = "ok"
+
+
+@dataclass(frozen=True)
+class Grid:
+    slenderness: tuple[float, ...]
+    mass_ratios: tuple[float, ...]
+    heights: tuple[float, ...]
+
+    def cells(self) -> list["Cell"]:
+        return [Cell(lam, mu, h) for mu in self.mass_ratios for h in self.heights for lam in self.slenderness]
+
+    def describe(self) -> dict:
+        return {"slenderness": list(self.slenderness), "mass_ratios": list(self.mass_ratios),
+                "heights_m": list(self.heights)}
+
+
+FULL = Grid(FULL_SLENDERNESS, FULL_MASS_RATIOS, FULL_HEIGHTS)
+QUICK = Grid(QUICK_SLENDERNESS, QUICK_MASS_RATIOS, QUICK_HEIGHTS)
+
+
+@dataclass(frozen=True)
+class Cell:
+    """One system of the grid: λ = H/B, μ = m/m_b (0: fixed base), H in m; a square
+    footprint B × B of DENSITY, on the paper's isolator when μ > 0."""
+
+    slenderness: float
+    mass_ratio: float
+    height: float
+
+    def system(self):
+        from isorock.analytic.system import System
+        width = self.height / self.slenderness
+        mass = DENSITY * self.height * width * width
+        if self.mass_ratio == 0:
+            return System.fixed(height=self.height, width=width, mass=mass)
+        return System.isolated(height=self.height, width=width, mass=mass, base_mass=mass / self.mass_ratio,
+                               period=ISOLATOR[0], damping_ratio=ISOLATOR[1])
+
+    @property
+    def key(self) -> tuple:
+        return (self.slenderness, self.mass_ratio, self.height)
+
+
+# --- the reference of each cell -------------------------------------------------------
+
+def reference(cell: Cell) -> dict:
+    """What the cell's runs are judged against: the closed-form β, t₁ (closed form on a
+    fixed base, the analytic model on an isolated one), which of the counted impacts β is
+    judged on (their order in the rigid model's history), and how long a contact run must
+    last to show them."""
+    from isorock.analytic.coefficients import beta
+    from isorock.validate.compare import exact_first_impact_time
+    from isorock.validate.engines import REFERENCE, get_engine
+    from isorock.validate.report_run import beta_impacts
+    from isorock.validate.scenarios import FREE_THETA0_OVER_ALPHA
+    system = cell.system()
+    theta0 = FREE_THETA0_OVER_ALPHA * system.alpha
+    rigid = get_engine(REFERENCE).simulate(system, None, duration=REFERENCE_SPAN / system.p, theta0=theta0)
+    judged = beta_impacts(rigid)
+    if not judged:  # every λ ≥ 1.5 rocks on: a grid cell without impacts is a broken reference
+        raise RuntimeError(f"the analytic model gives no impact to judge β by for {cell}")
+    order = [k for k, i in enumerate(rigid.counted_impacts) if any(i is j for j in judged)]
+    fixed = system.fixed_base
+    return {"system": system, "theta0": theta0, "beta_closed": beta(system.slenderness, system.mu),
+            "judged_impacts": order, "impacts_expected": len(order),
+            "t1_reference": exact_first_impact_time(system, theta0) if fixed else rigid.counted_impacts[0].t,
+            "t1_reference_from": "closed form" if fixed else "analytic model",
+            "duration": DURATION_FACTOR * judged[-1].t + DURATION_PAD}
+
+
+# --- one run, in whichever process runs it ---------------------------------------------
+
+class OverBudget(Exception):
+    """Raised from an engine's progress callback when a run has used its CPU budget."""
+
+    def __init__(self, t: float, cpu: float, wall: float):
+        super().__init__(f"stopped after {cpu:.0f} CPU s ({wall:.0f} s of wall time) at t = {t:.3g} s")
+        self.t, self.wall = t, wall
+
+
+def _watch(budget: float, start: float, cpu_start: float):
+    """An engine's progress callback (called between its chunks of work, about once a
+    wall second) that stops the run once it has used `budget` CPU seconds."""
+    def progress(t, _total):
+        cpu = time.process_time() - cpu_start
+        if cpu > budget:
+            raise OverBudget(t, cpu, time.perf_counter() - start)
+    return progress
+
+
+def run_cell(task, budget: float = RUN_BUDGET):
+    """(key, measured dict, None): one engine on one cell, measured where it ran. Every way
+    a run can end is a result: its status says how (the rows judge it, `judge`)."""
+    # loaded before the clock: a worker's first run would otherwise pay for the imports
+    from isorock.validate.measure import beta_errors
+    from isorock.validate.runner import resolve
+    out = {"status": "error", "message": "", "sim_s": 0.0, "loop_s": math.nan}
+    try:
+        engine, settings = resolve(task.engine, task.overrides)  # imports the engine's package
+    except Exception as e:
+        return task.key, dict(out, message=f"{type(e).__name__}: {e}", wall_s=0.0, cpu_s=0.0), None
+    start, cpu = time.perf_counter(), time.process_time()
+    try:
+        traj = engine.simulate(task.system, task.motion, settings=settings, duration=task.duration,
+                               theta0=task.theta0, progress=_watch(budget, start, cpu))
+    except OverBudget as e:
+        out.update(status="too slow", message=str(e), sim_s=e.t, loop_s=e.wall)
+    except InputError as e:  # the engine refuses this system (e.g. an isolator too stiff for it)
+        out.update(status="refused", message=str(e))
+    except Exception as e:  # an engine that raises on one cell: that cell's result
+        out.update(status="error", message=f"{type(e).__name__}: {e}")
+    else:
+        counted = traj.counted_impacts
+        out.update(status=str(traj.status), message=traj.message or "",
+                   sim_s=float(traj.t[-1]) if len(traj.t) else 0.0, loop_s=float(traj.runtime_s),
+                   impacts_counted=len(counted), beta_errors_counted=beta_errors(traj, KEPT_IMPACTS),
+                   first_impact_time=counted[0].t if counted else None,
+                   lift_off_after_impact=traj.extras.get("lift_off_max_after_impact"),
+                   pivot_slip=traj.extras.get("pivot_slip_max"))
+    out.update(wall_s=time.perf_counter() - start, cpu_s=time.process_time() - cpu)
+    return task.key, out, None
+
+
+def judge(measured: dict, ref: dict) -> tuple[str, str]:
+    """(status, note) of a run: OK only when it completed with every impact the rigid model
+    has and a finite β error; otherwise the word that says what happened."""
+    status = measured["status"]
+    if status != "completed":
+        return status, measured.get("message", "")
+    errors = judged_errors(measured, ref)
+    if errors is None:
+        return "missing impacts", (f"{measured['impacts_counted']} counted impacts; β is judged on impacts "
+                                   f"{', '.join(str(k + 1) for k in ref['judged_impacts'])} of the rigid model's "
+                                   "(the contact took the energy, or the block stopped rocking)")
+    if not all(map(math.isfinite, errors)):
+        return "unmeasured", "an impact's states could not be mapped to θ = 0 with the rigid equations"
+    return OK, ""
+
+
+def judged_errors(measured: dict, ref: dict) -> list[float] | None:
+    """β errors of the run's counted impacts in the places the reference judges; None when
+    the run has fewer counted impacts than that."""
+    errors = measured.get("beta_errors_counted") or []
+    if len(errors) <= max(ref["judged_impacts"]):
+        return None
+    return [errors[k] for k in ref["judged_impacts"]]
+
+
+def row(label: str, cell: Cell, ref: dict, measured: dict) -> dict:
+    """One CSV row: the cell, the run's status and its errors against the oracles, the cost."""
+    status, note = judge(measured, ref)
+    name, _, preset = label.partition(":")
+    system = ref["system"]
+    t1 = measured.get("first_impact_time")
+    judged = status == OK
+    errors = judged_errors(measured, ref) if judged else None
+    return {
+        "engine": label, "engine_name": name, "preset": preset or "default",
+        "slenderness": cell.slenderness, "mass_ratio": cell.mass_ratio, "height": cell.height,
+        "width": system.width, "mass": system.mass, "base": "fixed" if system.fixed_base else "isolated",
+        "status": status, "note": note,
+        "beta_closed": ref["beta_closed"],
+        # signed, the impact of largest |error|; only for a judged run (others are no error at all)
+        "beta_error": max(errors, key=abs) if errors else None,
+        "impacts_counted": measured.get("impacts_counted"), "impacts_judged": ref["impacts_expected"],
+        "first_impact_time": t1, "t1_reference": ref["t1_reference"], "t1_reference_from": ref["t1_reference_from"],
+        "t1_error": t1 / ref["t1_reference"] - 1 if judged and t1 is not None else None,
+        "sim_s": measured["sim_s"], "loop_s": measured["loop_s"], "wall_s": measured["wall_s"],
+        "cpu_s": measured["cpu_s"],
+        "lift_off_after_impact": measured.get("lift_off_after_impact"), "pivot_slip": measured.get("pivot_slip"),
+        "beta_errors": errors,
+    }
+
+
+COLUMNS = ("engine", "engine_name", "preset", "slenderness", "mass_ratio", "height", "width", "mass", "base",
+           "status", "note", "beta_closed", "beta_error", "impacts_counted", "impacts_judged", "first_impact_time",
+           "t1_reference", "t1_reference_from", "t1_error", "sim_s", "loop_s", "wall_s", "cpu_s",
+           "lift_off_after_impact", "pivot_slip")
+
+
+# --- running the atlas ------------------------------------------------------------------
+
+def default_engines() -> list[str]:
+    """Every preset of every contact engine fast enough for grids (MuJoCo, PyBullet);
+    slower ones (Drake) only by name."""
+    from isorock.validate.engines import campaign_engines, get_engine
+    out = []
+    for name in campaign_engines():
+        engine = get_engine(name)
+        if not engine.capabilities.exact_impacts:
+            out += [f"{name}:{preset}" for preset in engine.spec.presets]
+    return out
+
+
+def distinct(labels: list[str]) -> tuple[list[str], dict, dict]:
+    """(labels to run, alias → the label whose settings it shares, label → why not run): a
+    preset with the same settings as an earlier one of its engine (mujoco:newton is the
+    default) is run once; an engine that cannot be imported here is not run, with the reason."""
+    from isorock.validate.runner import resolve
+    run, aliases, skipped, seen = [], {}, {}, {}
+    for label in labels:
+        try:
+            engine, settings = resolve(label)
+        except ImportError as e:
+            skipped[label] = f"{type(e).__name__}: {e}"
+            continue
+        key = (engine.name, settings)
+        if key in seen:
+            aliases[label] = seen[key]
+        else:
+            seen[key] = label
+            run.append(label)
+    return run, aliases, skipped
+
+
+def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget: float = RUN_BUDGET,
+          progress=None, overrides: dict | None = None) -> dict:
+    """Run every engine label on every cell; the atlas as a dict (rows, summaries, verdict).
+    `overrides`: settings applied to every run that has them (a test's way to break one)."""
+    from isorock.validate.runner import Task, default_workers, run_tasks
+    labels, aliases, skipped = distinct(engines)
+    cells = grid.cells()
+    start = time.perf_counter()
+    refs = {c.key: reference(c) for c in cells}
+    # cell by cell, every preset in turn: the load of a shared machine drifts over a run, and
+    # this way it weighs on every preset alike rather than on the ones that ran late
+    tasks = [Task(key=(label, c.key), engine=label, system=refs[c.key]["system"], motion=None,
+                  duration=refs[c.key]["duration"], theta0=refs[c.key]["theta0"], overrides=dict(overrides or {}))
+             for c in cells for label in labels]
+    done = []
+
+    def on_result(key):
+        done.append(key)
+        if progress:
+            progress(len(done), len(tasks), key[0])
+    results = run_tasks(tasks, workers=default_workers() if workers is None else workers, on_result=on_result, work=partial(run_cell, budget=budget))
+    rows = [row(label, c, refs[c.key], results[(label, c.key)][0]) for label in labels for c in cells]
+    summaries = [summarize(label, [r for r in rows if r["engine"] == label]) for label in labels]
+    return {"grid": grid, "rows": rows, "presets": summaries, "verdict": verdict(summaries),
+            "aliases": aliases, "skipped": skipped, "budget_s": budget, "wall_s": time.perf_counter() - start}
+
+
+def summarize(label: str, rows: list[dict]) -> dict:
+    """One preset over the grid: how many cells were judged, what happened to the others,
+    the worst and median |β error| and |t₁ error| of the judged ones, and the cost:
+    simulated s per wall s of the engine's own stepping (Trajectory.runtime_s) summed over
+    the grid, of the whole call (scene, stepping, measuring), and per CPU s of the whole
+    call (the process's CPU time: what a loaded machine changes least)."""
+    judged = [r for r in rows if r["status"] == OK]
+    failures = {}
+    for r in rows:
+        if r["status"] != OK:
+            failures[r["status"]] = failures.get(r["status"], 0) + 1
+    worst = max(judged, key=lambda r: abs(r["beta_error"]), default=None)
+    t1 = [abs(r["t1_error"]) for r in judged if r["t1_error"] is not None]
+    sim = sum(r["sim_s"] for r in rows)
+    loop = sum(r["loop_s"] for r in rows if math.isfinite(r["loop_s"]))
+    wall = sum(r["wall_s"] for r in rows)
+    cpu = sum(r["cpu_s"] for r in rows)
+    hops = [r["lift_off_after_impact"] for r in judged if r["lift_off_after_impact"] is not None]
+    return {
+        "engine": label, "engine_name": label.partition(":")[0], "preset": label.partition(":")[2] or "default",
+        "cells": len(rows), "judged": len(judged), "failures": failures,
+        "complete": not failures and bool(rows),
+        "worst_beta_error": abs(worst["beta_error"]) if worst else None,
+        "worst_cell": _cell_text(worst) if worst else None,
+        "median_beta_error": statistics.median(abs(r["beta_error"]) for r in judged) if judged else None,
+        # by size: the step and the contact's own length scales weigh most on the smallest block
+        "worst_beta_error_by_height": {h: max((abs(r["beta_error"]) for r in judged if r["height"] == h), default=None)
+                                       for h in dict.fromkeys(r["height"] for r in rows)},
+        "worst_t1_error": max(t1) if t1 else None,
+        "sim_per_wall": sim / loop if loop > 0 else None,
+        "sim_per_wall_whole": sim / wall if wall > 0 else None,
+        "sim_per_cpu_whole": sim / cpu if cpu > 0 else None,
+        # m; the lowest corner's height after an impact: above 0 the block hopped (not the
+        # perfectly inelastic impact of model.md), which is where the largest β errors come from
+        "largest_hop": max(hops) if hops else None,
+        "sim_s": sim, "loop_s": loop, "wall_s": wall, "cpu_s": cpu,
+    }
+
+
+def qualifies(summary: dict, level: float) -> bool:
+    """Every cell judged (nothing failed, slid, overturned, missed impacts or ran out of
+    time) and the worst β error over the grid within `level`."""
+    return summary["complete"] and summary["worst_beta_error"] is not None and summary["worst_beta_error"] <= level
+
+
+def verdict(summaries: list[dict]) -> list[dict]:
+    """Per engine: the cheapest preset (most simulated s per wall s) whose worst β error
+    over the grid is within each of LEVELS, or None."""
+    out = []
+    for name in dict.fromkeys(s["engine_name"] for s in summaries):
+        mine = [s for s in summaries if s["engine_name"] == name]
+        entry = {"engine": name, "presets": len(mine), "levels": {}}
+        for level in LEVELS:
+            ok = [s for s in mine if qualifies(s, level)]
+            best = max(ok, key=lambda s: s["sim_per_wall"] or 0.0, default=None)
+            entry["levels"][f"{level:g}"] = None if best is None else {
+                "engine": best["engine"], "preset": best["preset"], "sim_per_wall": best["sim_per_wall"],
+                "worst_beta_error": best["worst_beta_error"]}
+        entry["incomplete"] = {s["engine"]: s["failures"] for s in mine if not s["complete"]}
+        out.append(entry)
+    return out
+
+
+def _cell_text(r: dict) -> str:
+    return f"λ {r['slenderness']:g}, μ {r['mass_ratio']:g}, H {r['height']:g} m"
+
+
+# --- writing it -------------------------------------------------------------------------
+
+def _pct(x, digits=3) -> str:
+    return "—" if x is None or not math.isfinite(x) else f"{100 * x:.{digits}g}%"
+
+
+def _speed(x) -> str:
+    return "—" if x is None else f"{x:.3g}"
+
+
+#: m; a corner that rises less than this after an impact rides on the contact's own
+#: compliance (MuJoCo's rest penetration moves by ~1e-5 mm), it does not hop.
+HOP_FLOOR = 1e-5
+
+
+def _hop(x) -> str:
+    return "—" if x is None else "none" if x <= HOP_FLOOR else f"{1000 * x:.2g} mm"
+
+
+def _failures_text(failures: dict) -> str:
+    return ", ".join(f"{status} in {n}" for status, n in sorted(failures.items()))
+
+
+def verdict_lines(atlas: dict) -> list[str]:
+    """The Pareto table: per engine the cheapest preset within each level, with its speed."""
+    head = "| engine | " + " | ".join(f"cheapest at ≤ {100 * lv:g}% worst β error | sim s / wall s"
+                                       for lv in LEVELS) + " |"
+    lines = [head, "|---|" + "---|---|" * len(LEVELS)]
+    for v in atlas["verdict"]:
+        cells = []
+        for lv in LEVELS:
+            best = v["levels"][f"{lv:g}"]
+            cells += ([f"{best['engine']} ({_pct(best['worst_beta_error'])})", _speed(best["sim_per_wall"])]
+                      if best else ["none", "—"])
+        lines.append(f"| {v['engine']} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def markdown(atlas: dict, *, quick: bool) -> str:
+    grid = atlas["grid"]
+    lines = ["# isorock atlas: contact models against the closed forms", "",
+             "## Verdict", "",
+             f"Per engine, the cheapest preset whose worst effective-β error over the whole grid "
+             f"({len(grid.cells())} cells{', --quick' if quick else ''}) is within 0.5% and 0.1%, and its "
+             "speed (simulated s per wall s of the engine's stepping, summed over the grid). A preset with "
+             "any cell that failed, slid, overturned, missed an impact or ran out of time does not qualify.", ""]
+    lines += verdict_lines(atlas)
+    notes = []
+    for v in atlas["verdict"]:
+        for label, failures in v["incomplete"].items():
+            notes.append(f"- {label}: {_failures_text(failures)} of {len(grid.cells())} cells (see atlas.csv)")
+    if notes:
+        lines += ["", "Presets not judged on every cell:", ""] + notes
+    lines += ["", "## Every preset", "",
+              "β error: max |β_eff/β − 1| over the impacts of each cell that peak above 0.1α in the rigid "
+              "model (the first 3 at most; matched by order among the engine's counted impacts), against the "
+              "closed form β(λ, μ); t₁ error: |t₁/t₁,ref − 1|, t₁,ref the exact integral on a "
+              "fixed base and the analytic model on an isolated one. Worst and median over the judged cells. "
+              "Speed: simulated s per wall s of the engine's stepping, and of the whole call (scene built, "
+              "history measured); per CPU s of the whole call (the process's CPU time, what other jobs on "
+              "the machine change least).", "",
+              "| preset | judged cells | worst β error (cell) | median β error | worst t₁ error | sim s / wall s "
+              "| whole call | per CPU s, whole call | largest hop after an impact | not judged |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
+    by_height = ["", "Worst β error by the block's height (judged cells):", "",
+                 "| preset | " + " | ".join(f"H {h:g} m" for h in grid.heights) + " |",
+                 "|---|" + "---|" * len(grid.heights)]
+    for s in atlas["presets"]:
+        where = f" ({s['worst_cell']})" if s["worst_cell"] else ""
+        lines.append(f"| {s['engine']} | {s['judged']}/{s['cells']} | {_pct(s['worst_beta_error'])}{where} | "
+                     f"{_pct(s['median_beta_error'])} | {_pct(s['worst_t1_error'])} | {_speed(s['sim_per_wall'])} | "
+                     f"{_speed(s['sim_per_wall_whole'])} | {_speed(s['sim_per_cpu_whole'])} | "
+                     f"{_hop(s['largest_hop'])} | "
+                     f"{_failures_text(s['failures']) or '—'} |")
+        by_height.append(f"| {s['engine']} | " + " | ".join(_pct(s["worst_beta_error_by_height"].get(h))
+                                                           for h in grid.heights) + " |")
+    lines += by_height
+    for alias, label in atlas["aliases"].items():
+        lines.append(f"\n{alias}: the same settings as {label}, not run again.")
+    for label, why in atlas["skipped"].items():
+        lines.append(f"\n{label}: not run ({why}).")
+    lines += ["", "## The grid", "",
+              f"- slenderness λ = H/B: {', '.join(f'{x:g}' for x in grid.slenderness)}",
+              f"- mass ratio μ = m/m_b: {', '.join(f'{x:g}' for x in grid.mass_ratios)} (0: a fixed base; "
+              f"isolated: T {ISOLATOR[0]:g} s, ξ {ISOLATOR[1]:g})",
+              f"- height H: {', '.join(f'{x:g}' for x in grid.heights)} m; square footprint B × B, density "
+              f"{DENSITY:.0f} kg/m³ (the paper's block)",
+              "- free rocking from θ0 = 0.5α; each run lasts 1.2 × the rigid model's last judged impact + 0.1 s",
+              f"- a run past {atlas['budget_s']:g} CPU s stops and is reported 'too slow'",
+              "", "## Figures", "",
+              "- `pareto.png`: cost (wall s per simulated s) against worst β error, per engine; presets not "
+              "judged on every cell drawn above the plot",
+              "- `map_ENGINE_PRESET.png`: signed β error (top) and t₁ error (bottom) per cell, λ across and H up, "
+              "one panel per mass ratio; grey cells were not judged (their status written in)", ""]
+    lines += [f"Atlas run in {atlas['wall_s']:.0f} s of wall time. Speeds were measured on the machine that ran it "
+              "with whatever else ran there: compare presets of one run, not runs."]
+    return "\n".join(lines) + "\n"
+
+
+def file_stem(label: str) -> str:
+    name, _, preset = label.partition(":")
+    return f"map_{name}_{preset or 'default'}"
+
+
+def write(atlas: dict, out: str, *, quick: bool) -> None:
+    """The whole folder, or nothing (validate.output)."""
+    import csv
+    import io
+
+    from isorock.validate.atlas_figures import error_map, pareto
+    from isorock.validate.output import to_json, write_folder_atomic
+    from isorock.validate.provenance import provenance
+
+    def fill(tmp):
+        (tmp / "atlas.md").write_text(markdown(atlas, quick=quick), encoding="utf-8")
+        data = {k: v for k, v in atlas.items() if k != "grid"}
+        data.update(grid=atlas["grid"].describe(), quick=quick, levels=list(LEVELS), density=DENSITY,
+                    isolator={"period": ISOLATOR[0], "damping_ratio": ISOLATOR[1]},
+                    rows=[{k: v for k, v in r.items()} for r in atlas["rows"]], provenance=provenance())
+        (tmp / "atlas.json").write_text(to_json(data) + "\n", encoding="utf-8")
+        buf = io.StringIO()
+        w = csv.DictWriter(buf, fieldnames=COLUMNS, extrasaction="ignore", lineterminator="\n")
+        w.writeheader()
+        w.writerows(atlas["rows"])
+        (tmp / "atlas.csv").write_text(buf.getvalue(), encoding="utf-8")
+        for s in atlas["presets"]:
+            error_map([r for r in atlas["rows"] if r["engine"] == s["engine"]], atlas["grid"], s,
+                      tmp / f"{file_stem(s['engine'])}.png")
+        pareto(atlas["presets"], tmp / "pareto.png", LEVELS)
+    write_folder_atomic(out, fill)
+
+
+# --- command line ------------------------------------------------------------------------
+
+DEFAULT_OUT = "isorock-atlas"
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("atlas", help="the contact-model atlas: β and t₁ error of every preset over λ × μ × size, "
+                                     "with its cost",
+                       description=__doc__.split("\n\n")[0])
+    p.add_argument("--engines", nargs="+", metavar="ENGINE[:PRESET]",
+                   help="engines or presets, space- or comma-separated; ENGINE alone is every preset of it "
+                        "(default: every preset of mujoco and bullet; drake is slow, name it, e.g. drake:tamsi)")
+    p.add_argument("--quick", action="store_true",
+                   help=f"a small grid ({len(QUICK.cells())} cells: λ {', '.join(map(str, QUICK_SLENDERNESS))}, "
+                        f"μ {', '.join(map(str, QUICK_MASS_RATIOS))}, H {', '.join(map(str, QUICK_HEIGHTS))} m) "
+                        f"instead of the full {len(FULL.cells())}")
+    p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
+                   help="folder for atlas.md, atlas.csv, atlas.json and the figures: new, empty or an earlier "
+                        "isorock output (default: %(default)s)")
+    p.add_argument("--workers", type=int, metavar="N",
+                   help="processes for the contact engines (default: 2, or the cores there are; 1: this one)")
+    p.add_argument("--run-budget", type=float, default=RUN_BUDGET, metavar="S",
+                   help="CPU seconds one run may take before it stops and counts as 'too slow' (CPU, not "
+                        "wall: other jobs on the machine do not count against it; default: %(default)g)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
+    p.set_defaults(func=cmd_atlas)
+
+
+def expand(items) -> list[str]:
+    """--engines → labels: ENGINE:PRESET as given, ENGINE alone as every preset of it;
+    an unknown engine or preset is an InputError before any work (run_cli.engine_labels)."""
+    from isorock.validate.run_cli import engine_labels
+    from isorock.validate.engines import get_engine
+    out = []
+    for label in engine_labels(items):
+        name, _, preset = label.partition(":")
+        if preset:
+            out.append(label)
+            continue
+        try:
+            out += [f"{name}:{p}" for p in get_engine(name).spec.presets]
+        except ImportError:
+            out.append(label)  # reported as not run
+    return list(dict.fromkeys(out))
+
+
+def cmd_atlas(a) -> int:
+    from isorock.validate.output import check_folder
+    from isorock.validate.progress import ProgressBar
+    engines = expand(a.engines) if a.engines else default_engines()
+    if a.workers is not None and a.workers < 1:
+        raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
+    if not (a.run_budget > 0 and math.isfinite(a.run_budget)):
+        raise InputError(f"run-budget = {a.run_budget!r}: must be a positive number of seconds")
+    check_folder(a.out)  # a folder we may not write is refused before the runs, not after
+    grid = QUICK if a.quick else FULL
+    bars = []
+
+    def progress(done, total, label):
+        if not bars:
+            bars.append(ProgressBar(total, "atlas", enabled=False if a.quiet else None))
+        bars[0].advance(done - bars[0].done, note=label)
+    atlas = build(engines, grid, workers=a.workers, budget=a.run_budget, progress=progress)
+    for bar in bars:
+        bar.close()
+    write(atlas, a.out, quick=a.quick)
+    print(f"atlas: {len(atlas['rows'])} runs ({len(atlas['presets'])} presets × {len(grid.cells())} cells) in "
+          f"{atlas['wall_s']:.0f} s; wrote {a.out}/atlas.md, atlas.csv, atlas.json and the figures")
+    print("\n".join(verdict_lines(atlas)))
+    return 0
+
+
+__all__ = ["Grid", "Cell", "FULL", "QUICK", "LEVELS", "build", "summarize", "verdict", "qualifies", "judge",
+           "reference", "run_cell", "write", "default_engines", "expand"]

@@ -1,0 +1,134 @@
+"""The atlas's figures (PNG), drawn like the report's (validate.figures: matplotlib's object
+API on the Agg canvas, each engine in its colour of every figure).
+
+    error_map   one preset: signed β error (top row) and t₁ error (bottom row) of every
+                cell, λ across and H up, one panel per mass ratio; cells that were not
+                judged are grey with their status written in
+    pareto      cost (wall s per simulated s) against worst β error over the grid, every
+                preset of every engine, each engine's Pareto front joined
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.colors import SymLogNorm
+from matplotlib.figure import Figure
+
+from isorock.validate.figures import DPI, _save, style
+
+#: Both maps share one colour scale, in %, so that two presets' maps compare by eye: a
+#: diverging map, white at 0, linear within ±LINEAR_PCT, saturating at ±SATURATE_PCT
+#: (the number in the cell is the measured one).
+LINEAR_PCT, SATURATE_PCT = 0.1, 10.0
+#: Short words for the statuses of cells that were not judged, written in the grey cell.
+SHORT = {"missing impacts": "missing", "too slow": "slow", "unmeasured": "unmeas."}
+
+
+def error_map(rows: list[dict], grid, summary: dict, path) -> None:
+    lams, mus, heights = grid.slenderness, grid.mass_ratios, grid.heights
+    fig = Figure(figsize=(2.0 + 2.3 * len(mus) + 0.4 * len(lams), 1.6 + 1.05 * len(heights) * 2))
+    # laid out by hand: a layout engine costs as much as drawing the figure, once per preset
+    fig.subplots_adjust(left=0.07, right=0.82, bottom=0.08, top=0.88, wspace=0.25, hspace=0.35)
+    axes = np.atleast_2d(fig.subplots(2, len(mus), squeeze=False))
+    norm = SymLogNorm(linthresh=LINEAR_PCT, vmin=-SATURATE_PCT, vmax=SATURATE_PCT, base=10)
+    cmap = _cmap()
+    by_cell = {(r["slenderness"], r["mass_ratio"], r["height"]): r for r in rows}
+    image = None
+    for k, (metric, what) in enumerate((("beta_error", "β error"), ("t1_error", "t₁ error"))):
+        for j, mu in enumerate(mus):
+            ax = axes[k, j]
+            values = np.full((len(heights), len(lams)), np.nan)
+            for i, h in enumerate(heights):
+                for n, lam in enumerate(lams):
+                    r = by_cell.get((lam, mu, h))
+                    v = None if r is None else r[metric]
+                    if v is not None and math.isfinite(v):
+                        values[i, n] = 100 * v
+                    word = "—" if r is None else (f"{100 * v:+.2g}" if v is not None and math.isfinite(v) else
+                                                   SHORT.get(r["status"], r["status"]) if r["status"] != "ok" else "—")
+                    ax.text(n, i, word, ha="center", va="center", fontsize=7,
+                            color="black" if v is None or abs(100 * v) < 3 else "white")
+            image = ax.imshow(values, origin="lower", cmap=cmap, norm=norm, aspect="auto")
+            ax.set_xticks(range(len(lams)), [f"{x:g}" for x in lams], fontsize=8)
+            ax.set_yticks(range(len(heights)), [f"{x:g}" for x in heights], fontsize=8)
+            base = "fixed base" if mu == 0 else f"μ = {mu:g}"
+            ax.set_title(f"{what}, {base}", fontsize=9)
+            if k == 1:
+                ax.set_xlabel("λ = H/B", fontsize=8)
+            if j == 0:
+                ax.set_ylabel("H (m)", fontsize=8)
+    bar = fig.colorbar(image, cax=fig.add_axes((0.85, 0.12, 0.018, 0.72)))
+    bar.set_label("error, % (signed; saturates at ±10%)", fontsize=8)
+    worst = summary["worst_beta_error"]
+    fig.suptitle(f"{summary['engine']}: worst |β error| "
+                 f"{'—' if worst is None else f'{100 * worst:.3g}%'} over {summary['judged']}/{summary['cells']} "
+                 f"judged cells, {_speed(summary['sim_per_wall'])} sim s / wall s", fontsize=10)
+    _save(fig, path)
+
+
+def pareto(summaries: list[dict], path, levels) -> None:
+    """Cost against worst β error; a preset that was not judged on every cell (failed,
+    slid, overturned, missed impacts, too slow) is drawn in the band above the plot with
+    an ×, never at a small error."""
+    fig = Figure(figsize=(9.5, 6.0))
+    ax = fig.subplots()
+    judged = [s for s in summaries if s["complete"] and s["worst_beta_error"] is not None and s["sim_per_wall"]]
+    errors = [100 * s["worst_beta_error"] for s in judged] + [100 * lv for lv in levels]
+    low, high = min(errors) / 2, max(errors) * 2
+    ceiling = high * 2  # the band of presets not judged on every cell, above the line at `high`
+    costs = [1 / s["sim_per_wall"] for s in summaries if s["sim_per_wall"]] or [1.0]
+    for name in dict.fromkeys(s["engine_name"] for s in summaries):
+        st = style(name)
+        mine = sorted((s for s in judged if s["engine_name"] == name), key=lambda s: 1 / s["sim_per_wall"])
+        xs = [1 / s["sim_per_wall"] for s in mine]
+        ys = [100 * s["worst_beta_error"] for s in mine]
+        ax.scatter(xs, ys, color=st["color"], marker=st["marker"], s=36, zorder=3, label=st["label"])
+        front, best = [], math.inf
+        for x, y in zip(xs, ys):  # cheapest first: a preset is on the front when nothing cheaper is as accurate
+            if y < best:
+                front.append((x, y))
+                best = y
+        if front:
+            fx, fy = zip(*front)
+            ax.step(fx, fy, where="post", color=st["color"], lw=1.2, alpha=0.8)
+        for k, (s, x, y) in enumerate(zip(mine, xs, ys)):  # labels alternate above and below: presets crowd
+            ax.annotate(s["preset"], (x, y), textcoords="offset points", xytext=(4, 3 if k % 2 == 0 else -9),
+                        fontsize=7, color=st["color"])
+        failed = sorted((s for s in summaries if s["engine_name"] == name and s not in judged and s["sim_per_wall"]),
+                        key=lambda s: s["sim_per_wall"])
+        for k, s in enumerate(failed):  # in the band, at staggered heights so that their notes can be read
+            x, y = 1 / s["sim_per_wall"], ceiling * 1.45 ** (k % 3)
+            ax.scatter([x], [y], color=st["color"], marker="x", s=36, zorder=3)
+            why = ", ".join(f"{k} {v}" for k, v in sorted(s["failures"].items()))
+            ax.annotate(f"{s['preset']}: {why}", (x, y), textcoords="offset points", xytext=(4, 2),
+                        fontsize=6, color=st["color"])
+    for level in levels:
+        ax.axhline(100 * level, color="0.5", lw=0.8, ls="--")
+        ax.text(1.0, 100 * level, f" {100 * level:g}%", transform=ax.get_yaxis_transform(), va="center",
+                fontsize=8, color="0.4")
+    ax.axhline(high, color="0.7", lw=0.6)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_ylim(low, ceiling * 4)
+    ax.set_xlim(min(costs) / 2, max(costs) * 3)
+    ax.set_xlabel("cost: wall s per simulated s (engine's stepping, summed over the grid)")
+    ax.set_ylabel("worst |β error| over the grid, %")
+    ax.set_title("Contact presets: cost against worst effective-β error (× above the line: not judged on every "
+                 "cell)", fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    _save(fig, path)
+
+
+def _cmap():
+    import matplotlib
+    return matplotlib.colormaps["RdBu_r"].with_extremes(bad="0.82")
+
+
+def _speed(x) -> str:
+    return "—" if x is None else f"{x:.3g}"
+
+
+__all__ = ["error_map", "pareto"]
