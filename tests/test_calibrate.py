@@ -88,6 +88,23 @@ def test_a_run_that_hops_after_its_impacts_has_failed_whatever_its_beta():
     assert run_case("mujoco", good, case, time_limit=0.0)[0] is None
 
 
+def test_a_run_past_its_time_limit_is_stopped_and_its_worker_replaced():
+    import time
+
+    from isorock.validate.calibrate import Case, Runner
+    from isorock.validate.engines import get_engine
+    system = paper_system(fixed_base=True)
+    settings = get_engine("mujoco").settings(timestep=2e-3)
+    endless, short = Case("long", system, 0.3, 4, 400.0), Case("short", system, 0.3, 4, 2.1)
+    with Runner("mujoco", workers=1) as runner:
+        runner.time_limit = 1.0
+        start = time.perf_counter()
+        assert runner.score(settings, [endless]).failed == 1
+        assert time.perf_counter() - start < 30
+        runner.time_limit = None
+        assert runner.score(settings, [short]).failed == 0
+
+
 @pytest.fixture(scope="module")
 def small_calibration(tmp_path_factory):
     """MuJoCo at dt 2e-3 from a bad start, a contact time constant of 12 steps, heavily

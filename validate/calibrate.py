@@ -265,49 +265,73 @@ def lift_off_limit(engine_name: str) -> float:
 
 
 class Runner:
-    """Runs sets of cases for one engine, here or in `workers` spawned processes (a
-    forked copy of a process that loaded numba's threads is not safe). `on_run()` is
-    called after each run (a progress bar). `time_limit` (s) ends a run that takes longer
-    (the search sets it from the starting settings' runs); `slowest` is the longest run
-    of the last set."""
+    """Runs sets of cases for one engine. `workers` 0: here, one after the other (the
+    tests; a run stuck inside one of an engine's chunks cannot be stopped here); n ≥ 1:
+    in n spawned worker processes (a forked copy of a process that loaded numba's threads
+    is not safe), each run stopped by killing its worker at `time_limit` (s; the search
+    sets it from the starting settings' runs: Drake's integrator can spend many minutes
+    inside one chunk at a stiff contact). `on_run()` is called after each run (a progress
+    bar); `slowest` is the longest run of the last set."""
 
-    def __init__(self, engine_name: str, workers: int = 1, on_run=None):
-        self.engine_name, self.on_run, self.pool = engine_name, on_run, None
+    def __init__(self, engine_name: str, workers: int = 0, on_run=None):
+        import multiprocessing as mp
+        self.engine_name, self.on_run = engine_name, on_run
         self.time_limit, self.slowest = None, 0.0
-        if workers > 1:
-            import multiprocessing as mp
-            from concurrent.futures import ProcessPoolExecutor
-            self.pool = ProcessPoolExecutor(max_workers=workers, mp_context=mp.get_context("spawn"))
+        self.context = mp.get_context("spawn")
+        self.workers = [_Worker(self.context) for _ in range(workers)]
 
     def score(self, settings, case_list, *, until_failure: bool = False) -> Score:
         """The Score of the runs. `until_failure`: stop at the first failed run (the rest
         count as failed too): the search's objective is PENALTY from the first one on, and
         the other runs of a bad point would cost as much as a good point's."""
-        args = (self.engine_name, settings)
-        out, self.slowest = [], 0.0
-        if self.pool is None:
-            results = (run_case(*args, c, self.time_limit) for c in case_list)
-        else:
-            futures = [self.pool.submit(run_case, *args, c, self.time_limit) for c in case_list]
-            results = (f.result() for f in futures)
-        for errors, seconds in results:
-            out.append(errors)
-            self.slowest = max(self.slowest, seconds)
+        tasks = [(self.engine_name, settings, c, self.time_limit) for c in case_list]
+        results = self._in_workers(tasks, until_failure) if self.workers else self._here(tasks, until_failure)
+        self.slowest = max((r[1] for r in results if r is not None), default=0.0)
+        return Score(tuple(None if r is None else r[0] for r in results))
+
+    def _here(self, tasks, until_failure):
+        results = [None] * len(tasks)
+        for i, task in enumerate(tasks):
+            results[i] = run_case(*task)
             self._ran()
-            if errors is None and until_failure:
+            if until_failure and results[i][0] is None:
                 break
-        if self.pool is not None:
-            for f in futures[len(out):]:
-                f.cancel()  # those not started; a running one finishes in its worker
-        return Score(tuple(out) + (None,) * (len(case_list) - len(out)))
+        return results
+
+    def _in_workers(self, tasks, until_failure):
+        from multiprocessing.connection import wait
+        results, pending, busy, failed = [None] * len(tasks), list(range(len(tasks)))[::-1], {}, False
+        while busy or (pending and not failed):
+            for w in self.workers:
+                if w not in busy and pending and not failed:
+                    i = pending.pop()
+                    w.send(tasks[i])
+                    busy[w] = (i, time.perf_counter())
+            deadlines = [start + self.time_limit for _, start in busy.values()] if self.time_limit else []
+            timeout = max(0.0, min(deadlines) - time.perf_counter()) if deadlines else None
+            ready = set(wait([w.conn for w in busy], timeout=timeout))
+            for w in list(busy):
+                i, start = busy[w]
+                elapsed = time.perf_counter() - start
+                if w.conn in ready:
+                    results[i] = w.receive(elapsed)
+                elif self.time_limit and elapsed >= self.time_limit:
+                    w.restart()  # stuck inside the engine: the run has failed
+                    results[i] = (None, elapsed)
+                else:
+                    continue
+                del busy[w]
+                self._ran()
+                failed = failed or (until_failure and results[i][0] is None)
+        return results
 
     def _ran(self):
         if self.on_run:
             self.on_run()
 
     def close(self):
-        if self.pool is not None:
-            self.pool.shutdown(wait=True, cancel_futures=True)
+        for w in self.workers:
+            w.stop()
 
     def __enter__(self):
         return self
@@ -315,6 +339,67 @@ class Runner:
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+class _Worker:
+    """One worker process serving run_case over a pipe; `restart` kills it and starts
+    another (a run cannot be stopped from outside in any other way)."""
+
+    def __init__(self, context):
+        self.context = context
+        self._start()
+
+    def _start(self):
+        self.conn, child = self.context.Pipe()
+        self.process = self.context.Process(target=_serve, args=(child,), daemon=True)
+        self.process.start()
+        child.close()
+
+    def send(self, task):
+        self.conn.send(task)
+
+    def receive(self, elapsed):
+        """The run's (errors, seconds); a worker that died gives a failed run (and is
+        replaced); a bad input in the worker is one here."""
+        try:
+            kind, value = self.conn.recv()
+        except (EOFError, OSError):
+            self.restart()
+            return None, elapsed
+        if kind == "input":
+            raise InputError(value)
+        return value
+
+    def restart(self):
+        self.stop(kill=True)
+        self._start()
+
+    def stop(self, kill: bool = False):
+        try:
+            if not kill:
+                self.conn.send(None)
+        except (OSError, ValueError):
+            pass
+        self.process.join(0 if kill else 2.0)
+        if self.process.is_alive():
+            self.process.kill()
+            self.process.join()
+        self.conn.close()
+
+
+def _serve(conn):
+    """A worker's loop: run each task it is sent, until None or its pipe closes."""
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError, KeyboardInterrupt):
+            return
+        if task is None:
+            return
+        try:
+            conn.send(("result", run_case(*task)))
+        except InputError as e:
+            conn.send(("input", str(e)))
 
 
 # --- the search ----------------------------------------------------------------------------
@@ -379,10 +464,11 @@ class _Spent(Exception):
 
 
 def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT_TILTS, impacts: int = IMPACTS,
-              max_evals: int = 48, workers: int = 1, progress=None) -> dict:
+              max_evals: int = 48, workers: int = 0, progress=None) -> dict:
     """Fit the engine's tuning to `system`; returns the settings before and after, the
-    fitted and held-out scores before and after, and the held-out change of the 2σ
-    bound with its bootstrap spread. `progress(done, total, best)` after each run."""
+    fitted and held-out scores before and after with the change of their 2σ bound and
+    its bootstrap spread. `workers`: processes for the runs (0: this one; Runner).
+    `progress(done, total, best)` after each run."""
     from isorock.validate.engines import get_engine
     engine = get_engine(engine_name)
     tuning = engine.spec.tuning
@@ -606,7 +692,8 @@ def add_parser(sub) -> None:
                    help=f"fitted tilts per base, evenly over {TILT_RANGE[0]:g}–{TILT_RANGE[1]:g}·α; the held-out "
                         "runs are the tilts halfway between them (default: %(default)s)")
     p.add_argument("--workers", type=whole_number,
-                   help="processes for the runs (default: 2, or the cores there are; 1: this one)")
+                   help="worker processes for the runs, each run stopped at its time limit (default: 2, or the "
+                        "cores there are)")
     p.add_argument("--out", metavar="FILE.toml",
                    help="write the calibrated settings as a preset file (`isorock validate --config FILE`), "
                         "when they hold on the held-out runs")
@@ -645,7 +732,7 @@ def cmd_calibrate(a) -> int:
 
         def progress(done, total, best):
             bar.total = total
-            bar.advance(done - bar.done, f"best 2σ bound {100 * best:.3f}%")
+            bar.advance(done - bar.done, f"best 2σ bound {100 * best:.3f}%" if math.isfinite(best) else "")
         r = calibrate(a.engine, system, settings=settings, n_tilts=a.tilts, max_evals=a.max_evals,
                       workers=workers, progress=progress)
         bar.advance(bar.total - bar.done)  # Nelder–Mead may converge before the budget is spent
