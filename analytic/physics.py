@@ -276,7 +276,15 @@ def pivot_force_ratio(sp, mode, theta, theta_dot, u, u_dot, xg):
         return abs(base_acceleration(sp, u, u_dot, xg)) / sp[G]
     s = float(mode)
     udd, thdd, L1 = rocking_accelerations(sp, s, theta, theta_dot, u, u_dot, xg)
-    L2 = s * sp[B_HALF] * math.cos(theta) - sp[H] * math.sin(theta)
+    return rocking_pivot_force_ratio(sp, s, theta, theta_dot, udd, thdd, xg)
+
+
+def rocking_pivot_force_ratio(sp, s, theta, theta_dot, udd, thdd, xg):
+    """pivot_force_ratio while rocking about corner s, given the accelerations ü and θ̈
+    there (rocking_accelerations'); an integrator has them from its last stage."""
+    st, ct = math.sin(theta), math.cos(theta)
+    L1 = sp[H] * ct + s * sp[B_HALF] * st
+    L2 = s * sp[B_HALF] * ct - sp[H] * st
     fx = xg + udd + thdd * L1 + theta_dot * theta_dot * L2
     fz = sp[G] + thdd * L2 - theta_dot * theta_dot * L1
     if fz <= 0.0:
