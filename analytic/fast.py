@@ -1277,6 +1277,12 @@ def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start) -> Tr
 BACKENDS = ("threads", "prange", "processes")
 
 
+def _cores() -> int:
+    """The cores this process may run on (its affinity: a container's or taskset's share),
+    the default number of workers."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+
+
 def _as_list(x, kind, name):
     if isinstance(x, kind):
         return [x]
@@ -1320,7 +1326,7 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
     systems, motions: a System / GroundMotion or sequences of them. Paired one to one
     (a single item is used for every case), or every combination with product=True
     (systems outer, motions inner). duration (s) and theta0 (rad): a number or one per
-    case (with one system and one motion, their length sets the number of cases). workers: how many threads or processes (default: all cores); 1 runs serially
+    case (with one system and one motion, their length sets the number of cases). workers: how many threads or processes (default: the cores this process may use); 1 runs serially
     in this thread. backend: "threads" (Python threads over the GIL-free kernel),
     "prange" (numba's parallel loop) or "processes".
 
@@ -1397,7 +1403,7 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
     if workers == 1 or n == 1:
         _run_cases(args, 0, n, failures)
     elif backend == "threads":
-        _batch_pool(args, workers or os.cpu_count() or 1, failures)
+        _batch_pool(args, workers or _cores(), failures)
     else:
         old = numba.get_num_threads()
         threads = min(workers or numba.config.NUMBA_NUM_THREADS, numba.config.NUMBA_NUM_THREADS)
@@ -1470,7 +1476,7 @@ def _batch_chunk(payload):
 
 def _batch_processes(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers):
     from concurrent.futures import ProcessPoolExecutor
-    workers = workers or os.cpu_count() or 1
+    workers = workers or _cores()
     n = case_sys.size
     chunks = np.array_split(np.arange(n), min(n, workers * 4))
     payloads = [(systems, motions, case_sys[c], case_mot[c], T[c], th0[c], impact_threshold, settings)
