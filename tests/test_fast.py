@@ -317,6 +317,22 @@ def test_batch_free_rocking_per_case_tilts_and_durations():
         assert row["theta_max_over_alpha"] == pytest.approx(ref.theta_max_over_alpha, abs=1e-12)
 
 
+def test_runs_that_fill_their_outputs_are_run_again_with_more_room():
+    """The kernel's outputs have a fixed size (no reallocation inside its loop); a run that
+    fills them is run again with more room. A Zeno tail of 464 impacts (a low rest floor)
+    overflows a batch run's first room (256), a coarse output grid a history's."""
+    system = System.fixed(height=2.0, width=0.4, mass=100.0)
+    settings = AnalyticSettings(rest_velocity=1e-12)
+    row = fast.simulate_batch(system, None, duration=14.0, theta0=0.5 * system.alpha, settings=settings,
+                              workers=1)[0]
+    assert row["impacts_all"] > fast._BATCH_ROOM
+    tr = fast.simulate_fast(system, None, duration=14.0, theta0=0.5 * system.alpha, settings=settings,
+                            output_dt=7.0)  # room for 261 points: every step end and event is stored
+    assert tr.t.size > 261 and len(tr.impacts) == row["impacts_all"]
+    assert tr.theta_max_over_alpha == pytest.approx(row["theta_max_over_alpha"], abs=1e-12)
+    assert tr.impacts[-1].continued is False and tr.status == row["status"] == "completed"
+
+
 def test_below_no_bounce_slenderness_matches_the_reference():
     """β ≤ 0: every impact ends rocking in both paths (a rule the random draws, λ ≥ 2,
     never reach)."""
