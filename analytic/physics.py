@@ -579,9 +579,14 @@ def _oscillator_zeros(sp, wu, wv, sigma, c0, c1, bound, h, rising, out):
         dev = 0.125 * bound * w * w
         if max(glo, ghi) + dev < 0.0 or min(glo, ghi) - dev > 0.0:
             continue  # no zero here
+        # dev = 0: g'' ≡ 0 (bound 0, the oscillator at rest), so g is the line c0 + c1·τ with
+        # one sign change at most, none if it is zero throughout; splitting a zero function
+        # would find nothing at every one of 2^78 leaves (the hang of a block at rest)
         mid = lo + 0.5 * w
-        gm, gpm = _oscillator_line(sp, wu, wv, sigma, c0, c1, mid)
-        if abs(gpm) > 0.5 * bound * w or top >= 78 or mid <= lo or mid >= hi:
+        gm, gpm = glo, 0.0
+        if dev != 0.0:
+            gm, gpm = _oscillator_line(sp, wu, wv, sigma, c0, c1, mid)
+        if dev == 0.0 or abs(gpm) > 0.5 * bound * w or top >= 78 or mid <= lo or mid >= hi:
             # g is monotone here (or the interval cannot be split further)
             if glo * ghi > 0.0 or (glo == 0.0 and ghi == 0.0):
                 continue

@@ -336,3 +336,42 @@ def test_translation_velocity_zeros_are_the_extremes_of_u(system):
     u = xs[:, 0]
     chord = u[0] + (u[-1] - u[0]) * grid / h
     assert np.max(np.abs(u - chord)) <= bound
+
+
+class _TooManyEvaluations(Exception):
+    pass
+
+
+@pytest.mark.parametrize("u0, v0, a0, a1", [(0.0, 0.0, 0.0, 0.0),  # at rest, no motion (stress's zero-motion)
+                                             (0.0, 0.0, 0.5, 0.0)])  # constant push from rest: u̇ grows, no extreme
+def test_translation_zero_search_ends_on_a_function_that_is_zero_or_constant(monkeypatch, u0, v0, a0, a1):
+    """A block at rest on an isolated base with no ground motion made the kernel hang: u̇ ≡ 0
+    over the interval, so the interval search split every half again until 78 levels deep
+    (2^78 intervals). An identically zero or linear function has no sign change to look for:
+    the search must end after a handful of evaluations and report no extreme and no uplift."""
+    q = sp(ISO)
+    calls = [0]
+    line = P._oscillator_line
+
+    def counted(*a):
+        calls[0] += 1
+        if calls[0] > 10_000:
+            raise _TooManyEvaluations
+        return line(*a)
+    monkeypatch.setattr(P, "_oscillator_line", counted)
+    zu, zv, p0, p1 = P.translation_start(q, u0, v0, a0, a1)
+    out = np.empty(4)
+    h = 0.02
+    n = P.translation_velocity_zeros(q, zu, zv, p1, h, out)
+    u, v = P.translation_state(q, zu, zv, p1, u0, v0, a0, a1, h)[:2]
+    # independent: at rest with no motion nothing moves; under a constant push from rest
+    # u̇ = −a0·τ + O(τ²) keeps its sign over a short interval, so u has no extreme inside
+    assert n == 0
+    if a0 == 0.0:
+        assert u == 0.0 and v == 0.0
+    else:
+        assert v == pytest.approx(-a0 * h, rel=0.05)
+    a_end = P.base_acceleration(q, u, v, 0.0)
+    tau, side = P.translation_uplift(q, zu, zv, a0, a1, h, ISO.uplift_acceleration, a_end)
+    assert (tau, side) == (h, 0)
+    assert calls[0] < 1000
