@@ -3,22 +3,37 @@ analytic/physics.py, which the SciPy reference path (analytic/hybrid.py, engine
 "analytic-reference") calls too; here it is compiled into the kernel. Same integrator
 and event logic as the reference, two to three orders of magnitude faster.
 
-Why it matches the reference to rounding (~1e-13 rad on Kobe) rather than only to its
-tolerance (1e-10 relative): the kernel
-is a line-by-line port of what `analytic.hybrid.simulate` asks SciPy to do, namely
-`solve_ivp(method="DOP853", dense_output=True, events=...)` restarted at every event
-and every kink of the ground motion. That includes SciPy's initial-step heuristic,
-its step-size controller, its 7th-order dense output, its rule for which events fired
-in a step (sign change between step ends, `find_active_events`) and Brent's method on
-the dense output (xtol = rtol = 4·eps). Taking the same steps, the kernel misses the
-same grazing crossings the reference misses, so the two take the same branch at every
-event, not just nearly the same one.
+Why it matches the reference to ~1e-13 rad on Kobe rather than only to its tolerance
+(1e-10 relative): the kernel is a port of what `analytic.hybrid.simulate` asks SciPy to
+do, namely `solve_ivp(method="DOP853", dense_output=True, events=...)` restarted at every
+event and every kink of the ground motion. That includes SciPy's initial-step heuristic
+(after every event), its step-size controller, its 7th-order dense output, its rule for
+which events fired in a step (sign change between step ends, `find_active_events`) and
+Brent's method on the dense output (xtol = rtol = 4·eps). Where a piece only continues
+the last one across a kink of a record (no event between them) the kernel carries on
+with the step the controller proposed and the last stage of the last step, where the
+reference starts afresh with the heuristic: two evaluations and often a step fewer per
+sample of a rocking phase, a difference in θ of ~1e-13 (the reference's own error at
+rtol 1e-10 on Kobe). Taking nearly the same steps, the kernel misses the grazing
+crossings the reference misses, so the two take the same branch at every event that the
+integrator's tolerance resolves.
 
 Speed comes from doing that work without Python: no per-step allocation, the dense
 output (3 extra stages) built only where a stored point or an event needs it, events
 evaluated on only the components they read, θ and θ̇ skipped in translation (their
-rates are zero), and a record read as one sample interval per piece (pieces restart
-at every sample). These change results only at rounding level.
+rates are zero), a record read as one sample interval per piece (pieces restart
+at every sample), and no reference counting in the loop (`_borrowed`). These change
+results only at rounding level.
+
+One place where the kernel does not port the reference: an isolated base in pure
+translation under a record is a linear oscillator driven by a piecewise-linear ẍg, and
+the kernel solves it in closed form over each sample interval (physics.translation_*:
+state, the ground's work and the dashpot's loss exact to rounding), with uplift and the
+extremes of u located on the closed form itself. That is most of a record's run on an
+isolated base, ~20 times cheaper than DOP853 steps, and it agrees with the reference to
+~1e-13 (the reference's own error at rtol 1e-10). It also finds an excursion of |a|
+past g·tanα that lies between two integrator steps, which a sign test at step ends
+(the reference) can miss. Pulses, fixed bases and rocking are integrated as before.
 
 Beyond the reference: extremes of u (u̇ = 0) are located as events too, so u_max is
 exact and those times are stored (the reference reads u_max off its stored points;
@@ -55,6 +70,8 @@ import numpy as np
 try:
     import numba
     from numba import njit, prange
+    from numba.core import types as _nbtypes
+    from numba.core.extending import intrinsic
 except ImportError as e:  # pragma: no cover - numba is a declared dependency
     raise ImportError(
         "analytic.fast needs the 'numba' package (the JIT compiler of its kernel); "
@@ -125,10 +142,12 @@ _EPS = float(np.finfo(float).eps)
 from .physics import (GRAZE_MARGIN as _GRAZE, ALPHA as _ALPHA, FIXED as _FIXED, INV_DT as _INV_DT, KIND as _KIND,  # noqa: E402
                       M_BLOCK as _M_BLOCK, M_TOTAL as _M_TOTAL, PA0 as _PA0, PA1 as _PA1, PI as _PI,
                       PIECE as _PIECE, DT as _DT, END as _END, SAMPLED as _SAMPLED, THR as _THR, SIDE_ANGLE as _SIDE,
-                      C_DAMP as _C_DAMP)
+                      C_DAMP as _C_DAMP, K as _K, INV_M as _INV_M)
 
 # statuses
 _COMPLETED, _OVERTURNED, _EVENT_LIMIT, _FAILED = 0, 1, 2, 3
+_NO_ROOM = 4  # internal: the run filled its outputs; _call_integrate runs it again with more
+_BATCH_ROOM = 256  # impacts and uplifts a batch run has room for at first
 STATUS_NAMES = (Status.COMPLETED, Status.OVERTURNED, Status.EVENT_LIMIT, Status.FAILED)
 # event slots: translation (0 lift about O, 1 lift about O', 3 u̇ = 0); rocking (0 impact,
 # 1 |θ| rising through α, 2 θ̇ = 0, 3 u̇ = 0, 4 |θ| reaching π/2). Slot 3 only on an
@@ -139,6 +158,29 @@ _N_EV = 5
 _DIRECTION = np.array([[1, 1, 0, 0, 0], [-1, 1, 0, 0, 1]], dtype=np.int64)
 
 
+# --- reference counting off the hot path ----------------------------------------------
+
+@intrinsic
+def _borrowed(typingctx, a):
+    """A view of the array `a` that numba does not reference-count (its meminfo is null,
+    so every NRT_incref/decref on it is a null test instead of an atomic add). Numba
+    increfs and decrefs an array at almost every assignment and inlined call; in the
+    kernel's step loop those atomic operations took about half of the time, and two
+    threads sharing one parameter array fought over its count's cache line. The caller
+    keeps `a` itself alive for as long as the view is used."""
+    if not isinstance(a, _nbtypes.Array):
+        return None
+
+    def codegen(context, builder, sig, args):
+        from numba.np.arrayobj import make_array, populate_array
+        src = make_array(a)(context, builder, value=args[0])
+        dst = make_array(a)(context, builder)
+        populate_array(dst, data=src.data, shape=src.shape, strides=src.strides,
+                       itemsize=src.itemsize, meminfo=None)
+        return dst._getvalue()
+    return a(a), codegen
+
+
 # --- the physics: analytic.physics, compiled --------------------------------------------
 
 def _compile_physics():
@@ -147,13 +189,18 @@ def _compile_physics():
     only call compiled functions), then wrapped with njit. Nothing is compiled here;
     numba compiles them into the kernel (inlined where small) when the kernel compiles."""
     table = dict(vars(physics))
-    inline = ("ground_acceleration", "pulse_acceleration", "translation_acceleration",
-              "rocking_accelerations", "base_acceleration")
-    for name in ("ground_acceleration", "pulse_acceleration", "translation_acceleration",
+    inline = ("ground_acceleration", "piece_acceleration", "pulse_acceleration", "translation_acceleration",
+              "rocking_accelerations", "base_acceleration", "oscillator_constants",
+              "free_vibration_change", "rocking_pivot_force_ratio")
+    for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
+                 "translation_acceleration",
                  "rocking_accelerations", "base_acceleration", "uplift_direction", "relift",
                  "impact_function_order", "impact_continues", "impact_map", "kinetic_energy",
-                 "impact_energy_loss", "pivot_force_ratio", "overturn_code", "_bisect_ricker",
-                 "_pulse_crossings", "first_uplift"):
+                 "impact_energy_loss", "pivot_force_ratio", "rocking_pivot_force_ratio", "overturn_code", "_bisect_ricker",
+                 "_pulse_crossings", "first_uplift", "oscillator_constants", "free_vibration_change",
+                 "free_vibration", "translation_start", "translation_state", "_energy_norm",
+                 "_oscillator_line", "_newton_bracket", "_oscillator_zeros", "translation_uplift",
+                 "translation_velocity_zeros", "translation_u_bound"):
         f = getattr(physics, name)
         rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
         table[name] = njit(inline="always")(rebuilt) if name in inline else njit(rebuilt)
@@ -162,6 +209,8 @@ def _compile_physics():
 
 _P = _compile_physics()
 _xg = _P["ground_acceleration"]
+_xgp = _P["piece_acceleration"]
+_record_piece = _P["record_piece"]
 _translation_acc = _P["translation_acceleration"]
 _rocking_acc = _P["rocking_accelerations"]
 _base_acc = _P["base_acceleration"]
@@ -172,14 +221,39 @@ _impact_continues = _P["impact_continues"]
 _impact_map = _P["impact_map"]
 _impact_loss = _P["impact_energy_loss"]
 _friction = _P["pivot_force_ratio"]
+_friction_rocking = _P["rocking_pivot_force_ratio"]
 _overturn_code = _P["overturn_code"]
 _first_uplift = _P["first_uplift"]
+_tr_start = _P["translation_start"]
+_tr_state = _P["translation_state"]
+_tr_uplift = _P["translation_uplift"]
+_tr_vzeros = _P["translation_velocity_zeros"]
+_tr_ubound = _P["translation_u_bound"]
+
+
+assert physics.N_SP == 19 and physics.N_MP == 14  # the tuples below
 
 
 @njit(inline="always")
-def _rhs(mode, t, y0, y1, y2, y3, sp, mp, acc):
-    """Right-hand side of (u, u̇, θ, θ̇, ground work, dashpot loss) in `mode`."""
-    xg = _xg(t, mp, acc)
+def _sp_tuple(a):
+    """The packed system parameters as a tuple: numba reference-counts an array at every
+    inlined call it is passed to (function calls that also bar the optimizer), a tuple of
+    floats never."""
+    return (a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11], a[12], a[13],
+            a[14], a[15], a[16], a[17], a[18])
+
+
+@njit(inline="always")
+def _mp_tuple(a):
+    """The packed motion parameters of the current piece as a tuple (see _sp_tuple)."""
+    return (a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11], a[12], a[13])
+
+
+@njit(inline="always")
+def _rhs(mode, t, y0, y1, y2, y3, sp, mp):
+    """Right-hand side of (u, u̇, θ, θ̇, ground work, dashpot loss) in `mode`; mp: the
+    piece's motion parameters (physics.piece_acceleration)."""
+    xg = _xgp(t, mp)
     c = sp[_C_DAMP]
     if mode == 0:
         if sp[_FIXED] != 0.0:
@@ -191,8 +265,8 @@ def _rhs(mode, t, y0, y1, y2, y3, sp, mp, acc):
 
 
 @njit
-def _eval_rhs(mode, t, y, out, sp, mp, acc):
-    r = _rhs(mode, t, y[0], y[1], y[2], y[3], sp, mp, acc)
+def _eval_rhs(mode, t, y, out, sp, mp):
+    r = _rhs(mode, t, y[0], y[1], y[2], y[3], sp, mp)
     out[0] = r[0]
     out[1] = r[1]
     out[2] = r[2]
@@ -215,19 +289,19 @@ def _impact_fun(s, theta, t, t0, kpow, limit):
     return limit
 
 
-@njit
-def _event(e, mode, t, u, ud, th, thd, sp, mp, acc, t0, kpow, limit, thr):
-    """Event slot e's function (see _DIRECTION) in `mode`; thr: the uplift threshold."""
+@njit(inline="always")
+def _event(e, mode, t, ud, th, thd, a, alpha, t0, kpow, limit, thr):
+    """Event slot e's function (see _DIRECTION) in `mode`; a: the base's absolute
+    acceleration (translation), thr: the uplift threshold. Scalars only (see _sp_tuple)."""
     if mode == 0:
         if e == 3:
             return ud
-        a = _base_acc(sp, u, ud, _xg(t, mp, acc))
         return (-a - thr) if e == 0 else (a - thr)
     s = float(mode)
     if e == 0:
         return _impact_fun(s, th, t, t0, kpow, limit)
     if e == 1:
-        return s * th - sp[_ALPHA]
+        return s * th - alpha
     if e == 2:
         return thd
     if e == 4:
@@ -260,13 +334,13 @@ def _dense_all(F, y_old, t_old, h, t, out, full):
 
 
 @njit
-def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, thr):
+def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr):
     x = (t - t_old) / h
     if mode == 0:
         if e == 3:
             return _dense1(F, y_old, x, 1)
         if sp[_FIXED] != 0.0:
-            a = _xg(t, mp, acc)
+            a = _xgp(t, mp)
         else:
             a = _base_acc(sp, _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1), 0.0)
         return (-a - thr) if e == 0 else (a - thr)
@@ -282,14 +356,14 @@ def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, t
 
 
 @njit
-def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, thr):
+def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr):
     """scipy.optimize.brentq (Zeros/brentq.c) with xtol = rtol = 4·eps, on the dense
     output, as solve_ivp's solve_event_equation calls it; fpre is f(xa)."""
     xtol = 4.0 * _EPS
     rtol = 4.0 * _EPS
     xpre, xcur = xa, xb
     xblk, fblk, spre, scur = 0.0, 0.0, 0.0, 0.0
-    fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, thr)
+    fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr)
     if fpre == 0.0:
         return xpre
     if fcur == 0.0:
@@ -338,7 +412,7 @@ def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, acc, t0, kpow, li
             xcur += scur
         else:
             xcur += delta if sbis > 0 else -delta
-        fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, acc, t0, kpow, limit, thr)
+        fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr)
     return xcur
 
 
@@ -350,7 +424,7 @@ def _rms(x0, x1, x2, x3, x4, x5):
 
 
 @njit
-def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, mp, acc):
+def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, mp):
     """scipy.integrate._ivp.common.select_initial_step for order 7."""
     interval = abs(t_bound - t0)
     if interval == 0.0:
@@ -366,7 +440,7 @@ def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, 
     h0 = min(h0, interval)
     for i in range(6):
         tmp[i] = y0[i] + h0 * f0[i]
-    _eval_rhs(mode, t0 + h0, tmp, f1, sp, mp, acc)
+    _eval_rhs(mode, t0 + h0, tmp, f1, sp, mp)
     d2 = _rms((f1[0] - f0[0]) / s0, (f1[1] - f0[1]) / s1, (f1[2] - f0[2]) / s2,
               (f1[3] - f0[3]) / s3, (f1[4] - f0[4]) / s4, (f1[5] - f0[5]) / s5) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
@@ -420,12 +494,29 @@ def _set_row(K, s, r):
 
 
 @njit(inline="always")
-def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp, acc):
+def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp):
     """One DOP853 step from (t, y) with K[0] = f(t, y) already set; fills K[1..12] and
-    y_new (rk.rk_step)."""
+    y_new (rk.rk_step). The stage sums are _stage's, written out (see _sp_tuple)."""
+    full = mode != 0
+    y0, y1, y2, y3 = y[0], y[1], y[2], y[3]
     for s in range(1, 12):
-        _stage(K, s, y, h, tmp, mode != 0)
-        _set_row(K, s, _rhs(mode, t + _C[s] * h, tmp[0], tmp[1], tmp[2], tmp[3], sp, mp, acc))
+        a0 = a1 = a2 = a3 = 0.0
+        for q in range(_A_NNZ[s]):
+            j = _A_IDX[s, q]
+            a = _A[s, j]
+            a0 += K[j, 0] * a
+            a1 += K[j, 1] * a
+            if full:
+                a2 += K[j, 2] * a
+                a3 += K[j, 3] * a
+        r = _rhs(mode, t + _C[s] * h, y0 + a0 * h, y1 + a1 * h, (y2 + a2 * h) if full else y2,
+                 (y3 + a3 * h) if full else y3, sp, mp)
+        K[s, 0] = r[0]
+        K[s, 1] = r[1]
+        K[s, 2] = r[2]
+        K[s, 3] = r[3]
+        K[s, 4] = r[4]
+        K[s, 5] = r[5]
     for i in range(6):
         if mode == 0 and (i == 2 or i == 3):
             y_new[i] = y[i]
@@ -435,7 +526,7 @@ def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp, acc):
             j = _B_IDX[0, q]
             acc_ += K[j, i] * _B[j]
         y_new[i] = y[i] + h * acc_
-    _set_row(K, 12, _rhs(mode, t + h, y_new[0], y_new[1], y_new[2], y_new[3], sp, mp, acc))
+    _set_row(K, 12, _rhs(mode, t + h, y_new[0], y_new[1], y_new[2], y_new[3], sp, mp))
 
 
 @njit(inline="always")
@@ -463,11 +554,11 @@ def _error_norm(K, h, y, y_new, rtol, atol, full):
 
 
 @njit
-def _dense_coeffs(mode, t_old, h, y_old, y_new, K, F, tmp, sp, mp, acc):
+def _dense_coeffs(mode, t_old, h, y_old, y_new, K, F, tmp, sp, mp):
     """Extra stages 13-15 and the 7 interpolant rows (DOP853._dense_output_impl)."""
     for s in range(13, 16):
         _stage(K, s, y_old, h, tmp, mode != 0)
-        _set_row(K, s, _rhs(mode, t_old + _C[s] * h, tmp[0], tmp[1], tmp[2], tmp[3], sp, mp, acc))
+        _set_row(K, s, _rhs(mode, t_old + _C[s] * h, tmp[0], tmp[1], tmp[2], tmp[3], sp, mp))
     for i in range(6):
         if mode == 0 and (i == 2 or i == 3):
             for r_ in range(7):
@@ -494,36 +585,21 @@ def _spacing(t):
     return max(math.ldexp(1.0, e - 53), 5e-324)  # subnormal t: the smallest step
 
 
-# --- growable outputs ---------------------------------------------------------------
-
-@njit
-def _grow_rows(a, n):
-    b = np.empty((max(2 * a.shape[0], 16), a.shape[1]), dtype=a.dtype)
-    b[:n] = a[:n]
-    return b
-
+# --- outputs of a fixed size ----------------------------------------------------------
+# The kernel never reallocates (an array variable reassigned inside its loop would be
+# reference-counted at every turn of it): a run that fills its room returns _NO_ROOM
+# and its caller runs it again with more (_call_integrate).
 
 @njit(inline="always")
 def _store(out_t, out_y, out_m, n, t, y, mode):
-    """Append one stored point (arrays grow by doubling); returns the arrays."""
-    if n == out_t.size:
-        out_t = _grow(out_t, n)
-        out_m = _grow(out_m, n)
-        wider = np.empty((6, out_t.size))
-        wider[:, :n] = out_y[:, :n]
-        out_y = wider
+    """Store one point at index n; False (nothing stored) when the arrays are full."""
+    if n >= out_t.size:
+        return False
     out_t[n] = t
     for i in range(6):
         out_y[i, n] = y[i]
     out_m[n] = mode
-    return out_t, out_y, out_m
-
-
-@njit
-def _grow(a, n):
-    b = np.empty(max(2 * a.size, 16), dtype=a.dtype)
-    b[:n] = a[:n]
-    return b
+    return True
 
 
 # --- the driver ---------------------------------------------------------------------
@@ -550,34 +626,66 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     amplitude, counted, kinetic energy lost (J). rule_alpha: the overturning rule
     "alpha" (else "past-alpha"); verdict: physics.overturn_code's, 0 if it survived.
     overturn_time: when |θ| last rose through α (nan if never)."""
+    # the arguments are kept alive by the caller, the scratch arrays by `own` (used at
+    # the end): every array of the loop below is a borrowed view (see _borrowed)
+    sp = _sp_tuple(sp)
+    acc = _borrowed(acc)
+    breaks = _borrowed(breaks)
     fixed = sp[_FIXED] != 0.0
-    mp = mp.copy()  # its piece slots change as the run goes
+    alpha = sp[_ALPHA]
+    own = np.zeros(mp.size + 6 + 16 * 6 + 7 * 6 + 4 * 6 + 3 * _N_EV + 4)
+    own_flags = np.zeros(3 * _N_EV, dtype=np.bool_)
+    own_ev = np.zeros(_N_EV, dtype=np.int64)
+    work = _borrowed(own)
+    flags = _borrowed(own_flags)
+    root_ev = _borrowed(own_ev)
+    o = 0
+    mp_in = mp
+    mp = work[o:o + mp_in.size]  # its piece slots change as the run goes
+    o += mp_in.size
+    mp[:] = mp_in
     mp[_PIECE] = 0.0
     mp[_INV_DT] = 1.0 / mp[_DT] if mp[_DT] > 0.0 else 0.0
-    y = y_init.copy()
+    y = work[o:o + 6]
+    o += 6
+    y[:] = y_init
     t = 0.0
-    cap = max(cap, 16)
-    out_t = np.empty(cap if history else 1)
-    out_y = np.empty((6, cap if history else 1))  # rows u, u̇, θ, θ̇, W, D
-    out_m = np.empty(cap if history else 1, dtype=np.int8)
+    cap = max(cap, 64)
+    own_t = np.empty(cap if history else 1)
+    own_y = np.empty((6, cap if history else 1))  # rows u, u̇, θ, θ̇, W, D
+    own_m = np.empty(cap if history else 1, dtype=np.int8)
+    own_imp = np.empty((cap, 9))
+    own_upl = np.empty(cap)
+    out_t = _borrowed(own_t)
+    out_y = _borrowed(own_y)
+    out_m = _borrowed(own_m)
+    imp = _borrowed(own_imp)
+    upl = _borrowed(own_upl)
+    room = True  # False: an output is full, the run stops (_NO_ROOM)
     n_out = 0
-    imp = np.empty((64, 9))
     n_imp = 0
-    upl = np.empty(64)
     n_upl = 0
-    K = np.empty((16, 6))
-    F = np.zeros((7, 6))
-    active = np.zeros(_N_EV, dtype=np.bool_)
-    use = np.zeros(_N_EV, dtype=np.bool_)
-    terminal = np.zeros(_N_EV, dtype=np.bool_)
-    tmp = np.empty(6)
-    y_new = np.empty(6)
-    f1 = np.empty(6)
-    yq = np.empty(6)
-    g_old = np.zeros(_N_EV)
-    g_new = np.zeros(_N_EV)
-    roots = np.empty(_N_EV)
-    root_ev = np.empty(_N_EV, dtype=np.int64)
+    K = work[o:o + 96].reshape((16, 6))
+    o += 96
+    F = work[o:o + 42].reshape((7, 6))
+    o += 42
+    tmp = work[o:o + 6]
+    y_new = work[o + 6:o + 12]
+    f1 = work[o + 12:o + 18]
+    yq = work[o + 18:o + 24]
+    o += 24
+    g_old = work[o:o + _N_EV]
+    g_new = work[o + _N_EV:o + 2 * _N_EV]
+    roots = work[o + 2 * _N_EV:o + 3 * _N_EV]
+    o += 3 * _N_EV
+    ext = work[o:o + 4]  # extremes of u inside a closed-form translation piece
+    # closed-form translation pieces span at most 0.1 rad of the isolator's phase (records
+    # are cut at every sample anyway; this bounds the tail after the record)
+    cf_ok = not fixed and sp[_K] > 0.0
+    cf_cap = 0.1 / math.sqrt(sp[_K] * sp[_INV_M]) if cf_ok else math.inf
+    active = flags[0:_N_EV]
+    use = flags[_N_EV:2 * _N_EV]
+    terminal = flags[2 * _N_EV:3 * _N_EV]
 
     if y[2] != 0.0:
         mode = 1 if y[2] > 0.0 else -1
@@ -600,24 +708,21 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     u_max = 0.0
     demand = 0.0
     graze = False  # a grazing uplift stayed down: re-lift only clearly above g·tanα
+    # a piece that only continues the last one across a kink of the ground motion (no
+    # event between them) starts with the step the controller proposed and the last
+    # stage of the last step (f there, the motion being continuous), not with SciPy's
+    # initial-step heuristic: it saves two evaluations and, as often as not, a step
+    carry = False
+    h_next = 0.0
     while t < T:
         while ibreak < nb and breaks[ibreak] <= t + 1e-12:
             ibreak += 1
         t1 = breaks[ibreak] if ibreak < nb else T
         s = float(mode)
         tp0 = t
-        if mp[_KIND] == _SAMPLED and acc.size > 1:
-            tm = 0.5 * (t + t1)
-            if tm > mp[_END]:
-                mp[_PIECE] = 2.0
-            elif tm >= 0.0:
-                i = min(int(tm / mp[_DT]), acc.size - 2)
-                mp[_PIECE] = 1.0
-                mp[_PI] = i
-                mp[_PA0] = acc[i]
-                mp[_PA1] = acc[i + 1]
-            else:
-                mp[_PIECE] = 0.0
+        if mp[_KIND] == _SAMPLED:
+            _record_piece(mp, acc, t, t1)
+        mpt = _mp_tuple(mp)  # the hot path reads the piece from this tuple
         if mode == 0 and fixed:
             # the state cannot change: the first uplift is found from the motion itself
             mp[_PIECE] = 0.0
@@ -626,7 +731,9 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             tq = t
             while True:  # stored points: the piece's start, grid points, its end
                 if history and (n_out == 0 or tq > out_t[n_out - 1]):
-                    out_t, out_y, out_m = _store(out_t, out_y, out_m, n_out, tq, y, 0)
+                    room = _store(out_t, out_y, out_m, n_out, tq, y, 0)
+                    if not room:
+                        break
                     n_out += 1
                 demand = max(demand, _friction(sp, 0, 0.0, 0.0, y[0], y[1], _xg(tq, mp, acc)))
                 if tq >= t_up:
@@ -634,6 +741,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 while kg * odt <= tq:
                     kg += 1
                 tq = min(kg * odt, t_up)
+            if not room:
+                break
             t = t_up
             if side != 0:
                 n_events += 1
@@ -642,7 +751,87 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     break
                 mode = side
                 if n_upl == upl.size:
-                    upl = _grow(upl, n_upl)
+                    room = False
+                    break
+                upl[n_upl] = t
+                n_upl += 1
+                peak = 0.0
+                graze = False
+            continue
+        if mode == 0 and cf_ok and mp[_PIECE] != 0.0:
+            # an isolated base in pure translation under a record: the linear oscillator in
+            # closed form over the sample interval (physics.translation_*), uplift located on it
+            t_end = min(t1, t + cf_cap)
+            # after the record's end ẍg is zero (its value at the end instant is no ramp)
+            a0 = _xgp(t, mpt) if mp[_PIECE] == 1.0 else 0.0
+            a1 = (mp[_PA1] - mp[_PA0]) * mp[_INV_DT] if mp[_PIECE] == 1.0 else 0.0
+            zu0, zv0, p0, p1 = _tr_start(sp, y[0], y[1], a0, a1)
+            thr = sp[_THR] * (1.0 + (_GRAZE if graze else 0.0))
+            u0, v0 = y[0], y[1]
+            u1, v1, dW, dD = _tr_state(sp, zu0, zv0, p1, u0, v0, a0, a1, t_end - t)
+            tau_up, side = _tr_uplift(sp, zu0, zv0, a0, a1, t_end - t, thr, _base_acc(sp, u1, v1, 0.0))
+            t_stop = t_end
+            if side != 0 and t + tau_up < t_end:
+                t_stop = t + tau_up
+                u1, v1, dW, dD = _tr_state(sp, zu0, zv0, p1, u0, v0, a0, a1, tau_up)
+            h_stop = t_stop - t
+            if history:
+                room = _store(out_t, out_y, out_m, n_out, t, y, 0)
+                if not room:
+                    break
+                n_out += 1
+            u_max = max(u_max, abs(u0))
+            demand = max(demand, _friction(sp, 0, 0.0, 0.0, u0, v0, a0))
+            n_ext = 0
+            if history or max(abs(u0), abs(u1)) + _tr_ubound(sp, zu0, zv0, h_stop) > u_max:
+                n_ext = _tr_vzeros(sp, zu0, zv0, p1, h_stop, ext)
+            kg = math.ceil(t / odt - 1e-9)
+            kr = 0
+            last_t = t
+            while True:  # grid points (history) and extremes of u inside, in order
+                tg = kg * odt
+                take_grid = history and tg < t_stop
+                take_root = kr < n_ext
+                if not take_grid and not take_root:
+                    break
+                if take_root and (not take_grid or t + ext[kr] <= tg):
+                    tq = t + ext[kr]
+                    kr += 1
+                else:
+                    tq = tg
+                    kg += 1
+                if tq <= last_t or tq >= t_stop:
+                    continue
+                uq, vq, dWq, dDq = _tr_state(sp, zu0, zv0, p1, u0, v0, a0, a1, tq - t)
+                yq[0], yq[1], yq[2], yq[3], yq[4], yq[5] = uq, vq, 0.0, 0.0, y[4] + dWq, y[5] + dDq
+                if history:
+                    room = _store(out_t, out_y, out_m, n_out, tq, yq, 0)
+                    if not room:
+                        break
+                    n_out += 1
+                last_t = tq
+                u_max = max(u_max, abs(uq))
+                demand = max(demand, _friction(sp, 0, 0.0, 0.0, uq, vq, _xgp(tq, mpt)))
+            if not room:
+                break
+            y[0], y[1], y[4], y[5] = u1, v1, y[4] + dW, y[5] + dD
+            if history and t_stop > last_t:
+                room = _store(out_t, out_y, out_m, n_out, t_stop, y, 0)
+                if not room:
+                    break
+                n_out += 1
+            u_max = max(u_max, abs(u1))
+            demand = max(demand, _friction(sp, 0, 0.0, 0.0, u1, v1, _xgp(t_stop, mpt)))
+            t = t_stop
+            if side != 0:
+                n_events += 1
+                if n_events > max_events:
+                    status = _EVENT_LIMIT
+                    break
+                mode = side
+                if n_upl == upl.size:
+                    room = False
+                    break
                 upl[n_upl] = t
                 n_upl += 1
                 peak = 0.0
@@ -656,7 +845,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
         kpow = 0
         limit = 0.0
         if mode != 0 and y[2] == 0.0:
-            kpow, limit = _impact_order(sp, s, y[0], y[1], y[3], _xg(t, mp, acc))
+            kpow, limit = _impact_order(sp, s, y[0], y[1], y[3], _xgp(t, mpt))
         mi = 0 if mode == 0 else 1
         for e in range(_N_EV):
             use[e] = not ((e == 3 and fixed) or (mode == 0 and (e == 2 or e == 4))
@@ -664,22 +853,30 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             terminal[e] = e == 0 or e == 4 or (e == 1 and (mode == 0 or rule_alpha
                                                             or (fixed and tp0 >= motion_end)))
         # piece start: f, first step, events
-        _eval_rhs(mode, t, y, tmp, sp, mp, acc)
-        for i in range(6):
-            K[0, i] = tmp[i]
-        h_abs = _initial_step(mode, t, y, tmp, t1, max_step, rtol, atol, yq, f1, sp, mp, acc)
+        if carry:
+            h_abs = h_next  # K[0] holds f at t already
+        else:
+            _eval_rhs(mode, t, y, tmp, sp, mpt)
+            for i in range(6):
+                K[0, i] = tmp[i]
+            h_abs = _initial_step(mode, t, y, tmp, t1, max_step, rtol, atol, yq, f1, sp, mpt)
+        carry = False
+        h_full = 0.0
+        a_now = _base_acc(sp, y[0], y[1], _xgp(t, mpt)) if mode == 0 else 0.0
         for e in range(_N_EV):
             if use[e]:
-                g_old[e] = _event(e, mode, t, y[0], y[1], y[2], y[3], sp, mp, acc, tp0, kpow, limit, thr)
+                g_old[e] = _event(e, mode, t, y[1], y[2], y[3], a_now, alpha, tp0, kpow, limit, thr)
         piece_out = n_out
         if history:
-            out_t, out_y, out_m = _store(out_t, out_y, out_m, n_out, t, y, mode)
+            room = _store(out_t, out_y, out_m, n_out, t, y, mode)
+            if not room:
+                break
             n_out += 1
         if mode != 0:
             peak = max(peak, abs(y[2]))
             th_max = max(th_max, abs(y[2]))
         u_max = max(u_max, abs(y[0]))
-        demand = max(demand, _friction(sp, mode, y[2], y[3], y[0], y[1], _xg(t, mp, acc)))
+        demand = max(demand, _friction(sp, mode, y[2], y[3], y[0], y[1], _xgp(t, mpt)))
         kg = math.ceil(t / odt - 1e-9)
         last_t = t
         term = -1
@@ -697,11 +894,12 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     failed = True
                     break
                 t_new = t + h_abs
-                if t_new - t1 > 0.0:
+                clipped = t_new - t1 > 0.0
+                if clipped:
                     t_new = t1
                 h = t_new - t
                 h_abs = abs(h)
-                _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp, acc)
+                _rk_step(mode, t, y, h, K, tmp, y_new, sp, mpt)
                 err = _error_norm(K, h, y, y_new, rtol, atol, mode != 0)
                 if err < 1.0:
                     if err == 0.0:
@@ -711,6 +909,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     if rejected:
                         factor = min(1.0, factor)
                     h_abs *= factor
+                    if not clipped:
+                        h_full = h_abs
                     break
                 h_abs *= max(_MIN_FACTOR, _SAFETY / math.sqrt(math.sqrt(math.sqrt(err))))
                 rejected = True
@@ -721,12 +921,13 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             # events that fired in this step (ivp.find_active_events); the dense output
             # is built once, if a root or a stored grid point needs it
             need_dense = history and kg * odt < t_new
+            a_new = _base_acc(sp, y_new[0], y_new[1], _xgp(t_new, mpt)) if mode == 0 else 0.0
             for e in range(_N_EV):
                 active[e] = False
                 if not use[e]:
                     continue
-                g_new[e] = _event(e, mode, t_new, y_new[0], y_new[1], y_new[2], y_new[3],
-                                  sp, mp, acc, tp0, kpow, limit, thr)
+                g_new[e] = _event(e, mode, t_new, y_new[1], y_new[2], y_new[3], a_new, alpha,
+                                  tp0, kpow, limit, thr)
                 d = _DIRECTION[mi, e]
                 go, gn = g_old[e], g_new[e]
                 up = go <= 0.0 and gn >= 0.0
@@ -735,7 +936,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     active[e] = True
                     need_dense = need_dense or go != 0.0
             if need_dense:
-                _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mp, acc)
+                _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mpt)
             # their roots, in time order (ivp.handle_events, np.argsort)
             n_root = 0
             for e in range(_N_EV):
@@ -745,7 +946,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 if go == 0.0:
                     r = t_old  # brentq returns the bracket end where f is zero
                 else:
-                    r = _brentq(e, mode, t_old, t_new, go, F, y, t_old, h, sp, mp, acc,
+                    r = _brentq(e, mode, t_old, t_new, go, F, y, t_old, h, sp, mpt,
                                 tp0, kpow, limit, thr)
                 k = n_root
                 while k > 0 and roots[k - 1] > r:
@@ -783,14 +984,16 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     if tq <= last_t or tq >= t_stop:
                         continue
                     _dense_all(F, y, t_old, h, tq, yq, mode != 0)
-                    out_t, out_y, out_m = _store(out_t, out_y, out_m, n_out, tq, yq, mode)
+                    room = _store(out_t, out_y, out_m, n_out, tq, yq, mode)
+                    if not room:
+                        break
                     n_out += 1
                     last_t = tq
                     if mode != 0:
                         peak = max(peak, abs(yq[2]))
                         th_max = max(th_max, abs(yq[2]))
                     u_max = max(u_max, abs(yq[0]))
-                    demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1], _xg(tq, mp, acc)))
+                    demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1], _xgp(tq, mpt)))
             else:
                 for k in range(cut):
                     if roots[k] <= t_old:
@@ -801,7 +1004,9 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                         th_max = max(th_max, abs(yq[2]))
                     u_max = max(u_max, abs(yq[0]))
                     demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1],
-                                                   _xg(roots[k], mp, acc)))
+                                                   _xgp(roots[k], mpt)))
+            if not room:
+                break
             # the step end, or the event that ends the piece
             if term >= 0 and t_stop == t_old:
                 for i in range(6):
@@ -812,14 +1017,20 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 for i in range(6):
                     yq[i] = y_new[i]
             if history and t_stop > last_t:
-                out_t, out_y, out_m = _store(out_t, out_y, out_m, n_out, t_stop, yq, mode)
+                room = _store(out_t, out_y, out_m, n_out, t_stop, yq, mode)
+                if not room:
+                    break
                 n_out += 1
                 last_t = t_stop
             if mode != 0:
                 peak = max(peak, abs(yq[2]))
                 th_max = max(th_max, abs(yq[2]))
             u_max = max(u_max, abs(yq[0]))
-            demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1], _xg(t_stop, mp, acc)))
+            if mode != 0 and term < 0:  # the step's end: its last stage has ü and θ̈ there
+                demand = max(demand, _friction_rocking(sp, s, yq[2], yq[3], K[12, 1], K[12, 3],
+                                                       _xgp(t_stop, mpt)))
+            else:
+                demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1], _xgp(t_stop, mpt)))
             t = t_stop
             for i in range(6):
                 y[i] = yq[i]
@@ -828,12 +1039,16 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 g_old[e] = g_new[e]
             if term >= 0 or finished:
                 break
+        if not room:
+            break
         if failed:
             status = _FAILED
             n_out = piece_out  # the reference drops a failed piece
             t = tp0
             break
         if term < 0:
+            carry = True
+            h_next = max(h_abs, h_full)  # a step cut short at the piece's end proposes less
             continue
         n_events += 1
         if n_events > max_events:
@@ -852,7 +1067,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             continued = _impact_continues(sp, thd_pre)
             thd_post, ud_post = _impact_map(sp, thd_pre, ud_pre, continued)
             if n_imp == imp.shape[0]:
-                imp = _grow_rows(imp, n_imp)
+                room = False
+                break
             imp[n_imp, 0] = t
             imp[n_imp, 1] = thd_pre
             imp[n_imp, 2] = thd_post
@@ -870,10 +1086,11 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 mode = -mode
             else:
                 y[3] = 0.0
-                mode = _relift(sp, y[0], y[1], _xg(t, mp, acc))
+                mode = _relift(sp, y[0], y[1], _xgp(t, mpt))
                 if mode != 0:
                     if n_upl == upl.size:
-                        upl = _grow(upl, n_upl)
+                        room = False
+                        break
                     upl[n_upl] = t
                     n_upl += 1
                     graze = False
@@ -882,17 +1099,21 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
         else:  # uplift
             mode = 1 if term == 0 else -1
             if n_upl == upl.size:
-                upl = _grow(upl, n_upl)
+                room = False
+                break
             upl[n_upl] = t
             n_upl += 1
             peak = 0.0
             graze = False
+    if not room:
+        status = _NO_ROOM
     if status == _COMPLETED and verdict == 0:
         verdict = _overturn_code(rule_alpha, y[2], sp[_ALPHA], False)
     if verdict != 0:
         status = _OVERTURNED
-    return (status, t, t_alpha, n_out, out_t, out_y, out_m, n_imp, imp, n_upl, upl, th_max, u_max,
-            verdict, demand)
+    own[0] = own_flags.size + own_ev.size  # the owners of the borrowed views live until here
+    return (status, t, t_alpha, n_out, own_t, own_y, own_m, n_imp, own_imp, n_upl, own_upl, th_max,
+            u_max, verdict, demand)
 
 
 @cached_jit(parallel=True)
@@ -903,9 +1124,14 @@ def _batch(sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys, case_mot, cas
     for n in prange(case_sys.size):
         i, j, kb = case_sys[n], case_mot[n], case_brk[n]
         try:
-            r = _integrate(sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
-                           brk_all[brk_off[kb]:brk_off[kb + 1]], T[n], y_init[n], rtol, atol, max_step,
-                           max_events, 1.0, False, 1, impact_frac, rule_alpha, motion_end[j])
+            room = _BATCH_ROOM
+            while True:
+                r = _integrate(sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
+                               brk_all[brk_off[kb]:brk_off[kb + 1]], T[n], y_init[n], rtol, atol, max_step,
+                               max_events, 1.0, False, room, impact_frac, rule_alpha, motion_end[j])
+                if r[0] != _NO_ROOM:
+                    break
+                room *= 4
             n_imp = r[7]
             out[n, 0] = r[0]
             out[n, 1] = r[11]
@@ -923,6 +1149,16 @@ def _batch(sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys, case_mot, cas
 
 
 # --- Python side: packing, the public wrapper, batches --------------------------------
+
+def _call_integrate(*args):
+    """call_kernel(_integrate, *args), run again with four times the room (args[12], `cap`)
+    while a run reports that it filled its outputs (_NO_ROOM)."""
+    while True:
+        r = call_kernel(_integrate, *args)
+        if r[0] != _NO_ROOM:
+            return r
+        args = args[:12] + (4 * args[12],) + args[13:]
+
 
 _FAILED_MESSAGE = "Required step size is less than spacing between numbers."
 _N_OUT = 10  # summary row: status, θmax, counted impacts, all impacts, uplifts,
@@ -984,7 +1220,7 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
             float(settings.atol), float(settings.max_step), int(settings.max_events), float(odt), True, cap,
             float(impact_threshold), settings.overturn == physics.AT_ALPHA, float(motion.end_time))
     try:
-        r = call_kernel(_integrate, *args)
+        r = _call_integrate(*args)
     except ArithmeticError as e:  # a failed run is a status, not a traceback
         return _failed_trajectory(system, settings, impact_threshold, start, f"{type(e).__name__}: {e}")
     return _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start)
@@ -1041,6 +1277,12 @@ def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start) -> Tr
 BACKENDS = ("threads", "prange", "processes")
 
 
+def _cores() -> int:
+    """The cores this process may run on (its affinity: a container's or taskset's share),
+    the default number of workers."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+
+
 def _as_list(x, kind, name):
     if isinstance(x, kind):
         return [x]
@@ -1084,7 +1326,7 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
     systems, motions: a System / GroundMotion or sequences of them. Paired one to one
     (a single item is used for every case), or every combination with product=True
     (systems outer, motions inner). duration (s) and theta0 (rad): a number or one per
-    case (with one system and one motion, their length sets the number of cases). workers: how many threads or processes (default: all cores); 1 runs serially
+    case (with one system and one motion, their length sets the number of cases). workers: how many threads or processes (default: the cores this process may use); 1 runs serially
     in this thread. backend: "threads" (Python threads over the GIL-free kernel),
     "prange" (numba's parallel loop) or "processes".
 
@@ -1130,15 +1372,22 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
     sps = np.stack([_system_params(s, settings) for s in systems])
     packed = [_motion_params(m) for m in motions]
     mps = np.stack([p[0] for p in packed])
-    acc_off = np.concatenate([[0], np.cumsum([p[1].size for p in packed])]).astype(np.int64)
-    acc_all = np.concatenate([p[1] for p in packed])
-    # restart times depend on the duration: one list per case (shared when they agree)
+    # a record's samples after its longest run's end are never read: leave them out
+    t_max = np.zeros(len(motions))
+    np.maximum.at(t_max, case_mot, T)
+    accs = [p[1] if m.pulse is not None or p[1].size < 2 else p[1][:int(t_max[j] / m.dt) + 3]
+            for j, (m, p) in enumerate(zip(motions, packed))]
+    acc_off = np.concatenate([[0], np.cumsum([a.size for a in accs])]).astype(np.int64)
+    acc_all = np.concatenate(accs)
+    # restart times depend on the duration and on the motion only through its sample
+    # times and end: one list per distinct (times, end, duration), shared by scaled records
     keys, brk_list, case_brk = {}, [], np.empty(n, dtype=np.int64)
     for c in range(n):
-        key = (int(case_mot[c]), float(T[c]))
+        m = motions[int(case_mot[c])]
+        key = ((m.n, m.dt) if m.pulse is None else None, m.end_time, float(T[c]))
         if key not in keys:
             keys[key] = len(brk_list)
-            brk_list.append(_breaks(motions[key[0]], key[1]))
+            brk_list.append(_breaks(m, key[2]))
         case_brk[c] = keys[key]
     brk_off = np.concatenate([[0], np.cumsum([b.size for b in brk_list])]).astype(np.int64)
     brk_all = np.concatenate(brk_list)
@@ -1154,7 +1403,7 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
     if workers == 1 or n == 1:
         _run_cases(args, 0, n, failures)
     elif backend == "threads":
-        _batch_pool(args, workers or os.cpu_count() or 1, failures)
+        _batch_pool(args, workers or _cores(), failures)
     else:
         old = numba.get_num_threads()
         threads = min(workers or numba.config.NUMBA_NUM_THREADS, numba.config.NUMBA_NUM_THREADS)
@@ -1198,10 +1447,10 @@ def _run_cases(args, lo, hi, failures):
     for n in range(lo, hi):
         i, j, kb = case_sys[n], case_mot[n], case_brk[n]
         try:
-            r = call_kernel(_integrate, sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
-                            brk_all[brk_off[kb]:brk_off[kb + 1]], float(T[n]), y_init[n], rtol, atol,
-                            max_step, max_events, 1.0, False, 1, impact_frac, rule_alpha,
-                            float(motion_end[j]))
+            r = _call_integrate(sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
+                                brk_all[brk_off[kb]:brk_off[kb + 1]], float(T[n]), y_init[n], rtol, atol,
+                                max_step, max_events, 1.0, False, _BATCH_ROOM, impact_frac, rule_alpha,
+                                float(motion_end[j]))
         except Exception as e:  # noqa: BLE001 - one case's failure is its row's status, never the batch's
             out[n, 0] = _FAILED
             out[n, 1:] = math.nan
@@ -1227,7 +1476,7 @@ def _batch_chunk(payload):
 
 def _batch_processes(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers):
     from concurrent.futures import ProcessPoolExecutor
-    workers = workers or os.cpu_count() or 1
+    workers = workers or _cores()
     n = case_sys.size
     chunks = np.array_split(np.arange(n), min(n, workers * 4))
     payloads = [(systems, motions, case_sys[c], case_mot[c], T[c], th0[c], impact_threshold, settings)
@@ -1292,9 +1541,9 @@ def benchmark_against_solve_ivp(system: System, motion: GroundMotion, *,
     kern_t = []
     for _ in range(repeats):
         a = time.perf_counter()
-        call_kernel(_integrate, sp, mp, acc, brk, duration, y0, settings.rtol, settings.atol, settings.max_step,
-                   settings.max_events, settings.output_dt, True, cap, DEFAULT_IMPACT_THRESHOLD,
-                   settings.overturn == physics.AT_ALPHA, (motion or GroundMotion.zero()).end_time)
+        _call_integrate(sp, mp, acc, brk, duration, y0, settings.rtol, settings.atol, settings.max_step,
+                        settings.max_events, settings.output_dt, True, cap, DEFAULT_IMPACT_THRESHOLD,
+                        settings.overturn == physics.AT_ALPHA, (motion or GroundMotion.zero()).end_time)
         kern_t.append(time.perf_counter() - a)
     ref_t = []
     for _ in range(reference_repeats):

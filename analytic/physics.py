@@ -24,7 +24,8 @@ import numpy as np
 # --- packed motion parameters -------------------------------------------------------
 (KIND, DT, END, AMP, OMEGA, FREQ, PEND, SCALE, SHIFT, PIECE, PI, PA0, PA1, INV_DT, N_MP) = range(15)
 # PIECE: how the current integration piece reads a record: 0 the general way,
-# 1 within one sample interval (index PI, samples PA0, PA1), 2 after the last sample
+# 1 within one sample interval (index PI, samples PA0, PA1), 2 after the last sample (PA0:
+# the value at the last sample itself); see piece_acceleration and record_piece
 SAMPLED, SINE, COSINE, RICKER = 0, 1, 2, 3
 PULSE_KIND = {"sine": SINE, "cosine": COSINE, "ricker": RICKER}
 
@@ -100,13 +101,24 @@ def pulse_acceleration(kind, amp, omega, freq, tt):
     return amp * (1.0 - 2.0 * x) * math.exp(-x)
 
 
+def piece_acceleration(t, mp):
+    """ẍg(t) in m/s² inside one integration piece, from the motion's parameters alone: a
+    closed-form pulse, or a record's piece as `record_piece` set it up (its one sample
+    interval, linear; or after the record's end, zero but at the end itself)."""
+    if int(mp[KIND]) == SAMPLED:
+        if mp[PIECE] == 2.0:
+            return mp[PA0] if t <= mp[END] else 0.0
+        f = t * mp[INV_DT] - mp[PI]
+        return (1.0 - f) * mp[PA0] + f * mp[PA1]
+    tt = t + mp[SHIFT]
+    if tt < 0.0 or tt > mp[PEND]:
+        return 0.0
+    return mp[SCALE] * pulse_acceleration(int(mp[KIND]), mp[AMP], mp[OMEGA], mp[FREQ], tt)
+
+
 def ground_acceleration(t, mp, acc):
     """ẍg(t) in m/s² (GroundMotion.at): records linearly interpolated, zero outside."""
-    if int(mp[KIND]) == SAMPLED:
-        piece = mp[PIECE]
-        if piece == 1.0:  # a piece lies within one sample interval: no search
-            f = t * mp[INV_DT] - mp[PI]
-            return (1.0 - f) * mp[PA0] + f * mp[PA1]
+    if int(mp[KIND]) == SAMPLED and mp[PIECE] == 0.0:
         if t < 0.0 or t > mp[END]:
             return 0.0
         n = acc.size
@@ -116,10 +128,25 @@ def ground_acceleration(t, mp, acc):
         i = min(int(x), n - 2)
         f = x - i
         return (1.0 - f) * acc[i] + f * acc[i + 1]
-    tt = t + mp[SHIFT]
-    if tt < 0.0 or tt > mp[PEND]:
-        return 0.0
-    return mp[SCALE] * pulse_acceleration(int(mp[KIND]), mp[AMP], mp[OMEGA], mp[FREQ], tt)
+    return piece_acceleration(t, mp)
+
+
+def record_piece(mp, acc, t0, t1):
+    """Set mp's piece slots (PIECE, PI, PA0, PA1) for an integration piece [t0, t1] of a
+    record that lies within one sample interval or after the record's end (pieces restart
+    at every sample), so that piece_acceleration reads it without the samples."""
+    n = acc.size
+    tm = 0.5 * (t0 + t1)
+    if tm > mp[END] or n < 2:
+        mp[PIECE] = 0.0
+        mp[PA0] = ground_acceleration(mp[END], mp, acc)  # the value at the end itself
+        mp[PIECE] = 2.0
+    else:
+        i = min(int(tm / mp[DT]), n - 2)
+        mp[PIECE] = 1.0
+        mp[PI] = i
+        mp[PA0] = acc[i]
+        mp[PA1] = acc[i + 1]
 
 
 # --- equations of motion -----------------------------------------------------------------
@@ -249,7 +276,15 @@ def pivot_force_ratio(sp, mode, theta, theta_dot, u, u_dot, xg):
         return abs(base_acceleration(sp, u, u_dot, xg)) / sp[G]
     s = float(mode)
     udd, thdd, L1 = rocking_accelerations(sp, s, theta, theta_dot, u, u_dot, xg)
-    L2 = s * sp[B_HALF] * math.cos(theta) - sp[H] * math.sin(theta)
+    return rocking_pivot_force_ratio(sp, s, theta, theta_dot, udd, thdd, xg)
+
+
+def rocking_pivot_force_ratio(sp, s, theta, theta_dot, udd, thdd, xg):
+    """pivot_force_ratio while rocking about corner s, given the accelerations ü and θ̈
+    there (rocking_accelerations'); an integrator has them from its last stage."""
+    st, ct = math.sin(theta), math.cos(theta)
+    L1 = sp[H] * ct + s * sp[B_HALF] * st
+    L2 = s * sp[B_HALF] * ct - sp[H] * st
     fx = xg + udd + thdd * L1 + theta_dot * theta_dot * L2
     fz = sp[G] + thdd * L2 - theta_dot * theta_dot * L1
     if fz <= 0.0:
@@ -388,3 +423,240 @@ def first_uplift(sp, mp, acc, t0, t1, margin):
         return t1, 0
     a = mp[SCALE] * pulse_acceleration(kind, mp[AMP], omega, mp[FREQ], min(best + 1e-12 / mp[FREQ], pend))
     return max(tc, t0), (1 if a < 0.0 else -1)
+
+
+# --- pure translation of an isolated base, in closed form ----------------------------------
+#
+# In pure translation an isolated base is a linear oscillator, ü + 2ζω u̇ + ω² u = −ẍg, and a
+# record is linear within each sample interval, ẍg = a0 + a1·τ (τ from the interval's start
+# or any later instant in it). There the motion is exact in closed form (Nigam & Jennings
+# 1969): u = z_u + P0 + P1·τ with the particular P1 = −a1/ω², P0 = −(a0 + 2ζω P1)/ω² and
+# z = (z_u, z_v = u̇ − P1) a free vibration, z' = A z, A = [[0, 1], [−ω², −2ζω]]. The base's
+# absolute acceleration is a = ẍg + ż_v = a0 + a1 τ + (A z)_v, so uplift (|a| > g·tanα) is
+# a root of a damped sinusoid plus a line, which `translation_uplift` finds to rounding
+# from the closed form itself: no crossing can hide between integrator steps.
+#
+# Bounds used to skip root searches: along a free vibration the energy norm
+# ‖z‖ = √(z_v² + ω² z_u²) never grows (d/dτ of ½‖z‖² is −2ζω z_v² ≤ 0), and Aᵏz is a free
+# vibration too, so |(Aᵏz(τ))_v| ≤ ‖Aᵏz(0)‖ over the whole interval.
+
+def oscillator_constants(sp):
+    """(ζω, ω², ω² − (ζω)²) of an isolated base in pure translation: ζω = c/(2M), ω² = k/M;
+    the last is the damped frequency squared (negative when over-damped)."""
+    a = 0.5 * sp[C_DAMP] * sp[INV_M]
+    w2 = sp[K] * sp[INV_M]
+    return a, w2, w2 - a * a
+
+
+def free_vibration_change(sp, zu, zv, tau):
+    """(Δz_u, Δz_v): how much the free oscillator z' = A z moves in τ ≥ 0 from (zu, zv).
+    z(τ) = e^(−ζωτ) [C·z + S·(A + ζω I) z], C = cos qτ, S = sin(qτ)/q with q² = ω² − (ζω)²
+    (cosh and sinh when over-damped, 1 and τ when critically damped); the change is formed
+    as (e^(−ζωτ)C − 1)·z + e^(−ζωτ)S·(A + ζω I) z with expm1 and half angles, so that it is
+    exact to rounding relative to itself however short τ is."""
+    a, w2, q2 = oscillator_constants(sp)
+    em1 = math.expm1(-a * tau)
+    if q2 > 0.0:
+        q = math.sqrt(q2)
+        sh = math.sin(0.5 * q * tau)
+        ch = math.cos(0.5 * q * tau)
+        cm1 = -2.0 * sh * sh
+        s = 2.0 * sh * ch / q
+    elif q2 < 0.0:
+        q = math.sqrt(-q2)
+        sh = math.sinh(0.5 * q * tau)
+        ch = math.cosh(0.5 * q * tau)
+        cm1 = 2.0 * sh * sh
+        s = 2.0 * sh * ch / q
+    else:
+        cm1 = 0.0
+        s = tau
+    ecm1 = em1 + cm1 + em1 * cm1  # e^(−ζωτ)·C − 1
+    es = (1.0 + em1) * s
+    return ecm1 * zu + es * (a * zu + zv), ecm1 * zv - es * (w2 * zu + a * zv)
+
+
+def free_vibration(sp, zu, zv, tau):
+    """(z_u, z_v) of the free oscillator z' = A z, A = [[0, 1], [−ω², −2ζω]], after τ ≥ 0
+    from (zu, zv) (free_vibration_change)."""
+    du, dv = free_vibration_change(sp, zu, zv, tau)
+    return zu + du, zv + dv
+
+
+def translation_start(sp, u0, v0, a0, a1):
+    """(z_u, z_v, P0, P1) at the start of a closed-form interval from (u, u̇) and ẍg = a0 + a1·τ:
+    the particular solution u_p = P0 + P1·τ and the free vibration z = (u − P0, u̇ − P1)."""
+    a, w2, q2 = oscillator_constants(sp)
+    p1 = -a1 / w2
+    p0 = -(a0 + 2.0 * a * p1) / w2
+    return u0 - p0, v0 - p1, p0, p1
+
+
+def translation_state(sp, zu0, zv0, p1, u0, v0, a0, a1, tau):
+    """(u, u̇, ΔW, ΔD) τ seconds into a closed-form interval that starts at (u0, u̇0) with
+    translation_start's z and P1: u = u0 + Δz_u + P1·τ, u̇ = u̇0 + Δz_v; ΔW = −M ∫ ẍg u̇ dτ,
+    the ground's work, and ΔD = c ∫ u̇² dτ, the dashpot's loss, both in closed form
+    (∫z_u = −(2ζω Δz_u + Δz_v)/ω², and c ∫z_v² = −M·Δ(½z_v² + ½ω² z_u²), the free
+    vibration's energy decay)."""
+    a, w2, q2 = oscillator_constants(sp)
+    dzu, dzv = free_vibration_change(sp, zu0, zv0, tau)
+    du = dzu + p1 * tau
+    u = u0 + du
+    v = v0 + dzv
+    # ∫ (u − u0) dτ = ∫ (z_u − z_u0) dτ + P1 τ²/2
+    int_du = -(2.0 * a * dzu + dzv) / w2 - zu0 * tau + 0.5 * p1 * tau * tau
+    dW = -sp[M_TOTAL] * (a0 * du + a1 * (tau * du - int_du))
+    if sp[C_DAMP] == 0.0:
+        dD = 0.0
+    else:
+        drop = -0.5 * dzv * (2.0 * zv0 + dzv) - 0.5 * w2 * dzu * (2.0 * zu0 + dzu)
+        dD = sp[M_TOTAL] * drop + sp[C_DAMP] * p1 * (2.0 * dzu + p1 * tau)
+    return u, v, dW, dD
+
+
+def _energy_norm(w2, zu, zv):
+    return math.sqrt(zv * zv + w2 * zu * zu)
+
+
+def _oscillator_line(sp, wu, wv, sigma, c0, c1, tau):
+    """g(τ) = σ·(e^(Aτ) w)_v + c0 + c1·τ and g'(τ) = σ·(A e^(Aτ) w)_v + c1."""
+    a, w2, q2 = oscillator_constants(sp)
+    zu, zv = free_vibration(sp, wu, wv, tau)
+    return sigma * zv + c0 + c1 * tau, sigma * (-w2 * zu - 2.0 * a * zv) + c1
+
+
+def _newton_bracket(sp, wu, wv, sigma, c0, c1, lo, hi, glo, ghi):
+    """The zero of g (see _oscillator_line) in [lo, hi], where g is monotone and changes
+    sign (glo·ghi ≤ 0): Newton's method kept inside a shrinking bracket (bisection when a
+    step leaves it or stalls), to the spacing of floats."""
+    if glo == 0.0:
+        return lo
+    if ghi == 0.0:
+        return hi
+    rising = ghi > 0.0
+    x = lo - glo * (hi - lo) / (ghi - glo)  # secant start
+    if not (lo < x < hi):
+        x = 0.5 * (lo + hi)
+    for _ in range(100):
+        g, gp = _oscillator_line(sp, wu, wv, sigma, c0, c1, x)
+        if g == 0.0:
+            return x
+        if (g > 0.0) == rising:
+            hi = x
+        else:
+            lo = x
+        if hi - lo <= 4.0 * 2.220446049250313e-16 * max(abs(lo), abs(hi)) or hi - lo < 5e-324 * 4:
+            break
+        nx = x - g / gp if gp != 0.0 else 0.5 * (lo + hi)
+        if not (lo < nx < hi) or abs(nx - x) > 0.5 * (hi - lo):
+            nx = 0.5 * (lo + hi)
+        if nx == x:
+            break
+        x = nx
+    return x
+
+
+def _oscillator_zeros(sp, wu, wv, sigma, c0, c1, bound, h, rising, out):
+    """Zeros of g(τ) = σ·(e^(Aτ) w)_v + c0 + c1·τ in [0, h], in increasing order, up to
+    out.size of them (rising: only the first at which g rises through 0, counting g(0) = 0
+    rising). bound ≥ sup |g''| on [0, h]. Intervals are split until g is provably of one
+    sign there (its chord ± bound·w²/8) or monotone (|g'| at the middle > bound·w/2), so
+    every sign change is found, however briefly g crosses. Returns how many."""
+    n = 0
+    lo_s = np.empty(80)
+    hi_s = np.empty(80)
+    glo_s = np.empty(80)
+    ghi_s = np.empty(80)
+    g0 = _oscillator_line(sp, wu, wv, sigma, c0, c1, 0.0)[0]
+    gh = _oscillator_line(sp, wu, wv, sigma, c0, c1, h)[0]
+    lo_s[0], hi_s[0], glo_s[0], ghi_s[0] = 0.0, h, g0, gh
+    top = 1
+    last = -1.0
+    while top > 0:
+        top -= 1
+        lo, hi, glo, ghi = lo_s[top], hi_s[top], glo_s[top], ghi_s[top]
+        w = hi - lo
+        dev = 0.125 * bound * w * w
+        if max(glo, ghi) + dev < 0.0 or min(glo, ghi) - dev > 0.0:
+            continue  # no zero here
+        # dev = 0: g'' ≡ 0 (bound 0, the oscillator at rest), so g is the line c0 + c1·τ with
+        # one sign change at most, none if it is zero throughout; splitting a zero function
+        # would find nothing at every one of 2^78 leaves (the hang of a block at rest)
+        mid = lo + 0.5 * w
+        gm, gpm = glo, 0.0
+        if dev != 0.0:
+            gm, gpm = _oscillator_line(sp, wu, wv, sigma, c0, c1, mid)
+        if dev == 0.0 or abs(gpm) > 0.5 * bound * w or top >= 78 or mid <= lo or mid >= hi:
+            # g is monotone here (or the interval cannot be split further)
+            if glo * ghi > 0.0 or (glo == 0.0 and ghi == 0.0):
+                continue
+            if rising and not (ghi > glo):
+                continue
+            x = _newton_bracket(sp, wu, wv, sigma, c0, c1, lo, hi, glo, ghi)
+            if x <= last:
+                continue  # found already, at the end of the interval before
+            out[n] = x
+            n += 1
+            last = x
+            if rising or n == out.size:
+                return n
+            continue
+        # split: the left half is examined first
+        lo_s[top], hi_s[top], glo_s[top], ghi_s[top] = mid, hi, gm, ghi
+        lo_s[top + 1], hi_s[top + 1], glo_s[top + 1], ghi_s[top + 1] = lo, mid, glo, gm
+        top += 2
+    return n
+
+
+def translation_uplift(sp, zu0, zv0, a0, a1, h, thr, a_end):
+    """(τ, s): the first τ in [0, h] at which the base's absolute acceleration a(τ) =
+    a0 + a1·τ + (A z(τ))_v reaches −thr (s = 1, lifting about O) or +thr (s = −1, about O')
+    from inside the band, in the closed form of a translation interval; (h, 0) if none.
+    Already beyond the threshold at τ = 0 lifts at 0. a_end: a(h), as the caller has it
+    from the end state (base_acceleration); it only lets the search be skipped when both
+    ends lie clearly inside the band, by more than a's largest bow over the interval."""
+    a, w2, q2 = oscillator_constants(sp)
+    wu, wv = zv0, -w2 * zu0 - 2.0 * a * zv0  # w = A z
+    a2u, a2v = wv, -w2 * wu - 2.0 * a * wv
+    a3u, a3v = a2v, -w2 * a2u - 2.0 * a * a2v
+    bound = _energy_norm(w2, a3u, a3v)  # ≥ |a''| on the interval
+    bow = 0.125 * bound * h * h
+    a_start = a0 + wv
+    best, side = h, 0
+    for k in range(2):
+        sigma = -1.0 if k == 0 else 1.0  # k = 0: a < −thr lifts about O (s = 1)
+        g0 = sigma * a_start - thr
+        if g0 > 0.0:
+            return 0.0, (1 if k == 0 else -1)
+        if max(g0, sigma * a_end - thr) + bow < -1e-12 * thr:
+            continue  # the common case: far inside the band
+        zs = np.empty(1)
+        if (_oscillator_zeros(sp, wu, wv, sigma, sigma * a0 - thr, sigma * a1, bound, h, True, zs)
+                and zs[0] < best):
+            best, side = zs[0], (1 if k == 0 else -1)
+    return best, side
+
+
+def translation_velocity_zeros(sp, zu0, zv0, p1, h, out):
+    """Times τ in (0, h) at which u̇ = z_v(τ) + P1 vanishes (the extremes of u) in a
+    closed-form translation interval, in order, up to out.size; returns how many."""
+    a, w2, q2 = oscillator_constants(sp)
+    a1u, a1v = zv0, -w2 * zu0 - 2.0 * a * zv0
+    a2u, a2v = a1v, -w2 * a1u - 2.0 * a * a1v
+    bound = _energy_norm(w2, a2u, a2v)
+    m = _oscillator_zeros(sp, zu0, zv0, 1.0, p1, 0.0, bound, h, False, out)
+    n = 0
+    for i in range(m):  # the ends are stored and measured anyway
+        if 0.0 < out[i] < h:
+            out[n] = out[i]
+            n += 1
+    return n
+
+
+def translation_u_bound(sp, zu0, zv0, h):
+    """A bound on how far |u| can exceed the chord of its end values over a closed-form
+    interval of length h: |ü| ≤ ‖A² z(0)‖/ω, so the excess is at most that·h²/8."""
+    a, w2, q2 = oscillator_constants(sp)
+    a1u, a1v = zv0, -w2 * zu0 - 2.0 * a * zv0
+    a2u, a2v = a1v, -w2 * a1u - 2.0 * a * a1v
+    return 0.125 * h * h * _energy_norm(w2, a2u, a2v) / math.sqrt(w2)

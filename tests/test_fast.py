@@ -128,6 +128,66 @@ def test_kobe_isolated_history(kobe_at2):
     assert got.energy.relative_residual < 1e-8
 
 
+def random_record(seed, duration=6.0, dt=0.02):
+    """Band-limited noise (0.5–8 Hz) sampled every dt, as a record (m/s²), unscaled."""
+    rng = np.random.default_rng(seed)
+    n = int(duration / dt) + 1
+    spec = np.fft.rfft(rng.standard_normal(4 * n))
+    f = np.fft.rfftfreq(4 * n, dt)
+    spec[(f < 0.5) | (f > 8.0)] = 0.0
+    x = np.fft.irfft(spec)[:n] * np.hanning(n)
+    return x / np.max(np.abs(x))
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_records_on_isolated_bases_match_reference(seed):
+    """On an isolated base under a record the kernel solves pure translation in closed form
+    (physics.translation_*) where the reference integrates it with DOP853: uplifts, impacts,
+    θmax and the energy balance agree to the reference's tolerance."""
+    rng = np.random.default_rng(100 + seed)
+    system = System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0 / rng.uniform(0.5, 2),
+                             period=rng.uniform(0.8, 2.5), damping_ratio=[0.0, 0.15, 1.2][seed - 1])
+    acc = random_record(seed)
+    base = GroundMotion.from_array(acc, dt=0.02)
+    # the smallest of a few scales at which the base's response lifts the block
+    for amp in (2.0, 3.0, 4.5, 7.0, 10.0):
+        motion = GroundMotion.from_array(acc * amp * system.uplift_acceleration, dt=base.dt, name=f"noise {seed}")
+        if fast.simulate_batch(system, motion, duration=8.0, workers=1)[0]["uplifts"]:
+            break
+    ref = simulate(system, motion, duration=8.0)
+    got = fast.simulate_fast(system, motion, duration=8.0)
+    assert ref.uplifts >= 1, "the draw should rock"
+    assert got.status == ref.status
+    np.testing.assert_allclose(got.uplift_times, ref.uplift_times, atol=1e-9)
+    assert [i.counted for i in got.impacts] == [i.counted for i in ref.impacts]
+    assert got.theta_max_over_alpha == pytest.approx(ref.theta_max_over_alpha, abs=TOL["theta_max_over_alpha"][0])
+    assert grid_theta_error(got, ref) <= TOL["theta_history"][0]
+    assert got.u_max == pytest.approx(ref.u_max, rel=TOL["u_max_relative"][0])
+    assert got.energy.relative_residual < 1e-8
+
+
+def test_isolated_base_lifts_at_a_brief_excursion_between_steps():
+    """Free vibration of an isolated base (a record of zeros, a starting u, u̇) whose base
+    acceleration exceeds g·tanα by 1e-7 for ~0.2 ms around t = 7.1 ms: the closed form finds
+    the crossing where a sign test at integrator steps would have to land inside the window.
+    The crossing is found independently by brentq on the matrix exponential."""
+    from scipy.linalg import expm
+    from scipy.optimize import brentq
+    system = paper_system()
+    M, c, k = system.total_mass, system.damping, system.stiffness
+    thr = system.uplift_acceleration
+    A = np.array([[0.0, 1.0], [-k / M, -c / M]])
+    peak = np.linalg.solve(np.array([[-k / M, -c / M], [c * k / M**2, -k / M + c * c / M**2]]),
+                           [-(1 + 1e-7) * thr, 0.0])
+    x0 = expm(-A * 0.0071) @ peak
+    acc = lambda t: -(c * (expm(A * t) @ x0)[1] + k * (expm(A * t) @ x0)[0]) / M  # noqa: E731
+    want = brentq(lambda t: -acc(t) - thr, 0.0, 0.0071, xtol=1e-16)
+    zeros = GroundMotion.from_array(np.zeros(11), dt=0.02)
+    got = fast.simulate_fast(system, zeros, duration=0.2, u0=float(x0[0]), u_dot0=float(x0[1]))
+    assert got.uplifts >= 1 and got.uplift_times[0] == pytest.approx(want, abs=1e-12)
+    assert got.mode[got.mode != 0][0] == 1  # about O: the base accelerates backwards
+
+
 def test_output_points_cover_the_grid():
     system, motion = draw_cases(3, 1)[0]
     got = fast.simulate_fast(system, motion, duration=1.0, output_dt=0.01)
@@ -255,6 +315,22 @@ def test_batch_free_rocking_per_case_tilts_and_durations():
         ref = simulate(system, None, duration=T, theta0=th0)
         assert row["impacts"] == ref.impact_count and row["duration"] == pytest.approx(T)
         assert row["theta_max_over_alpha"] == pytest.approx(ref.theta_max_over_alpha, abs=1e-12)
+
+
+def test_runs_that_fill_their_outputs_are_run_again_with_more_room():
+    """The kernel's outputs have a fixed size (no reallocation inside its loop); a run that
+    fills them is run again with more room. A Zeno tail of 464 impacts (a low rest floor)
+    overflows a batch run's first room (256), a coarse output grid a history's."""
+    system = System.fixed(height=2.0, width=0.4, mass=100.0)
+    settings = AnalyticSettings(rest_velocity=1e-12)
+    row = fast.simulate_batch(system, None, duration=14.0, theta0=0.5 * system.alpha, settings=settings,
+                              workers=1)[0]
+    assert row["impacts_all"] > fast._BATCH_ROOM
+    tr = fast.simulate_fast(system, None, duration=14.0, theta0=0.5 * system.alpha, settings=settings,
+                            output_dt=7.0)  # room for 261 points: every step end and event is stored
+    assert tr.t.size > 261 and len(tr.impacts) == row["impacts_all"]
+    assert tr.theta_max_over_alpha == pytest.approx(row["theta_max_over_alpha"], abs=1e-12)
+    assert tr.impacts[-1].continued is False and tr.status == row["status"] == "completed"
 
 
 def test_below_no_bounce_slenderness_matches_the_reference():
