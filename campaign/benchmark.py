@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import sys
 import time
@@ -65,7 +64,9 @@ def _kobe():
     return read_at2(path)
 
 
-def bench_kobe(n):
+def bench_kobe(n, repeats=5):
+    """Runs per second of the batch kernel over n runs (n/2 scalings of Kobe per base),
+    `repeats` times in this process: the median and the range."""
     from isorock.analytic.fast import simulate_batch
     from isorock.analytic.system import paper_system
     kobe = _kobe()
@@ -73,12 +74,15 @@ def bench_kobe(n):
     motions = [kobe.scaled(f) for f in np.linspace(0.5, 1.0, n // 2)]
     simulate_batch(systems[0], motions[0], duration=1.0)  # load the kernel
     for label, sys_ in (("isolated T 1.5 s ξ 0.2", systems[0]), ("fixed", systems[1])):
-        t = time.perf_counter()
-        rows = simulate_batch(sys_, motions, duration=40.0)
-        dt = time.perf_counter() - t
-        _emit(what=f"analytic batch, Kobe 40 s, paper block {label}", runs=len(rows), seconds=round(dt, 3),
-              runs_per_second=round(len(rows) / dt, 1),
-              overturned=sum(r["overturned"] for r in rows))
+        rates, load = [], round(os.getloadavg()[0], 2)
+        for _ in range(repeats):
+            t = time.perf_counter()
+            rows = simulate_batch(sys_, motions, duration=40.0)
+            rates.append(len(rows) / (time.perf_counter() - t))
+        _emit(what=f"analytic batch, Kobe 40 s, paper block {label}", runs=len(rows), repeats=repeats,
+              runs_per_second_median=round(float(np.median(rates)), 1),
+              runs_per_second_range=[round(min(rates), 1), round(max(rates), 1)],
+              overturned=sum(r["overturned"] for r in rows), load_1min=[load, round(os.getloadavg()[0], 2)])
 
 
 def _contact_cases(n):
@@ -112,13 +116,13 @@ def _timed(fn):
     return time.perf_counter() - wall, _tree_cpu() - cpu
 
 
-def bench_contact(n, workers, repeats=3):
+def bench_contact(n, workers, repeats=5):
     """Wall and CPU time of three ways to make the same n runs: one at a time
     (Engine.simulate in a loop, what a script would do), a campaign on a LocalCluster of
     `workers` processes, and the serial campaign path (MuJoCo's runs side by side in
-    threads). Interleaved `repeats` times; the fastest of each is kept, since on a shared
-    machine the others' load only ever adds time. CPU seconds (of every process involved)
-    say what each way costs whatever the load."""
+    threads). Interleaved `repeats` times: medians, with the fastest wall beside them
+    (on a shared machine the others' load only ever adds time). CPU seconds (of every
+    process involved) say what each way costs whatever the load."""
     from isorock.validate.engines import get_engine
     from .execute import close_client, local_client
     from .run import run_cases
@@ -138,22 +142,25 @@ def bench_contact(n, workers, repeats=3):
                     "campaign_cluster": lambda: run_cases(cases, [name], client=client,
                                                           contact_chunk=max(1, n // (2 * workers))),
                     "campaign_serial_threads": lambda: run_cases(cases, [name])}
-            best = {k: (math.inf, math.inf) for k in ways}
+            times = {k: [] for k in ways}
             load = [round(os.getloadavg()[0], 2)]
             for _ in range(repeats):
                 for k, fn in ways.items():
-                    wall, cpu = _timed(fn)
-                    best[k] = (min(best[k][0], wall), min(best[k][1], cpu))
+                    times[k].append(_timed(fn))
             load.append(round(os.getloadavg()[0], 2))
-            one = best["one_at_a_time"][0]
-            _emit(what=f"{name}: {n} runs of 3 s, best of {repeats}", workers=workers, load_1min=load,
-                  **{f"{k}_s": round(w, 2) for k, (w, _) in best.items()},
-                  **{f"{k}_cpu_s": round(c, 2) for k, (_, c) in best.items()},
+            # medians of the interleaved repeats (wall and CPU each), and the fastest wall
+            med = {k: (float(np.median([w for w, _ in v])), float(np.median([c for _, c in v])))
+                   for k, v in times.items()}
+            one = med["one_at_a_time"][0]
+            _emit(what=f"{name}: {n} runs of 3 s, median of {repeats}", workers=workers, load_1min=load,
+                  **{f"{k}_s": round(w, 2) for k, (w, _) in med.items()},
+                  **{f"{k}_fastest_s": round(min(w for w, _ in v), 2) for k, v in times.items()},
+                  **{f"{k}_cpu_s": round(c, 2) for k, (_, c) in med.items()},
                   # cores each way had (CPU / wall): on 2 idle cores a cluster of 2 has 2,
                   # one run at a time 1; what the others' load left shows here
-                  **{f"{k}_cores": round(c / w, 2) for k, (w, c) in best.items()},
-                  speedup_cluster=round(one / best["campaign_cluster"][0], 2),
-                  speedup_serial_threads=round(one / best["campaign_serial_threads"][0], 2))
+                  **{f"{k}_cores": round(c / w, 2) for k, (w, c) in med.items()},
+                  speedup_cluster=round(one / med["campaign_cluster"][0], 2),
+                  speedup_serial_threads=round(one / med["campaign_serial_threads"][0], 2))
     finally:
         close_client(client)
 
@@ -196,13 +203,14 @@ def main(argv=None):
     p.add_argument("what", choices=("spectrum", "kobe", "contact", "overhead"))
     p.add_argument("--workers", type=int, default=os.cpu_count() or 1)
     p.add_argument("-n", type=int, default=None, help="number of runs (kobe 400, contact 16, overhead 20)")
+    p.add_argument("--repeats", type=int, default=5, help="kobe, contact: measurements per way (medians)")
     a = p.parse_args(argv)
     if a.what == "spectrum":
         bench_spectrum(a.workers)
     elif a.what == "kobe":
-        bench_kobe(a.n or 400)
+        bench_kobe(a.n or 400, a.repeats)
     elif a.what == "contact":
-        bench_contact(a.n or 16, a.workers)
+        bench_contact(a.n or 16, a.workers, a.repeats)
     else:
         bench_overhead(a.n or 20, a.workers)
 
