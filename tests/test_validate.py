@@ -240,6 +240,7 @@ def test_validate_exit_code_1_when_a_check_fails(tmp_path, monkeypatch, capsys):
     ["--motion", "none"],
     ["--engines", "mujoco"],                  # no analytic reference
     ["--engines", "analytic", "warp"],
+    ["--engines", "analytic", "mujoco", "mujoco"],  # the same engine twice: once is meant
     ["--scales", "1,0.5,3"],
     ["--scales", "abc"],
     ["--duration", "-1"],
@@ -250,6 +251,18 @@ def test_validate_bad_input_exits_2_and_writes_nothing(tmp_path, capsys, bad):
     assert main(args) == 2
     assert "error" in capsys.readouterr().err
     assert not out.exists() and list(tmp_path.iterdir()) == []
+
+
+def test_engines_are_read_alike_by_every_command():
+    """validate, bench and atlas take --engines through one parser (run_cli.engine_labels):
+    items space- or comma-separated, a comma left at an item's end as in 'analytic, mujoco'."""
+    from isorock.validate.run_cli import engine_labels
+    want = ["analytic", "mujoco:fast", "bullet"]
+    assert engine_labels(["analytic,", "mujoco:fast", "bullet"]) == want
+    assert engine_labels(["analytic,mujoco:fast,bullet"]) == want
+    assert engine_labels(["analytic", " mujoco:fast ,bullet"]) == want
+    with pytest.raises(InputError, match="once"):
+        engine_labels(["analytic", "analytic"])
 
 
 def test_validate_sets_kobe_beside_the_paper(tmp_path, kobe_at2):

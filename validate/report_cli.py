@@ -110,10 +110,10 @@ def run(args) -> int:
     from isorock.validate.progress import ProgressBar
     from isorock.validate.report_render import verdict, write_report
     from isorock.validate.report_run import DEFAULT_MOTIONS, ReportConfig, build
+    from isorock.validate.run_cli import engine_labels
     check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     config = _read_config(args.config) if args.config else {}
-    engines = tuple(e for item in (args.engines or config.get("engines") or ENGINE_NAMES)
-                    for e in str(item).split(",") if e)
+    engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
     overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
     given = {k: getattr(args, k) for k in ENGINE_OPTIONS if getattr(args, k, None) is not None}
     if given:  # a setting on the command line applies to every engine that has it

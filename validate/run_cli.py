@@ -46,7 +46,9 @@ def engine_labels(items) -> list[str]:
     unknown engine or preset is an InputError naming it and what is allowed. An engine
     that cannot be imported here is kept; the command reports it as not run."""
     from isorock.validate.runner import resolve
-    specs = parse_engines(",".join(str(item) for item in items))
+    # "analytic, mujoco" arrives as the items "analytic," and "mujoco": an item's own
+    # leading or trailing comma separates, it does not name an empty engine
+    specs = parse_engines(",".join(str(item).strip().strip(",") for item in items))
     for name, preset in specs:
         try:
             resolve(spec_label(name, preset))
