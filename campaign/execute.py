@@ -224,18 +224,37 @@ def read_parts(paths) -> "pyarrow.Table":
 
 # --- progress ---------------------------------------------------------------------------
 
+#: what a batch engine's simulated second costs against a contact engine's, for the ETA
+#: alone: the compiled analytic kernel makes ~1,000 runs of 40 s per second on 2 cores, a
+#: contact engine 1–10 simulated seconds per wall second (docs/campaigns.md, Throughput)
+BATCH_COST = 1e-4
+
+
+def expected_cost(task: Task) -> float:
+    """A task's expected cost, in contact-engine simulated seconds: what the progress
+    bar's ETA is measured in (the run count alone made a campaign's analytic third, done
+    in seconds, promise the contact runs in seconds too)."""
+    simulated = sum(c.duration for c in task.cases)
+    return simulated * (BATCH_COST if runs_as_batch(task.setting.engine) else 1.0)
+
+
 class Progress:
     """One progress bar with an ETA on stderr: redrawn in place on a terminal, else a
-    line at most every `every` seconds (logs stay short)."""
+    line at most every `every` seconds (logs stay short). It counts runs; the ETA follows
+    `work` (the tasks' expected cost, `update`'s second argument) where given, else the
+    run count."""
 
-    def __init__(self, total: int, *, stream=None, every: float = 10.0, label: str = "runs"):
+    def __init__(self, total: int, *, work: float | None = None, stream=None, every: float = 10.0,
+                 label: str = "runs"):
         self.total, self.done, self.label = total, 0, label
+        self.work, self.work_done = work, 0.0
         self.stream = stream if stream is not None else sys.stderr
         self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
         self.every, self.start, self.last = every, time.monotonic(), -math.inf
 
-    def update(self, n: int) -> None:
+    def update(self, n: int, work: float = 0.0) -> None:
         self.done += n
+        self.work_done += work
         now = time.monotonic()
         if self.tty or now - self.last >= self.every or self.done >= self.total:
             self.last = now
@@ -244,7 +263,8 @@ class Progress:
     def _draw(self, now):
         elapsed = now - self.start
         frac = self.done / self.total if self.total else 1.0
-        eta = elapsed * (1 - frac) / frac if frac > 0 else math.nan
+        ahead = min(1.0, self.work_done / self.work) if self.work else frac
+        eta = elapsed * (1 - ahead) / ahead if ahead > 0 else math.nan
         eta_s = f"{eta:5.0f} s" if math.isfinite(eta) else "    ? s"
         if self.tty:
             bar = "#" * int(30 * frac)
@@ -261,15 +281,15 @@ class Progress:
 # --- executing a list of tasks ----------------------------------------------------------
 
 def execute(tasks: list, *, client=None, threads: int | None = None, on_done, progress=None, here=None,
-            run=None, weight=None) -> int:
+            run=None, weight=None, cost=None) -> int:
     """Run `tasks`, calling on_done(task, result) here as each one finishes (in the order
     they finish). client: a dask.distributed Client, or None to run serially in this
     process. run(task, threads): a task's result (default: `run_task`, a chunk's rows;
     `isorock validate` runs its histories through here too). here(task): tasks that run
     in this process even with a client (e.g. the analytic model's, loaded here already and
     done in milliseconds), while the cluster works on the others. progress.update(n) after
-    each task, n = weight(task) (default: its number of cases). Returns the number of
-    tasks run."""
+    each task, n = weight(task) (default: its number of cases), with cost(task) where
+    given (the ETA's measure, `expected_cost`). Returns the number of tasks run."""
     run = run or run_task
     weight = weight or (lambda task: len(task.cases))
     local = [t for t in tasks if client is None or (here is not None and here(t))]
@@ -277,7 +297,9 @@ def execute(tasks: list, *, client=None, threads: int | None = None, on_done, pr
 
     def finished(task, result):
         on_done(task, result)
-        if progress:
+        if progress and cost:
+            progress.update(weight(task), cost(task))
+        elif progress:
             progress.update(weight(task))
 
     by_key, futures = {}, []

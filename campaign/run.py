@@ -14,8 +14,8 @@ from pathlib import Path
 
 from isorock.analytic.errors import InputError
 
-from .execute import (Progress, close_client, execute, local_client, make_tasks, read_parts, rows_to_table, runs_as_batch,
-                      sort_table, write_part)
+from .execute import (Progress, close_client, execute, expected_cost, local_client, make_tasks, read_parts, rows_to_table,
+                      runs_as_batch, sort_table, write_part)
 from .spec import ANALYTIC_CHUNK, CONTACT_CHUNK, CampaignSpec, EngineSetting, load_spec
 
 #: The file that marks a folder as written by `isorock sweep`: a sweep fills a new or
@@ -102,8 +102,9 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
             parts_dir.mkdir(parents=True, exist_ok=True)
             write_text(out / MARKER, json.dumps({"tool": "isorock sweep", "campaign": spec.name,
                                                  "fingerprint": spec.fingerprint()}) + "\n")
-        bar = Progress(sum(len(t.cases) for t in todo)) if progress and todo else None
-        ran = execute(todo, client=live, threads=None, on_done=on_done, progress=bar)
+        bar = (Progress(sum(len(t.cases) for t in todo), work=sum(map(expected_cost, todo)))
+               if progress and todo else None)
+        ran = execute(todo, client=live, threads=None, on_done=on_done, progress=bar, cost=expected_cost)
     finally:
         if close:
             close_client(live)
@@ -152,10 +153,13 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
                        overturn_rule=overturn_rule)
     rows = []
     live, close = _client_for(client, workers, None)
-    bar = Progress(sum(len(t.cases) for t in tasks)) if progress is True else (progress or None)
+    bar = (Progress(sum(len(t.cases) for t in tasks), work=sum(map(expected_cost, tasks)))
+           if progress is True else (progress or None))
     here = (lambda task: runs_as_batch(task.setting.engine)) if batch_here else None
     try:
-        execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=bar, here=here)
+        # a caller's own progress object is given update(n) alone
+        execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=bar, here=here,
+                cost=expected_cost if progress is True else None)
     finally:
         if close:
             close_client(live)

@@ -381,3 +381,33 @@ def test_fragility_without_any_overturning_says_so():
     from isorock.campaign.fragility import fit_fragility
     fit = fit_fragility([0.1, 0.2], np.zeros((5, 2)))
     assert math.isnan(fit.median) and fit.note == "no run overturned"
+
+
+def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
+    """A campaign's analytic runs finish in milliseconds and its contact runs in seconds: an
+    ETA from the run count alone said 6 s for a 15-minute campaign once its analytic third
+    was done. With each task's expected cost, the ETA is elapsed × (work left / work done)."""
+    import io
+
+    from isorock.campaign import execute as ex
+    from isorock.campaign.spec import Case, EngineSetting
+    from isorock.analytic import GroundMotion, paper_system
+    clock = [100.0]
+    monkeypatch.setattr(ex.time, "monotonic", lambda: clock[0])
+    system, motion = paper_system(fixed_base=True), GroundMotion.zero()
+    batch = ex.Task("a", EngineSetting("analytic"), tuple(Case(i, system, motion, 10.0) for i in range(400)))
+    contact = ex.Task("m", EngineSetting("mujoco"), tuple(Case(i, system, motion, 10.0) for i in range(4)))
+    tasks = [batch, contact, contact]
+    out = io.StringIO()
+    bar = ex.Progress(sum(len(t.cases) for t in tasks), work=sum(map(ex.expected_cost, tasks)), stream=out, every=0)
+    clock[0] += 1.0
+    bar.update(len(batch.cases), ex.expected_cost(batch))  # 400 of 408 runs, a sliver of the work
+    eta = float(re.search(r"ETA\s+([\d.]+) s", out.getvalue().splitlines()[-1]).group(1))
+    work_done = ex.expected_cost(batch) / bar.work
+    assert work_done < 0.1 and eta == pytest.approx(1.0 * (1 - work_done) / work_done, rel=0.01)
+    clock[0] += 10.0
+    bar.update(4, ex.expected_cost(contact))  # half the contact work in 10 s more: 10 s left
+    eta = float(re.search(r"ETA\s+([\d.]+) s", out.getvalue().splitlines()[-1]).group(1))
+    assert eta == pytest.approx(11.0 * ex.expected_cost(contact) / (ex.expected_cost(batch) + ex.expected_cost(contact)),
+                                abs=0.5)
+    assert "404/408 runs" in out.getvalue().splitlines()[-1]
