@@ -723,6 +723,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
         if mp[_KIND] == _SAMPLED:
             _record_piece(mp, acc, t, t1)
         mpt = _mp_tuple(mp)  # the hot path reads the piece from this tuple
+        closed = mode == 0 and (fixed or (cf_ok and mp[_PIECE] != 0.0))
+        t_next, side = t, 0
         if mode == 0 and fixed:
             # the state cannot change: the first uplift is found from the motion itself
             mp[_PIECE] = 0.0
@@ -743,22 +745,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 tq = min(kg * odt, t_up)
             if not room:
                 break
-            t = t_up
-            if side != 0:
-                n_events += 1
-                if n_events > max_events:
-                    status = _EVENT_LIMIT
-                    break
-                mode = side
-                if n_upl == upl.size:
-                    room = False
-                    break
-                upl[n_upl] = t
-                n_upl += 1
-                peak = 0.0
-                graze = False
-            continue
-        if mode == 0 and cf_ok and mp[_PIECE] != 0.0:
+            t_next = t_up
+        elif closed:
             # an isolated base in pure translation under a record: the linear oscillator in
             # closed form over the sample interval (physics.translation_*), uplift located on it
             t_end = min(t1, t + cf_cap)
@@ -822,7 +810,11 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 n_out += 1
             u_max = max(u_max, abs(u1))
             demand = max(demand, _friction(sp, 0, 0.0, 0.0, u1, v1, _xgp(t_stop, mpt)))
-            t = t_stop
+            t_next = t_stop
+        if closed:
+            # a translation piece done without the integrator (above) ends at t_next, and
+            # the block lifts there about `side` unless side is 0
+            t = t_next
             if side != 0:
                 n_events += 1
                 if n_events > max_events:
