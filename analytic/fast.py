@@ -511,12 +511,7 @@ def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp):
                 a3 += K[j, 3] * a
         r = _rhs(mode, t + _C[s] * h, y0 + a0 * h, y1 + a1 * h, (y2 + a2 * h) if full else y2,
                  (y3 + a3 * h) if full else y3, sp, mp)
-        K[s, 0] = r[0]
-        K[s, 1] = r[1]
-        K[s, 2] = r[2]
-        K[s, 3] = r[3]
-        K[s, 4] = r[4]
-        K[s, 5] = r[5]
+        _set_row(K, s, r)
     for i in range(6):
         if mode == 0 and (i == 2 or i == 3):
             y_new[i] = y[i]
@@ -600,6 +595,21 @@ def _store(out_t, out_y, out_m, n, t, y, mode):
         out_y[i, n] = y[i]
     out_m[n] = mode
     return True
+
+
+@njit(inline="always")
+def _next_point(kg, odt, grid, t_stop, roots, n_roots, kr, offset):
+    """The next time to store or measure, merging two ordered sequences: grid points kg·odt
+    below t_stop (when `grid`) and roots[kr] + offset (kr < n_roots); a tie takes the root.
+    Returns (found, t, kg, kr) with the index taken advanced."""
+    tg = kg * odt
+    take_grid = grid and tg < t_stop
+    take_root = kr < n_roots
+    if not take_grid and not take_root:
+        return False, 0.0, kg, kr
+    if take_root and (not take_grid or roots[kr] + offset <= tg):
+        return True, roots[kr] + offset, kg, kr + 1
+    return True, tg, kg + 1, kr
 
 
 # --- the driver ---------------------------------------------------------------------
@@ -777,17 +787,9 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             kr = 0
             last_t = t
             while True:  # grid points (history) and extremes of u inside, in order
-                tg = kg * odt
-                take_grid = history and tg < t_stop
-                take_root = kr < n_ext
-                if not take_grid and not take_root:
+                found, tq, kg, kr = _next_point(kg, odt, history, t_stop, ext, n_ext, kr, t)
+                if not found:
                     break
-                if take_root and (not take_grid or t + ext[kr] <= tg):
-                    tq = t + ext[kr]
-                    kr += 1
-                else:
-                    tq = tg
-                    kg += 1
                 if tq <= last_t or tq >= t_stop:
                     continue
                 uq, vq, dWq, dDq = _tr_state(sp, zu0, zv0, p1, u0, v0, a0, a1, tq - t)
@@ -962,17 +964,9 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             if history:
                 kr = 0
                 while True:
-                    tg = kg * odt
-                    take_grid = tg < t_stop
-                    take_root = kr < cut
-                    if not take_grid and not take_root:
+                    found, tq, kg, kr = _next_point(kg, odt, True, t_stop, roots, cut, kr, 0.0)
+                    if not found:
                         break
-                    if take_root and (not take_grid or roots[kr] <= tg):
-                        tq = roots[kr]
-                        kr += 1
-                    else:
-                        tq = tg
-                        kg += 1
                     if tq <= last_t or tq >= t_stop:
                         continue
                     _dense_all(F, y, t_old, h, tq, yq, mode != 0)
