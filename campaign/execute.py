@@ -230,6 +230,10 @@ def read_parts(paths) -> "pyarrow.Table":
 BATCH_COST = 1e-4
 
 
+#: the share of a campaign's expected work done before its progress bar gives an ETA
+ETA_AFTER = 1e-3
+
+
 def expected_cost(task: Task) -> float:
     """A task's expected cost, in contact-engine simulated seconds: what the progress
     bar's ETA is measured in (the run count alone made a campaign's analytic third, done
@@ -264,7 +268,9 @@ class Progress:
         elapsed = now - self.start
         frac = self.done / self.total if self.total else 1.0
         ahead = min(1.0, self.work_done / self.work) if self.work else frac
-        eta = elapsed * (1 - ahead) / ahead if ahead > 0 else math.nan
+        # below a thousandth of the work done (a campaign's analytic batches, say, whose
+        # seconds are mostly the cluster's start) the rate says nothing yet: "?"
+        eta = elapsed * (1 - ahead) / ahead if ahead >= ETA_AFTER else math.nan
         eta_s = f"{eta:5.0f} s" if math.isfinite(eta) else "    ? s"
         if self.tty:
             bar = "#" * int(30 * frac)

@@ -411,3 +411,11 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     assert eta == pytest.approx(11.0 * ex.expected_cost(contact) / (ex.expected_cost(batch) + ex.expected_cost(contact)),
                                 abs=0.5)
     assert "404/408 runs" in out.getvalue().splitlines()[-1]
+    # analytic batches that are a sliver of the work (and whose seconds are mostly a
+    # cluster's start) give no rate to extrapolate: the ETA is "?" until the contact work moves
+    out = io.StringIO()
+    many = [contact] * 100
+    bar = ex.Progress(400 + 400, work=ex.expected_cost(batch) + sum(map(ex.expected_cost, many)), stream=out, every=0)
+    clock[0] += 3.0
+    bar.update(len(batch.cases), ex.expected_cost(batch))
+    assert "ETA     ? s" in out.getvalue()
