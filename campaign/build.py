@@ -1,16 +1,28 @@
-"""From a case's inputs (the table's columns) to the System and GroundMotion it
-defines. One function, used when the campaign is expanded and nowhere else, so the
-table's columns are the whole definition of a case."""
+"""A campaign's Case, and from its inputs (the table's columns) to the System and
+GroundMotion it defines. One function, used when the campaign is expanded and nowhere
+else, so the table's columns are the whole definition of a case."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from isorock.analytic.motion import GroundMotion, Pulse
 from isorock.analytic.system import STANDARD_GRAVITY, System
 
-from .spec import Case
+
+@dataclass(frozen=True)
+class Case:
+    """One system under one motion for one duration; `inputs` are the table's columns
+    that define it (everything needed to rebuild it, for the record)."""
+
+    case: int
+    system: object  # analytic.system.System
+    motion: object  # analytic.motion.GroundMotion
+    duration: float
+    inputs: dict = field(default_factory=dict, compare=False)
+    theta0: float = 0.0
 
 
 def build_system(inputs: dict) -> System:

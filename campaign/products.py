@@ -12,10 +12,8 @@ from pathlib import Path
 import numpy as np
 
 from .execute import runs_as_batch
+from .spec import AXES
 
-#: Columns an agreement map may use as an axis.
-AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
-        "width", "period", "damping_ratio", "mass_ratio")
 #: θmax/α departure for an agreement map when the tolerance table has no entry for the
 #: engine: the table's single-history limit for MuJoCo and PyBullet is 0.02 (β within
 #: 1% per impact over ~10 impacts); a new engine is held to the same.

@@ -14,13 +14,19 @@ import itertools
 import json
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.motion import PULSES
+
+from .build import Case, build_case  # Case is defined beside the function that builds one
+
+#: Columns an agreement map may use as an axis (checked here, drawn by products.py).
+AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
+        "width", "period", "damping_ratio", "mass_ratio")
 
 #: Largest number of rows (case × engine setting) a campaign may have: beyond it a
 #: typo (a grid of 10⁴ × 10⁴) would fill the disk instead of failing.
@@ -133,19 +139,6 @@ class EngineSetting:
 
 
 @dataclass(frozen=True)
-class Case:
-    """One system under one motion for one duration; `inputs` are the table's columns
-    that define it (everything needed to rebuild it, for the record)."""
-
-    case: int
-    system: object  # analytic.system.System
-    motion: object  # analytic.motion.GroundMotion
-    duration: float
-    inputs: dict = field(default_factory=dict, compare=False)
-    theta0: float = 0.0
-
-
-@dataclass(frozen=True)
 class CampaignSpec:
     name: str
     systems: dict
@@ -206,7 +199,6 @@ class CampaignSpec:
     def cases(self, records: dict | None = None) -> list[Case]:
         """Every case, systems outer, motions inner. `records`: name → GroundMotion
         for a record suite (campaign.records.load_suite)."""
-        from .build import build_case
         rows = []
         for sys_inputs in self.system_grid():
             for mot_inputs in self._motion_grid(records):
@@ -402,7 +394,6 @@ def parse_spec(data: dict, source: Path = Path("campaign.toml")) -> CampaignSpec
         object.__setattr__(spec, "motions", {**spec.motions, "n_records": n})
     _check_size(spec)
     if "agreement" in spec.products:
-        from .products import AXES
         for k in ("x", "y"):
             v = spec.products["agreement"].get(k)
             if v is not None and v not in AXES:
