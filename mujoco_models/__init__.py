@@ -1,6 +1,7 @@
 """The rocking block as a MuJoCo scene: `scene.xml` + `scene.py` (the model),
 `settings.py` (numerical settings, measured), `stepping.py` (stepping with
-`mujoco.rollout`), `event_resolved.py` (an opt-in second stepping scheme).
+`mujoco.rollout`), `event_resolved.py` (an opt-in second stepping scheme), `state.py`
+(what both read from the state rows, and the history a run returns).
 Measurements behind every default: docs/mujoco.md."""
 import math
 from dataclasses import replace

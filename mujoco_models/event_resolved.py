@@ -18,7 +18,7 @@ from isorock.analytic.trajectory import RawHistory
 
 from .scene import scene_text
 from .settings import Settings
-from .stepping import raw_history, stop_in, warning_failure
+from .state import raw_history, stop_in, warning_failure
 
 #: Fine steps start when the block would reach θ = 0 within IMPACT_ZONE coarse steps at
 #: its present θ̇ (and |θ̇| is above IMPACT_MIN_RATE, rad/s: a block at rest stays on

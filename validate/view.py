@@ -151,7 +151,7 @@ def replay_model(system):
     u, the centroid's x and z, and θ) and its Layout."""
     from isorock.mujoco_models import build_model
     from isorock.mujoco_models.settings import Settings
-    from isorock.mujoco_models.stepping import Layout
+    from isorock.mujoco_models.state import Layout
     model = build_model(system, Settings(joint="planar"))
     return model, Layout(model, system, "planar")
 

@@ -1,0 +1,129 @@
+"""The MuJoCo scene's state and what a run's history is made of, shared by both stepping
+schemes (`stepping.py`, `event_resolved.py`): where θ, u and the block's centroid sit in
+rollout's state rows (`Layout`), MuJoCo's warnings as a run's failure, the shared stop
+rules over a chunk of rows, and the RawHistory a run returns."""
+from __future__ import annotations
+
+import math
+import re
+from contextlib import contextmanager
+
+import mujoco
+import numpy as np
+
+from isorock.analytic import kinematics
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.system import System
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
+
+ENGINE = "mujoco"
+
+
+class Layout:
+    """Where the scene's quantities sit in qpos / qvel and in rollout's state rows."""
+
+    def __init__(self, model: mujoco.MjModel, system: System, joint: str):
+        self.nq, self.nv = model.nq, model.nv
+        self.nstate = mujoco.mj_stateSize(model, mujoco.mjtState.mjSTATE_FULLPHYSICS)
+        self.free = joint == "free"
+        self.base_v = None if system.fixed_base else model.jnt_dofadr[model.joint("base_slide").id]
+        self.base_q = None if system.fixed_base else model.jnt_qposadr[model.joint("base_slide").id]
+        if self.free:
+            jid = model.joint("block_free").id
+            self.bq, self.bv = model.jnt_qposadr[jid], model.jnt_dofadr[jid]
+            self.x_v = self.bv  # free joint: linear velocity first, in the world frame
+        else:
+            self.xq, self.zq, self.thq = (model.jnt_qposadr[model.joint(n).id]
+                                           for n in ("block_x", "block_z", "block_theta"))
+            self.x_v, self.thv = (model.jnt_dofadr[model.joint(n).id] for n in ("block_x", "block_theta"))
+
+    def initial_state(self, model, system: System, theta0: float) -> np.ndarray:
+        """A rollout state row at t = 0: at rest, tilted by θ0 about the corner it rocks on."""
+        qpos = model.qpos0.copy()
+        x, z = kinematics.tilted_centroid(system, theta0)
+        if self.free:
+            qpos[self.bq:self.bq + 3] = (x, 0.0, z)
+            qpos[self.bq + 3:self.bq + 7] = (math.cos(theta0 / 2), 0.0, math.sin(theta0 / 2), 0.0)
+        else:
+            qpos[self.xq], qpos[self.zq], qpos[self.thq] = x, z - system.h, theta0
+        state = np.zeros(self.nstate)
+        state[1:1 + self.nq] = qpos
+        return state
+
+    def forces(self, system: System, xg: np.ndarray) -> np.ndarray:
+        """qfrc_applied rows for the ground accelerations ẍg (one per step)."""
+        f = np.zeros((xg.size, self.nv))
+        f[:, self.x_v] = -system.mass * xg
+        if self.base_v is not None:
+            f[:, self.base_v] = -system.base_mass * xg
+        return f
+
+    def histories(self, system: System, states: np.ndarray) -> dict:
+        """t, u, u̇, θ, θ̇ and the centroid's x and z (and out-of-plane tilt with the free
+        joint) from rollout state rows."""
+        t = states[:, 0]
+        qpos = states[:, 1:1 + self.nq]
+        qvel = states[:, 1 + self.nq:1 + self.nq + self.nv]
+        n = t.size
+        if self.base_q is None:
+            u, u_dot = np.zeros(n), np.zeros(n)
+        else:
+            u, u_dot = qpos[:, self.base_q].copy(), qvel[:, self.base_v].copy()
+        out = {"t": t.copy(), "u": u, "u_dot": u_dot}
+        if self.free:
+            w, x, y, z = qpos[:, self.bq + 3:self.bq + 7].T
+            theta, roll, yaw = kinematics.tilts_from_quaternion(w, x, y, z)
+            out["theta"] = theta
+            out["theta_dot"] = qvel[:, self.bv + 4].copy()  # angular velocity about the body y axis
+            out["x"], out["z"] = qpos[:, self.bq].copy(), qpos[:, self.bq + 2].copy()
+            out["out_of_plane"] = np.maximum.reduce([np.abs(qpos[:, self.bq + 1]), np.abs(roll), np.abs(yaw)])
+        else:
+            out["theta"] = qpos[:, self.thq].copy()
+            out["theta_dot"] = qvel[:, self.thv].copy()
+            out["x"], out["z"] = qpos[:, self.xq].copy(), system.h + qpos[:, self.zq]
+        return out
+
+
+@contextmanager
+def warnings_as_status():
+    """MuJoCo's warnings (a blown-up state, "Nan, Inf or huge value in QACC", a full
+    contact buffer) collected as messages while the body runs, instead of being printed
+    and written to MUJOCO_LOG.TXT in the user's working directory; the run reports the
+    first one as its failure. The handler is process-wide, so the previous one is restored."""
+    messages: list[str] = []
+    previous = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(messages.append)
+    try:
+        yield messages
+    finally:
+        mujoco.set_mju_user_warning(previous)
+
+
+def warning_failure(messages: list[str], data: mujoco.MjData) -> tuple[str, float] | None:
+    """(message, time) of the first MuJoCo warning of a run, or None: any warning means the
+    history after it is not the physics (MuJoCo's auto-reset is off, so the bad state stays)."""
+    if not messages and not any(w.number for w in data.warning):
+        return None
+    text = messages[0] if messages else "MuJoCo raised a warning"
+    found = re.search(r"Time = ([0-9]+(?:\.[0-9]+)?(?:[eE][+-]?[0-9]+)?)", text)
+    return text, float(found.group(1)) if found else math.nan
+
+
+def stop_in(lay: Layout, system: System, chunk: np.ndarray, t: np.ndarray, motion: GroundMotion):
+    """kinematics.first_stop over a chunk of rollout state rows (at times t)."""
+    finite = np.all(np.isfinite(chunk), axis=1)
+    h = lay.histories(system, np.where(finite[:, None], chunk, 0.0))
+    return kinematics.first_stop(t, h["theta"], h["theta_dot"], finite, system=system,
+                                 motion_end=motion.end_time)
+
+
+def raw_history(lay, system, states, dt, runtime, status, message, stop_reason) -> RawHistory:
+    hist = lay.histories(system, states)
+    t = np.arange(hist["t"].size) * dt  # MuJoCo's time sums dt and drifts by round-off
+    counted = counted_sign_changes(hist["theta"], system.alpha, DEFAULT_IMPACT_THRESHOLD)
+    extras = kinematics.contact_extras(
+        system, x_centroid=hist["x"], z_centroid=hist["z"], theta=hist["theta"], u=hist["u"],
+        counted_from=counted[0][0] if counted else None, out_of_plane=hist.get("out_of_plane"))
+    return RawHistory(engine=ENGINE, system=system, t=t, u=hist["u"], u_dot=hist["u_dot"], theta=hist["theta"],
+                      theta_dot=hist["theta_dot"], status=status, message=message, runtime_s=runtime,
+                      extras=extras, stop_reason=stop_reason)
