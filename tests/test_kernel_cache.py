@@ -14,9 +14,9 @@ from isorock.analytic import kernel_cache  # noqa: E402
 TINY = "from numba import njit\n\n@njit(cache=True)\ndef twice(x):\n    return 2.0 * x\n"
 
 
-def load_tiny(folder, name):
+def load_tiny(folder, name, text=TINY):
     path = folder / f"{name}.py"
-    path.write_text(TINY)
+    path.write_text(text)
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
@@ -108,11 +108,7 @@ def aot_cache(tmp_path, monkeypatch):
 
 def tiny_aot(tmp_path, name):
     from numba import types as nt
-    path = tmp_path / f"{name}.py"
-    path.write_text(TINY_AOT)
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    module = load_tiny(tmp_path, name, TINY_AOT)
     return kernel_cache.ahead_of_time(nt.float64(nt.float64, nt.float64[::1]))(module.halve)
 
 
