@@ -56,6 +56,11 @@ def _writable(path: str) -> bool:
         return False
 
 
+def writable_cache_dir() -> str | None:
+    """The first of cache_dirs() that can be written (made if need be), or None."""
+    return next((d for d in cache_dirs() if _writable(d)), None)
+
+
 def _locator_class():
     from numba.core.caching import _CacheLocator, _hash_source_file
 
@@ -88,10 +93,8 @@ def _locator_class():
         def from_function(cls, py_func, py_file):
             if os.path.abspath(py_file) not in KERNEL_SOURCES:
                 return None  # not ours: numba's own locators decide
-            for path in cache_dirs():
-                if _writable(path):
-                    return cls(py_func, py_file, path)
-            return None
+            path = writable_cache_dir()
+            return None if path is None else cls(py_func, py_file, path)
 
     return CacheLocator
 
@@ -266,7 +269,7 @@ def _build_module(dispatcher, name: str) -> str:
         warnings.simplefilter("ignore")  # numba.pycc's pending-deprecation notice
         from numba.pycc import CC
         from numba.pycc import compiler as pycc_compiler
-    folder = next((d for d in cache_dirs() if _writable(d)), None)
+    folder = writable_cache_dir()
     if folder is None:
         raise OSError("no writable cache folder")
 
@@ -323,7 +326,7 @@ def _aot_function(dispatcher):
                         pass
             if fn is None:
                 _say(f"compiling the analytic kernel {dispatcher.__name__} ahead of time (first use, cached in "
-                     f"{next((d for d in cache_dirs() if _writable(d)), '?')}; about 1-2 minutes)...")
+                     f"{writable_cache_dir() or '?'}; about 1-2 minutes)...")
                 start = time.perf_counter()
                 fn = _load_module(name, _build_module(dispatcher, name)).run
                 _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")
