@@ -191,14 +191,15 @@ def _compile_physics():
     table = dict(vars(physics))
     inline = ("ground_acceleration", "piece_acceleration", "pulse_acceleration", "translation_acceleration",
               "rocking_accelerations", "base_acceleration", "oscillator_constants",
-              "free_vibration_change", "rocking_pivot_force_ratio")
+              "free_vibration_change", "rocking_pivot_force_ratio", "_times_a")
     for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "base_acceleration", "uplift_direction", "relift",
                  "impact_function_order", "impact_continues", "impact_map", "kinetic_energy",
                  "impact_energy_loss", "pivot_force_ratio", "rocking_pivot_force_ratio", "overturn_code", "_bisect_ricker",
                  "_pulse_crossings", "first_uplift", "oscillator_constants", "free_vibration_change",
-                 "free_vibration", "translation_start", "translation_state", "_energy_norm",
+                 "free_vibration", "translation_start", "translation_state", "_energy_norm", "_times_a",
+                 "_second_rate_norm",
                  "_oscillator_line", "_newton_bracket", "_oscillator_zeros", "translation_uplift",
                  "translation_velocity_zeros", "translation_u_bound"):
         f = getattr(physics, name)

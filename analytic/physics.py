@@ -518,11 +518,25 @@ def _energy_norm(w2, zu, zv):
     return math.sqrt(zv * zv + w2 * zu * zu)
 
 
+def _times_a(a, w2, zu, zv):
+    """A·(z_u, z_v), A = [[0, 1], [−ω², −2ζω]] (a = ζω): the rate of the free vibration there."""
+    return zv, -w2 * zu - 2.0 * a * zv
+
+
+def _second_rate_norm(sp, zu, zv):
+    """‖A² z‖ at the start of an interval: the energy norm never grows along a free
+    vibration, so it bounds |z_v''| = |(A² z(τ))_v| over the whole interval."""
+    a, w2, q2 = oscillator_constants(sp)
+    a1u, a1v = _times_a(a, w2, zu, zv)
+    a2u, a2v = _times_a(a, w2, a1u, a1v)
+    return _energy_norm(w2, a2u, a2v)
+
+
 def _oscillator_line(sp, wu, wv, sigma, c0, c1, tau):
     """g(τ) = σ·(e^(Aτ) w)_v + c0 + c1·τ and g'(τ) = σ·(A e^(Aτ) w)_v + c1."""
     a, w2, q2 = oscillator_constants(sp)
     zu, zv = free_vibration(sp, wu, wv, tau)
-    return sigma * zv + c0 + c1 * tau, sigma * (-w2 * zu - 2.0 * a * zv) + c1
+    return sigma * zv + c0 + c1 * tau, sigma * _times_a(a, w2, zu, zv)[1] + c1
 
 
 def _newton_bracket(sp, wu, wv, sigma, c0, c1, lo, hi, glo, ghi):
@@ -616,10 +630,8 @@ def translation_uplift(sp, zu0, zv0, a0, a1, h, thr, a_end):
     from the end state (base_acceleration); it only lets the search be skipped when both
     ends lie clearly inside the band, by more than a's largest bow over the interval."""
     a, w2, q2 = oscillator_constants(sp)
-    wu, wv = zv0, -w2 * zu0 - 2.0 * a * zv0  # w = A z
-    a2u, a2v = wv, -w2 * wu - 2.0 * a * wv
-    a3u, a3v = a2v, -w2 * a2u - 2.0 * a * a2v
-    bound = _energy_norm(w2, a3u, a3v)  # ≥ |a''| on the interval
+    wu, wv = _times_a(a, w2, zu0, zv0)  # w = A z
+    bound = _second_rate_norm(sp, wu, wv)  # ≥ |a''| on the interval
     bow = 0.125 * bound * h * h
     a_start = a0 + wv
     best, side = h, 0
@@ -640,11 +652,7 @@ def translation_uplift(sp, zu0, zv0, a0, a1, h, thr, a_end):
 def translation_velocity_zeros(sp, zu0, zv0, p1, h, out):
     """Times τ in (0, h) at which u̇ = z_v(τ) + P1 vanishes (the extremes of u) in a
     closed-form translation interval, in order, up to out.size; returns how many."""
-    a, w2, q2 = oscillator_constants(sp)
-    a1u, a1v = zv0, -w2 * zu0 - 2.0 * a * zv0
-    a2u, a2v = a1v, -w2 * a1u - 2.0 * a * a1v
-    bound = _energy_norm(w2, a2u, a2v)
-    m = _oscillator_zeros(sp, zu0, zv0, 1.0, p1, 0.0, bound, h, False, out)
+    m = _oscillator_zeros(sp, zu0, zv0, 1.0, p1, 0.0, _second_rate_norm(sp, zu0, zv0), h, False, out)
     n = 0
     for i in range(m):  # the ends are stored and measured anyway
         if 0.0 < out[i] < h:
@@ -656,7 +664,4 @@ def translation_velocity_zeros(sp, zu0, zv0, p1, h, out):
 def translation_u_bound(sp, zu0, zv0, h):
     """A bound on how far |u| can exceed the chord of its end values over a closed-form
     interval of length h: |ü| ≤ ‖A² z(0)‖/ω, so the excess is at most that·h²/8."""
-    a, w2, q2 = oscillator_constants(sp)
-    a1u, a1v = zv0, -w2 * zu0 - 2.0 * a * zv0
-    a2u, a2v = a1v, -w2 * a1u - 2.0 * a * a1v
-    return 0.125 * h * h * _energy_norm(w2, a2u, a2v) / math.sqrt(w2)
+    return 0.125 * h * h * _second_rate_norm(sp, zu0, zv0) / math.sqrt(sp[K] * sp[INV_M])
