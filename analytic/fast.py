@@ -82,6 +82,7 @@ except ImportError as e:  # pragma: no cover - numba is a declared dependency
 from . import physics
 from .errors import InputError, require, require_positive_finite
 from .kernel_cache import ahead_of_time, cached_jit, call_kernel
+from .limits import available_cores
 from .overturning import describe
 from .settings import AnalyticSettings
 from .motion import GroundMotion
@@ -1264,12 +1265,6 @@ def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start) -> Tr
 BACKENDS = ("threads", "prange", "processes")
 
 
-def _cores() -> int:
-    """The cores this process may run on (its affinity: a container's or taskset's share),
-    the default number of workers."""
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-
-
 def _as_list(x, kind, name):
     if isinstance(x, kind):
         return [x]
@@ -1390,7 +1385,7 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
     if workers == 1 or n == 1:
         _run_cases(args, 0, n, failures)
     elif backend == "threads":
-        _batch_pool(args, workers or _cores(), failures)
+        _batch_pool(args, workers or available_cores(), failures)
     else:
         old = numba.get_num_threads()
         threads = min(workers or numba.config.NUMBA_NUM_THREADS, numba.config.NUMBA_NUM_THREADS)
@@ -1463,7 +1458,7 @@ def _batch_chunk(payload):
 
 def _batch_processes(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers):
     from concurrent.futures import ProcessPoolExecutor
-    workers = workers or _cores()
+    workers = workers or available_cores()
     n = case_sys.size
     chunks = np.array_split(np.arange(n), min(n, workers * 4))
     payloads = [(systems, motions, case_sys[c], case_mot[c], T[c], th0[c], impact_threshold, settings)

@@ -12,6 +12,7 @@ few minutes, and the free vibration after them decays in seconds to minutes.
 from __future__ import annotations
 
 import math
+import os
 
 from .errors import InputError
 
@@ -100,3 +101,9 @@ def check_settings(settings, duration: float) -> None:
 def check_resample(field: str, dt: float, duration: float) -> None:
     """A history resampled at `dt` over `duration` holds at most MAX_SAMPLES rows."""
     check_count(field, dt, duration / dt, MAX_SAMPLES, "rows", f"duration {_fmt(duration)} s / {field}, MAX_SAMPLES")
+
+
+def available_cores() -> int:
+    """The cores this process may run on (its affinity: a container's or taskset's share,
+    not every core of the machine): the default number of threads or worker processes."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)

@@ -26,15 +26,15 @@ def add_parser(subparsers) -> None:
 
 def run(a) -> int:
     from isorock.analytic.errors import InputError
+    from isorock.analytic.limits import available_cores
 
-    from .execute import default_workers
     from .run import run_campaign
     from .spec import load_spec
     if a.workers is not None and a.workers < 0:
         raise InputError(f"--workers = {a.workers}: must be 0 (serial) or a positive number of processes")
     spec = load_spec(a.spec)
     out = Path(a.out) if a.out else Path(f"sweep-{Path(a.spec).stem}")
-    workers = default_workers() if a.workers is None else a.workers
+    workers = available_cores() if a.workers is None else a.workers
     result = run_campaign(spec, out, workers=workers, scheduler=a.scheduler, products=not a.no_products)
     print(f"{result.out}: {result.table.num_rows} rows; {result.tasks_run} of {result.tasks_total} chunks "
           f"run now, {result.tasks_skipped} already done", file=sys.stderr)

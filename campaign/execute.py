@@ -20,13 +20,14 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import os
 import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+
+from isorock.analytic.limits import available_cores
 
 from .spec import Case, EngineSetting
 
@@ -173,7 +174,7 @@ def _run_contact(task: Task, threads: int | None) -> list[dict]:
     results = engine.simulate_many([(c.system, motion_of(c), c.duration, c.theta0) for c in task.cases],
                                    settings=task.setting.settings(), overturn_rule=task.overturn_rule,
                                    effective_beta=False,
-                                   threads=default_workers() if threads is None else threads)
+                                   threads=available_cores() if threads is None else threads)
     # runs overlap in threads, so a run's own wall time says little: each row gets the
     # chunk's time shared equally, as an analytic chunk's rows do
     share = (time.perf_counter() - start) / max(len(task.cases), 1)
@@ -369,6 +370,3 @@ def close_client(client) -> None:
     if cluster is not None:
         cluster.close()
 
-
-def default_workers() -> int:
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
