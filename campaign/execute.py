@@ -229,8 +229,6 @@ def read_parts(paths) -> "pyarrow.Table":
 #: alone: the compiled analytic kernel makes ~1,000 runs of 40 s per second on 2 cores, a
 #: contact engine 1–10 simulated seconds per wall second (docs/campaigns.md, Throughput)
 BATCH_COST = 1e-4
-
-
 #: the share of a campaign's expected work done before its progress bar gives an ETA
 ETA_AFTER = 1e-3
 
@@ -295,8 +293,9 @@ def execute(tasks: list, *, client=None, threads: int | None = None, on_done, pr
     `isorock validate` runs its histories through here too). here(task): tasks that run
     in this process even with a client (e.g. the analytic model's, loaded here already and
     done in milliseconds), while the cluster works on the others. progress.update(n) after
-    each task, n = weight(task) (default: its number of cases), with cost(task) where
-    given (the ETA's measure, `expected_cost`). Returns the number of tasks run."""
+    each task, n = weight(task) (default: its number of cases), with the work it was,
+    cost(task) (the ETA's measure, `expected_cost`; 0 without `cost`). Returns the number
+    of tasks run."""
     run = run or run_task
     weight = weight or (lambda task: len(task.cases))
     local = [t for t in tasks if client is None or (here is not None and here(t))]
@@ -304,10 +303,8 @@ def execute(tasks: list, *, client=None, threads: int | None = None, on_done, pr
 
     def finished(task, result):
         on_done(task, result)
-        if progress and cost:
-            progress.update(weight(task), cost(task))
-        elif progress:
-            progress.update(weight(task))
+        if progress:
+            progress.update(weight(task), cost(task) if cost else 0.0)
 
     by_key, futures = {}, []
     for task in remote:  # submitted first, so that the cluster works while this process does its part
@@ -369,4 +366,3 @@ def close_client(client) -> None:
     client.close()
     if cluster is not None:
         cluster.close()
-

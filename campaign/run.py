@@ -136,7 +136,7 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
     path's threads (None: every core). batch_here: with a cluster, the analytic chunks
     still run in this process (where the kernel is loaded; they take milliseconds) while
     the cluster runs the contact engines'. progress: True for a bar on stderr, or an
-    object with update(n)."""
+    object with update(n, work) (Progress.update)."""
     from isorock.validate.engines import get_engine
     settings = []
     for e in engines:
@@ -157,9 +157,8 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
            if progress is True else (progress or None))
     here = (lambda task: runs_as_batch(task.setting.engine)) if batch_here else None
     try:
-        # a caller's own progress object is given update(n) alone
         execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=bar, here=here,
-                cost=expected_cost if progress is True else None)
+                cost=expected_cost)
     finally:
         if close:
             close_client(live)

@@ -94,7 +94,7 @@ def run_ensembles(specs, engines, *, overrides_for=None, overturn_rule: str | No
     `threads` threads). overrides_for(name): the settings that differ for that engine
     (those it lacks are ignored). A run that raised gets NaN and its message in `failed`;
     one that failed inside the engine (a blow-up) keeps what it measured, as a single
-    run reports it. progress: an object with update(n), called as runs finish."""
+    run reports it. progress: an object with update(n, work), called as runs finish."""
     from isorock.campaign import Case, run_cases
     from isorock.validate.runner import engine_setting
     names = list(engines)

@@ -426,12 +426,13 @@ def _with_robustness(ens: Ensemble, sc: HistoryRuns) -> Ensemble:
 
 
 class _Advance:
-    """The report's progress(done, total) callback as the campaign's update(n)."""
+    """The report's progress(done, total) callback as the campaign's update(n, work): the
+    report counts runs, so the work is not read."""
 
     def __init__(self, progress, total: int):
         self.progress, self.total, self.done = progress, total, 0
 
-    def update(self, n: int) -> None:
+    def update(self, n: int, work: float = 0.0) -> None:
         self.done += n
         if self.progress:
             self.progress(self.done, self.total)
