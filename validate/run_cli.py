@@ -15,7 +15,7 @@ output (its JSON fields, its CSV) is unchanged.
 from __future__ import annotations
 
 import sys
-from dataclasses import fields, replace
+from dataclasses import fields
 from pathlib import Path
 
 from isorock.analytic.errors import InputError
@@ -62,14 +62,12 @@ def _overrides(a) -> dict:
 
 
 def settings_for(engine, preset: str | None, overrides: dict):
-    """The engine's settings: its default (or the preset) with the overrides it has."""
-    known = {f.name for f in fields(engine.Settings)}
-    mine = {k: v for k, v in overrides.items() if k in known}
+    """The engine's settings: its default (or the preset) with the overrides it has
+    (runner.engine_setting, as validate and the campaigns make them); a bad value is
+    named as its option."""
+    from isorock.validate.runner import engine_setting
     try:
-        if preset is None:
-            return engine.settings(**mine)
-        base = engine.preset(preset)
-        return replace(base, **mine) if mine else base
+        return engine_setting(spec_label(engine.name, preset), overrides).settings()
     except InputError as e:
         raise InputError(str(e).replace("_", "-")) from None
 
