@@ -1,5 +1,5 @@
 """The engine protocol: what every engine package hands the registry
-(`isorock.validate.engines`), so that commands, figures and reports loop over engines
+(`isorock.validate.core.engines`), so that commands, figures and reports loop over engines
 without knowing their names.
 
 An engine package exposes one `ENGINE = EngineSpec(...)`. Its `simulate` takes

@@ -107,7 +107,7 @@ def first_stop(t, theta, theta_dot, finite, *, system: System, motion_end: float
     - 'falling': on a fixed base after the motion has ended, |θ| > α and growing: nothing
       can bring the block back (on an isolated base the base still swings, so never).
     Overturning itself is judged from the history afterwards, the same way for every
-    engine (`isorock.validate.measure`)."""
+    engine (`isorock.validate.core.measure`)."""
     t = np.asarray(t, dtype=float)
     theta = np.asarray(theta, dtype=float)
     theta_dot = np.asarray(theta_dot, dtype=float)

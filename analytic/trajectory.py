@@ -82,7 +82,7 @@ class RawHistory:
     how the run ended, and its own diagnostics (`extras`, scalars, one vocabulary: see
     `isorock.analytic.kinematics.contact_extras`). Impacts, effective β, uplifts and
     overturning are measured from it outside the engine, the same way for every engine
-    (`isorock.validate.measure.measure`). `stop_reason` says why the history ends
+    (`isorock.validate.core.measure.measure`). `stop_reason` says why the history ends
     early, if it does ('non-finite', 'lying', 'falling'; see kinematics.first_stop)."""
 
     engine: str

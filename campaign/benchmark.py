@@ -123,7 +123,7 @@ def bench_contact(n, workers, repeats=5):
     threads). Interleaved `repeats` times: medians, with the fastest wall beside them
     (on a shared machine the others' load only ever adds time). CPU seconds (of every
     process involved) say what each way costs whatever the load."""
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     from .execute import close_client, local_client
     from .run import run_cases
     cases = _contact_cases(n)

@@ -34,7 +34,7 @@ from .spec import Case, EngineSetting
 def runs_as_batch(engine: str) -> bool:
     """Does the engine run many cases in one call (its capabilities say so: the compiled
     analytic kernel's `simulate_batch`)? The registry answers; no engine is named here."""
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     return get_engine(engine).capabilities.batch
 
 # The table's schema: one home. Inputs first (what defines a case), then results.
@@ -166,7 +166,7 @@ def _run_contact(task: Task, threads: int | None) -> list[dict]:
     """A contact engine's chunk: its batch path (MuJoCo's: one scene per system, `threads`
     runs side by side) or one run after another; each row what the run alone gives.
     Impacts are counted, not mapped to effective β: no column reads it."""
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
 
     from .build import motion_of
     engine = get_engine(task.setting.engine)
@@ -212,7 +212,7 @@ def sort_table(table):
 
 def write_part(path: Path, rows: list[dict]) -> None:
     import pyarrow.parquet as pq
-    from isorock.validate.output import write_atomic
+    from isorock.validate.io.output import write_atomic
     write_atomic(path, lambda tmp: pq.write_table(rows_to_table(rows), tmp))
 
 

@@ -63,7 +63,7 @@ def _is(cols, pair):
 
 
 def theta_tolerance(engine: str) -> float:
-    from isorock.validate.tolerances import has_tolerance, tolerance
+    from isorock.validate.core.tolerances import has_tolerance, tolerance
     return tolerance(engine, "theta_max_diff").limit if has_tolerance(engine, "theta_max_diff") \
         else DEFAULT_THETA_TOLERANCE
 
@@ -305,7 +305,7 @@ def _fmt(v):
 
 
 def write_products(table, out: Path, spec=None) -> list[Path]:
-    from isorock.validate.output import write_text
+    from isorock.validate.io.output import write_text
     cols = _columns(table)
     made, lines = [], [f"# Campaign: {spec.name if spec else 'cases'}", ""]
     if not cols["case"].size:

@@ -98,7 +98,7 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     live, close = _client_for(client, workers, scheduler) if todo else (None, False)
     try:
         if out is not None:
-            from isorock.validate.output import write_text
+            from isorock.validate.io.output import write_text
             parts_dir.mkdir(parents=True, exist_ok=True)
             write_text(out / MARKER, json.dumps({"tool": "isorock sweep", "campaign": spec.name,
                                                  "fingerprint": spec.fingerprint()}) + "\n")
@@ -113,7 +113,7 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     # only this campaign's parts: a folder may hold parts of an earlier version of the file
     table = read_parts([parts_dir / f"{t.id}.parquet" for t in tasks])
     import pyarrow.parquet as pq
-    from isorock.validate.output import write_atomic, write_text
+    from isorock.validate.io.output import write_atomic, write_text
     write_atomic(out / RESULTS, lambda tmp: pq.write_table(table, tmp))
     if spec.source and Path(spec.source).is_file():
         write_text(out / "campaign.toml", Path(spec.source).read_text(encoding="utf-8"))
@@ -137,7 +137,7 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
     still run in this process (where the kernel is loaded; they take milliseconds) while
     the cluster runs the contact engines'. progress: True for a bar on stderr, or an
     object with update(n, work) (Progress.update)."""
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     settings = []
     for e in engines:
         if isinstance(e, EngineSetting):

@@ -130,7 +130,7 @@ class EngineSetting:
 
     def settings(self):
         """The engine's Settings: its defaults (or the preset's) with the overrides."""
-        from isorock.validate.engines import get_engine
+        from isorock.validate.core.engines import get_engine
         engine = get_engine(self.engine)
         if not self.preset:
             return engine.settings(**self.settings_kwargs)
@@ -310,7 +310,7 @@ def _motions(t, source: Path) -> dict:
 
 
 def _engines(t) -> tuple[EngineSetting, ...]:
-    from isorock.validate.engines import ALL_ENGINES, get_engine
+    from isorock.validate.core.engines import ALL_ENGINES, get_engine
     if not isinstance(t, list) or not t:
         raise InputError("engines: missing (one or more [[engines]] tables with name = ...)")
     out = []
@@ -406,7 +406,7 @@ def _check_size(spec: CampaignSpec) -> None:
     if n_runs > MAX_RUNS:
         raise InputError(f"campaign size = {n_runs} runs ({spec.n_cases} cases × {len(spec.engines)} "
                          f"engine settings): must be at most {MAX_RUNS}")
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     n_contact = spec.n_cases * sum(not get_engine(e.engine).capabilities.batch for e in spec.engines)
     if n_contact > MAX_CONTACT_RUNS:
         raise InputError(f"campaign size = {n_contact} contact-engine runs: must be at most "

@@ -319,7 +319,7 @@ def run_in_process(case: Case, d: Path) -> Outcome:
     import signal
     import traceback
 
-    from isorock.validate.cli import main
+    from isorock.validate.cli.main import main
 
     class Hang(BaseException):
         pass
@@ -355,13 +355,13 @@ def run_in_process(case: Case, d: Path) -> Outcome:
 
 
 def run_as_process(case: Case, d: Path, python: str) -> Outcome:
-    """The case as a real `python -m isorock.validate.cli` process in folder d."""
+    """The case as a real `python -m isorock.validate.cli.main` process in folder d."""
     import subprocess
     if case.setup:
         case.setup(d)
     before = snapshot(d)
     try:
-        p = subprocess.run([python, "-m", "isorock.validate.cli", *case.argv], cwd=d, capture_output=True,
+        p = subprocess.run([python, "-m", "isorock.validate.cli.main", *case.argv], cwd=d, capture_output=True,
                            text=True, timeout=TIME_LIMIT)
     except subprocess.TimeoutExpired as e:
         return Outcome(None, "", str(e), _touched(before, snapshot(d), case.outputs), False, True)

@@ -71,7 +71,7 @@ def compiled_analytic_kernel():
 
         from isorock.analytic.motion import GroundMotion, load_motion
         from isorock.analytic.system import paper_system
-        from isorock.validate.engines import get_engine
+        from isorock.validate.core.engines import get_engine
         # every kind of input the kernel specializes on: no motion, a pulse, a record
         motions = (None, load_motion("sine:amp=0.6,freq=1.3,cycles=1"),
                    GroundMotion.from_array(np.array([0.0, 0.5, -0.5, 0.0]), dt=0.02, units="g"))

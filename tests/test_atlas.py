@@ -10,11 +10,11 @@ import pytest
 
 from isorock.analytic import kinematics
 from isorock.analytic.coefficients import beta
-from isorock.validate import atlas
-from isorock.validate.atlas import FULL, LEVELS, QUICK, Cell, Grid, build, qualifies, reference, run_cell
-from isorock.validate.cli import main
-from isorock.validate.runner import Task
-from isorock.validate.tolerances import tolerance
+from isorock.validate.tools import atlas
+from isorock.validate.tools.atlas import FULL, LEVELS, QUICK, Cell, Grid, build, qualifies, reference, run_cell
+from isorock.validate.cli.main import main
+from isorock.validate.core.runner import Task
+from isorock.validate.core.tolerances import tolerance
 
 
 def test_the_full_grid_spans_issue_12s_ranges():

@@ -5,9 +5,9 @@ import json
 import pytest
 
 from isorock.analytic import paper_system
-from isorock.validate import bench
-from isorock.validate.cli import main
-from isorock.validate.scenarios import Scenario
+from isorock.validate.tools import bench
+from isorock.validate.cli.main import main
+from isorock.validate.core.scenarios import Scenario
 
 
 def test_quick_analytic_bench_writes_tables(tmp_path, capsys, monkeypatch):

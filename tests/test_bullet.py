@@ -18,8 +18,8 @@ from isorock.bullet_models import scene, stepping
 from isorock.bullet_models.scene import SCENE_FORMAT, build, connect
 from isorock.bullet_models.settings import Settings, settings_for_timestep
 from isorock.analytic import kinematics
-from isorock.validate.engines import get_engine
-from isorock.validate.tolerances import tolerance
+from isorock.validate.core.engines import get_engine
+from isorock.validate.core.tolerances import tolerance
 
 #: This engine at its default settings, measured: simulate returns the shared Trajectory.
 simulate = get_engine("bullet").simulate

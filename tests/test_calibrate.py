@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from isorock.analytic import paper_system
-from isorock.validate.calibrate import (IMPACTS, PENALTY, Score, bootstrap_change, cases, holds,
+from isorock.validate.tools.calibrate import (IMPACTS, PENALTY, Score, bootstrap_change, cases, holds,
                                         settings_toml, tilts)
-from isorock.validate.cli import main
-from isorock.validate.runner import resolve
+from isorock.validate.cli.main import main
+from isorock.validate.core.runner import resolve
 
 
 def housner_beta(system):
@@ -48,7 +48,7 @@ def test_score_statistics_and_a_failed_run():
     # the same errors before and after: no change and no spread
     assert bootstrap_change(s, s) == (0.0, 0.0)
     # a resample's bound, from per-run sums, is the bound of the runs it picked
-    from isorock.validate.calibrate import _bound, _resampled_bounds
+    from isorock.validate.tools.calibrate import _bound, _resampled_bounds
     assert _resampled_bounds(s, np.array([[1, 1]]))[0] == pytest.approx(_bound(np.array([0.02, 0.0, 0.02, 0.0])))
 
 
@@ -73,8 +73,8 @@ def test_a_run_that_hops_after_its_impacts_has_failed_whatever_its_beta():
     after its impacts from 0.3α, with β within 0.8% of the closed form: the impact law
     says perfectly inelastic, so the run counts as failed."""
     from isorock.mujoco_models import ENGINE
-    from isorock.validate.calibrate import Case, lift_off_limit, run_case
-    from isorock.validate.engines import get_engine
+    from isorock.validate.tools.calibrate import Case, lift_off_limit, run_case
+    from isorock.validate.core.engines import get_engine
     system = paper_system(fixed_base=True)
     case = Case("hop", system, 0.3, 4, 2.1)
     good = get_engine("mujoco").settings(timestep=2e-3)
@@ -91,8 +91,8 @@ def test_a_run_that_hops_after_its_impacts_has_failed_whatever_its_beta():
 def test_a_run_past_its_time_limit_is_stopped_and_its_worker_replaced():
     import time
 
-    from isorock.validate.calibrate import Case, Runner
-    from isorock.validate.engines import get_engine
+    from isorock.validate.tools.calibrate import Case, Runner
+    from isorock.validate.core.engines import get_engine
     system = paper_system(fixed_base=True)
     settings = get_engine("mujoco").settings(timestep=2e-3)
     endless, short = Case("long", system, 0.3, 4, 400.0), Case("short", system, 0.3, 4, 2.1)
@@ -148,7 +148,7 @@ def test_the_preset_file_reads_back_as_the_same_settings(engine):
 def _fake_result(held_after):
     """A calibration whose held-out runs had the errors `held_after` after."""
     from isorock.mujoco_models import Settings
-    from isorock.validate.calibrate import _part
+    from isorock.validate.tools.calibrate import _part
     fit_before = Score(((0.02, 0.01), (0.03, -0.01), (0.01, 0.02)))
     fit_after = Score(tuple(tuple(0.5 * e for e in run) for run in fit_before.errors))
     held_before = Score(((0.02, 0.01), (0.01, -0.02), (0.03, 0.0)))
@@ -159,7 +159,7 @@ def _fake_result(held_after):
 
 
 def test_a_preset_must_hold_on_the_held_out_runs_and_gain_there_beyond_the_noise(tmp_path, monkeypatch, capsys):
-    from isorock.validate import calibrate as module
+    from isorock.validate.tools import calibrate as module
     halved = Score(((0.01, 0.005), (0.005, -0.01), (0.015, 0.0)))
     one_worse = Score(((0.02, 0.01), (0.01, -0.02), (0.031, 0.0)))  # the worst error up by 0.1 point
     # no worse, but better by 0.12 point with a bootstrap spread of 0.24

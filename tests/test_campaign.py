@@ -17,7 +17,7 @@ import pytest
 from isorock.campaign import load_spec, run_campaign
 from isorock.campaign.execute import NONDETERMINISTIC_COLUMNS
 from isorock.campaign.run import MARKER, PARTS
-from isorock.validate.cli import main
+from isorock.validate.cli.main import main
 
 # A tiny campaign: a one-sine grid on both bases, the analytic kernel in chunks of 7
 # (so the 2 × 3 × 3 = 18 cases make several chunks) and MuJoCo at a coarse step, one
@@ -209,7 +209,7 @@ def test_campaign_killed_midway_resumes_to_the_uninterrupted_table(serial, tmp_p
     # MuJoCo one case per chunk (the module's campaign), so parts appear one by one
     spec, whole = serial
     out = tmp_path / "killed"
-    cmd = [sys.executable, "-m", "isorock.validate.cli", "sweep", str(spec), "--out", str(out),
+    cmd = [sys.executable, "-m", "isorock.validate.cli.main", "sweep", str(spec), "--out", str(out),
            "--workers", "0", "--no-products"]
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     parts = out / PARTS
@@ -281,7 +281,7 @@ def test_run_cases_takes_presets_and_the_overturning_rule():
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.campaign import Case, run_cases
     from isorock.campaign.build import build_system, pulse_for
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     system = build_system({"height": 2 * math.cos(0.25), "width": 2 * math.sin(0.25),  # α = 0.25, R = 1 m
                            "mass": 1000.0, "base": "fixed"})
     motion = GroundMotion.from_pulse(pulse_for(system, "sine", 6.0, 9.0, 1.0))

@@ -9,7 +9,7 @@ import sys
 import pytest
 
 from isorock.analytic import beta, beta2, beta3, beta_housner, no_bounce_slenderness
-from isorock.validate.cli import main
+from isorock.validate.cli.main import main
 
 PAPER = ["--height", "2.0", "--width", "0.7", "--mass", "3800", "--base-mass", "3800"]
 
@@ -112,7 +112,7 @@ def test_old_option_names_stay_as_aliases(capsys):
 
 
 def test_beta_loads_no_heavy_module():
-    code = ("import sys; from isorock.validate.cli import main; "
+    code = ("import sys; from isorock.validate.cli.main import main; "
             "main(['beta', '--slenderness', '3', '--mass-ratio', '1']); "
             "heavy = {'numpy', 'scipy', 'matplotlib', 'mujoco', 'pybullet', 'numba'}; "
             "print(sorted(m for m in sys.modules if m.split('.')[0] in heavy))")
@@ -250,7 +250,7 @@ def test_validate_refuses_a_foreign_out_folder_before_running(tmp_path, monkeypa
 def test_sigterm_mid_run_exits_cleanly_and_leaves_nothing(tmp_path):
     import signal
     import time
-    args = [sys.executable, "-m", "isorock.validate.cli", "run", *FIXED, "--motion", "sine:amp=0.3,freq=2,cycles=400",
+    args = [sys.executable, "-m", "isorock.validate.cli.main", "run", *FIXED, "--motion", "sine:amp=0.3,freq=2,cycles=400",
             "--json", "x.json", "--csv", "x.csv"]
     proc = subprocess.Popen(args, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     # wait until the command catches SIGTERM (the kernel's SigCgt mask), then a little more

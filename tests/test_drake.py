@@ -17,9 +17,9 @@ from isorock.analytic.motion import load_motion  # noqa: E402
 from isorock.analytic.system import System  # noqa: E402
 from isorock.drake_models import scene  # noqa: E402
 from isorock.drake_models.scene import CHUNK  # noqa: E402
-from isorock.validate.compare import exact_first_impact_time  # noqa: E402
-from isorock.validate.engines import get_engine  # noqa: E402
-from isorock.validate.tolerances import tolerance  # noqa: E402
+from isorock.validate.core.compare import exact_first_impact_time  # noqa: E402
+from isorock.validate.core.engines import get_engine  # noqa: E402
+from isorock.validate.core.tolerances import tolerance  # noqa: E402
 
 H, B, M = 2.0, 0.7, 3800.0
 DRAKE = get_engine("drake")  # simulate returns the measured Trajectory
@@ -231,7 +231,7 @@ def test_registered_as_an_engine():
 
 
 def test_cli_writes_the_scene(tmp_path):
-    from isorock.validate.cli import main
+    from isorock.validate.cli.main import main
     out = tmp_path / "block.sdf"
     assert main(["scene", "--engine", "drake", "--out", str(out)]) == 0
     assert out.read_text() == scene.scene_text(System.isolated(height=H, width=B, mass=M, base_mass=M, period=1.5,

@@ -11,9 +11,9 @@ from pathlib import Path
 
 from isorock.analytic import InputError, System, Trajectory
 from isorock.analytic.engine_protocol import EngineSpec
-from isorock.validate.compare import exact_first_impact_time
-from isorock.validate.engines import ALL_ENGINES, ENGINE_NAMES, get_engine
-from isorock.validate.tolerances import tolerance
+from isorock.validate.core.compare import exact_first_impact_time
+from isorock.validate.core.engines import ALL_ENGINES, ENGINE_NAMES, get_engine
+from isorock.validate.core.tolerances import tolerance
 
 SYSTEM = System.fixed(height=2.0, width=0.7, mass=3800.0)
 FIRST_IMPACT = exact_first_impact_time(SYSTEM, 0.5 * SYSTEM.alpha)  # model.md: 0.5014170 s

@@ -10,7 +10,7 @@ from isorock.analytic import AnalyticSettings, GroundMotion, System, simulate
 from isorock.analytic.coefficients import beta
 from isorock.analytic.status import Status
 from isorock.analytic.trajectory import RawHistory
-from isorock.validate.measure import CONTACT_WINDOW, measure
+from isorock.validate.core.measure import CONTACT_WINDOW, measure
 
 FIXED = System.fixed(height=2.0, width=0.7, mass=3800.0)
 ISOLATED = System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.5, damping_ratio=0.2)

@@ -20,10 +20,10 @@ from isorock.analytic import kinematics
 from isorock.mujoco_models import stepping
 from isorock.mujoco_models.scene import CORNER_RADIUS, SCENE_FORMAT
 from isorock.mujoco_models.settings import JOINTS
-from isorock.validate.compare import exact_first_impact_time
-from isorock.validate.engines import get_engine
-from isorock.validate.measure import beta_errors
-from isorock.validate.tolerances import tolerance
+from isorock.validate.core.compare import exact_first_impact_time
+from isorock.validate.core.engines import get_engine
+from isorock.validate.core.measure import beta_errors
+from isorock.validate.core.tolerances import tolerance
 
 #: This engine at its default settings, measured: simulate returns the shared Trajectory.
 MUJOCO = get_engine("mujoco")
@@ -376,7 +376,7 @@ def test_progress_reports_simulated_time(monkeypatch):
 
 
 def test_scene_text_compiles_and_cli_writes_it(tmp_path):
-    from isorock.validate.cli import main
+    from isorock.validate.cli.main import main
     out = tmp_path / "scene.xml"
     assert main(["scene", "--engine", "mujoco", "--fixed-base", "--out", str(out)]) == 0
     model = mujoco.MjModel.from_xml_path(str(out))
@@ -385,7 +385,7 @@ def test_scene_text_compiles_and_cli_writes_it(tmp_path):
 
 
 def test_a_timestep_alone_takes_the_contact_parameters_measured_for_it():
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     engine = get_engine("mujoco")
     tied = engine.settings(timestep=2e-3)
     assert tied == scene.settings_for_timestep(2e-3)

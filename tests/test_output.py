@@ -8,7 +8,7 @@ import stat
 import pytest
 
 from isorock.analytic.errors import InputError
-from isorock.validate.output import (MARKER, Outputs, Terminated, check_folder, signals_end_cleanly, write_folder_atomic,
+from isorock.validate.io.output import (MARKER, Outputs, Terminated, check_folder, signals_end_cleanly, write_folder_atomic,
                                      write_text)
 
 

@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from isorock.validate import provenance as prov
-from isorock.validate.cli import main
+from isorock.validate.io import provenance as prov
+from isorock.validate.cli.main import main
 
 ABC_SHA256 = "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"  # FIPS 180-2 test vector
 

@@ -17,12 +17,12 @@ from pathlib import Path
 import pytest
 
 from isorock.analytic.coefficients import beta as beta_closed
-from isorock.validate.compare import compare, exact_first_impact_time, first_tilt
-from isorock.validate.engines import CONTACT_ENGINES, ENGINE_NAMES, REFERENCE, get_engine
-from isorock.validate.output import write_json
-from isorock.validate.report_run import effective_beta
-from isorock.validate.scenarios import ROBUST_SINE, golden_scenarios
-from isorock.validate.tolerances import (GOLDEN_TOLERANCES, TOLERANCES, GoldenTolerance, golden_tolerances,
+from isorock.validate.core.compare import compare, exact_first_impact_time, first_tilt
+from isorock.validate.core.engines import CONTACT_ENGINES, ENGINE_NAMES, REFERENCE, get_engine
+from isorock.validate.io.output import write_json
+from isorock.validate.tools.report_run import effective_beta
+from isorock.validate.core.scenarios import ROBUST_SINE, golden_scenarios
+from isorock.validate.core.tolerances import (GOLDEN_TOLERANCES, TOLERANCES, GoldenTolerance, golden_tolerances,
                                          tolerance)
 
 GOLDEN_DIR = Path(__file__).resolve().parent / "golden"

@@ -5,7 +5,7 @@ import json
 
 import pytest
 
-from isorock.validate.cli import main
+from isorock.validate.cli.main import main
 
 SYSTEM = ["--height", "2", "--width", "0.7", "--mass", "3800", "--base-mass", "3800", "--fixed-base",
           "--theta0", "0.5", "--duration", "1.0"]

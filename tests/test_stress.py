@@ -2,15 +2,15 @@
 its energy balance closed to 1e-6 of the input energy."""
 
 from isorock.analytic import System
-from isorock.validate.scenarios import Scenario
-from isorock.validate.stress import (ENERGY_TOLERANCE, StressCase, compare_engines, drawn_cases, edge_cases,
+from isorock.validate.core.scenarios import Scenario
+from isorock.validate.tools.stress import (ENERGY_TOLERANCE, StressCase, compare_engines, drawn_cases, edge_cases,
                                     run_case, run_stress, verdict)
 
 
 def test_quick_edges_and_draws_pass_on_every_grid_engine():
     # Drake's continuous plant runs ~1–2 simulated s per CPU s here: it is no grid engine
     # (tests/test_drake.py covers it); the draws compare the report's engines
-    from isorock.validate.engines import ENGINE_NAMES, campaign_engines
+    from isorock.validate.core.engines import ENGINE_NAMES, campaign_engines
     engines = campaign_engines()
     assert "drake" not in engines
     results = run_stress(quick=True, time_limit=60, progress=False, drawn=4)

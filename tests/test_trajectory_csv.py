@@ -6,7 +6,7 @@ import numpy as np
 
 from isorock.analytic.coefficients import beta
 from isorock.analytic.system import System
-from isorock.validate.engines import get_engine
+from isorock.validate.core.engines import get_engine
 
 
 def test_csv_has_no_duplicate_times_and_keeps_the_post_impact_row(tmp_path):

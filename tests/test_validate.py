@@ -12,14 +12,14 @@ import pytest
 from isorock.analytic import load_motion, paper_system, simulate
 from isorock.analytic.errors import InputError
 from isorock.analytic.trajectory import Trajectory
-from isorock.validate import engines as engine_registry
-from isorock.validate import figures
-from isorock.validate.cli import main
-from isorock.validate.compare import AGREEMENT_FRACTION, agreement, compare, exact_first_impact_time, first_tilt
-from isorock.validate.engines import CONTACT_ENGINES, get_engine
-from isorock.validate.naming import describe_motion
-from isorock.validate.ensemble import Ensemble, scale_factors
-from isorock.validate.tolerances import TOLERANCES, check, tolerance
+from isorock.validate.core import engines as engine_registry
+from isorock.validate.io import figures
+from isorock.validate.cli.main import main
+from isorock.validate.core.compare import AGREEMENT_FRACTION, agreement, compare, exact_first_impact_time, first_tilt
+from isorock.validate.core.engines import CONTACT_ENGINES, get_engine
+from isorock.validate.io.naming import describe_motion
+from isorock.validate.tools.ensemble import Ensemble, scale_factors
+from isorock.validate.core.tolerances import TOLERANCES, check, tolerance
 
 PULSE = "ricker:amp=0.5,freq=1"
 
@@ -112,7 +112,7 @@ def test_ensembles_equal_runs_made_one_at_a_time(monkeypatch):
     batch, MuJoCo's batch path, a preset as its own column): every θmax/α and verdict is
     the one a single run of that engine gives. A run that raises is NaN with its message."""
     from isorock.mujoco_models import stepping
-    from isorock.validate.ensemble import run_ensembles
+    from isorock.validate.tools.ensemble import run_ensembles
     real = stepping._run
 
     def flaky(model, system, motion, *args):  # MuJoCo raises above 0.6 g
@@ -168,7 +168,7 @@ def test_scale_factors():
     for bad in ((0.0, 1.0, 3), (1.0, 0.5, 3), (0.5, 1.0, 2.5)):
         with pytest.raises(InputError):
             scale_factors(*bad)
-    from isorock.validate.ensemble import run_ensembles
+    from isorock.validate.tools.ensemble import run_ensembles
     with pytest.raises(InputError, match="analytic"):
         run_ensembles([(paper_system(), load_motion(PULSE), "m", 1.0, [1.0])], ["mujoco"])
 
@@ -256,7 +256,7 @@ def test_validate_bad_input_exits_2_and_writes_nothing(tmp_path, capsys, bad):
 def test_engines_are_read_alike_by_every_command():
     """validate, bench and atlas take --engines through one parser (run_cli.engine_labels):
     items space- or comma-separated, a comma left at an item's end as in 'analytic, mujoco'."""
-    from isorock.validate.run_cli import engine_labels
+    from isorock.validate.cli.run import engine_labels
     want = ["analytic", "mujoco:fast", "bullet"]
     assert engine_labels(["analytic,", "mujoco:fast", "bullet"]) == want
     assert engine_labels(["analytic,mujoco:fast,bullet"]) == want

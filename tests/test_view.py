@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from isorock.analytic.system import System
-from isorock.validate import view
-from isorock.validate.cli import main
+from isorock.validate.tools import view
+from isorock.validate.cli.main import main
 
 ISOLATED = System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.5, damping_ratio=0.2)
 FIXED = System.fixed(height=2.0, width=0.7, mass=3800.0)
@@ -62,7 +62,7 @@ def test_gif_of_free_rocking_where_an_offscreen_renderer_exists(tmp_path):
     out = tmp_path / "rock.gif"
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
     env["MUJOCO_GL"] = backend
-    r = subprocess.run([sys.executable, "-m", "isorock.validate.cli", "view", "--engine", "analytic",
+    r = subprocess.run([sys.executable, "-m", "isorock.validate.cli.main", "view", "--engine", "analytic",
                         "--fixed-base", "--motion", "none", "--theta0", "0.5", "--duration", "1", "--fps", "5",
                         "--size", "160x120", "--out", str(out)], env=env, capture_output=True, text=True,
                        timeout=240)

@@ -13,7 +13,7 @@ p_paper / p, so 4 steps per time constant as by default); and both.
 from types import SimpleNamespace
 
 from isorock.analytic.system import paper_system
-from isorock.validate import atlas
+from isorock.validate.tools import atlas
 
 P_PAPER = paper_system(fixed_base=True).p
 B_PAPER = paper_system().b

@@ -24,10 +24,10 @@ import sys
 import time
 
 from isorock.analytic.motion import load_motion
-from isorock.validate.compare import compare, reference_sensitivity
-from isorock.validate.engines import get_engine
+from isorock.validate.core.compare import compare, reference_sensitivity
+from isorock.validate.core.engines import get_engine
 from isorock.validate.report import BETA_MIN_AMPLITUDE, DEFAULT_MOTIONS, FULL, paper_bases
-from isorock.validate.tolerances import ROBUST_SPREAD
+from isorock.validate.core.tolerances import ROBUST_SPREAD
 
 ENGINES = ("analytic", "mujoco", "bullet", "drake")
 

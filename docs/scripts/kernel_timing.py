@@ -21,7 +21,7 @@ PAPER = ["--height", "2.0", "--width", "0.7", "--mass", "3800", "--base-mass", "
 
 
 def cold(engine, repeats):
-    isorock = [sys.executable, "-m", "isorock.validate.cli"]
+    isorock = [sys.executable, "-m", "isorock.validate.cli.main"]
     walls, runtimes = [], []
     for _ in range(repeats):
         t = time.perf_counter()
@@ -36,7 +36,7 @@ def cold(engine, repeats):
 def warm(engine, repeats):
     from isorock.analytic.motion import read_at2
     from isorock.analytic.system import paper_system
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     e, system, kobe = get_engine(engine), paper_system(), read_at2(KOBE)
     e.simulate(system, kobe, duration=40.0)
     times = []

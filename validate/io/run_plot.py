@@ -10,9 +10,9 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from isorock.analytic.system import STANDARD_GRAVITY
-from isorock.validate.compare import COMPARE_DT
-from isorock.validate.figures import DPI, style
-from isorock.validate.naming import describe_motion, describe_system
+from isorock.validate.core.compare import COMPARE_DT
+from isorock.validate.io.figures import DPI, style
+from isorock.validate.io.naming import describe_motion, describe_system
 
 
 def _style(name: str, index: int) -> dict:

@@ -33,8 +33,8 @@ import numpy as np
 
 from isorock.analytic.coefficients import no_bounce_slenderness
 from isorock.analytic.kinematics import LYING
-from isorock.validate.engines import REFERENCE
-from isorock.validate.scenarios import Scenario, block
+from isorock.validate.core.engines import REFERENCE
+from isorock.validate.core.scenarios import Scenario, block
 
 ENERGY_TOLERANCE = 1e-6  # analytic energy balance residual / input energy
 #: |θ| a run may show beyond π/2 (a contact engine's block lands on its side face through
@@ -163,7 +163,7 @@ def drawn_cases(n: int) -> list[StressCase]:
 
 def _run_in_child(conn, engine_name, case):
     try:
-        from isorock.validate.engines import get_engine
+        from isorock.validate.core.engines import get_engine
         engine = get_engine(engine_name)
         sc = case.scenario
         system, motion = sc.system, sc.ground_motion()
@@ -289,8 +289,8 @@ def compare_engines(results: list[dict]) -> None:
 
 def run_stress(*, quick=False, engines=None, time_limit=None, progress=True, drawn: int | None = None,
                workers: int = 2) -> list[dict]:
-    from isorock.validate.engines import ENGINE_NAMES, campaign_engines, get_engine
-    from isorock.validate.progress import ProgressBar
+    from isorock.validate.core.engines import ENGINE_NAMES, campaign_engines, get_engine
+    from isorock.validate.io.progress import ProgressBar
     engines = list(engines or campaign_engines())
     time_limit = time_limit or (30.0 if quick else 120.0)
     edges = edge_cases(quick)
@@ -356,58 +356,3 @@ def markdown(results) -> str:
     lines += ["", f"Energy balance tolerance (analytic): {ENERGY_TOLERANCE:g} of the input energy. A disagreement "
                   f"counts only where the analytic outcome holds under ±{ROBUST_SCALE:.0%} of the motion."]
     return "\n".join(lines) + "\n"
-
-
-def add_parser(sub) -> None:
-    p = sub.add_parser("stress", help="the stability stress grid (exits non-zero on any failure)",
-                       description=__doc__.split("\n\n")[1])
-    p.add_argument("--quick", action="store_true", help="the quick subset (under 2 minutes)")
-    p.add_argument("--drawn", type=int, metavar="N",
-                   help=f"property-based cases to draw (default {DRAWN_FULL}, {DRAWN_QUICK} with --quick)")
-    p.add_argument("--workers", type=int, default=2, help="runs at a time (default: %(default)s)")
-    p.add_argument("--out", default="isorock-stress", metavar="DIR",
-                   help="folder for stress.md, stress.csv, stress.json: new, empty or an earlier isorock "
-                        "output (default: %(default)s)")
-    p.add_argument("--engines", nargs="+", metavar="ENGINE",
-                   help="engines to stress (default: every engine fast enough for grids; Drake by name)")
-    p.add_argument("--time-limit", type=float, help="wall-time limit per case, s (default 30 quick, 120 full)")
-    p.set_defaults(func=cmd_stress)
-
-
-def cmd_stress(a) -> int:
-    import csv
-    import io
-
-    from isorock.analytic.errors import InputError
-    from isorock.validate.engines import get_engine
-    from isorock.validate.output import to_json, write_folder_atomic
-    for e in a.engines or []:
-        get_engine(e)  # an unknown name is an InputError before anything runs
-    if a.time_limit is not None and not a.time_limit > 0:
-        raise InputError(f"time-limit = {a.time_limit!r}: must be a positive number of seconds")
-    from isorock.validate.output import check_folder
-    check_folder(a.out)  # a folder we may not write is refused before the grid runs
-    start = time.perf_counter()
-    if a.drawn is not None and not 0 <= a.drawn <= 100_000:
-        raise InputError(f"drawn = {a.drawn!r}: must be a number of cases from 0 to 100000")
-    if not 1 <= a.workers <= 64:
-        raise InputError(f"workers = {a.workers!r}: must be a number of processes from 1 to 64")
-    results = run_stress(quick=a.quick, engines=a.engines, time_limit=a.time_limit, drawn=a.drawn,
-                         workers=a.workers)
-
-    def fill(tmp: Path):
-        (tmp / "stress.md").write_text(markdown(results))
-        (tmp / "stress.json").write_text(to_json(results) + "\n")
-        buf = io.StringIO()
-        w = csv.DictWriter(buf, fieldnames=COLUMNS, extrasaction="ignore")
-        w.writeheader()
-        w.writerows(results)
-        (tmp / "stress.csv").write_text(buf.getvalue())
-    write_folder_atomic(a.out, fill)
-    fails = failures(results)
-    for r in fails:
-        print(f"  {r['verdict'] if r['verdict'] != 'pass' else r['cross']} {r['engine']} {r['case']}: "
-              f"{r['status']} {r.get('error', '')}")
-    print(f"report in {a.out}/stress.md ({time.perf_counter() - start:.0f} s)")
-    print(stress_verdict(results))
-    return 1 if fails else 0

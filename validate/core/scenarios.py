@@ -8,6 +8,7 @@ to another process; `ground_motion()` loads it (once per process).
 from __future__ import annotations
 
 import functools
+import os
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -16,8 +17,23 @@ import numpy as np
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
 
-#: Where the shared real records lie, beside the repository (never copied into it).
-RECORDS = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "records"
+
+
+def records_folder() -> Path:
+    """Where the shared real records lie (never copied into the project): the folder
+    named by $ISOROCK_RECORDS; else `shared/data/records` beside the checkout the package
+    runs from (an editable install); else beside the working folder (`../shared/...`, a
+    wheel installed elsewhere, run from the checkout). The first that exists; the
+    checkout's when none does, so that a message names where it looked."""
+    if os.environ.get("ISOROCK_RECORDS"):
+        return Path(os.environ["ISOROCK_RECORDS"])
+    beside = [Path(__file__).resolve().parents[3] / "shared" / "data" / "records",
+              Path.cwd().resolve().parent / "shared" / "data" / "records"]
+    return next((p for p in beside if p.is_dir()), beside[0])
+
+
+#: The shared records folder (records_folder()), read when the module loads.
+RECORDS = records_folder()
 KOBE = RECORDS / "RSN1106_KOBE_KJM000.AT2"
 #: The robust pulse of the report, the golden metrics and the bench: the paper's block
 #: rocks on both bases without overturning, and θmax/α moves < 0.05 under ±1% PGA.

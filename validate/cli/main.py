@@ -28,16 +28,16 @@ from isorock.analytic.errors import InputError
 #: their one-line help. Only the module of the command being run is imported, so a
 #: light command never loads what a heavy one needs.
 EXTRA_COMMANDS = {
-    "validate": ("isorock.validate.report_cli", "the validation report: all engines side by side with the "
+    "validate": ("isorock.validate.cli.report", "the validation report: all engines side by side with the "
                                                  "analytic model"),
-    "bench": ("isorock.validate.bench", "work-precision benchmarks of every engine"),
-    "stress": ("isorock.validate.stress", "the stability stress grid (exits non-zero on any failure)"),
-    "calibrate": ("isorock.validate.calibrate", "fit a contact engine's contact parameters to the closed-form β"),
-    "atlas": ("isorock.validate.atlas", "the contact-model atlas: every preset's β and t₁ error over slenderness "
+    "bench": ("isorock.validate.cli.bench", "work-precision benchmarks of every engine"),
+    "stress": ("isorock.validate.cli.stress", "the stability stress grid (exits non-zero on any failure)"),
+    "calibrate": ("isorock.validate.cli.calibrate", "fit a contact engine's contact parameters to the closed-form β"),
+    "atlas": ("isorock.validate.cli.atlas", "the contact-model atlas: every preset's β and t₁ error over slenderness "
                                         "× mass ratio × size, with its cost"),
-    "view": ("isorock.validate.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
+    "view": ("isorock.validate.cli.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
                                       "display"),
-    "sweep": ("isorock.campaign.cli", "run a campaign (TOML): overturning spectra, fragility curves, agreement maps"),
+    "sweep": ("isorock.validate.cli.sweep", "run a campaign (TOML): overturning spectra, fragility curves, agreement maps"),
 }
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
@@ -312,9 +312,9 @@ def _progress(quiet):
 def cmd_run(a) -> int:
     from isorock.analytic.limits import check_resample
     from isorock.analytic.protocol import run_inputs
-    from isorock.validate import run_cli
-    from isorock.validate.engines import get_engine
-    from isorock.validate.output import Outputs, to_json
+    from isorock.validate.cli.main import run as run_cli
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.io.output import Outputs, to_json
     specs = run_cli.parse_engines(a.engine)
     if len(specs) > 1:  # several engines on one system and motion, compared with the first
         system, motion = system_from_args(a), motion_from_args(a)
@@ -355,13 +355,13 @@ def cmd_run(a) -> int:
         summary = traj.summary()
         report = dict(summary, system=system.describe(), motion=motion.describe(), settings=_settings_dict(settings))
         if json_out:
-            from isorock.validate.provenance import provenance
+            from isorock.validate.io.provenance import provenance
             json_out.write_text(to_json(dict(report, provenance=provenance(record_paths=[a.motion]))) + "\n")
         if csv_out:
             hist = traj.resample(a.csv_dt) if a.csv_dt else traj
             csv_out.write(hist.to_csv)
         if plot_out:
-            from isorock.validate.run_plot import plot_runs
+            from isorock.validate.io.run_plot import plot_runs
             plot_out.write(lambda tmp: plot_runs({a.engine: traj}, motion, tmp, format=plot_kind))
         outputs.commit()
     to_stdout = "-" in (a.json, a.csv)
@@ -384,8 +384,8 @@ def _settings_dict(settings):
 
 
 def cmd_scene(a) -> int:
-    from isorock.validate.engines import get_engine
-    from isorock.validate.output import Outputs
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.io.output import Outputs
     with Outputs() as outputs:
         out = outputs.file("out", a.out)
         engine = get_engine(a.engine)
@@ -406,12 +406,12 @@ def cmd_scene(a) -> int:
 
 
 def _registered():
-    from isorock.validate.engines import ALL_ENGINES
+    from isorock.validate.core.engines import ALL_ENGINES
     return ALL_ENGINES
 
 
 def _engines_with_scenes():
-    from isorock.validate.engines import ALL_ENGINES, get_engine
+    from isorock.validate.core.engines import ALL_ENGINES, get_engine
     out = []
     for name in ALL_ENGINES:
         try:
@@ -423,7 +423,7 @@ def _engines_with_scenes():
 
 
 def main(argv=None) -> int:
-    from isorock.validate.output import Terminated, signals_end_cleanly
+    from isorock.validate.io.output import Terminated, signals_end_cleanly
     argv = sys.argv[1:] if argv is None else list(argv)
     command = next((x for x in argv if not x.startswith("-")), None)
     parser = build_parser(command)

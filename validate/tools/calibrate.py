@@ -136,7 +136,7 @@ def cases(system, n_tilts: int = DEFAULT_TILTS, impacts: int = IMPACTS) -> tuple
 
 
 def _reference_engine():
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     try:
         return get_engine("analytic")
     except ImportError:  # the compiled kernel needs numba: the SciPy path gives the same times
@@ -225,8 +225,8 @@ def run_case(engine_name: str, settings, case: Case, time_limit: float | None = 
     crash), when the block hops after an impact by more than the engine's lift-off
     tolerance (the impact law is perfectly inelastic, and a hopping contact can still
     give a plausible β), or when the run takes longer than `time_limit` s."""
-    from isorock.validate.engines import get_engine
-    from isorock.validate.measure import beta_errors
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.core.measure import beta_errors
     start = time.perf_counter()
 
     def watch(t, duration):  # the engines call it between chunks of their own loops
@@ -258,7 +258,7 @@ class _TooSlow(Exception):
 def lift_off_limit(engine_name: str) -> float:
     """m: the engine's tolerance on the lift-off after an impact (validate/tolerances.py),
     or LIFT_OFF where it has none."""
-    from isorock.validate.tolerances import has_tolerance, tolerance
+    from isorock.validate.core.tolerances import has_tolerance, tolerance
     if has_tolerance(engine_name, "lift_off_after_impact"):
         return tolerance(engine_name, "lift_off_after_impact").limit
     return LIFT_OFF
@@ -469,7 +469,7 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
     fitted and held-out scores before and after with the change of their 2σ bound and
     its bootstrap spread. `workers`: processes for the runs (0: this one; Runner).
     `progress(done, total, best)` after each run."""
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     engine = get_engine(engine_name)
     tuning = engine.spec.tuning
     if tuning is None:
@@ -635,29 +635,6 @@ def report_lines(result: dict, system, command: str) -> list[str]:
     return lines
 
 
-def _options(a, keys) -> list[str]:
-    """The options among `keys` that were given, as they would be typed."""
-    words = []
-    for k in keys:
-        v = getattr(a, k, None)
-        if v is True:
-            words.append(f"--{k.replace('_', '-')}")
-        elif v not in (None, False):
-            v = ",".join(f"{x:g}" for x in v) if isinstance(v, tuple) else (f"{v:g}" if isinstance(v, float) else v)
-            words.append(f"--{k.replace('_', '-')} {v}")
-    return words
-
-
-def _command(a) -> str:
-    """The command line that gives this result again (the options that were given)."""
-    from isorock.validate.cli import ENGINE_OPTIONS, SYSTEM_KEYS
-    words = ["isorock calibrate", f"--engine {a.engine}", *_options(a, SYSTEM_KEYS), *_options(a, ENGINE_OPTIONS)]
-    if a.tilts != DEFAULT_TILTS:
-        words.append(f"--tilts {a.tilts}")
-    words.append(f"--max-evals {a.max_evals}")
-    return " ".join(words)
-
-
 def _show(v):
     if isinstance(v, tuple):
         return "(" + ", ".join(f"{x:.6g}" for x in v) + ")"
@@ -675,80 +652,3 @@ def result_json(result: dict) -> dict:
         out[key] = part
     out["holds"], out["preset"] = holds(result), preset_worthy(result)
     return out
-
-
-# --- command line ----------------------------------------------------------------------------
-
-def add_parser(sub) -> None:
-    from isorock.validate.cli import add_engine_options, add_system_options, whole_number
-    p = sub.add_parser("calibrate", help="fit a contact engine's contact parameters to the closed-form β",
-                       description=__doc__.split("\n\n")[0])
-    p.add_argument("--engine", required=True, help="mujoco, bullet or drake")
-    add_system_options(p, required=False)
-    add_engine_options(p)
-    p.add_argument("--max-evals", type=whole_number, default=48,
-                   help="evaluations of the fitted runs the search may spend (default: %(default)s)")
-    p.add_argument("--tilts", type=whole_number, default=DEFAULT_TILTS,
-                   help=f"fitted tilts per base, evenly over {TILT_RANGE[0]:g}–{TILT_RANGE[1]:g}·α; the held-out "
-                        "runs are the tilts halfway between them (default: %(default)s)")
-    p.add_argument("--workers", type=whole_number,
-                   help="worker processes for the runs, each run stopped at its time limit (default: 2, or the "
-                        "cores there are)")
-    p.add_argument("--out", metavar="FILE.toml",
-                   help="write the calibrated settings as a preset file (`isorock validate --config FILE`), "
-                        "when they hold on the held-out runs")
-    p.add_argument("--json", metavar="FILE", help="write the whole result (every run's β errors) as JSON")
-    p.add_argument("--quiet", action="store_true", help="no progress on stderr")
-    p.set_defaults(func=cmd_calibrate)
-
-
-def cmd_calibrate(a) -> int:
-    from pathlib import Path
-
-    from isorock.analytic.system import paper_system
-    from isorock.validate.cli import SYSTEM_KEYS, engine_settings_from_args, system_from_options
-    from isorock.validate.engines import get_engine
-    from isorock.validate.output import Outputs, to_json
-    from isorock.validate.progress import ProgressBar
-    from isorock.validate.runner import default_workers
-    engine = get_engine(a.engine)
-    if engine.spec.tuning is None:
-        raise InputError(f"engine = {a.engine!r}: has no contact parameters to calibrate")
-    if not 5 <= a.max_evals <= 2000:
-        raise InputError(f"max-evals = {a.max_evals!r}: must be a whole number from 5 to 2000")
-    if not 2 <= a.tilts <= 101:
-        raise InputError(f"tilts = {a.tilts!r}: must be a whole number from 2 to 101")
-    workers = default_workers() if a.workers is None else a.workers
-    if workers < 1:
-        raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
-    system = system_from_options(a) or paper_system(fixed_base=True)
-    if a.out and Path(a.out).exists():
-        raise InputError(f"out = {a.out!r}: exists; give a new file (isorock does not replace files it did not write)")
-    settings = engine_settings_from_args(engine, a)
-    with Outputs() as outputs:  # bad paths are refused before minutes of simulation
-        preset = outputs.file("out", a.out) if a.out else None
-        report = outputs.file("json", a.json) if a.json else None
-        bar = ProgressBar(1, "calibrate", enabled=None if not a.quiet else False)
-
-        def progress(done, total, best):
-            bar.total = total
-            bar.advance(done - bar.done, f"best 2σ bound {100 * best:.3f}%" if math.isfinite(best) else "")
-        r = calibrate(a.engine, system, settings=settings, n_tilts=a.tilts, max_evals=a.max_evals,
-                      workers=workers, progress=progress)
-        bar.advance(bar.total - bar.done)  # Nelder–Mead may converge before the budget is spent
-        bar.close()
-        lines = report_lines(r, system, _command(a))
-        ok = preset_worthy(r)
-        if preset is not None:
-            if ok:
-                preset.write_text(settings_toml(a.engine, r["settings_after"], lines))
-                lines.append(f"wrote {a.out} (use it with: isorock validate --config {a.out} --engines analytic "
-                             f"{' '.join([a.engine, *_options(a, SYSTEM_KEYS)])})")
-            else:
-                lines.append(f"{a.out} not written: the calibrated settings do not meet the preset's criterion above")
-        if report is not None:
-            report.write_text(to_json(result_json(r)) + "\n")
-        # the JSON on standard output stays parseable: the text goes to stderr then
-        print("\n".join(lines), file=sys.stderr if a.json == "-" else sys.stdout)
-        outputs.commit()
-    return 0 if ok else 1

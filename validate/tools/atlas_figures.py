@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.colors import SymLogNorm
 from matplotlib.figure import Figure
 
-from isorock.validate.figures import DPI, _save, style
+from isorock.validate.io.figures import DPI, _save, style
 
 #: Both maps share one colour scale, in %, so that two presets' maps compare by eye: a
 #: diverging map, white at 0, linear within ±LINEAR_PCT, saturating at ±SATURATE_PCT

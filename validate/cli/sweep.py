@@ -28,8 +28,8 @@ def run(a) -> int:
     from isorock.analytic.errors import InputError
     from isorock.analytic.limits import available_cores
 
-    from .run import run_campaign
-    from .spec import load_spec
+    from isorock.campaign.run import run_campaign
+    from isorock.campaign.spec import load_spec
     if a.workers is not None and a.workers < 0:
         raise InputError(f"--workers = {a.workers}: must be 0 (serial) or a positive number of processes")
     spec = load_spec(a.spec)

@@ -33,7 +33,7 @@ def engine_setting(engine: str, overrides: dict | None = None):
     `overrides` the engine has (others are ignored: a friction given for every engine
     means nothing to the analytic model)."""
     from isorock.campaign.spec import EngineSetting
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     name, _, preset = engine.partition(":")
     known = {f.name for f in fields(get_engine(name).Settings)}
     mine = {k: (tuple(v) if isinstance(v, list) else v) for k, v in (overrides or {}).items() if k in known}
@@ -43,7 +43,7 @@ def engine_setting(engine: str, overrides: dict | None = None):
 def resolve(engine: str, overrides: dict | None = None):
     """(Engine, Settings) of "ENGINE" or "ENGINE:PRESET" with `overrides` applied to the
     settings that the engine has (engine_setting)."""
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     setting = engine_setting(engine, overrides)
     return get_engine(setting.engine), setting.settings()
 
@@ -105,7 +105,7 @@ def _one(work, task: Task, threads: int | None = None):
 
 
 def _light(task: Task) -> bool:
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     try:
         return get_engine(task.engine.partition(":")[0]).capabilities.exact_impacts
     except ImportError:

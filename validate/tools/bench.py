@@ -22,7 +22,7 @@ import numpy as np
 
 from isorock.analytic.hybrid import AnalyticSettings
 from isorock.analytic.hybrid import simulate as reference_simulate
-from isorock.validate.scenarios import KOBE, Scenario, bench_scenarios
+from isorock.validate.core.scenarios import KOBE, Scenario, bench_scenarios
 
 REFERENCE = AnalyticSettings(rtol=1e-12, atol=1e-14)
 N_BETA = 4  # impacts whose effective β error is reported
@@ -39,8 +39,8 @@ FAST_REPEATS = 5
 def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
     """(label, settings) from cheapest to most accurate: the engine's own ladder; for
     ENGINE:PRESET the preset alone (a row of its own, labelled by it)."""
-    from isorock.validate.engines import get_engine
-    from isorock.validate.runner import resolve
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.core.runner import resolve
     name, _, preset = engine.partition(":")
     if preset:
         return [(preset, resolve(engine)[1])]
@@ -50,8 +50,8 @@ def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
 
 def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
     """One (engine or ENGINE:PRESET, setting) on one scenario; the row's engine is the label."""
-    from isorock.validate.compare import compare
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.compare import compare
+    from isorock.validate.core.engines import get_engine
     run = get_engine(engine.partition(":")[0]).simulate
     motion = sc.ground_motion()
     kwargs = dict(settings=settings, duration=sc.duration, theta0=sc.theta0)
@@ -81,7 +81,7 @@ def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
 
 
 def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], dict]:
-    from isorock.validate.engines import campaign_engines, get_engine
+    from isorock.validate.core.engines import campaign_engines, get_engine
     engines = [e for e in (engines or campaign_engines()) if _importable(e.partition(":")[0])]
     rows = []
     for sc in bench_scenarios(quick):
@@ -103,7 +103,7 @@ def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], 
 
 
 def _importable(engine: str) -> bool:
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     try:
         get_engine(engine)
         return True
@@ -217,50 +217,3 @@ def plot(rows, path) -> None:
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
-
-
-def _engine_names():
-    from isorock.validate.engines import ALL_ENGINES
-    return ALL_ENGINES
-
-
-def add_parser(sub) -> None:
-    p = sub.add_parser("bench", help="work-precision benchmarks of every engine",
-                       description=__doc__.split("\n\n")[0])
-    p.add_argument("--quick", action="store_true", help="fewer settings, one repeat (a few minutes)")
-    p.add_argument("--out", default="isorock-bench", metavar="DIR",
-                   help="folder for bench.csv, bench.md, bench.png, bench.json: new, empty or an earlier "
-                        "isorock output (default: %(default)s)")
-    p.add_argument("--engines", nargs="+", metavar="ENGINE[:PRESET]",
-                   help="engines to bench, space- or comma-separated: ENGINE runs its ladder of settings, "
-                        "ENGINE:PRESET that preset alone, as rows of its own (e.g. mujoco:default mujoco:fast "
-                        "drake:sap; default: the engines fast enough for grids; others, e.g. drake, by name; "
-                        "registered: %s)" % ", ".join(_engine_names()))
-    p.set_defaults(func=cmd_bench)
-
-
-def cmd_bench(a) -> int:
-    import csv
-    import io
-
-    from isorock.validate.output import check_folder, to_json, write_folder_atomic
-    from isorock.validate.run_cli import engine_labels
-    # an unknown engine or preset is an InputError before anything runs
-    engines = engine_labels(a.engines) if a.engines else None
-    check_folder(a.out)  # so is a folder we may not write
-    start = time.perf_counter()
-    rows, extra = run_bench(quick=a.quick, engines=engines)
-
-    def fill(tmp: Path):
-        (tmp / "bench.md").write_text(markdown(rows, extra))
-        (tmp / "bench.json").write_text(to_json({"rows": rows, **extra}) + "\n")
-        buf = io.StringIO()
-        w = csv.DictWriter(buf, fieldnames=COLUMNS + ("wall_per_sim", "parted", "overturn_agree"),
-                           extrasaction="ignore")
-        w.writeheader()
-        w.writerows(rows)
-        (tmp / "bench.csv").write_text(buf.getvalue())
-        plot(rows, tmp / "bench.png")
-    write_folder_atomic(a.out, fill)
-    print(f"bench: {len(rows)} runs in {time.perf_counter() - start:.0f} s; table in {a.out}/bench.md")
-    return 0

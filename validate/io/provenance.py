@@ -22,7 +22,7 @@ LIBRARIES = {"mujoco": "mujoco", "pybullet": "pybullet", "drake": "drake", "numb
              "numpy": "numpy", "scipy": "scipy", "matplotlib": "matplotlib"}
 #: The folder holding the isorock packages: in a checkout (editable install) it is the
 #: repository's work tree.
-PACKAGE_ROOT = Path(__file__).resolve().parent.parent
+PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 GIT_TIMEOUT_S = 5.0
 _CHUNK = 1 << 20
 

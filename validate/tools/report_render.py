@@ -1,5 +1,5 @@
 """Writing the validation report: report.md, report.html (figures embedded), the PNGs and
-metrics.json, from the Results of `isorock.validate.report_run.build`.
+metrics.json, from the Results of `isorock.validate.tools.report_run.build`.
 
 The report opens with its verdict: one line per engine (agrees / agrees with caveats /
 disagrees) and a scorecard of the worst value of each family of checks against its
@@ -15,14 +15,14 @@ import math
 from dataclasses import asdict, fields
 from pathlib import Path
 
-from isorock.validate import figures
-from isorock.validate.engines import REFERENCE
-from isorock.validate.naming import describe_motion
-from isorock.validate.output import write_folder_atomic, write_json
-from isorock.validate.provenance import provenance
-from isorock.validate.paper import PAPER_FIGURE5, is_kobe, paper_blocks
-from isorock.validate.report_run import PAPER_SLENDERNESS, Results
-from isorock.validate.tolerances import has_tolerance, tolerance
+from isorock.validate.io import figures
+from isorock.validate.core.engines import REFERENCE
+from isorock.validate.io.naming import describe_motion
+from isorock.validate.io.output import write_folder_atomic, write_json
+from isorock.validate.io.provenance import provenance
+from isorock.validate.tools.paper import PAPER_FIGURE5, is_kobe, paper_blocks
+from isorock.validate.tools.report_run import PAPER_SLENDERNESS, Results
+from isorock.validate.core.tolerances import has_tolerance, tolerance
 
 #: The families of checks the scorecard shows, in order: (title, metrics).
 FAMILIES = (

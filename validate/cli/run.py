@@ -19,7 +19,7 @@ from dataclasses import fields
 from pathlib import Path
 
 from isorock.analytic.errors import InputError
-from isorock.validate.cli import ENGINE_OPTIONS, _settings_dict
+from isorock.validate.cli.main import ENGINE_OPTIONS, _settings_dict
 
 
 def parse_engines(text: str) -> list[tuple[str, str | None]]:
@@ -45,7 +45,7 @@ def engine_labels(items) -> list[str]:
     comma-separated, as validate takes it) → labels, each checked before any work: an
     unknown engine or preset is an InputError naming it and what is allowed. An engine
     that cannot be imported here is kept; the command reports it as not run."""
-    from isorock.validate.runner import resolve
+    from isorock.validate.core.runner import resolve
     # "analytic, mujoco" arrives as the items "analytic," and "mujoco": an item's own
     # leading or trailing comma separates, it does not name an empty engine
     specs = parse_engines(",".join(str(item).strip().strip(",") for item in items))
@@ -65,7 +65,7 @@ def settings_for(engine, preset: str | None, overrides: dict):
     """The engine's settings: its default (or the preset) with the overrides it has
     (runner.engine_setting, as validate and the campaigns make them); a bad value is
     named as its option."""
-    from isorock.validate.runner import engine_setting
+    from isorock.validate.core.runner import engine_setting
     try:
         return engine_setting(spec_label(engine.name, preset), overrides).settings()
     except InputError as e:
@@ -75,7 +75,7 @@ def settings_for(engine, preset: str | None, overrides: dict):
 def load_engines(specs, a) -> list[tuple[str, object, object]]:
     """(label, Engine, Settings) for each spec. An engine option that none of the engines
     has is an error (it would silently do nothing)."""
-    from isorock.validate.engines import get_engine
+    from isorock.validate.core.engines import get_engine
     overrides = _overrides(a)
     engines = [(spec_label(n, p), get_engine(n), p) for n, p in specs]
     unused = sorted(set(overrides) - {f.name for _, e, _ in engines for f in fields(e.Settings)})
@@ -101,8 +101,8 @@ def plot_format(path) -> str:
 
 
 def write_plot(path, runs: dict, motion) -> None:
-    from isorock.validate.output import write_atomic
-    from isorock.validate.run_plot import plot_runs
+    from isorock.validate.io.output import write_atomic
+    from isorock.validate.io.run_plot import plot_runs
     fmt = plot_format(path)
     write_atomic(path, lambda tmp: plot_runs(runs, motion, tmp, format=fmt))
 
@@ -134,9 +134,9 @@ def comparison_table(runs: dict, comparisons: dict) -> str:
 
 def run_engines(a, specs, system, motion, *, progress=None) -> int:
     """Several engines on one system and motion; exit 1 when any run failed."""
-    from isorock.validate.compare import compare
-    from isorock.validate.output import write_atomic, write_json
-    from isorock.validate.provenance import provenance
+    from isorock.validate.core.compare import compare
+    from isorock.validate.io.output import write_atomic, write_json
+    from isorock.validate.io.provenance import provenance
     if a.plot:
         plot_format(a.plot)  # a bad --plot name fails before minutes of simulation
     loaded = load_engines(specs, a)
@@ -152,7 +152,7 @@ def run_engines(a, specs, system, motion, *, progress=None) -> int:
     ref_label, ref = next(iter(runs.items()))
     comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
     if a.json:
-        from isorock.validate.naming import describe_motion
+        from isorock.validate.io.naming import describe_motion
         report = {
             "reference": ref_label,
             "system": system.describe(),

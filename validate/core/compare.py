@@ -17,7 +17,7 @@ from scipy.integrate import quad
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import Trajectory
-from isorock.validate.measure import REST_FRACTION, beta_errors
+from isorock.validate.core.measure import REST_FRACTION, beta_errors
 
 #: Histories have parted once |Δθ| exceeds this fraction of α.
 AGREEMENT_FRACTION = 0.1
@@ -162,7 +162,7 @@ def reference_sensitivity(system: System, motion: GroundMotion, *, duration: flo
     """θmax/α and overturning of the analytic model with the motion scaled by 1 ± scale.
     A history whose θmax/α moves a lot under a 1% change of PGA is chaotic there, and
     single-history agreement with it is no test of an engine (model.md)."""
-    from isorock.validate.engines import REFERENCE, get_engine
+    from isorock.validate.core.engines import REFERENCE, get_engine
     simulate = get_engine(REFERENCE).simulate
     values, over = [], []
     for f in (1 - scale, 1.0, 1 + scale):

@@ -10,7 +10,7 @@ import argparse
 import sys
 
 from isorock.analytic.errors import InputError
-from isorock.validate.engines import ENGINE_NAMES
+from isorock.validate.core.engines import ENGINE_NAMES
 
 DEFAULT_OUT = "isorock-report"
 #: ensemble bounds: steps each run every engine on every motion; a factor of 100 turns
@@ -20,8 +20,8 @@ MAX_SCALE = 100.0
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
-    from isorock.validate.cli import add_engine_options, add_system_options
-    from isorock.validate.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
+    from isorock.validate.cli.main import add_engine_options, add_system_options
+    from isorock.validate.core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
     p = subparsers.add_parser(
         "validate", help="the validation report: all engines side by side with the analytic model",
         description="Run a block on its base (the paper's by default: isolated T 1.5 s ξ 0.2, and on a fixed base; "
@@ -38,7 +38,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                         f"(default: {' and '.join(DEFAULT_MOTIONS)})")
     p.add_argument("--format", choices=("at2", "jma", "csv"),
                    help="record format; guessed from the file when omitted")
-    from isorock.validate.cli import add_units_option, number
+    from isorock.validate.cli.main import add_units_option, number
     add_units_option(p)
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
                    help="report folder: a new or empty folder, or one an earlier isorock run wrote (replaced "
@@ -86,7 +86,7 @@ def _scales(text):
 def _read_config(path) -> dict:
     import tomllib
 
-    from isorock.validate.cli import SYSTEM_KEYS
+    from isorock.validate.cli.main import SYSTEM_KEYS
     try:
         with open(path, "rb") as f:
             data = tomllib.load(f)
@@ -105,12 +105,12 @@ def _read_config(path) -> dict:
 
 
 def run(args) -> int:
-    from isorock.validate.cli import ENGINE_OPTIONS, system_from_options
-    from isorock.validate.output import check_folder
-    from isorock.validate.progress import ProgressBar
-    from isorock.validate.report_render import verdict, write_report
-    from isorock.validate.report_run import DEFAULT_MOTIONS, ReportConfig, build
-    from isorock.validate.run_cli import engine_labels
+    from isorock.validate.cli.main import ENGINE_OPTIONS, system_from_options
+    from isorock.validate.io.output import check_folder
+    from isorock.validate.io.progress import ProgressBar
+    from isorock.validate.tools.report_render import verdict, write_report
+    from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig, build
+    from isorock.validate.cli.run import engine_labels
     check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
@@ -126,7 +126,7 @@ def run(args) -> int:
                           scales=_scales(args.scales), format=args.format or config.get("format"),
                           units=args.units or config.get("units"), system=system_from_options(args, config.get("system")),
                           overrides=overrides, workers=args.workers, overturn_rule=args.overturn)
-    from isorock.validate.runner import resolve
+    from isorock.validate.core.runner import resolve
     for name in report.engines:  # an unknown setting or preset is bad input before anything runs
         try:
             resolve(name, report.overrides_for(name))

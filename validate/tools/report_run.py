@@ -1,10 +1,10 @@
 """The validation report's runs: every engine on the paper's block (or the user's own
 system) under each motion, side by side with the analytic model, each check against the
 tolerance table. `build(config)` runs everything and returns a Results;
-`isorock.validate.report_render` writes it.
+`isorock.validate.tools.report_render` writes it.
 
 Every run goes through the campaign machinery (`isorock.campaign`): the histories and
-free rocking as `isorock.validate.runner` tasks (whole Trajectories), the ensembles as
+free rocking as `isorock.validate.core.runner` tasks (whole Trajectories), the ensembles as
 campaign cases (`validate.ensemble.run_ensembles`: the analytic model in batches of its
 compiled kernel); the analytic model's runs in this process, the contact engines' on one
 Dask LocalCluster of `--workers` processes. A
@@ -26,15 +26,15 @@ from isorock.analytic.coefficients import beta as beta_closed, beta2 as beta2_cl
 from isorock.analytic.errors import InputError, require
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
-from isorock.validate.compare import Comparison, compare, exact_first_impact_time, reference_sensitivity
-from isorock.validate.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine
-from isorock.validate.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
-from isorock.validate.measure import beta_errors
-from isorock.validate.naming import describe_motion
-from isorock.validate.runner import Task, default_workers, resolve, run_tasks
-from isorock.validate.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
+from isorock.validate.core.compare import Comparison, compare, exact_first_impact_time, reference_sensitivity
+from isorock.validate.core.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine
+from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
+from isorock.validate.core.measure import beta_errors
+from isorock.validate.io.naming import describe_motion
+from isorock.validate.core.runner import Task, default_workers, resolve, run_tasks
+from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
-from isorock.validate.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, not_exercised, skipped
+from isorock.validate.core.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, not_exercised, skipped
 
 #: Built-in pulses of the default report, chosen with the analytic model so that the
 #: paper's block rocks on both bases without overturning, and (the sine) robustly:

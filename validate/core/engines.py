@@ -3,7 +3,7 @@
 Each entry names a package exposing `ENGINE`, an `isorock.analytic.engine_protocol.
 EngineSpec` (simulate, its frozen Settings, presets, what it can export and supports).
 `Engine.simulate` always returns the shared Trajectory: a contact engine's raw history
-is measured here (`isorock.validate.measure`), the same way for every engine, so no
+is measured here (`isorock.validate.core.measure`), the same way for every engine, so no
 engine measures anything itself. Packages are imported lazily, so `isorock beta` never
 loads a physics engine.
 """
@@ -105,7 +105,7 @@ class Engine:
 
         from isorock.analytic.overturning import PAST_ALPHA
         from isorock.analytic.trajectory import RawHistory
-        from isorock.validate import measure
+        from isorock.validate.core import measure
         if settings is None:
             settings = self.settings()
         if overturn_rule is not None and hasattr(settings, "overturn"):
@@ -129,7 +129,7 @@ class Engine:
         together, each exactly as alone; any other runs them one by one."""
         from isorock.analytic.motion import GroundMotion
         from isorock.analytic.overturning import PAST_ALPHA
-        from isorock.validate import measure
+        from isorock.validate.core import measure
         runs = list(runs)
         if self.spec.simulate_many is None or self.capabilities.exact_impacts:
             out = []

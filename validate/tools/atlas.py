@@ -114,10 +114,10 @@ def reference(cell: Cell) -> dict:
     judged on (their order in the rigid model's history), and how long a contact run must
     last to show them."""
     from isorock.analytic.coefficients import beta
-    from isorock.validate.compare import exact_first_impact_time
-    from isorock.validate.engines import REFERENCE, get_engine
-    from isorock.validate.report_run import beta_impacts
-    from isorock.validate.scenarios import FREE_THETA0_OVER_ALPHA
+    from isorock.validate.core.compare import exact_first_impact_time
+    from isorock.validate.core.engines import REFERENCE, get_engine
+    from isorock.validate.tools.report_run import beta_impacts
+    from isorock.validate.core.scenarios import FREE_THETA0_OVER_ALPHA
     system = cell.system()
     theta0 = FREE_THETA0_OVER_ALPHA * system.alpha
     rigid = get_engine(REFERENCE).simulate(system, None, duration=REFERENCE_SPAN / system.p, theta0=theta0)
@@ -157,8 +157,8 @@ def run_cell(task, budget: float = RUN_BUDGET):
     """(key, measured dict, None): one engine on one cell, measured where it ran. Every way
     a run can end is a result: its status says how (the rows judge it, `judge`)."""
     # loaded before the clock: a worker's first run would otherwise pay for the imports
-    from isorock.validate.measure import beta_errors
-    from isorock.validate.runner import resolve
+    from isorock.validate.core.measure import beta_errors
+    from isorock.validate.core.runner import resolve
     out = {"status": "error", "message": "", "sim_s": 0.0, "loop_s": math.nan}
     try:
         engine, settings = resolve(task.engine, task.overrides)  # imports the engine's package
@@ -248,7 +248,7 @@ COLUMNS = ("engine", "engine_name", "preset", "slenderness", "mass_ratio", "heig
 def default_engines() -> list[str]:
     """Every preset of every contact engine fast enough for grids (MuJoCo, PyBullet);
     slower ones (Drake) only by name."""
-    from isorock.validate.engines import campaign_engines, get_engine
+    from isorock.validate.core.engines import campaign_engines, get_engine
     out = []
     for name in campaign_engines():
         engine = get_engine(name)
@@ -261,7 +261,7 @@ def distinct(labels: list[str]) -> tuple[list[str], dict, dict]:
     """(labels to run, alias → the label whose settings it shares, label → why not run): a
     preset with the same settings as an earlier one of its engine (mujoco:newton is the
     default) is run once; an engine that cannot be imported here is not run, with the reason."""
-    from isorock.validate.runner import resolve
+    from isorock.validate.core.runner import resolve
     run, aliases, skipped, seen = [], {}, {}, {}
     for label in labels:
         try:
@@ -282,7 +282,7 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
           progress=None, overrides: dict | None = None) -> dict:
     """Run every engine label on every cell; the atlas as a dict (rows, summaries, verdict).
     `overrides`: settings applied to every run that has them (a test's way to break one)."""
-    from isorock.validate.runner import Task, default_workers, run_tasks
+    from isorock.validate.core.runner import Task, default_workers, run_tasks
     labels, aliases, skipped = distinct(engines)
     cells = grid.cells()
     start = time.perf_counter()
@@ -481,9 +481,9 @@ def write(atlas: dict, out: str, *, quick: bool) -> None:
     import csv
     import io
 
-    from isorock.validate.atlas_figures import error_map, pareto
-    from isorock.validate.output import to_json, write_folder_atomic
-    from isorock.validate.provenance import provenance
+    from isorock.validate.tools.atlas_figures import error_map, pareto
+    from isorock.validate.io.output import to_json, write_folder_atomic
+    from isorock.validate.io.provenance import provenance
 
     def fill(tmp):
         (tmp / "atlas.md").write_text(markdown(atlas, quick=quick), encoding="utf-8")
@@ -504,77 +504,4 @@ def write(atlas: dict, out: str, *, quick: bool) -> None:
     write_folder_atomic(out, fill)
 
 
-# --- command line ------------------------------------------------------------------------
-
-DEFAULT_OUT = "isorock-atlas"
-
-
-def add_parser(sub) -> None:
-    p = sub.add_parser("atlas", help="the contact-model atlas: β and t₁ error of every preset over λ × μ × size, "
-                                     "with its cost",
-                       description=__doc__.split("\n\n")[0])
-    p.add_argument("--engines", nargs="+", metavar="ENGINE[:PRESET]",
-                   help="engines or presets, space- or comma-separated; ENGINE alone is every preset of it "
-                        "(default: every preset of mujoco and bullet; drake is slow, name it, e.g. drake:tamsi)")
-    p.add_argument("--quick", action="store_true",
-                   help=f"a small grid ({len(QUICK.cells())} cells: λ {', '.join(map(str, QUICK_SLENDERNESS))}, "
-                        f"μ {', '.join(map(str, QUICK_MASS_RATIOS))}, H {', '.join(map(str, QUICK_HEIGHTS))} m) "
-                        f"instead of the full {len(FULL.cells())}")
-    p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
-                   help="folder for atlas.md, atlas.csv, atlas.json and the figures: new, empty or an earlier "
-                        "isorock output (default: %(default)s)")
-    p.add_argument("--workers", type=int, metavar="N",
-                   help="processes for the contact engines (default: 2, or the cores there are; 1: this one)")
-    p.add_argument("--run-budget", type=float, default=RUN_BUDGET, metavar="S",
-                   help="CPU seconds one run may take before it stops and counts as 'too slow' (CPU, not "
-                        "wall: other jobs on the machine do not count against it; default: %(default)g)")
-    p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
-    p.set_defaults(func=cmd_atlas)
-
-
-def expand(items) -> list[str]:
-    """--engines → labels: ENGINE:PRESET as given, ENGINE alone as every preset of it;
-    an unknown engine or preset is an InputError before any work (run_cli.engine_labels)."""
-    from isorock.validate.run_cli import engine_labels
-    from isorock.validate.engines import get_engine
-    out = []
-    for label in engine_labels(items):
-        name, _, preset = label.partition(":")
-        if preset:
-            out.append(label)
-            continue
-        try:
-            out += [f"{name}:{p}" for p in get_engine(name).spec.presets]
-        except ImportError:
-            out.append(label)  # reported as not run
-    return list(dict.fromkeys(out))
-
-
-def cmd_atlas(a) -> int:
-    from isorock.validate.output import check_folder
-    from isorock.validate.progress import ProgressBar
-    engines = expand(a.engines) if a.engines else default_engines()
-    if a.workers is not None and a.workers < 1:
-        raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
-    if not (a.run_budget > 0 and math.isfinite(a.run_budget)):
-        raise InputError(f"run-budget = {a.run_budget!r}: must be a positive number of seconds")
-    check_folder(a.out)  # a folder we may not write is refused before the runs, not after
-    grid = QUICK if a.quick else FULL
-    bars = []
-
-    def progress(done, total, label):
-        if not bars:
-            bars.append(ProgressBar(total, "atlas", enabled=False if a.quiet else None))
-        bars[0].advance(done - bars[0].done, note=label)
-    atlas = build(engines, grid, workers=a.workers, budget=a.run_budget, progress=progress)
-    for bar in bars:
-        bar.close()
-    write(atlas, a.out, quick=a.quick)
-    print(f"atlas: {len(atlas['rows'])} runs ({len(atlas['presets'])} presets × {len(grid.cells())} cells) in "
-          f"{atlas['wall_s']:.0f} s; wrote {a.out}/atlas.md, atlas.csv, atlas.json and the figures")
-    print("\n".join(verdict_lines(atlas)))
-    return 0
-
-
-__all__ = ["Grid", "Cell", "FULL", "QUICK", "LEVELS", "build", "summarize", "verdict", "qualifies", "judge",
-           "reference", "run_cell", "write", "default_engines", "expand"]
+__all__ = ["Grid", "Cell", "FULL", "QUICK", "LEVELS", "build", "summarize", "verdict", "qualifies", "judge", "reference", "run_cell", "write", "default_engines"]

@@ -1,0 +1,106 @@
+"""The `isorock calibrate` command: options, the fit, and the preset file written only when it holds."""
+from __future__ import annotations
+
+from isorock.analytic.errors import InputError
+from isorock.validate.tools import calibrate as tool
+import math
+import sys
+from isorock.validate.tools.calibrate import DEFAULT_TILTS, TILT_RANGE, calibrate, preset_worthy, report_lines, result_json, settings_toml
+
+
+def _options(a, keys) -> list[str]:
+    """The options among `keys` that were given, as they would be typed."""
+    words = []
+    for k in keys:
+        v = getattr(a, k, None)
+        if v is True:
+            words.append(f"--{k.replace('_', '-')}")
+        elif v not in (None, False):
+            v = ",".join(f"{x:g}" for x in v) if isinstance(v, tuple) else (f"{v:g}" if isinstance(v, float) else v)
+            words.append(f"--{k.replace('_', '-')} {v}")
+    return words
+
+
+def _command(a) -> str:
+    """The command line that gives this result again (the options that were given)."""
+    from isorock.validate.cli.main import ENGINE_OPTIONS, SYSTEM_KEYS
+    words = ["isorock calibrate", f"--engine {a.engine}", *_options(a, SYSTEM_KEYS), *_options(a, ENGINE_OPTIONS)]
+    if a.tilts != DEFAULT_TILTS:
+        words.append(f"--tilts {a.tilts}")
+    words.append(f"--max-evals {a.max_evals}")
+    return " ".join(words)
+
+
+def add_parser(sub) -> None:
+    from isorock.validate.cli.main import add_engine_options, add_system_options, whole_number
+    p = sub.add_parser("calibrate", help="fit a contact engine's contact parameters to the closed-form β",
+                       description=tool.__doc__.split("\n\n")[0])
+    p.add_argument("--engine", required=True, help="mujoco, bullet or drake")
+    add_system_options(p, required=False)
+    add_engine_options(p)
+    p.add_argument("--max-evals", type=whole_number, default=48,
+                   help="evaluations of the fitted runs the search may spend (default: %(default)s)")
+    p.add_argument("--tilts", type=whole_number, default=DEFAULT_TILTS,
+                   help=f"fitted tilts per base, evenly over {TILT_RANGE[0]:g}–{TILT_RANGE[1]:g}·α; the held-out "
+                        "runs are the tilts halfway between them (default: %(default)s)")
+    p.add_argument("--workers", type=whole_number,
+                   help="worker processes for the runs, each run stopped at its time limit (default: 2, or the "
+                        "cores there are)")
+    p.add_argument("--out", metavar="FILE.toml",
+                   help="write the calibrated settings as a preset file (`isorock validate --config FILE`), "
+                        "when they hold on the held-out runs")
+    p.add_argument("--json", metavar="FILE", help="write the whole result (every run's β errors) as JSON")
+    p.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    p.set_defaults(func=cmd_calibrate)
+
+
+def cmd_calibrate(a) -> int:
+    from pathlib import Path
+
+    from isorock.analytic.system import paper_system
+    from isorock.validate.cli.main import SYSTEM_KEYS, engine_settings_from_args, system_from_options
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.io.output import Outputs, to_json
+    from isorock.validate.io.progress import ProgressBar
+    from isorock.validate.core.runner import default_workers
+    engine = get_engine(a.engine)
+    if engine.spec.tuning is None:
+        raise InputError(f"engine = {a.engine!r}: has no contact parameters to calibrate")
+    if not 5 <= a.max_evals <= 2000:
+        raise InputError(f"max-evals = {a.max_evals!r}: must be a whole number from 5 to 2000")
+    if not 2 <= a.tilts <= 101:
+        raise InputError(f"tilts = {a.tilts!r}: must be a whole number from 2 to 101")
+    workers = default_workers() if a.workers is None else a.workers
+    if workers < 1:
+        raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
+    system = system_from_options(a) or paper_system(fixed_base=True)
+    if a.out and Path(a.out).exists():
+        raise InputError(f"out = {a.out!r}: exists; give a new file (isorock does not replace files it did not write)")
+    settings = engine_settings_from_args(engine, a)
+    with Outputs() as outputs:  # bad paths are refused before minutes of simulation
+        preset = outputs.file("out", a.out) if a.out else None
+        report = outputs.file("json", a.json) if a.json else None
+        bar = ProgressBar(1, "calibrate", enabled=None if not a.quiet else False)
+
+        def progress(done, total, best):
+            bar.total = total
+            bar.advance(done - bar.done, f"best 2σ bound {100 * best:.3f}%" if math.isfinite(best) else "")
+        r = calibrate(a.engine, system, settings=settings, n_tilts=a.tilts, max_evals=a.max_evals,
+                      workers=workers, progress=progress)
+        bar.advance(bar.total - bar.done)  # Nelder–Mead may converge before the budget is spent
+        bar.close()
+        lines = report_lines(r, system, _command(a))
+        ok = preset_worthy(r)
+        if preset is not None:
+            if ok:
+                preset.write_text(settings_toml(a.engine, r["settings_after"], lines))
+                lines.append(f"wrote {a.out} (use it with: isorock validate --config {a.out} --engines analytic "
+                             f"{' '.join([a.engine, *_options(a, SYSTEM_KEYS)])})")
+            else:
+                lines.append(f"{a.out} not written: the calibrated settings do not meet the preset's criterion above")
+        if report is not None:
+            report.write_text(to_json(result_json(r)) + "\n")
+        # the JSON on standard output stays parseable: the text goes to stderr then
+        print("\n".join(lines), file=sys.stderr if a.json == "-" else sys.stdout)
+        outputs.commit()
+    return 0 if ok else 1
