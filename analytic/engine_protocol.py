@@ -65,7 +65,9 @@ class EngineSpec:
     work-precision benchmarks; `tuning` is what `isorock calibrate` may move;
     `simulate_many(runs, *, settings, threads)` (optional) runs many (system, motion,
     duration, theta0) at once, each result what `simulate` returns for it alone or the
-    exception it raised (without it, the registry runs them one by one)."""
+    exception it raised (without it, the registry runs them one by one);
+    `replay_scene(system)` (optional) is (model, pose(u, θ) → joint positions): a scene of
+    the engine's viewer in which any engine's history can be replayed (`isorock view`)."""
 
     name: str
     label: str
@@ -79,6 +81,7 @@ class EngineSpec:
     ladder: Callable[[bool], list] | None = None
     tuning: Tuning | None = None
     simulate_many: Callable[..., list] | None = None
+    replay_scene: Callable[..., tuple] | None = None
 
     def settings(self, **overrides):
         if self.settings_for is not None:

@@ -38,7 +38,7 @@ def _emit(**kw):
 
 
 def bench_spectrum(workers):
-    from .execute import close_client, local_client
+    from isorock.validate.core.executor import close_client, local_client
     from .run import run_campaign
     spec = _spectrum_spec()
     run_campaign(_spectrum_spec(2, 2), None, workers=0, progress=False)  # load the kernel first
@@ -124,7 +124,7 @@ def bench_contact(n, workers, repeats=5):
     (on a shared machine the others' load only ever adds time). CPU seconds (of every
     process involved) say what each way costs whatever the load."""
     from isorock.validate.core.engines import get_engine
-    from .execute import close_client, local_client
+    from isorock.validate.core.executor import close_client, local_client
     from .run import run_cases
     cases = _contact_cases(n)
     client = local_client(workers)
@@ -167,7 +167,7 @@ def bench_contact(n, workers, repeats=5):
 
 def bench_overhead(n, workers):
     from isorock.analytic.fast import simulate_fast
-    from .execute import close_client, local_client
+    from isorock.validate.core.executor import close_client, local_client
     from .run import run_cases
     cases = _contact_cases(n)
     simulate_fast(cases[0].system, cases[0].motion, duration=1.0)

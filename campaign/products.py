@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .execute import runs_as_batch
+from isorock.validate.core.executor import runs_as_batch
 from .spec import AXES
 
 #: θmax/α departure for an agreement map when the tolerance table has no entry for the

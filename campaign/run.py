@@ -1,10 +1,10 @@
 """The Python API: run a campaign file into a folder, or a list of cases in memory.
 
     run_campaign(spec, out=None, client=None, workers=0) -> CampaignResult
-    run_cases(cases, engines, client=None, workers=0) -> pyarrow.Table
+    run_cases(cases, engines, client=None, workers=0) -> pyarrow.Table   (core.executor's)
 
-`isorock validate`'s ensembles can hand their cases to `run_cases` (compiled analytic
-in batches, contact engines in worker processes) and read the rows back.
+A campaign is cases (core.cases) run by the one executor (core.executor) into summary
+rows (core.summary), stored as parts (campaign.parts) and drawn as products.
 """
 from __future__ import annotations
 
@@ -14,9 +14,12 @@ from pathlib import Path
 
 from isorock.analytic.errors import InputError
 
-from .execute import (Progress, close_client, execute, expected_cost, local_client, make_tasks, read_parts, rows_to_table,
-                      runs_as_batch, sort_table, write_part)
-from .spec import ANALYTIC_CHUNK, CONTACT_CHUNK, CampaignSpec, EngineSetting, load_spec
+from isorock.validate.core.executor import client_for, close_client, execute, expected_cost, make_tasks, run_cases
+from isorock.validate.core.summary import rows_to_table, sort_table
+from isorock.validate.io.progress import Progress
+
+from .parts import read_parts, write_part
+from .spec import CampaignSpec, load_spec
 
 #: The file that marks a folder as written by `isorock sweep`: a sweep fills a new or
 #: empty folder, or one holding this marker, and refuses any other.
@@ -48,28 +51,12 @@ class CampaignResult:
         return self.tasks_total - self.tasks_run
 
 
-def _client_for(client, workers, scheduler):
-    """(client, close): an explicit client; one connected to `scheduler`; a LocalCluster
-    of `workers` processes; or none (serial, workers = 0)."""
-    if client is not None:
-        return client, False
-    if scheduler:
-        from dask.distributed import Client
-        try:
-            return Client(scheduler, timeout="10s"), True
-        except (OSError, TimeoutError) as e:
-            raise InputError(f"--scheduler = {scheduler!r}: must be a reachable Dask scheduler ({e})") from None
-    if workers and workers > 0:
-        return local_client(workers), True
-    return None, False
-
-
 def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: str | None = None,
                  progress: bool = True, products: bool = True) -> CampaignResult:
     """Run a campaign (a CampaignSpec or the path of its TOML file).
 
     out: the folder for parts, the table and products (None: nothing is written and
-    nothing is resumed). client / scheduler / workers: where to run (see _client_for)."""
+    nothing is resumed). client / scheduler / workers: where to run (see core.executor.client_for)."""
     if not isinstance(spec, CampaignSpec):
         spec = load_spec(spec)
     records = None
@@ -95,7 +82,7 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
             memory.extend(rows)
 
     # connect before writing anything: an unreachable scheduler leaves no folder behind
-    live, close = _client_for(client, workers, scheduler) if todo else (None, False)
+    live, close = client_for(client, workers, scheduler) if todo else (None, False)
     try:
         if out is not None:
             from isorock.validate.io.output import write_text
@@ -122,44 +109,3 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         from .products import write_products
         made = write_products(table, out, spec)
     return CampaignResult(table, out, len(tasks), ran, made)
-
-
-def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: int = ANALYTIC_CHUNK,
-              contact_chunk: int = CONTACT_CHUNK, progress=False, overturn_rule: str | None = None,
-              threads: int | None = None, batch_here: bool = False):
-    """Rows for in-memory `cases` (campaign.spec.Case: system, motion, duration, theta0,
-    optional inputs) under `engines`: names ("ENGINE" or "ENGINE:PRESET"), (name,
-    {setting: value}) pairs, or EngineSettings. Nothing is written. Returns a
-    pyarrow.Table sorted by case, engine, setting.
-
-    overturn_rule: model.md's rule for every engine (None: past α). threads: the serial
-    path's threads (None: every core). batch_here: with a cluster, the analytic chunks
-    still run in this process (where the kernel is loaded; they take milliseconds) while
-    the cluster runs the contact engines'. progress: True for a bar on stderr, or an
-    object with update(n, work) (Progress.update)."""
-    from isorock.validate.core.engines import get_engine
-    settings = []
-    for e in engines:
-        if isinstance(e, EngineSetting):
-            setting = e
-        else:
-            name, overrides = (e, {}) if isinstance(e, str) else e
-            base, _, preset = name.partition(":")
-            setting = EngineSetting(base, tuple(sorted(overrides.items())), preset)
-        get_engine(setting.engine)
-        setting.settings()  # an unknown engine, preset or setting fails here
-        settings.append(setting)
-    tasks = make_tasks(list(cases), settings, analytic_chunk=analytic_chunk, contact_chunk=contact_chunk,
-                       overturn_rule=overturn_rule)
-    rows = []
-    live, close = _client_for(client, workers, None)
-    bar = (Progress(sum(len(t.cases) for t in tasks), work=sum(map(expected_cost, tasks)))
-           if progress is True else (progress or None))
-    here = (lambda task: runs_as_batch(task.setting.engine)) if batch_here else None
-    try:
-        execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=bar, here=here,
-                cost=expected_cost)
-    finally:
-        if close:
-            close_client(live)
-    return sort_table(rows_to_table(rows))

@@ -22,7 +22,9 @@ import numpy as np
 from isorock.analytic.errors import InputError
 from isorock.analytic.motion import PULSES
 
-from .build import Case, build_case  # Case is defined beside the function that builds one
+from isorock.validate.core.cases import Case, build_case
+from isorock.validate.core.engines import EngineChoice
+from isorock.validate.core.executor import ANALYTIC_CHUNK, CONTACT_CHUNK
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).
 AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
@@ -33,9 +35,6 @@ AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha
 MAX_RUNS = 2_000_000
 #: Largest number of contact-engine runs (each costs ~0.1–10 s; 10⁵ is days on 2 cores).
 MAX_CONTACT_RUNS = 100_000
-#: Default cases per task: the analytic kernel runs a whole chunk in one call.
-ANALYTIC_CHUNK = 500
-CONTACT_CHUNK = 4
 #: Default time after the motion's end (s): model.md's tail, ample for a block past α
 #: to return or fall (time scale 1/p ≈ 0.4 s).
 DEFAULT_TAIL = 5.0
@@ -109,33 +108,9 @@ def _check_keys(key, table, allowed):
             raise InputError(f"{key}.{k}: unknown key (allowed: {', '.join(sorted(allowed))})")
 
 
-@dataclass(frozen=True)
-class EngineSetting:
-    """One engine with one set of setting overrides, on its defaults or on a named preset
-    (ENGINE:PRESET, as `isorock validate` names columns); `label` names it in the table."""
-
-    engine: str
-    overrides: tuple[tuple[str, object], ...] = ()
-    preset: str = ""
-
-    @property
-    def label(self) -> str:
-        parts = [f"preset={self.preset}"] if self.preset else []
-        parts += [f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in self.overrides]
-        return ",".join(parts) or "default"
-
-    @property
-    def settings_kwargs(self) -> dict:
-        return {k: (tuple(v) if isinstance(v, list) else v) for k, v in self.overrides}
-
-    def settings(self):
-        """The engine's Settings: its defaults (or the preset's) with the overrides."""
-        from isorock.validate.core.engines import get_engine
-        engine = get_engine(self.engine)
-        if not self.preset:
-            return engine.settings(**self.settings_kwargs)
-        from dataclasses import replace
-        return replace(engine.preset(self.preset), **self.settings_kwargs)
+#: "Engine, preset, overrides": the registry's one value (core.engines.EngineChoice),
+#: under the name campaign files and the Python API have used.
+EngineSetting = EngineChoice
 
 
 @dataclass(frozen=True)

@@ -49,10 +49,16 @@ TUNING = Tuning(
     apply=_with_contact)
 
 
+
+def _replay_scene(system):
+    from .replay import replay_scene  # loads MuJoCo's model only when a replay is asked for
+    return replay_scene(system)
+
+
 ENGINE = EngineSpec(
     name="mujoco", label="MuJoCo", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False),
-    settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
+    settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, replay_scene=_replay_scene,
     presets={
         "default": Settings,
         # Newton, MuJoCo's own solver and the default's: named so that it reads beside cg

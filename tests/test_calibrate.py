@@ -13,7 +13,7 @@ from isorock.analytic import paper_system
 from isorock.validate.tools.calibrate import (IMPACTS, PENALTY, Score, bootstrap_change, cases, holds,
                                         settings_toml, tilts)
 from isorock.validate.cli.main import main
-from isorock.validate.core.runner import resolve
+from isorock.validate.core.engines import resolve
 
 
 def housner_beta(system):

@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from isorock.campaign import load_spec, run_campaign
-from isorock.campaign.execute import NONDETERMINISTIC_COLUMNS
+from isorock.validate.core.summary import NONDETERMINISTIC_COLUMNS
 from isorock.campaign.run import MARKER, PARTS
 from isorock.validate.cli.main import main
 
@@ -264,7 +264,7 @@ def test_chunk_ids_of_existing_campaigns_are_kept():
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.analytic.system import System
     from isorock.campaign import Case, EngineSetting
-    from isorock.campaign.execute import chunk_id
+    from isorock.validate.core.executor import chunk_id
     s = System.fixed(height=2.0, width=0.7, mass=3800.0)
     m = GroundMotion.from_pulse(Pulse("sine", amp=0.6, freq=1.0))
     cases = [Case(0, s, m, 4.0), Case(1, s, m.scaled(1.5), 4.0)]
@@ -280,7 +280,7 @@ def test_run_cases_takes_presets_and_the_overturning_rule():
     (MuJoCo through its batch path, a preset as its own setting) is the single run's."""
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.campaign import Case, run_cases
-    from isorock.campaign.build import build_system, pulse_for
+    from isorock.validate.core.cases import build_system, pulse_for
     from isorock.validate.core.engines import get_engine
     system = build_system({"height": 2 * math.cos(0.25), "width": 2 * math.sin(0.25),  # α = 0.25, R = 1 m
                            "mass": 1000.0, "base": "fixed"})
@@ -302,7 +302,7 @@ def test_run_cases_takes_presets_and_the_overturning_rule():
 def test_peak_ground_velocity_of_a_sine_record():
     """a = A sin(ωt) over one cycle from rest: v = A(1 − cos ωt)/ω, PGV = 2A/ω."""
     from isorock.analytic.motion import GroundMotion
-    from isorock.campaign.build import peak_ground_velocity
+    from isorock.validate.core.cases import peak_ground_velocity
     A, w, dt = 3.0, 2 * math.pi * 1.5, 1e-4
     t = np.arange(0, 2 * math.pi / w + dt / 2, dt)
     pgv = peak_ground_velocity(GroundMotion.from_array(A * np.sin(w * t), dt=dt))
@@ -310,7 +310,7 @@ def test_peak_ground_velocity_of_a_sine_record():
 
 
 def test_records_folder_scaled_by_pgv(tmp_path, records_dir):
-    from isorock.campaign.build import motion_of, peak_ground_velocity
+    from isorock.validate.core.cases import motion_of, peak_ground_velocity
     from isorock.campaign.records import load_suite
     suite = tmp_path / "suite"
     suite.mkdir()
@@ -389,17 +389,18 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     was done. With each task's expected cost, the ETA is elapsed × (work left / work done)."""
     import io
 
-    from isorock.campaign import execute as ex
+    from isorock.validate.core import executor as ex
+    from isorock.validate.io import progress as bars
     from isorock.campaign.spec import Case, EngineSetting
     from isorock.analytic import GroundMotion, paper_system
     clock = [100.0]
-    monkeypatch.setattr(ex.time, "monotonic", lambda: clock[0])
+    monkeypatch.setattr(bars.time, "monotonic", lambda: clock[0])
     system, motion = paper_system(fixed_base=True), GroundMotion.zero()
     batch = ex.Task("a", EngineSetting("analytic"), tuple(Case(i, system, motion, 10.0) for i in range(400)))
     contact = ex.Task("m", EngineSetting("mujoco"), tuple(Case(i, system, motion, 10.0) for i in range(4)))
     tasks = [batch, contact, contact]
     out = io.StringIO()
-    bar = ex.Progress(sum(len(t.cases) for t in tasks), work=sum(map(ex.expected_cost, tasks)), stream=out, every=0)
+    bar = bars.Progress(sum(len(t.cases) for t in tasks), work=sum(map(ex.expected_cost, tasks)), stream=out, every=0)
     clock[0] += 1.0
     bar.update(len(batch.cases), ex.expected_cost(batch))  # 400 of 408 runs, a sliver of the work
     eta = float(re.search(r"ETA\s+([\d.]+) s", out.getvalue().splitlines()[-1]).group(1))
@@ -415,7 +416,7 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     # cluster's start) give no rate to extrapolate: the ETA is "?" until the contact work moves
     out = io.StringIO()
     many = [contact] * 100
-    bar = ex.Progress(400 + 400, work=ex.expected_cost(batch) + sum(map(ex.expected_cost, many)), stream=out, every=0)
+    bar = bars.Progress(400 + 400, work=ex.expected_cost(batch) + sum(map(ex.expected_cost, many)), stream=out, every=0)
     clock[0] += 3.0
     bar.update(len(batch.cases), ex.expected_cost(batch))
     assert "ETA     ? s" in out.getvalue()

@@ -22,10 +22,10 @@ def test_replayed_block_pivots_on_its_corner_riding_the_base(system, theta):
     """Rigid rocking: the pivot corner (s·b, 0, −h in the block's frame) stays on the
     plate's top face at x = u + s·b, whatever θ and u."""
     import mujoco
-    model, layout = view.replay_model(system)
+    model, pose = view.replay_scene(system)
     data = mujoco.MjData(model)
     u = 0.0 if system.fixed_base else 0.07
-    data.qpos[:] = view.frame_qpos(model, layout, system, u, theta)
+    data.qpos[:] = pose(u, theta)
     mujoco.mj_kinematics(model, data)
     block = model.body("block").id
     s = math.copysign(1.0, theta)

@@ -126,7 +126,7 @@ def run(args) -> int:
                           scales=_scales(args.scales), format=args.format or config.get("format"),
                           units=args.units or config.get("units"), system=system_from_options(args, config.get("system")),
                           overrides=overrides, workers=args.workers, overturn_rule=args.overturn)
-    from isorock.validate.core.runner import resolve
+    from isorock.validate.core.engines import resolve
     for name in report.engines:  # an unknown setting or preset is bad input before anything runs
         try:
             resolve(name, report.overrides_for(name))

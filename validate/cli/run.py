@@ -45,7 +45,7 @@ def engine_labels(items) -> list[str]:
     comma-separated, as validate takes it) → labels, each checked before any work: an
     unknown engine or preset is an InputError naming it and what is allowed. An engine
     that cannot be imported here is kept; the command reports it as not run."""
-    from isorock.validate.core.runner import resolve
+    from isorock.validate.core.engines import resolve
     # "analytic, mujoco" arrives as the items "analytic," and "mujoco": an item's own
     # leading or trailing comma separates, it does not name an empty engine
     specs = parse_engines(",".join(str(item).strip().strip(",") for item in items))
@@ -65,7 +65,7 @@ def settings_for(engine, preset: str | None, overrides: dict):
     """The engine's settings: its default (or the preset) with the overrides it has
     (runner.engine_setting, as validate and the campaigns make them); a bad value is
     named as its option."""
-    from isorock.validate.core.runner import engine_setting
+    from isorock.validate.core.engines import choose as engine_setting
     try:
         return engine_setting(spec_label(engine.name, preset), overrides).settings()
     except InputError as e:

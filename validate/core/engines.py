@@ -10,7 +10,7 @@ loads a physics engine.
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 
 from typing import TYPE_CHECKING
 
@@ -153,6 +153,70 @@ def get_engine(name: str) -> Engine:
         raise InputError(f"engine = {name!r}: must be one of {', '.join(ALL_ENGINES)}")
     return Engine(name, importlib.import_module(ENGINE_MODULES[name]).ENGINE)
 
+
+
+@dataclass(frozen=True)
+class EngineChoice:
+    """One engine as a user chooses it: its name, a named preset or none ("" is the
+    engine's defaults), and setting overrides on top, as sorted (name, value) pairs so the
+    value is hashable, small and sent to other processes as it is. The one value every
+    command, campaign and table uses for "engine, preset, overrides" (`choose` makes one);
+    `settings()` is the one way from it to the engine's Settings; `label` names it in a
+    table ("default", "preset=fine", "timestep=0.001")."""
+
+    engine: str
+    overrides: tuple[tuple[str, object], ...] = ()
+    preset: str = ""
+
+    @property
+    def name(self) -> str:
+        """ENGINE or ENGINE:PRESET, as on the command line."""
+        return f"{self.engine}:{self.preset}" if self.preset else self.engine
+
+    @property
+    def label(self) -> str:
+        parts = [f"preset={self.preset}"] if self.preset else []
+        parts += [f"{k}={v:g}" if isinstance(v, float) else f"{k}={v}" for k, v in self.overrides]
+        return ",".join(parts) or "default"
+
+    @property
+    def settings_kwargs(self) -> dict:
+        return {k: (tuple(v) if isinstance(v, list) else v) for k, v in self.overrides}
+
+    def settings(self):
+        """The engine's Settings: its defaults, or its preset's, with the overrides (an
+        override the engine does not have is an InputError naming it)."""
+        engine = get_engine(self.engine)
+        if not self.preset:
+            return engine.settings(**self.settings_kwargs)
+        return replace(engine.preset(self.preset), **self.settings_kwargs)
+
+
+def choose(label: str, overrides: dict | None = None, *, strict: bool = False) -> EngineChoice:
+    """The EngineChoice of "ENGINE" or "ENGINE:PRESET" with `overrides` (a TOML table, the
+    command line's engine options). strict: every override must be a setting of the
+    engine; otherwise those it does not have are left out (a friction given for every
+    engine of a report means nothing to the analytic model). An unknown engine or preset
+    is an InputError here, before any work."""
+    name, _, preset = str(label).partition(":")
+    engine = get_engine(name)
+    if preset:
+        engine.preset(preset)
+    known = {f.name for f in fields(engine.Settings)}
+    given = {k: (tuple(v) if isinstance(v, list) else v) for k, v in (overrides or {}).items() if v is not None}
+    unknown = sorted(k for k in given if k not in known)
+    if strict and unknown:
+        raise InputError(f"{', '.join(unknown)}: not a setting of engine {name!r} "
+                         f"(its settings: {', '.join(sorted(known))})")
+    mine = {k: v for k, v in given.items() if k in known}
+    return EngineChoice(name, tuple(sorted(mine.items())), preset)
+
+
+def resolve(label: str, overrides: dict | None = None):
+    """(Engine, Settings) of "ENGINE" or "ENGINE:PRESET" with those `overrides` the engine
+    has: `choose(label, overrides).settings()` with the engine beside it."""
+    choice = choose(label, overrides)
+    return get_engine(choice.engine), choice.settings()
 
 def campaign_engines() -> tuple[str, ...]:
     """The registered engines fast enough for grids of thousands of runs that can be

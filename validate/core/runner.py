@@ -3,14 +3,13 @@ each a task naming its engine as "ENGINE" or "ENGINE:PRESET" plus setting overri
 it is small and can be sent to another process; an engine that raises on one task gets
 the message in that task's result, never a lost batch.
 
-Where and how tasks run is the campaign machinery's (`isorock.campaign.execute.execute`:
-serially, or on a Dask cluster with the analytic model's runs kept in this process); runs
-read only as summaries (ensembles) are campaign cases (`isorock.campaign.run_cases`).
+Where and how tasks run is the one executor's (core.executor.execute: serially, or on a
+Dask cluster with the analytic model's runs kept in this process); runs read only as
+summaries (ensembles) are cases run into rows (core.executor.run_cases).
 """
 from __future__ import annotations
 
-import os
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 from isorock.analytic.errors import InputError
@@ -28,29 +27,10 @@ class Task:
     overturn_rule: str | None = None  # model.md's rule, the same for every engine (None: the default)
 
 
-def engine_setting(engine: str, overrides: dict | None = None):
-    """The campaign's EngineSetting of "ENGINE" or "ENGINE:PRESET" with those of
-    `overrides` the engine has (others are ignored: a friction given for every engine
-    means nothing to the analytic model)."""
-    from isorock.campaign.spec import EngineSetting
-    from isorock.validate.core.engines import get_engine
-    name, _, preset = engine.partition(":")
-    known = {f.name for f in fields(get_engine(name).Settings)}
-    mine = {k: (tuple(v) if isinstance(v, list) else v) for k, v in (overrides or {}).items() if k in known}
-    return EngineSetting(name, tuple(sorted(mine.items())), preset)
-
-
-def resolve(engine: str, overrides: dict | None = None):
-    """(Engine, Settings) of "ENGINE" or "ENGINE:PRESET" with `overrides` applied to the
-    settings that the engine has (engine_setting)."""
-    from isorock.validate.core.engines import get_engine
-    setting = engine_setting(engine, overrides)
-    return get_engine(setting.engine), setting.settings()
-
-
 def run_task(task: Task, threads: int | None = None):
     """(key, Trajectory or None, error message or None). `threads` is the executor's
-    (campaign.execute) and means nothing to one run."""
+    (core.executor) and means nothing to one run."""
+    from .engines import resolve
     try:
         engine, settings = resolve(task.engine, task.overrides)
         traj = engine.simulate(task.system, task.motion, settings=settings, duration=task.duration,
@@ -63,13 +43,15 @@ def run_task(task: Task, threads: int | None = None):
 
 
 def default_workers() -> int:
-    return max(1, min(2, os.cpu_count() or 1))
+    """Processes for a command's contact runs: two, or the cores this process may use."""
+    from isorock.analytic.limits import available_cores
+    return max(1, min(2, available_cores()))
 
 
 def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, on_result=None,
               work=None) -> dict:
     """Run every task; key → (result or None, error or None). client: a Dask client
-    (campaign.execute.local_client) for the contact engines' tasks, the analytic model's
+    (core.executor.local_client) for the contact engines' tasks, the analytic model's
     staying here; None: with workers > 1 a local cluster of that many processes is started
     for them and closed after, otherwise all run here. `on_result(key)`
     is called as each result arrives. `work(task)` runs one task and returns (key, result,
@@ -78,7 +60,7 @@ def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, on_result=Non
     functools.partial of one."""
     from functools import partial
 
-    from isorock.campaign.execute import close_client, execute, local_client
+    from .executor import close_client, execute, local_client
     out = {}
     own = None
     if client is None and workers > 1 and not all(_light(t) for t in tasks):
@@ -99,16 +81,16 @@ def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, on_result=Non
 
 
 def _one(work, task: Task, threads: int | None = None):
-    """work(task), called as the campaign executor calls a task's runner (threads means
+    """work(task), called as the executor calls a task's runner (threads means
     nothing to one run)."""
     return work(task)
 
 
 def _light(task: Task) -> bool:
-    from isorock.validate.core.engines import get_engine
+    from .engines import get_engine
     try:
         return get_engine(task.engine.partition(":")[0]).capabilities.exact_impacts
     except ImportError:
         return True  # reported by run_task in this process
 
-__all__ = ["Task", "engine_setting", "resolve", "run_task", "run_tasks", "default_workers"]
+__all__ = ["Task", "run_task", "run_tasks", "default_workers"]

@@ -2,6 +2,7 @@
 far they are without mixing anything into stdout or into a log a script reads."""
 from __future__ import annotations
 
+import math
 import sys
 import time
 
@@ -49,3 +50,49 @@ def _duration(seconds: float) -> str:
 
 
 __all__ = ["ProgressBar"]
+
+
+#: the share of the expected work done before a Progress gives an ETA
+ETA_AFTER = 1e-3
+
+
+class Progress:
+    """One progress bar with an ETA on stderr: redrawn in place on a terminal, else a
+    line at most every `every` seconds (logs stay short). It counts runs; the ETA follows
+    `work` (the tasks' expected cost, `update`'s second argument) where given, else the
+    run count."""
+
+    def __init__(self, total: int, *, work: float | None = None, stream=None, every: float = 10.0,
+                 label: str = "runs"):
+        self.total, self.done, self.label = total, 0, label
+        self.work, self.work_done = work, 0.0
+        self.stream = stream if stream is not None else sys.stderr
+        self.tty = hasattr(self.stream, "isatty") and self.stream.isatty()
+        self.every, self.start, self.last = every, time.monotonic(), -math.inf
+
+    def update(self, n: int, work: float = 0.0) -> None:
+        self.done += n
+        self.work_done += work
+        now = time.monotonic()
+        if self.tty or now - self.last >= self.every or self.done >= self.total:
+            self.last = now
+            self._draw(now)
+
+    def _draw(self, now):
+        elapsed = now - self.start
+        frac = self.done / self.total if self.total else 1.0
+        ahead = min(1.0, self.work_done / self.work) if self.work else frac
+        # below a thousandth of the work done (a campaign's analytic batches, say, whose
+        # seconds are mostly the cluster's start) the rate says nothing yet: "?"
+        eta = elapsed * (1 - ahead) / ahead if ahead >= ETA_AFTER else math.nan
+        eta_s = f"{eta:5.0f} s" if math.isfinite(eta) else "    ? s"
+        if self.tty:
+            bar = "#" * int(30 * frac)
+            self.stream.write(f"\r[{bar:<30}] {self.done}/{self.total} {self.label} "
+                              f"{elapsed:5.0f} s, ETA {eta_s}")
+            if self.done >= self.total:
+                self.stream.write("\n")
+        else:
+            self.stream.write(f"{self.done}/{self.total} {self.label} ({100 * frac:.0f}%), "
+                              f"{elapsed:.0f} s, ETA {eta_s}\n")
+        self.stream.flush()

@@ -158,7 +158,7 @@ def run_cell(task, budget: float = RUN_BUDGET):
     a run can end is a result: its status says how (the rows judge it, `judge`)."""
     # loaded before the clock: a worker's first run would otherwise pay for the imports
     from isorock.validate.core.measure import beta_errors
-    from isorock.validate.core.runner import resolve
+    from isorock.validate.core.engines import resolve
     out = {"status": "error", "message": "", "sim_s": 0.0, "loop_s": math.nan}
     try:
         engine, settings = resolve(task.engine, task.overrides)  # imports the engine's package
@@ -261,7 +261,7 @@ def distinct(labels: list[str]) -> tuple[list[str], dict, dict]:
     """(labels to run, alias → the label whose settings it shares, label → why not run): a
     preset with the same settings as an earlier one of its engine (mujoco:newton is the
     default) is run once; an engine that cannot be imported here is not run, with the reason."""
-    from isorock.validate.core.runner import resolve
+    from isorock.validate.core.engines import resolve
     run, aliases, skipped, seen = [], {}, {}, {}
     for label in labels:
         try:

@@ -40,7 +40,7 @@ def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
     """(label, settings) from cheapest to most accurate: the engine's own ladder; for
     ENGINE:PRESET the preset alone (a row of its own, labelled by it)."""
     from isorock.validate.core.engines import get_engine
-    from isorock.validate.core.runner import resolve
+    from isorock.validate.core.engines import resolve
     name, _, preset = engine.partition(":")
     if preset:
         return [(preset, resolve(engine)[1])]

@@ -95,8 +95,9 @@ def run_ensembles(specs, engines, *, overrides_for=None, overturn_rule: str | No
     (those it lacks are ignored). A run that raised gets NaN and its message in `failed`;
     one that failed inside the engine (a blow-up) keeps what it measured, as a single
     run reports it. progress: an object with update(n, work), called as runs finish."""
-    from isorock.campaign import Case, run_cases
-    from isorock.validate.core.runner import engine_setting
+    from isorock.validate.core.cases import Case
+    from isorock.validate.core.executor import run_cases
+    from isorock.validate.core.engines import choose as engine_setting
     names = list(engines)
     if REFERENCE not in names:
         raise InputError(f"engines = {names}: an ensemble needs the {REFERENCE!r} reference")

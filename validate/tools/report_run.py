@@ -31,7 +31,8 @@ from isorock.validate.core.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENC
 from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 from isorock.validate.core.measure import beta_errors
 from isorock.validate.io.naming import describe_motion
-from isorock.validate.core.runner import Task, default_workers, resolve, run_tasks
+from isorock.validate.core.engines import resolve
+from isorock.validate.core.runner import Task, default_workers, run_tasks
 from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
 from isorock.validate.core.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, not_exercised, skipped
@@ -327,7 +328,7 @@ def build(config: ReportConfig, *, progress=None) -> Results:
                                   client=client, threads=1 if config.workers == 1 else None, progress=bar)
     finally:
         if client is not None:
-            from isorock.campaign.execute import close_client
+            from isorock.validate.core.executor import close_client
             close_client(client)
 
     free_rows, checks = _free_rocking(engines, free, results)
@@ -444,7 +445,7 @@ def _cluster(config: ReportConfig, engines):
     workers = default_workers() if config.workers is None else config.workers
     if workers <= 1 or all(e.capabilities.exact_impacts for e in engines.values()):
         return None
-    from isorock.campaign.execute import local_client
+    from isorock.validate.core.executor import local_client
     return local_client(workers)
 
 

@@ -71,26 +71,10 @@ def _size(text: str) -> tuple[int, int]:
 
 # --- replay ---------------------------------------------------------------------------
 
-def replay_model(system):
-    """MuJoCo's scene of the system with the planar block joints (so a frame is set by
-    u, the centroid's x and z, and θ) and its Layout."""
-    from isorock.mujoco_models import build_model
-    from isorock.mujoco_models.settings import Settings
-    from isorock.mujoco_models.state import Layout
-    model = build_model(system, Settings(joint="planar"))
-    return model, Layout(model, system, "planar")
-
-
-def frame_qpos(model, layout, system, u: float, theta: float):
-    """Joint positions of the rigid model at base displacement u (m) and tilt θ (rad):
-    the block pivots on its corner, which rides on the base."""
-    from isorock.analytic import kinematics
-    qpos = model.qpos0.copy()
-    x, z = kinematics.tilted_centroid(system, theta)
-    qpos[layout.xq], qpos[layout.zq], qpos[layout.thq] = u + x, z - system.h, theta
-    if layout.base_q is not None:
-        qpos[layout.base_q] = u
-    return qpos
+def replay_scene(system):
+    """(model, pose(u, θ) → qpos): MuJoCo's replay scene, through the registry."""
+    from isorock.validate.core.engines import get_engine
+    return get_engine("mujoco").spec.replay_scene(system)
 
 
 def frames(traj, dt: float):
@@ -140,7 +124,7 @@ def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], ti
 
     from isorock.validate.io.output import write_atomic
     system = traj.system
-    model, layout = replay_model(system)
+    model, pose = replay_scene(system)
     data = mujoco.MjData(model)
     width, height = size
     model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
@@ -150,7 +134,7 @@ def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], ti
     images = []
     try:
         for t, u, theta in frames(traj, speed / fps):
-            data.qpos[:] = frame_qpos(model, layout, system, u, theta)
+            data.qpos[:] = pose(u, theta)
             mujoco.mj_forward(model, data)
             renderer.update_scene(data, camera=cam)
             _prepare(renderer.scene, system)
@@ -173,7 +157,7 @@ def replay_in_viewer(traj, *, speed: float) -> int:
     import mujoco
     import mujoco.viewer
     system = traj.system
-    model, layout = replay_model(system)
+    model, pose = replay_scene(system)
     data = mujoco.MjData(model)
     dt = 1 / 60
     with mujoco.viewer.launch_passive(model, data) as viewer:
@@ -181,7 +165,7 @@ def replay_in_viewer(traj, *, speed: float) -> int:
         for t, u, theta in frames(traj, dt * speed):
             if not viewer.is_running():
                 break
-            data.qpos[:] = frame_qpos(model, layout, system, u, theta)
+            data.qpos[:] = pose(u, theta)
             mujoco.mj_forward(model, data)
             viewer.sync()
             time.sleep(max(0.0, start + t / speed - time.perf_counter()))

@@ -1,0 +1,271 @@
+"""The one executor: runs work serially in this process or on a Dask cluster (a local one
+or a scheduler's), and reports each result as it arrives.
+
+- `execute(tasks, client=…, run=…, on_done=…)` runs any list of tasks; `here(task)` keeps
+  some in this process while the cluster works on the others (the analytic model's, done
+  in milliseconds). `validate`'s histories (core.runner) and every table of runs use it.
+- A *chunk* (`Task`) is a list of cases for one engine choice: the analytic engine runs a
+  chunk (hundreds of cases) in one call of the compiled kernel
+  (`analytic.fast.simulate_batch`); a contact engine runs its chunk case by case. Its rows
+  are summary rows (core.summary). `run_cases` runs in-memory cases into a table.
+- A chunk's id is a hash of the engine, its settings and its cases' inputs, so it depends
+  on what is computed and on nothing else (not on workers, order or time): campaigns
+  store each finished chunk under it (campaign.execute) and never redo one.
+- Rows are independent of how they were computed: the kernel and the engines are
+  deterministic, so serial, local-cluster and remote-cluster tables are identical except
+  `runtime_s`.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from isorock.analytic.errors import InputError
+from isorock.analytic.limits import available_cores
+
+from .cases import Case, motion_of
+from .engines import EngineChoice
+from .summary import case_inputs, row_of_batch, row_of_failure, row_of_trajectory, rows_to_table, sort_table
+
+#: Default cases per chunk: the analytic kernel runs a whole chunk in one call.
+ANALYTIC_CHUNK = 500
+CONTACT_CHUNK = 4
+
+
+def runs_as_batch(engine: str) -> bool:
+    """Does the engine run many cases in one call (its capabilities say so: the compiled
+    analytic kernel's `simulate_batch`)? The registry answers; no engine is named here."""
+    from isorock.validate.core.engines import get_engine
+    return get_engine(engine).capabilities.batch
+
+
+@dataclass(frozen=True)
+class Task:
+    id: str
+    setting: EngineChoice
+    cases: tuple[Case, ...]
+    #: model.md's overturning rule for every engine (None: each engine's default, past α)
+    overturn_rule: str | None = None
+
+
+def chunk_id(setting: EngineChoice, cases, overturn_rule: str | None = None) -> str:
+    head = [setting.engine, [list(o) for o in setting.overrides]]
+    # a preset and a rule join the hash only when given, so that the ids (and parts) of
+    # campaigns made before they existed stay valid
+    if setting.preset:
+        head.append(["preset", setting.preset])
+    if overturn_rule is not None:
+        head.append(["overturn_rule", overturn_rule])
+    body = json.dumps([*head, [case_inputs(c) for c in cases]], sort_keys=True, default=str)
+    return hashlib.sha256(body.encode()).hexdigest()[:20]
+
+
+def make_tasks(cases: list[Case], settings, *, analytic_chunk: int, contact_chunk: int,
+               overturn_rule: str | None = None) -> list[Task]:
+    tasks = []
+    for setting in settings:
+        size = analytic_chunk if runs_as_batch(setting.engine) else contact_chunk
+        for lo in range(0, len(cases), size):
+            chunk = tuple(cases[lo:lo + size])
+            tasks.append(Task(chunk_id(setting, chunk, overturn_rule), setting, chunk, overturn_rule))
+    return tasks
+
+
+# --- running one task (in a worker, or here) --------------------------------------------
+
+def run_task(task: Task, threads: int | None = 1) -> list[dict]:
+    """The rows of one chunk. threads: the analytic kernel's threads, or a contact
+    engine's runs side by side (1 in a Dask worker, which is one core; None: all cores,
+    for the serial path)."""
+    if runs_as_batch(task.setting.engine):
+        return _run_batch(task, threads)
+    return _run_contact(task, threads)
+
+
+def _run_batch(task: Task, threads) -> list[dict]:
+    from dataclasses import replace
+
+    from isorock.analytic.fast import simulate_batch
+    settings = task.setting.settings()
+    if task.overturn_rule is not None:
+        settings = replace(settings, overturn=task.overturn_rule)
+    cases = task.cases
+    start = time.perf_counter()
+    out = simulate_batch([c.system for c in cases], [motion_of(c) for c in cases],
+                         duration=np.array([c.duration for c in cases]),
+                         theta0=np.array([c.theta0 for c in cases]), settings=settings,
+                         workers=threads)
+    per_case = (time.perf_counter() - start) / len(cases)
+    return [{**case_inputs(case), "engine": task.setting.engine, "setting": task.setting.label,
+             **row_of_batch(case, r), "runtime_s": per_case} for case, r in zip(cases, out)]
+
+
+def _run_contact(task: Task, threads: int | None) -> list[dict]:
+    """A contact engine's chunk: its batch path (MuJoCo's: one scene per system, `threads`
+    runs side by side) or one run after another; each row what the run alone gives.
+    Impacts are counted, not mapped to effective β: no column reads it."""
+    from isorock.validate.core.engines import get_engine
+    engine = get_engine(task.setting.engine)
+    start = time.perf_counter()
+    results = engine.simulate_many([(c.system, motion_of(c), c.duration, c.theta0) for c in task.cases],
+                                   settings=task.setting.settings(), overturn_rule=task.overturn_rule,
+                                   effective_beta=False,
+                                   threads=available_cores() if threads is None else threads)
+    # runs overlap in threads, so a run's own wall time says little: each row gets the
+    # chunk's time shared equally, as an analytic chunk's rows do
+    share = (time.perf_counter() - start) / max(len(task.cases), 1)
+    return [{**case_inputs(case), "engine": task.setting.engine, "setting": task.setting.label,
+             **(row_of_failure(tr) if isinstance(tr, Exception) else row_of_trajectory(tr)), "runtime_s": share}
+            for case, tr in zip(task.cases, results)]
+
+
+# --- progress ---------------------------------------------------------------------------
+
+#: what a batch engine's simulated second costs against a contact engine's, for the ETA
+#: alone: the compiled analytic kernel makes ~1,000 runs of 40 s per second on 2 cores, a
+#: contact engine 1–10 simulated seconds per wall second (docs/campaigns.md, Throughput)
+BATCH_COST = 1e-4
+
+
+def expected_cost(task: Task) -> float:
+    """A task's expected cost, in contact-engine simulated seconds: what the progress
+    bar's ETA is measured in (the run count alone made a campaign's analytic third, done
+    in seconds, promise the contact runs in seconds too)."""
+    simulated = sum(c.duration for c in task.cases)
+    return simulated * (BATCH_COST if runs_as_batch(task.setting.engine) else 1.0)
+
+
+def execute(tasks: list, *, client=None, threads: int | None = None, on_done, progress=None, here=None,
+            run=None, weight=None, cost=None) -> int:
+    """Run `tasks`, calling on_done(task, result) here as each one finishes (in the order
+    they finish). client: a dask.distributed Client, or None to run serially in this
+    process. run(task, threads): a task's result (default: `run_task`, a chunk's rows;
+    `isorock validate` runs its histories through here too). here(task): tasks that run
+    in this process even with a client (e.g. the analytic model's, loaded here already and
+    done in milliseconds), while the cluster works on the others. progress.update(n) after
+    each task, n = weight(task) (default: its number of cases), with the work it was,
+    cost(task) (the ETA's measure, `expected_cost`; 0 without `cost`). Returns the number
+    of tasks run."""
+    run = run or run_task
+    weight = weight or (lambda task: len(task.cases))
+    local = [t for t in tasks if client is None or (here is not None and here(t))]
+    remote = [t for t in tasks if client is not None and not (here is not None and here(t))]
+
+    def finished(task, result):
+        on_done(task, result)
+        if progress:
+            progress.update(weight(task), cost(task) if cost else 0.0)
+
+    by_key, futures = {}, []
+    for task in remote:  # submitted first, so that the cluster works while this process does its part
+        fut = client.submit(run, task, 1, pure=False)
+        by_key[fut.key] = task
+        futures.append(fut)
+    try:
+        for task in local:
+            finished(task, run(task, threads))
+        if futures:
+            from dask.distributed import as_completed
+            for fut in as_completed(futures):
+                task = by_key[fut.key]
+                finished(task, fut.result())
+                fut.release()
+    except BaseException:
+        if futures:
+            client.cancel(futures)
+        raise
+    return len(tasks)
+
+
+#: Dask's housekeeping, slowed down for a cluster without a dashboard: its defaults (an
+#: event-loop tick every 20 ms, a system monitor every 0.5 s, a memory monitor every 0.1 s,
+#: a statistical profiler sampling the workers every 10 ms) keep an idle 2-worker cluster
+#: at 0.13–0.14 of a core, measured; these at 0.02. On 2 cores that is 7% of the machine,
+#: taken from the runs for as long as a campaign lasts.
+QUIET_CLUSTER = {"distributed.admin.tick.interval": "1s", "distributed.admin.system-monitor.interval": "5s",
+                 "distributed.worker.memory.monitor-interval": "1s", "distributed.worker.profile.enabled": False}
+
+
+def local_client(workers: int):
+    """A LocalCluster of `workers` single-threaded worker processes (the analytic kernel
+    and the contact engines each use one core per process), with QUIET_CLUSTER's
+    housekeeping (the workers take the configuration they are started with)."""
+    import logging
+
+    import dask
+    from dask.distributed import Client, LocalCluster
+    # Dask's nanny starts workers with MALLOC_TRIM_THRESHOLD_=65536, so that freed memory
+    # goes back to the system at once: for PyBullet's stepping loop (many small Python
+    # objects per step) that is 30% more CPU, in system calls (measured: 32 runs, 2.35 s
+    # → 3.05 s). A campaign's workers hold little memory; glibc's own threshold serves.
+    environ = {k: v for k, v in dask.config.get("distributed.nanny.pre-spawn-environ", {}).items()
+               if k != "MALLOC_TRIM_THRESHOLD_"}
+    with dask.config.set({**QUIET_CLUSTER, "distributed.nanny.pre-spawn-environ": environ}):
+        # the scheduler serves HTTP routes even without a dashboard, on port 8787 unless
+        # told otherwise: with another cluster on this machine that printed "Port 8787 is
+        # already in use" on stderr. Any free port on this host alone will do.
+        cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                               dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+                               silence_logs=logging.ERROR)
+        return Client(cluster)
+
+
+def close_client(client) -> None:
+    """Close a client opened here, and its LocalCluster if it started one."""
+    cluster = getattr(client, "cluster", None)
+    client.close()
+    if cluster is not None:
+        cluster.close()
+
+
+def client_for(client=None, workers: int = 0, scheduler: str | None = None):
+    """(client, close): an explicit client; one connected to `scheduler`; a LocalCluster
+    of `workers` processes; or none (serial, workers = 0)."""
+    if client is not None:
+        return client, False
+    if scheduler:
+        from dask.distributed import Client
+        try:
+            return Client(scheduler, timeout="10s"), True
+        except (OSError, TimeoutError) as e:
+            raise InputError(f"--scheduler = {scheduler!r}: must be a reachable Dask scheduler ({e})") from None
+    if workers and workers > 0:
+        return local_client(workers), True
+    return None, False
+
+
+def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: int = ANALYTIC_CHUNK,
+              contact_chunk: int = CONTACT_CHUNK, progress=None, overturn_rule: str | None = None,
+              threads: int | None = None, batch_here: bool = False):
+    """Rows for in-memory `cases` (core.cases.Case: system, motion, duration, theta0,
+    optional inputs) under `engines`: labels ("ENGINE" or "ENGINE:PRESET"), (label,
+    {setting: value}) pairs, or EngineChoices. Nothing is written. Returns a pyarrow.Table
+    sorted by case, engine, setting.
+
+    overturn_rule: model.md's rule for every engine (None: past α). threads: the serial
+    path's threads (None: every core). batch_here: with a cluster, the analytic chunks
+    still run in this process (where the kernel is loaded; they take milliseconds) while
+    the cluster runs the contact engines'. progress: an object with update(n, work)
+    (io.progress.Progress), or None."""
+    from .engines import choose
+    choices = []
+    for e in engines:
+        choice = e if isinstance(e, EngineChoice) else choose(*((e, {}) if isinstance(e, str) else e), strict=True)
+        choice.settings()  # an unknown engine, preset or setting fails here
+        choices.append(choice)
+    tasks = make_tasks(list(cases), choices, analytic_chunk=analytic_chunk, contact_chunk=contact_chunk,
+                       overturn_rule=overturn_rule)
+    rows = []
+    live, close = client_for(client, workers, None)
+    here = (lambda task: runs_as_batch(task.setting.engine)) if batch_here else None
+    try:
+        execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=progress,
+                here=here, cost=expected_cost)
+    finally:
+        if close:
+            close_client(live)
+    return sort_table(rows_to_table(rows))
