@@ -86,7 +86,7 @@ from .limits import available_cores
 from .overturning import describe
 from .settings import AnalyticSettings
 from .motion import GroundMotion
-from .protocol import run_inputs
+from .engine_protocol import run_inputs
 from .status import Status
 from .system import System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss

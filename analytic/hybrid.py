@@ -19,7 +19,7 @@ from scipy.integrate import solve_ivp
 from . import physics
 from .motion import GroundMotion
 from .overturning import describe
-from .protocol import run_inputs
+from .engine_protocol import run_inputs
 from .settings import AnalyticSettings
 from .status import Status
 from .system import System

@@ -71,7 +71,7 @@ except ImportError as exc:  # an optional extra; the registry and the report ski
 from isorock.analytic import kinematics
 from isorock.analytic.errors import InputError, require, require_positive_finite
 from isorock.analytic.motion import GroundMotion
-from isorock.analytic.protocol import run_inputs
+from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes

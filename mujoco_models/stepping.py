@@ -28,7 +28,7 @@ from mujoco import rollout
 
 from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
-from isorock.analytic.protocol import run_inputs
+from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory

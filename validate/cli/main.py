@@ -311,8 +311,8 @@ def _progress(quiet):
 
 def cmd_run(a) -> int:
     from isorock.analytic.limits import check_resample
-    from isorock.analytic.protocol import run_inputs
-    from isorock.validate.cli.main import run as run_cli
+    from isorock.analytic.engine_protocol import run_inputs
+    from isorock.validate.cli import run as run_cli
     from isorock.validate.core.engines import get_engine
     from isorock.validate.io.output import Outputs, to_json
     specs = run_cli.parse_engines(a.engine)

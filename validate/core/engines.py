@@ -1,6 +1,7 @@
 """The engine registry: every command, report and test loops over these names.
 
-Each entry names a package exposing `ENGINE`, an `isorock.analytic.engine_protocol.
+Each entry names a package exposing `ENGINE` (or "module:ATTRIBUTE" for a module declaring
+more than one), an `isorock.analytic.engine_protocol.
 EngineSpec` (simulate, its frozen Settings, presets, what it can export and supports).
 `Engine.simulate` always returns the shared Trajectory: a contact engine's raw history
 is measured here (`isorock.validate.core.measure`), the same way for every engine, so no
@@ -27,14 +28,14 @@ DEFAULT_IMPACT_THRESHOLD = 0.01
 ENGINE_MODULES = {
     # the analytic model, compiled (analytic.fast); its SciPy reference path, which the
     # compiled kernel is tested against, is "analytic-reference"
-    "analytic": "isorock.analytic.fast_engine",
-    "analytic-reference": "isorock.analytic.engine",
+    "analytic": "isorock.analytic.engines:ENGINE",
+    "analytic-reference": "isorock.analytic.engines:REFERENCE_ENGINE",
     "mujoco": "isorock.mujoco_models",
     "bullet": "isorock.bullet_models",
     # Drake's point contact: an independent, slower formulation, asked for by name (docs/drake.md)
     "drake": "isorock.drake_models",
     # the former name of the compiled engine, kept so that nothing breaks
-    "analytic-fast": "isorock.analytic.fast_engine",
+    "analytic-fast": "isorock.analytic.engines:ENGINE",
 }
 #: The engine every other is compared with.
 REFERENCE = "analytic"
@@ -151,7 +152,8 @@ class Engine:
 def get_engine(name: str) -> Engine:
     if name not in ENGINE_MODULES:
         raise InputError(f"engine = {name!r}: must be one of {', '.join(ALL_ENGINES)}")
-    return Engine(name, importlib.import_module(ENGINE_MODULES[name]).ENGINE)
+    module, _, attribute = ENGINE_MODULES[name].partition(":")
+    return Engine(name, getattr(importlib.import_module(module), attribute or "ENGINE"))
 
 
 
