@@ -149,9 +149,8 @@ def cases() -> list[Case]:
              outputs=("real.json",),
              check=lambda d, out: (d / "link.json").is_symlink()
              and json.loads((d / "real.json").read_text())["theta_max_over_alpha"] > 0.49))
-    add(Case("out-file", "--json into a new sub-folder", [*FIXED, *FREE, "--json", "new/sub/x.json"], "ok",
-             outputs=("new", "new/sub", "new/sub/x.json"),
-             check=_file_json("new/sub/x.json", "theta_max_over_alpha", 0.5, rel=1e-9)))
+    # a missing folder is refused, not made without a word (issue 24, item 5)
+    add(Case("out-file", "--json into a new sub-folder", [*FIXED, *FREE, "--json", "new/sub/x.json"]))
     add(Case("out-file", "--json replaces an existing file", [*FIXED, *FREE, "--json", "x.json"], "ok",
              setup=_files(**{"x__json": "old"}), outputs=("x.json",),
              check=_file_json("x.json", "theta_max_over_alpha", 0.5, rel=1e-9)))

@@ -268,3 +268,24 @@ def test_sigterm_mid_run_exits_cleanly_and_leaves_nothing(tmp_path):
     assert proc.returncode == 128 + signal.SIGTERM, err
     assert "Traceback" not in err and "SIGTERM" in err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_several_engines_write_all_outputs_or_none_and_create_no_folder(tmp_path, monkeypatch, capsys):
+    """Issue 24 item 5: `run` with several engines, a good --json and a --csv in a folder
+    that does not exist: exit 2 before any run, no multi.json left behind, no folder made."""
+    monkeypatch.chdir(tmp_path)
+    code = main(["run", "--engine", "analytic,analytic:conservative", "--height", "2", "--width", "0.7",
+                 "--mass", "3800", "--base-mass", "1", "--fixed-base", "--motion", "sine:amp=0.6,freq=1.3,cycles=1",
+                 "--json", "multi.json", "--csv", "afile/x.csv"])
+    assert code == 2
+    err = capsys.readouterr().err
+    assert "csv" in err and "afile" in err and len(err.strip().splitlines()) == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == []
+
+
+def test_one_engine_refuses_an_output_in_a_missing_folder(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    code = main(["run", "--engine", "analytic", "--height", "2", "--width", "0.7", "--mass", "3800", "--base-mass", "1",
+                 "--fixed-base", "--json", "new/deeper/out.json"])
+    assert code == 2 and "does not exist" in capsys.readouterr().err
+    assert not (tmp_path / "new").exists()

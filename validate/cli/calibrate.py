@@ -5,7 +5,7 @@ from isorock.analytic.errors import InputError
 from isorock.validate.tools import calibrate as tool
 import math
 import sys
-from isorock.validate.tools.calibrate import DEFAULT_TILTS, TILT_RANGE, calibrate, preset_worthy, report_lines, result_json, settings_toml
+from isorock.validate.tools.calibrate import DEFAULT_TILTS, TILT_RANGE, preset_worthy, report_lines, result_json, settings_toml
 
 
 def _options(a, keys) -> list[str]:
@@ -23,7 +23,7 @@ def _options(a, keys) -> list[str]:
 
 def _command(a) -> str:
     """The command line that gives this result again (the options that were given)."""
-    from isorock.validate.cli.main import ENGINE_OPTIONS, SYSTEM_KEYS
+    from isorock.validate.cli.options import ENGINE_OPTIONS, SYSTEM_KEYS
     words = ["isorock calibrate", f"--engine {a.engine}", *_options(a, SYSTEM_KEYS), *_options(a, ENGINE_OPTIONS)]
     if a.tilts != DEFAULT_TILTS:
         words.append(f"--tilts {a.tilts}")
@@ -32,7 +32,7 @@ def _command(a) -> str:
 
 
 def add_parser(sub) -> None:
-    from isorock.validate.cli.main import add_engine_options, add_system_options, whole_number
+    from isorock.validate.cli.options import add_engine_options, add_system_options, whole_number
     p = sub.add_parser("calibrate", help="fit a contact engine's contact parameters to the closed-form β",
                        description=tool.__doc__.split("\n\n")[0])
     p.add_argument("--engine", required=True, help="mujoco, bullet or drake")
@@ -58,7 +58,7 @@ def cmd_calibrate(a) -> int:
     from pathlib import Path
 
     from isorock.analytic.system import paper_system
-    from isorock.validate.cli.main import SYSTEM_KEYS, engine_settings_from_args, system_from_options
+    from isorock.validate.cli.options import SYSTEM_KEYS, engine_settings_from_args, system_from_options
     from isorock.validate.core.engines import get_engine
     from isorock.validate.io.output import Outputs, to_json
     from isorock.validate.io.progress import ProgressBar
@@ -85,7 +85,7 @@ def cmd_calibrate(a) -> int:
         def progress(done, total, best):
             bar.total = total
             bar.advance(done - bar.done, f"best 2σ bound {100 * best:.3f}%" if math.isfinite(best) else "")
-        r = calibrate(a.engine, system, settings=settings, n_tilts=a.tilts, max_evals=a.max_evals,
+        r = tool.calibrate(a.engine, system, settings=settings, n_tilts=a.tilts, max_evals=a.max_evals,
                       workers=workers, progress=progress)
         bar.advance(bar.total - bar.done)  # Nelder–Mead may converge before the budget is spent
         bar.close()

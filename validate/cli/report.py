@@ -20,7 +20,7 @@ MAX_SCALE = 100.0
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
-    from isorock.validate.cli.main import add_engine_options, add_system_options
+    from isorock.validate.cli.options import add_engine_options, add_system_options
     from isorock.validate.core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
     p = subparsers.add_parser(
         "validate", help="the validation report: all engines side by side with the analytic model",
@@ -38,7 +38,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                         f"(default: {' and '.join(DEFAULT_MOTIONS)})")
     p.add_argument("--format", choices=("at2", "jma", "csv"),
                    help="record format; guessed from the file when omitted")
-    from isorock.validate.cli.main import add_units_option, number
+    from isorock.validate.cli.options import add_units_option, number
     add_units_option(p)
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
                    help="report folder: a new or empty folder, or one an earlier isorock run wrote (replaced "
@@ -86,7 +86,7 @@ def _scales(text):
 def _read_config(path) -> dict:
     import tomllib
 
-    from isorock.validate.cli.main import SYSTEM_KEYS
+    from isorock.validate.cli.options import SYSTEM_KEYS
     try:
         with open(path, "rb") as f:
             data = tomllib.load(f)
@@ -105,7 +105,7 @@ def _read_config(path) -> dict:
 
 
 def run(args) -> int:
-    from isorock.validate.cli.main import ENGINE_OPTIONS, system_from_options
+    from isorock.validate.cli.options import ENGINE_OPTIONS, system_from_options
     from isorock.validate.io.output import check_folder
     from isorock.validate.io.progress import ProgressBar
     from isorock.validate.tools.report_render import verdict, write_report

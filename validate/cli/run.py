@@ -1,8 +1,8 @@
-"""`isorock run` with several engines (`--engine analytic,mujoco:fast,bullet`) and the
-`--plot` figure: each engine runs the same system and motion, the first is the
-reference every other is compared with (validate.compare), and the comparison is
-printed, written with --json, and drawn with --plot (engines overlaid, plus each
-engine's difference from the reference).
+"""`isorock run`: one engine, or several (`--engine analytic,mujoco:fast,bullet`) on the same
+system and motion, the first the reference every other is compared with (core.compare).
+One path for both: every output (--json, --csv, --plot) is checked before the runs and
+written all or none through one `Outputs` (io.output). One engine prints and writes its
+metrics; several print and write the comparison and draw the engines overlaid.
 
 ENGINE:PRESET asks for one of the engine's named presets (`EngineSpec.presets`); engine
 options given on the command line (--timestep, --friction, …) are applied on top, to
@@ -19,7 +19,7 @@ from dataclasses import fields
 from pathlib import Path
 
 from isorock.analytic.errors import InputError
-from isorock.validate.cli.main import ENGINE_OPTIONS, _settings_dict
+from isorock.validate.cli.options import ENGINE_OPTIONS, engine_overrides, settings_dict
 
 
 def parse_engines(text: str) -> list[tuple[str, str | None]]:
@@ -57,32 +57,25 @@ def engine_labels(items) -> list[str]:
     return [spec_label(name, preset) for name, preset in specs]
 
 
-def _overrides(a) -> dict:
-    return {k: getattr(a, k) for k in ENGINE_OPTIONS if getattr(a, k, None) is not None}
-
-
-def settings_for(engine, preset: str | None, overrides: dict):
-    """The engine's settings: its default (or the preset) with the overrides it has
-    (runner.engine_setting, as validate and the campaigns make them); a bad value is
-    named as its option."""
-    from isorock.validate.core.engines import choose as engine_setting
-    try:
-        return engine_setting(spec_label(engine.name, preset), overrides).settings()
-    except InputError as e:
-        raise InputError(str(e).replace("_", "-")) from None
-
-
 def load_engines(specs, a) -> list[tuple[str, object, object]]:
-    """(label, Engine, Settings) for each spec. An engine option that none of the engines
-    has is an error (it would silently do nothing)."""
-    from isorock.validate.core.engines import get_engine
-    overrides = _overrides(a)
-    engines = [(spec_label(n, p), get_engine(n), p) for n, p in specs]
-    unused = sorted(set(overrides) - {f.name for _, e, _ in engines for f in fields(e.Settings)})
+    """(label, Engine, Settings) for each spec, through the registry's one engine choice
+    (core.engines.choose): the preset or the defaults, with the engine options given that
+    the engine has. An engine option that none of the engines has is an error (it would
+    silently do nothing); a bad value is named as its option."""
+    from isorock.validate.core.engines import choose, get_engine
+    overrides = engine_overrides(a)
+    engines = [(spec_label(n, p), get_engine(n)) for n, p in specs]
+    unused = sorted(set(overrides) - {f.name for _, e in engines for f in fields(e.Settings)})
     if unused:
         names = ", ".join("--" + k.replace("_", "-") for k in unused)
-        raise InputError(f"{names}: not a setting of engine {', '.join(l for l, _, _ in engines)}")
-    return [(label, e, settings_for(e, p, overrides)) for label, e, p in engines]
+        raise InputError(f"{names}: not a setting of engine {', '.join(label for label, _ in engines)}")
+    out = []
+    for label, engine in engines:
+        try:
+            out.append((label, engine, choose(label, overrides).settings()))
+        except InputError as e:
+            raise InputError(str(e).replace("_", "-")) from None
+    return out
 
 
 def _file_suffix(path, label: str) -> Path:
@@ -98,13 +91,6 @@ def plot_format(path) -> str:
     if fmt not in supported:
         raise InputError(f"plot = {str(path)!r}: must end in one of {', '.join('.' + s for s in sorted(supported))}")
     return fmt
-
-
-def write_plot(path, runs: dict, motion) -> None:
-    from isorock.validate.io.output import write_atomic
-    from isorock.validate.io.run_plot import plot_runs
-    fmt = plot_format(path)
-    write_atomic(path, lambda tmp: plot_runs(runs, motion, tmp, format=fmt))
 
 
 def _fmt(x, spec="{:.3g}"):
@@ -132,49 +118,88 @@ def comparison_table(runs: dict, comparisons: dict) -> str:
     return "\n".join(lines)
 
 
-def run_engines(a, specs, system, motion, *, progress=None) -> int:
-    """Several engines on one system and motion; exit 1 when any run failed."""
+def _progress(quiet):
+    if quiet or not sys.stderr.isatty():
+        return None
+
+    def report(t, total):
+        print(f"\r  t = {t:8.2f} / {total:.2f} s", end="", file=sys.stderr, flush=True)
+    return report
+
+
+def cmd_run(a) -> int:
+    """One or several engines on one system and motion; exit 1 when any run failed."""
+    from isorock.analytic.engine_protocol import run_inputs
+    from isorock.analytic.limits import check_resample
+    from isorock.validate.cli.options import motion_from_args, system_from_args
     from isorock.validate.core.compare import compare
-    from isorock.validate.io.output import write_atomic, write_json
-    from isorock.validate.io.provenance import provenance
-    if a.plot:
-        plot_format(a.plot)  # a bad --plot name fails before minutes of simulation
-    loaded = load_engines(specs, a)
-    runs, used = {}, {}
-    for label, engine, settings in loaded:
-        if not a.quiet and sys.stderr.isatty():
-            print(f"\r{label} …", file=sys.stderr)
-        runs[label] = engine.simulate(system, motion, settings=settings, duration=a.duration,
-                                      overturn_rule=getattr(a, "overturn", None),
-                                      theta0=a.theta0_over_alpha * system.alpha,
-                                      impact_threshold=a.impact_threshold, progress=progress)
-        used[label] = settings
-    ref_label, ref = next(iter(runs.items()))
-    comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
-    if a.json:
-        from isorock.validate.io.naming import describe_motion
-        report = {
-            "reference": ref_label,
-            "system": system.describe(),
-            "motion": dict(motion.describe(), description=describe_motion(motion)),
-            "engines": {label: dict(tr.summary(), settings=_settings_dict(used[label]))
-                        for label, tr in runs.items()},
-            "comparisons": {label: c.as_dict() for label, c in comparisons.items()},
-            "provenance": provenance(record_paths=[a.motion]),
-        }
-        write_json(a.json, report)
-    written = []
-    if a.csv:
-        for label, tr in runs.items():
-            path = _file_suffix(a.csv, label)
-            hist = tr.resample(a.csv_dt) if a.csv_dt else tr
-            write_atomic(path, hist.to_csv)
-            written.append(str(path))
-    if a.plot:
-        write_plot(a.plot, runs, motion)
-        written.append(str(a.plot))
-    if not a.quiet:
-        print(comparison_table(runs, comparisons))
-        for path in written:
-            print(f"wrote {path}")
+    from isorock.validate.io.output import Outputs, to_json
+    specs = parse_engines(a.engine)
+    several = len(specs) > 1
+    with Outputs() as outputs:
+        # every output path is checked before the runs, so a bad one costs nothing
+        json_out = outputs.file("json", a.json) if a.json is not None else None
+        csv_outs = {}
+        if a.csv is not None:
+            for name, preset in specs:  # several engines: FILE.ENGINE.csv each
+                label = spec_label(name, preset)
+                csv_outs[label] = outputs.file("csv", _file_suffix(a.csv, label) if several else a.csv)
+        plot_out = outputs.file("plot", a.plot) if a.plot is not None else None
+        plot_kind = plot_format(a.plot) if a.plot is not None else None
+        loaded = load_engines(specs, a)
+        system, motion = system_from_args(a), motion_from_args(a)
+        if a.duration is not None and not a.duration > 0:
+            raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
+        if not (abs(a.theta0_over_alpha) < 1):
+            raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
+        theta0 = a.theta0_over_alpha * system.alpha
+        # the work bounds (duration, isolator, every engine's steps) before any work
+        for _, _, settings in loaded:
+            motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold, settings=settings)
+        if a.csv_dt is not None:
+            if not (a.csv_dt > 0 and a.csv_dt < float("inf")):
+                raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")
+            check_resample("csv-dt", a.csv_dt, duration)
+        runs, used = {}, {}
+        for label, engine, settings in loaded:
+            if several and not a.quiet and sys.stderr.isatty():
+                print(f"\r{label} …", file=sys.stderr)
+            runs[label] = engine.simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
+                                          impact_threshold=a.impact_threshold, overturn_rule=a.overturn,
+                                          progress=_progress(a.quiet))
+            used[label] = settings
+        ref_label, ref = next(iter(runs.items()))
+        comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
+        if several:
+            from isorock.validate.io.naming import describe_motion
+            report = {
+                "reference": ref_label, "system": system.describe(),
+                "motion": dict(motion.describe(), description=describe_motion(motion)),
+                "engines": {label: dict(tr.summary(), settings=settings_dict(used[label]))
+                            for label, tr in runs.items()},
+                "comparisons": {label: c.as_dict() for label, c in comparisons.items()},
+            }
+        else:
+            summary = ref.summary()
+            report = dict(summary, system=system.describe(), motion=motion.describe(),
+                          settings=settings_dict(used[ref_label]))
+        if json_out:
+            from isorock.validate.io.provenance import provenance
+            json_out.write_text(to_json(dict(report, provenance=provenance(record_paths=[a.motion]))) + "\n")
+        for label, out in csv_outs.items():
+            tr = runs[label]
+            out.write((tr.resample(a.csv_dt) if a.csv_dt else tr).to_csv)
+        if plot_out:
+            from isorock.validate.io.run_plot import plot_runs
+            plot_out.write(lambda tmp: plot_runs(runs, motion, tmp, format=plot_kind))
+        outputs.commit()
+    if not a.quiet and "-" not in (a.json, a.csv):
+        if several:
+            print(comparison_table(runs, comparisons))
+            for out in [*csv_outs.values(), *([plot_out] if plot_out else [])]:
+                print(f"wrote {out.given}")
+        else:
+            brief = {k: v for k, v in summary.items() if k != "impact_log"}
+            brief["motion"] = {k: report["motion"][k] for k in ("name", "pga_g", "units_read")}
+            print(to_json(brief))
     return 1 if any(tr.status.is_failure for tr in runs.values()) else 0

@@ -10,7 +10,7 @@ from isorock.validate.tools.view import DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_B
 
 
 def add_parser(sub) -> None:
-    from isorock.validate.cli.main import add_engine_options, add_motion_options, add_system_options
+    from isorock.validate.cli.options import add_engine_options, add_motion_options, add_system_options
     p = sub.add_parser("view", help="replay a run in MuJoCo's viewer, or write it as a GIF where there is no display",
                        description=tool.__doc__.split("\n\n")[0] + "\n\nWithout options: the paper's block "
                        "(T 1.5 s, ξ 0.2) under " + DEFAULT_MOTION + ".")
@@ -47,7 +47,7 @@ def _check(a) -> None:
 
 
 def run(a) -> int:
-    from isorock.validate.cli.main import motion_from_args, system_from_args
+    from isorock.validate.cli.options import motion_from_args, system_from_args
     from isorock.validate.cli.run import load_engines, parse_engines
     _check(a)
     size = _size(a.size)

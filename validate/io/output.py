@@ -210,7 +210,10 @@ class FileOutput:
         self.kind, self.target = "file", Path(os.path.abspath(p))
         self.identity = ("new", str(self.target))
         self._mode = None
-        self._parents = _missing_parents(field, self.target)
+        missing = _missing_parents(field, self.target)
+        if missing:  # a typo in a folder name is not a folder to make without a word
+            _refuse(field, path, f"its folder {str(missing[-1])!r} does not exist; create it first")
+        self._parents = []
 
     # staging ---------------------------------------------------------------------------
     def write(self, writer) -> None:

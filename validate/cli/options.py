@@ -1,0 +1,205 @@
+"""The command line's shared vocabulary: one parser class with model.md's one-line errors,
+the options every command spells alike (the system, the motion, the engine settings) and
+what they mean (a System, a GroundMotion, an engine choice). Every command module builds
+its options from here, so `--height` or `--timestep` means one thing everywhere."""
+from __future__ import annotations
+
+import argparse
+import re
+
+from isorock.analytic.errors import InputError
+
+
+#: Engine options: CLI dest → the field of the engine's Settings it sets.
+ENGINE_OPTIONS = ("timestep", "solref", "solimp", "cone", "integrator", "friction", "noslip",
+                  "solver_iterations", "substeps", "rtol", "atol", "rest_velocity", "max_step")
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """argparse with model.md's error convention: one line naming the option, the value
+    and what is allowed, exit 2 (not the usage block). A value may start with '-'
+    (`--duration -inf`, `--scales -1,2,3`): it is a value, checked like any other."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # argparse's own pattern takes only -12 and -1.5 as values; -1e3, -inf, -1,2,3 are
+        # values too (no isorock option looks like a number)
+        self._negative_number_matcher = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def number(text: str) -> float:
+    """argparse type: a real number (finite or not; the checks that follow say what is allowed)."""
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a number") from None
+
+
+def whole_number(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a whole number") from None
+
+
+def _floats(n_min, n_max, name):
+    def parse(text):
+        try:
+            values = tuple(float(x) for x in text.split(","))
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must be comma-separated numbers") from None
+        if not n_min <= len(values) <= n_max:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r}: must have {n_min}–{n_max} numbers")
+        return values
+    return parse
+
+
+def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=None) -> None:
+    d = defaults or {}
+    g = p.add_argument_group("system (SI units)")
+    g.add_argument("--height", type=number, required=required and "height" not in d, default=d.get("height"),
+                   help="block height H = 2h, m")
+    g.add_argument("--width", type=number, required=required and "width" not in d, default=d.get("width"),
+                   help="block width B = 2b, m")
+    g.add_argument("--mass", type=number, required=required and "mass" not in d, default=d.get("mass"),
+                   help="block mass m, kg")
+    g.add_argument("--base-mass", type=number, required=required and "base_mass" not in d,
+                   default=d.get("base_mass"), help="base plate mass m_b, kg (μ = m/m_b)")
+    g.add_argument("--period", type=number, help="isolation period T = 2π√(M/k), s")
+    g.add_argument("--damping-ratio", "--damping", dest="damping_ratio", type=number,
+                   help="isolator damping ratio ξ = c/(2Mω), dimensionless (--damping is an alias)")
+    g.add_argument("--stiffness", type=number, help="isolator stiffness k, N/m (instead of --period)")
+    g.add_argument("--dashpot", type=number, help="isolator dashpot c, N·s/m (with --stiffness)")
+    g.add_argument("--fixed-base", action="store_true", help="fixed (non-isolated) base: μ = 0")
+
+
+def system_from_args(a, *, default_isolator=None):
+    """The System the options describe; `default_isolator` (period, damping ratio)
+    is used when no isolator option is given (the scene command's paper defaults)."""
+    from isorock.analytic.system import System
+    common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
+    isolation = [x is not None for x in (a.period, a.damping_ratio, a.stiffness, a.dashpot)]
+    if a.fixed_base:
+        if any(isolation):
+            raise InputError("--fixed-base: cannot be combined with --period/--damping-ratio/--stiffness/--dashpot")
+        return System.fixed(**common)
+    if a.period is not None or a.damping_ratio is not None:
+        if a.period is None or a.damping_ratio is None or a.stiffness is not None or a.dashpot is not None:
+            raise InputError("isolator: give --period with --damping-ratio, or --stiffness with --dashpot, "
+                             "or --fixed-base")
+        return System.isolated(**common, period=a.period, damping_ratio=a.damping_ratio)
+    if a.stiffness is not None:
+        return System.from_stiffness(**common, stiffness=a.stiffness,
+                                     damping=0.0 if a.dashpot is None else a.dashpot)
+    if default_isolator is not None:
+        return System.isolated(**common, period=default_isolator[0], damping_ratio=default_isolator[1])
+    raise InputError("isolator: give --period T --damping-ratio XI, or --stiffness K --dashpot C, or --fixed-base")
+
+
+#: The system options, as argparse names them (and a TOML [system] table does).
+SYSTEM_KEYS = ("height", "width", "mass", "base_mass", "period", "damping_ratio", "stiffness", "dashpot",
+               "fixed_base")
+
+
+def system_from_options(a, defaults: dict | None = None):
+    """The System of the system options given with optional ones (`add_system_options(p,
+    required=False)`), over `defaults` (a TOML [system] table); None when none is given,
+    for the command's own default system."""
+    from types import SimpleNamespace
+    values = {k: (defaults or {}).get(k) for k in SYSTEM_KEYS}
+    for k in SYSTEM_KEYS:
+        v = getattr(a, k, None)
+        if v not in (None, False):
+            values[k] = v
+    if not any(v not in (None, False) for v in values.values()):
+        return None
+    missing = [k for k in ("height", "width", "mass") if values[k] is None]
+    if missing:
+        raise InputError(f"--{missing[0].replace('_', '-')}: give the block's height, width and mass "
+                         "(and its base) for your own system")
+    if values["base_mass"] is None and not values["fixed_base"]:
+        raise InputError("--base-mass: give the base plate's mass for an isolated base (or --fixed-base)")
+    return system_from_args(SimpleNamespace(**values))
+
+
+def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
+    g = p.add_argument_group("ground motion")
+    g.add_argument("--motion", default=default, metavar="SPEC",
+                   help="a record file, a pulse 'sine:amp=A,freq=F,cycles=N', 'cosine:…', "
+                        "'ricker:amp=A,freq=F' (A in g, F in Hz), or 'none' (default: %(default)s)")
+    g.add_argument("--format", choices=("at2", "jma", "csv"),
+                   help="record format: at2 (PEER, g), jma (gal), csv (two columns t, a); "
+                        "guessed from the file when omitted")
+    add_units_option(g)
+    g.add_argument("--scale", type=number, default=1.0, help="factor applied to the motion (default: 1)")
+
+
+def add_units_option(g) -> None:
+    g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
+                   help="units of a record: required for a two-column (csv) file unless the file states them "
+                        "('# units: g', or a header 't [s], a [g]'); for an AT2 or JMA file, which state "
+                        "theirs, it must agree")
+
+
+def motion_from_args(a):
+    from isorock.analytic.motion import load_motion
+    m = load_motion(a.motion, format=a.format, units=a.units)
+    return m if a.scale == 1.0 else m.scaled(a.scale)
+
+
+def add_engine_options(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("engine settings (defaults chosen by measurement; see each engine's docs)")
+    g.add_argument("--timestep", type=number,
+                   help="the physics step, s, for every contact engine. mujoco: its contact solref/solimp "
+                        "follow it unless given; bullet: the ground motion and isolator force are updated every "
+                        "--substeps physics steps, which follow it (keeping that control step near 4 ms) unless "
+                        "given. The settings used, those that followed included, are in the --json output")
+    g.add_argument("--solref", type=_floats(2, 2, "solref"), help="mujoco: contact solref 'timeconst,dampratio'")
+    g.add_argument("--solimp", type=_floats(3, 5, "solimp"), help="mujoco: contact solimp 'dmin,dmax,width[,mid,power]'")
+    g.add_argument("--cone", choices=("pyramidal", "elliptic"), help="mujoco: friction cone")
+    g.add_argument("--integrator", choices=("Euler", "implicit", "implicitfast", "RK4"), help="mujoco: integrator")
+    g.add_argument("--friction", type=number, help="mujoco, bullet: block–base friction coefficient")
+    g.add_argument("--noslip", type=whole_number, dest="noslip", metavar="N", help="mujoco: noslip iterations")
+    g.add_argument("--solver-iterations", type=whole_number, help="bullet: constraint solver iterations")
+    g.add_argument("--substeps", type=whole_number,
+                   help="bullet: physics steps per control step (ground motion and isolator force updated)")
+    g.add_argument("--rtol", type=number, help="analytic: relative tolerance (default 1e-10)")
+    g.add_argument("--atol", type=number, help="analytic: absolute tolerance, m and rad (default 1e-12)")
+    g.add_argument("--max-step", type=number,
+                   help="analytic: largest integrator step, s (default 0.01; bounds how long a threshold "
+                        "crossing of the base acceleration can hide inside one step)")
+    g.add_argument("--rest-velocity", type=number,
+                   help="analytic: rocking ends at an impact with |θ̇| below this × p·α (default 1e-5)")
+    g.add_argument("--overturn", choices=("past-alpha", "alpha"),
+                   help="the overturning rule (model.md, 'Past α'), for every engine: past-alpha (default: the "
+                        "block has overturned when |θ| reaches π/2 or the run ends with |θ| > α) or alpha "
+                        "(conservative: once |θ| reaches α)")
+
+
+def engine_settings_from_args(engine, a):
+    """The engine's default settings with the engine options given (core.engines.choose,
+    strict: an option the engine does not have is named); a bad value is named as its option."""
+    from isorock.validate.core.engines import choose
+    try:
+        return choose(engine.name, engine_overrides(a), strict=True).settings()
+    except InputError as e:
+        raise InputError(str(e).replace("_", "-")) from None
+
+
+def settings_dict(settings):
+    """Every setting the run used, with those derived from them (e.g. PyBullet's control
+    step): a timestep given alone brings other settings along, and the JSON says which."""
+    from dataclasses import asdict
+    out = asdict(settings)
+    for name in dir(type(settings)):
+        if isinstance(getattr(type(settings), name), property):
+            out[name] = getattr(settings, name)
+    return out
+
+
+def engine_overrides(a) -> dict:
+    """The engine settings given on the command line, by the Settings field they set."""
+    return {k: getattr(a, k) for k in ENGINE_OPTIONS if getattr(a, k, None) is not None}
