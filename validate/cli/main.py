@@ -22,6 +22,7 @@ import importlib
 import sys
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.cli.options import (OneLineParser, add_engine_options, add_motion_options, add_system_options,
                                           engine_settings_from_args, number, system_from_args)
 
@@ -169,7 +170,7 @@ def cmd_scene(a) -> int:
         if not engine.has_scene:
             raise InputError(f"engine = {a.engine!r}: has no model file to write (those that do: "
                              f"{', '.join(_engines_with_scenes())})")
-        system = system_from_args(a, default_isolator=(1.5, 0.2))
+        system = system_from_args(a, default_isolator=(PAPER_PERIOD, PAPER_DAMPING_RATIO))
         settings = engine_settings_from_args(engine, a)
         out.write_text(engine.scene_text(system, settings))
         outputs.commit()

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.tools import view as tool
 from pathlib import Path
 import os
@@ -54,7 +55,7 @@ def run(a) -> int:
     specs = parse_engines(a.engine)
     if len(specs) != 1:
         raise InputError(f"engine = {a.engine!r}: view replays one engine")
-    system = system_from_args(a, default_isolator=(1.5, 0.2))
+    system = system_from_args(a, default_isolator=(PAPER_PERIOD, PAPER_DAMPING_RATIO))
     motion = motion_from_args(a)
     interactive = has_display() and a.out is None
     out = a.out or DEFAULT_OUT

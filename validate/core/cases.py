@@ -1,6 +1,8 @@
-"""A campaign's Case, and from its inputs (the table's columns) to the System and
-GroundMotion it defines. One function, used when the campaign is expanded and nowhere
-else, so the table's columns are the whole definition of a case."""
+"""Cases: one system under one motion for one duration (`Case`, a table row's inputs), and
+the one place a System is built from the numbers people vary (`block_system`: height,
+slenderness, mass ratio, isolator) or from a table's columns (`build_system`), and a
+pulse from its dimensionless form (`pulse_for`). A case's inputs are the table's
+columns, so they are the whole definition of a case."""
 from __future__ import annotations
 
 import math
@@ -9,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from isorock.analytic.motion import GroundMotion, Pulse
-from isorock.analytic.system import STANDARD_GRAVITY, System
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, STANDARD_GRAVITY, System
 
 
 @dataclass(frozen=True)
@@ -23,6 +25,18 @@ class Case:
     duration: float
     inputs: dict = field(default_factory=dict, compare=False)
     theta0: float = 0.0
+
+
+def block_system(*, height: float, slenderness: float, mass: float, mass_ratio: float,
+                 period: float = PAPER_PERIOD, damping_ratio: float = PAPER_DAMPING_RATIO) -> System:
+    """A block of height H (m) and slenderness λ = H/B of mass m (kg), on a base of mass
+    m/μ tied by the isolator (T s, ξ; the paper's by default), or on a fixed base when
+    μ = 0: the one place a System is built from the numbers that are varied."""
+    width = height / slenderness
+    if mass_ratio == 0:
+        return System.fixed(height=height, width=width, mass=mass)
+    return System.isolated(height=height, width=width, mass=mass, base_mass=mass / mass_ratio, period=period,
+                           damping_ratio=damping_ratio)
 
 
 def build_system(inputs: dict) -> System:

@@ -15,7 +15,9 @@ from pathlib import Path
 import numpy as np
 
 from isorock.analytic.motion import GroundMotion, load_motion
-from isorock.analytic.system import System, paper_system
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, System, paper_system
+
+from .cases import block_system
 
 
 
@@ -110,14 +112,11 @@ def paper_bases() -> tuple[tuple[str, System], ...]:
     return (("isolated base", paper_system()), ("fixed base", paper_system(fixed_base=True)))
 
 
-def block(height=2.0, slenderness=2.857, mass_ratio=1.0, period=1.5, damping_ratio=0.2, fixed=False,
-          mass=3800.0) -> System:
-    """A block of the paper's kind varied in one or more of its numbers."""
-    width = height / slenderness
-    if fixed:
-        return System.fixed(height=height, width=width, mass=mass)
-    return System.isolated(height=height, width=width, mass=mass, base_mass=mass / mass_ratio, period=period,
-                           damping_ratio=damping_ratio)
+def block(height=2.0, slenderness=2.857, mass_ratio=1.0, period=PAPER_PERIOD, damping_ratio=PAPER_DAMPING_RATIO,
+          fixed=False, mass=3800.0) -> System:
+    """A block of the paper's kind varied in one or more of its numbers (cases.block_system)."""
+    return block_system(height=height, slenderness=slenderness, mass=mass, mass_ratio=0.0 if fixed else mass_ratio,
+                        period=period, damping_ratio=damping_ratio)
 
 
 def free_rocking_grid(mass_ratios, slenderness, *, duration: float,
@@ -126,9 +125,7 @@ def free_rocking_grid(mass_ratios, slenderness, *, duration: float,
     B = H/λ) and μ (m kept, m_b = m/μ), free rocking; then the paper's block on a fixed base."""
     paper = paper_system()
     out = [Scenario(f"free rocking λ={lam:.4g} μ={mu:g}",
-                    System.isolated(height=paper.height, width=paper.height / lam, mass=paper.mass,
-                                    base_mass=paper.mass / mu, period=paper.period,
-                                    damping_ratio=paper.damping_ratio),
+                    block_system(height=paper.height, slenderness=lam, mass=paper.mass, mass_ratio=mu),
                     "none", duration, theta0_over_alpha)
            for mu in mass_ratios for lam in slenderness]
     out.append(Scenario("free rocking, fixed base", paper_system(fixed_base=True), "none", duration,

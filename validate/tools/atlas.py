@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from functools import partial
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 
 #: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's:
 #: λ 1.5–10, μ 0 and 0.25–4, H 0.2–5 m.
@@ -45,8 +46,6 @@ QUICK_HEIGHTS = (0.5, 2.0)
 #: contact parameters (Drake's stiffness in N/m, MuJoCo's impedance width in m) meet the
 #: mass and size a statue of that shape would have.
 DENSITY = 3800.0 / (2.0 * 0.7 * 0.7)
-#: The paper's isolator (T s, ξ): β does not depend on it, the base's motion between impacts does.
-ISOLATOR = (1.5, 0.2)
 #: How many of a run's counted impacts it sends back (β error and time of each).
 KEPT_IMPACTS = 12
 #: A contact run lasts this factor × the time of the reference's last judged impact, plus
@@ -93,13 +92,10 @@ class Cell:
     height: float
 
     def system(self):
-        from isorock.analytic.system import System
+        from isorock.validate.core.cases import block_system
         width = self.height / self.slenderness
-        mass = DENSITY * self.height * width * width
-        if self.mass_ratio == 0:
-            return System.fixed(height=self.height, width=width, mass=mass)
-        return System.isolated(height=self.height, width=width, mass=mass, base_mass=mass / self.mass_ratio,
-                               period=ISOLATOR[0], damping_ratio=ISOLATOR[1])
+        return block_system(height=self.height, slenderness=self.slenderness, mass=DENSITY * self.height * width * width,
+                            mass_ratio=self.mass_ratio)
 
     @property
     def key(self) -> tuple:
@@ -456,7 +452,7 @@ def markdown(atlas: dict, *, quick: bool) -> str:
     lines += ["", "## The grid", "",
               f"- slenderness λ = H/B: {', '.join(f'{x:g}' for x in grid.slenderness)}",
               f"- mass ratio μ = m/m_b: {', '.join(f'{x:g}' for x in grid.mass_ratios)} (0: a fixed base; "
-              f"isolated: T {ISOLATOR[0]:g} s, ξ {ISOLATOR[1]:g})",
+              f"isolated: T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g})",
               f"- height H: {', '.join(f'{x:g}' for x in grid.heights)} m; square footprint B × B, density "
               f"{DENSITY:.0f} kg/m³ (the paper's block)",
               "- free rocking from θ0 = 0.5α; each run lasts 1.2 × the rigid model's last judged impact + 0.1 s",
@@ -489,7 +485,7 @@ def write(atlas: dict, out: str, *, quick: bool) -> None:
         (tmp / "atlas.md").write_text(markdown(atlas, quick=quick), encoding="utf-8")
         data = {k: v for k, v in atlas.items() if k != "grid"}
         data.update(grid=atlas["grid"].describe(), quick=quick, levels=list(LEVELS), density=DENSITY,
-                    isolator={"period": ISOLATOR[0], "damping_ratio": ISOLATOR[1]},
+                    isolator={"period": PAPER_PERIOD, "damping_ratio": PAPER_DAMPING_RATIO},
                     rows=[{k: v for k, v in r.items()} for r in atlas["rows"]], provenance=provenance())
         (tmp / "atlas.json").write_text(to_json(data) + "\n", encoding="utf-8")
         buf = io.StringIO()
