@@ -14,6 +14,11 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Callable, Protocol
 
+#: model.md's counting rule: an impact counts when its half-cycle's peak |θ| exceeds this
+#: fraction of α. Here, in the light module every engine and the registry load, so that it
+#: has one home.
+DEFAULT_IMPACT_THRESHOLD = 0.01
+
 if TYPE_CHECKING:  # the registry loads this module for every command: keep it light
     from .motion import GroundMotion
     from .system import System
@@ -128,4 +133,4 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     return motion, duration
 
 
-__all__ = ["EngineSpec", "Capabilities", "Simulate", "Tuning", "run_inputs", "TAIL_AFTER_MOTION", "FREE_DURATION"]
+__all__ = ["DEFAULT_IMPACT_THRESHOLD", "EngineSpec", "Capabilities", "Simulate", "Tuning", "run_inputs", "TAIL_AFTER_MOTION", "FREE_DURATION"]

@@ -11,10 +11,9 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from .engine_protocol import DEFAULT_IMPACT_THRESHOLD  # one home (the counting rule); re-exported
 from .status import Status
 from .system import System
-
-DEFAULT_IMPACT_THRESHOLD = 0.01  # fraction of α (model.md)
 
 
 @dataclass(frozen=True)

@@ -21,6 +21,7 @@ import argparse
 import importlib
 import sys
 
+from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.cli.options import (OneLineParser, add_engine_options, add_motion_options, add_system_options,
@@ -95,7 +96,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
                    help="end time from t = 0, s (default: motion end + 5 s, or 10 s without motion)")
     p.add_argument("--theta0-over-alpha", "--theta0", dest="theta0_over_alpha", type=number, default=0.0,
                    help="initial tilt as a fraction of α (default 0; --theta0 is an alias)")
-    p.add_argument("--impact-threshold", type=number, default=0.01,
+    p.add_argument("--impact-threshold", type=number, default=DEFAULT_IMPACT_THRESHOLD,
                    help="an impact counts when its half-cycle's peak |θ| exceeds this × α (default 0.01)")
     p.add_argument("--json", metavar="FILE", help="write the metrics and impact log as JSON ('-': standard output)")
     p.add_argument("--csv", metavar="FILE", help="write the history t,u,u_dot,theta,theta_dot (s, m, m/s, rad, rad/s; "

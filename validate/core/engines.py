@@ -15,15 +15,12 @@ from dataclasses import dataclass, fields, replace
 
 from typing import TYPE_CHECKING
 
-from isorock.analytic.engine_protocol import EngineSpec
+from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, EngineSpec
 from isorock.analytic.errors import InputError
 
 if TYPE_CHECKING:
     from isorock.analytic.trajectory import Trajectory
 
-#: model.md's counting rule, as a fraction of α (analytic.trajectory.DEFAULT_IMPACT_THRESHOLD,
-#: repeated here so that loading the registry loads no numerical module)
-DEFAULT_IMPACT_THRESHOLD = 0.01
 
 ENGINE_MODULES = {
     # the analytic model, compiled (analytic.fast); its SciPy reference path, which the

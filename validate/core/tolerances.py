@@ -147,6 +147,45 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
 ROBUST_SPREAD = 0.05
 
 
+#: The tools' own limits (not one engine's metric), each with its reason: what the stress
+#: grid, the bench, the atlas and calibration judge by. The same table, so that every
+#: limit the project applies is read here.
+LIMITS: dict[str, Tolerance] = {
+    "stress_energy_residual": Tolerance(
+        1e-6, "the analytic energy balance residual over the input energy, as for the report "
+              "(analytic energy_residual): DOP853 at rtol 1e-10, room for long records"),
+    "stress_lying_slack": Tolerance(
+        0.05, "rad a run may show beyond π/2: a contact engine's block lands on its side face through "
+              "a compliant contact"),
+    "stress_end_slack": Tolerance(
+        0.01, "s: a fixed-step engine ends on its last whole step, up to one step (≤ 10 ms) short of the "
+              "duration"),
+    "stress_robust_scale": Tolerance(
+        0.03, "the reference's overturning must hold under the motion scaled by 1 ± this for a contact "
+              "engine's other outcome to count as a disagreement, not chaos (model.md)"),
+    "bench_mujoco_speed": Tolerance(
+        1000.0, "simulated s per wall s asked of MuJoCo on Kobe 40 s (issue 19), at β error ≤ "
+                "bench_mujoco_beta", kind="min"),
+    "bench_mujoco_beta": Tolerance(0.005, "the atlas's 0.5% level, where the speed goal is judged"),
+    "bench_bullet_speed": Tolerance(
+        200.0, "simulated s per wall s asked of PyBullet on Kobe 40 s (issue 19), at β error ≤ "
+               "bench_bullet_beta", kind="min"),
+    "bench_bullet_beta": Tolerance(0.01, "PyBullet's β tolerance of the report"),
+    "atlas_level_coarse": Tolerance(0.005, "worst β error of a preset over the atlas grid, first verdict level"),
+    "atlas_level_fine": Tolerance(0.001, "worst β error of a preset over the atlas grid, second verdict level"),
+    "calibrate_lift_off": Tolerance(
+        1e-4, "m: a run whose block hops higher after an impact has failed, where the engine has no "
+              "lift-off tolerance of its own (MuJoCo's and PyBullet's are this too)"),
+}
+
+
+def limit(name: str) -> float:
+    """The value of one of the tools' LIMITS (an unknown name is an InputError naming it)."""
+    if name not in LIMITS:
+        raise InputError(f"limit {name!r}: not in the table (limits: {', '.join(sorted(LIMITS))})")
+    return LIMITS[name].limit
+
+
 #: Engines that are the same model as another, and so are held to its limits.
 SAME_MODEL = {"analytic-fast": "analytic", "analytic-reference": "analytic"}
 

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 from functools import partial
 
 from isorock.analytic.errors import InputError
+from isorock.validate.core.tolerances import limit
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 
 #: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's:
@@ -55,7 +56,7 @@ DURATION_FACTOR, DURATION_PAD = 1.2, 0.1
 #: The rigid model rocks to its last judged impact well within this many 1/p.
 REFERENCE_SPAN = 40.0
 #: Worst β error levels of the verdict (issue 12: 0.5% and 0.1%).
-LEVELS = (0.005, 0.001)
+LEVELS = (limit("atlas_level_coarse"), limit("atlas_level_fine"))
 #: Default CPU-time budget of one run (s): past it the run stops and is reported "too
 #: slow" (Drake's continuous plant takes minutes for a second of a 0.2 m block, docs/atlas.md).
 #: CPU time, not wall time: on a shared machine the wall clock would judge the other jobs.

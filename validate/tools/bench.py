@@ -23,14 +23,12 @@ import numpy as np
 from isorock.analytic.hybrid import AnalyticSettings
 from isorock.analytic.hybrid import simulate as reference_simulate
 from isorock.validate.core.scenarios import KOBE, Scenario, bench_scenarios
+from isorock.validate.core.tolerances import limit
 
 REFERENCE = AnalyticSettings(rtol=1e-12, atol=1e-14)
 N_BETA = 4  # impacts whose effective β error is reported
 #: Simulated s per wall s asked of an engine at a β error no larger than …
-GOALS = {
-    "mujoco": (1000.0, 0.005),
-    "bullet": (200.0, 0.01),
-}
+GOALS = {engine: (limit(f"bench_{engine}_speed"), limit(f"bench_{engine}_beta")) for engine in ("mujoco", "bullet")}
 #: Runs shorter than this (s) are repeated FAST_REPEATS times: their medians need more samples.
 FAST_RUN = 0.1
 FAST_REPEATS = 5

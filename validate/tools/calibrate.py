@@ -37,6 +37,7 @@ from dataclasses import asdict, dataclass, fields
 import numpy as np
 
 from isorock.analytic.errors import InputError
+from isorock.validate.core.tolerances import limit
 
 #: Free-rocking tilts, fractions of α: `tilts` fitted tilts spread evenly over this range,
 #: held out on the `tilts − 1` halfway between them (the same regime, never the same runs).
@@ -53,7 +54,7 @@ IMPACTS = 4
 PENALTY = 1.0
 #: m: a run whose block hops higher than this after an impact has failed, where the engine
 #: has no lift-off tolerance of its own (MuJoCo's and PyBullet's are this too).
-LIFT_OFF = 1e-4
+LIFT_OFF = limit("calibrate_lift_off")
 #: A run of other settings may take this many times the starting settings' slowest run
 #: (at least MIN_TIME_LIMIT s), or it has failed: Drake's point contact at 1e11 N/m costs
 #: tens of times its default's, and the search is for contact laws, not for slow ones.

@@ -35,16 +35,13 @@ from isorock.analytic.coefficients import no_bounce_slenderness
 from isorock.analytic.kinematics import LYING
 from isorock.validate.core.engines import REFERENCE
 from isorock.validate.core.scenarios import Scenario, block
+from isorock.validate.core.tolerances import limit
 
-ENERGY_TOLERANCE = 1e-6  # analytic energy balance residual / input energy
-#: |θ| a run may show beyond π/2 (a contact engine's block lands on its side face through
-#: a compliant contact), in rad
-LYING_SLACK = 0.05
-#: A fixed-step engine ends on its last whole step, up to one step (≤ 10 ms) short of the duration.
-END_SLACK = 0.01
-#: The reference's overturning must hold under the motion scaled by 1 ± this for a
-#: contact engine's other outcome to count as a disagreement, not chaos (model.md).
-ROBUST_SCALE = 0.03
+#: The stress grid's limits, with their reasons, are in the one tolerance table.
+ENERGY_TOLERANCE = limit("stress_energy_residual")
+LYING_SLACK = limit("stress_lying_slack")
+END_SLACK = limit("stress_end_slack")
+ROBUST_SCALE = limit("stress_robust_scale")
 #: Drawn cases: in the full grid, and in --quick.
 DRAWN_FULL, DRAWN_QUICK = 2000, 12
 
