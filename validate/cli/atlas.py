@@ -25,7 +25,7 @@ def add_parser(sub) -> None:
                    help="folder for atlas.md, atlas.csv, atlas.json and the figures: new, empty or an earlier "
                         "isorock output (default: %(default)s)")
     p.add_argument("--workers", type=int, metavar="N",
-                   help="processes for the contact engines (default: 2, or the cores there are; 1: this one)")
+                   help="worker processes for the runs (default: 2, or the cores there are)")
     p.add_argument("--run-budget", type=float, default=RUN_BUDGET, metavar="S",
                    help="CPU seconds one run may take before it stops and counts as 'too slow' (CPU, not "
                         "wall: other jobs on the machine do not count against it; default: %(default)g)")

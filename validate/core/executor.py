@@ -269,3 +269,163 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
         if close:
             close_client(live)
     return sort_table(rows_to_table(rows))
+
+
+# --- worker processes that can be stopped: a run past its budget is killed ---------------
+
+@dataclass(frozen=True)
+class Outcome:
+    """What became of one task in a Pool: `status` "done" (its `value`), "error" (it raised:
+    `value` is "Type: message"), "timeout" (past its budget: its worker was killed) or
+    "crashed" (its worker died: `value` is the exit code); `seconds` of wall time."""
+
+    status: str
+    value: object = None
+    seconds: float = 0.0
+
+    @property
+    def done(self) -> bool:
+        return self.status == "done"
+
+
+def _serve(conn) -> None:
+    """A worker's loop: run each (function, args) it is sent, until None or its pipe
+    closes. An InputError is the caller's (bad input); any other exception the task's."""
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError, KeyboardInterrupt):
+            return
+        if task is None:
+            return
+        fn, args = task
+        try:
+            conn.send(("done", fn(*args)))
+        except InputError as e:
+            conn.send(("input", str(e)))
+        except Exception as e:  # noqa: BLE001 — one task's failure is that task's outcome
+            conn.send(("error", f"{type(e).__name__}: {e}"))
+
+
+class _Worker:
+    """One worker process serving _serve over a pipe; `restart` kills it and starts another
+    (a run stuck inside an engine cannot be stopped from outside in any other way)."""
+
+    def __init__(self, context):
+        self.context = context
+        self._start()
+
+    def _start(self):
+        self.conn, child = self.context.Pipe()
+        self.process = self.context.Process(target=_serve, args=(child,), daemon=True)
+        self.process.start()
+        child.close()
+        self._cpu = None
+
+    def cpu_seconds(self) -> float:
+        """CPU time the worker process has used (user + system), s."""
+        import psutil
+        if self._cpu is None:
+            self._cpu = psutil.Process(self.process.pid)
+        t = self._cpu.cpu_times()
+        return t.user + t.system
+
+    def restart(self):
+        self.stop(kill=True)
+        self._start()
+
+    def stop(self, kill: bool = False):
+        try:
+            if not kill:
+                self.conn.send(None)
+        except (OSError, ValueError):
+            pass
+        self.process.join(0 if kill else 2.0)
+        if self.process.is_alive():
+            self.process.kill()
+            self.process.join()
+        self.conn.close()
+
+
+#: How often (s) a Pool with a CPU-time budget reads its workers' CPU clocks.
+CPU_POLL = 0.25
+
+
+class Pool:
+    """Worker processes that run tasks and can be stopped: each task is a module-level
+    function and its arguments, sent to a worker; a task past its budget is stopped by
+    killing its worker, which is replaced, and counts as "timeout". The budget is wall
+    seconds (clock "wall": bounds how long a user waits) or the worker's CPU seconds
+    (clock "cpu": others' load on a shared machine does not count against a run).
+    Workers are spawned, not forked: a fork of a process whose numba threads have started
+    is not safe. Use as a context manager (the workers stop on leaving it)."""
+
+    def __init__(self, workers: int):
+        import multiprocessing as mp
+        if workers < 1:
+            raise InputError(f"workers = {workers!r}: must be a whole number of processes ≥ 1")
+        self.context = mp.get_context("spawn")
+        self.workers = [_Worker(self.context) for _ in range(workers)]
+
+    def map(self, fn, tasks, *, budget: float | None = None, clock: str = "wall", on_result=None,
+            stop=None) -> list[Outcome | None]:
+        """fn(*args) for each args of `tasks`, up to len(workers) at a time: an Outcome
+        per task, in the order of `tasks`. on_result(index, outcome) as each arrives;
+        stop(outcome) true: start no further task (those not started stay None). An
+        InputError raised by fn is raised here (bad input is the caller's)."""
+        from multiprocessing.connection import wait
+        if clock not in ("wall", "cpu"):
+            raise InputError(f"clock = {clock!r}: must be 'wall' or 'cpu'")
+        tasks = list(tasks)
+        results: list[Outcome | None] = [None] * len(tasks)
+        pending, busy, stopped = list(range(len(tasks)))[::-1], {}, False
+        while busy or (pending and not stopped):
+            for w in self.workers:
+                if w not in busy and pending and not stopped:
+                    i = pending.pop()
+                    w.conn.send((fn, tuple(tasks[i])))
+                    busy[w] = (i, time.perf_counter(), w.cpu_seconds() if clock == "cpu" else 0.0)
+            if budget is None:
+                timeout = None
+            elif clock == "wall":
+                timeout = max(0.0, min(start + budget for _, start, _ in busy.values()) - time.perf_counter())
+            else:
+                timeout = CPU_POLL
+            ready = set(wait([w.conn for w in busy], timeout=timeout))
+            for w in list(busy):
+                i, start, cpu0 = busy[w]
+                elapsed = time.perf_counter() - start
+                if w.conn in ready:
+                    try:
+                        kind, value = w.conn.recv()
+                    except (EOFError, OSError):
+                        w.process.join(1.0)
+                        code = w.process.exitcode
+                        w.restart()
+                        outcome = Outcome("crashed", code, elapsed)
+                    else:
+                        if kind == "input":
+                            raise InputError(value)
+                        outcome = Outcome(kind, value, elapsed)
+                elif budget is not None and (elapsed if clock == "wall" else w.cpu_seconds() - cpu0) >= budget:
+                    w.restart()  # stuck inside the engine: the run has failed
+                    outcome = Outcome("timeout", None, elapsed)
+                else:
+                    continue
+                del busy[w]
+                results[i] = outcome
+                if on_result:
+                    on_result(i, outcome)
+                stopped = stopped or bool(stop and stop(outcome))
+        return results
+
+    def close(self):
+        for w in self.workers:
+            w.stop()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False

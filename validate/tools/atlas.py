@@ -13,7 +13,8 @@ closed forms of model.md: β(λ, μ) (analytic.coefficients) on every cell, the 
 integral (compare.exact_first_impact_time) on a fixed base; on an isolated base t₁ has no
 closed form and the analytic model (its impact an event located to rtol 1e-10) is the
 reference. A run that fails, slides, overturns, misses impacts the rigid model has, or
-runs past its wall budget is reported as such in its row and in the verdict, never as a
+runs past its CPU budget (the executor's Pool stops it) is reported as such in its row and
+in the verdict, never as a
 small error.
 
 Data flow: System (one per cell) → engine → raw history → measure → effective β and t₁
@@ -27,7 +28,6 @@ import statistics
 import sys
 import time
 from dataclasses import dataclass
-from functools import partial
 
 from isorock.analytic.errors import InputError
 from isorock.validate.core.tolerances import limit
@@ -132,41 +132,22 @@ def reference(cell: Cell) -> dict:
 
 # --- one run, in whichever process runs it ---------------------------------------------
 
-class OverBudget(Exception):
-    """Raised from an engine's progress callback when a run has used its CPU budget."""
-
-    def __init__(self, t: float, cpu: float, wall: float):
-        super().__init__(f"stopped after {cpu:.0f} CPU s ({wall:.0f} s of wall time) at t = {t:.3g} s")
-        self.t, self.wall = t, wall
-
-
-def _watch(budget: float, start: float, cpu_start: float):
-    """An engine's progress callback (called between its chunks of work, about once a
-    wall second) that stops the run once it has used `budget` CPU seconds."""
-    def progress(t, _total):
-        cpu = time.process_time() - cpu_start
-        if cpu > budget:
-            raise OverBudget(t, cpu, time.perf_counter() - start)
-    return progress
-
-
-def run_cell(task, budget: float = RUN_BUDGET):
-    """(key, measured dict, None): one engine on one cell, measured where it ran. Every way
-    a run can end is a result: its status says how (the rows judge it, `judge`)."""
+def run_cell(task) -> dict:
+    """One engine on one cell, measured where it ran (a worker of the executor's Pool, which
+    stops it at its CPU budget). Every way a run can end is a result: its status says how
+    (the rows judge it, `judge`)."""
     # loaded before the clock: a worker's first run would otherwise pay for the imports
-    from isorock.validate.core.measure import beta_errors
     from isorock.validate.core.engines import resolve
+    from isorock.validate.core.measure import beta_errors
     out = {"status": "error", "message": "", "sim_s": 0.0, "loop_s": math.nan}
     try:
         engine, settings = resolve(task.engine, task.overrides)  # imports the engine's package
     except Exception as e:
-        return task.key, dict(out, message=f"{type(e).__name__}: {e}", wall_s=0.0, cpu_s=0.0), None
+        return dict(out, message=f"{type(e).__name__}: {e}", wall_s=0.0, cpu_s=0.0)
     start, cpu = time.perf_counter(), time.process_time()
     try:
         traj = engine.simulate(task.system, task.motion, settings=settings, duration=task.duration,
-                               theta0=task.theta0, progress=_watch(budget, start, cpu))
-    except OverBudget as e:
-        out.update(status="too slow", message=str(e), sim_s=e.t, loop_s=e.wall)
+                               theta0=task.theta0)
     except InputError as e:  # the engine refuses this system (e.g. an isolator too stiff for it)
         out.update(status="refused", message=str(e))
     except Exception as e:  # an engine that raises on one cell: that cell's result
@@ -180,7 +161,18 @@ def run_cell(task, budget: float = RUN_BUDGET):
                    lift_off_after_impact=traj.extras.get("lift_off_max_after_impact"),
                    pivot_slip=traj.extras.get("pivot_slip_max"))
     out.update(wall_s=time.perf_counter() - start, cpu_s=time.process_time() - cpu)
-    return task.key, out, None
+    return out
+
+
+def _stopped(outcome, budget: float) -> dict:
+    """The measured dict of a run the Pool did not see finish: past its CPU budget ("too
+    slow"), or its worker died ("error")."""
+    out = {"sim_s": 0.0, "loop_s": math.nan, "wall_s": outcome.seconds}
+    if outcome.status == "timeout":
+        return dict(out, status="too slow", cpu_s=budget,
+                    message=f"stopped after {budget:g} CPU s ({outcome.seconds:.0f} s of wall time)")
+    reason = f"its worker died (exit code {outcome.value})" if outcome.status == "crashed" else str(outcome.value)
+    return dict(out, status="error", cpu_s=math.nan, message=reason)
 
 
 def judge(measured: dict, ref: dict) -> tuple[str, str]:
@@ -279,7 +271,7 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
           progress=None, overrides: dict | None = None) -> dict:
     """Run every engine label on every cell; the atlas as a dict (rows, summaries, verdict).
     `overrides`: settings applied to every run that has them (a test's way to break one)."""
-    from isorock.validate.core.runner import Task, default_workers, run_tasks
+    from isorock.validate.core.runner import Task, default_workers
     labels, aliases, skipped = distinct(engines)
     cells = grid.cells()
     start = time.perf_counter()
@@ -295,7 +287,11 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
         done.append(key)
         if progress:
             progress(len(done), len(tasks), key[0])
-    results = run_tasks(tasks, workers=default_workers() if workers is None else workers, on_result=on_result, work=partial(run_cell, budget=budget))
+    from isorock.validate.core.executor import Pool
+    with Pool(default_workers() if workers is None else workers) as pool:
+        outcomes = pool.map(run_cell, [(t,) for t in tasks], budget=budget, clock="cpu",
+                            on_result=lambda i, _o: on_result(tasks[i].key))
+    results = {t.key: (o.value if o.done else _stopped(o, budget),) for t, o in zip(tasks, outcomes)}
     rows = [row(label, c, refs[c.key], results[(label, c.key)][0]) for label in labels for c in cells]
     summaries = [summarize(label, [r for r in rows if r["engine"] == label]) for label in labels]
     return {"grid": grid, "rows": rows, "presets": summaries, "verdict": verdict(summaries),

@@ -268,25 +268,24 @@ def lift_off_limit(engine_name: str) -> float:
 class Runner:
     """Runs sets of cases for one engine. `workers` 0: here, one after the other (the
     tests; a run stuck inside one of an engine's chunks cannot be stopped here); n ≥ 1:
-    in n spawned worker processes (a forked copy of a process that loaded numba's threads
-    is not safe), each run stopped by killing its worker at `time_limit` (s; the search
-    sets it from the starting settings' runs: Drake's integrator can spend many minutes
-    inside one chunk at a stiff contact). `on_run()` is called after each run (a progress
-    bar); `slowest` is the longest run of the last set."""
+    in n worker processes of the one executor's Pool (core.executor), each run stopped
+    by killing its worker at `time_limit` (s of wall time; the search sets it from the
+    starting settings' runs: Drake's integrator can spend many minutes inside one chunk
+    at a stiff contact). `on_run()` is called after each run (a progress bar); `slowest`
+    is the longest run of the last set."""
 
     def __init__(self, engine_name: str, workers: int = 0, on_run=None):
-        import multiprocessing as mp
+        from isorock.validate.core.executor import Pool
         self.engine_name, self.on_run = engine_name, on_run
         self.time_limit, self.slowest = None, 0.0
-        self.context = mp.get_context("spawn")
-        self.workers = [_Worker(self.context) for _ in range(workers)]
+        self.pool = Pool(workers) if workers else None
 
     def score(self, settings, case_list, *, until_failure: bool = False) -> Score:
         """The Score of the runs. `until_failure`: stop at the first failed run (the rest
         count as failed too): the search's objective is PENALTY from the first one on, and
         the other runs of a bad point would cost as much as a good point's."""
         tasks = [(self.engine_name, settings, c, self.time_limit) for c in case_list]
-        results = self._in_workers(tasks, until_failure) if self.workers else self._here(tasks, until_failure)
+        results = self._in_workers(tasks, until_failure) if self.pool else self._here(tasks, until_failure)
         self.slowest = max((r[1] for r in results if r is not None), default=0.0)
         return Score(tuple(None if r is None else r[0] for r in results))
 
@@ -300,39 +299,19 @@ class Runner:
         return results
 
     def _in_workers(self, tasks, until_failure):
-        from multiprocessing.connection import wait
-        results, pending, busy, failed = [None] * len(tasks), list(range(len(tasks)))[::-1], {}, False
-        while busy or (pending and not failed):
-            for w in self.workers:
-                if w not in busy and pending and not failed:
-                    i = pending.pop()
-                    w.send(tasks[i])
-                    busy[w] = (i, time.perf_counter())
-            deadlines = [start + self.time_limit for _, start in busy.values()] if self.time_limit else []
-            timeout = max(0.0, min(deadlines) - time.perf_counter()) if deadlines else None
-            ready = set(wait([w.conn for w in busy], timeout=timeout))
-            for w in list(busy):
-                i, start = busy[w]
-                elapsed = time.perf_counter() - start
-                if w.conn in ready:
-                    results[i] = w.receive(elapsed)
-                elif self.time_limit and elapsed >= self.time_limit:
-                    w.restart()  # stuck inside the engine: the run has failed
-                    results[i] = (None, elapsed)
-                else:
-                    continue
-                del busy[w]
-                self._ran()
-                failed = failed or (until_failure and results[i][0] is None)
-        return results
+        def result(outcome):  # (errors, seconds): a run that timed out or died has failed
+            return outcome.value if outcome.done else (None, outcome.seconds)
+        outcomes = self.pool.map(run_case, tasks, budget=self.time_limit, on_result=lambda i, o: self._ran(),
+                                 stop=(lambda o: result(o)[0] is None) if until_failure else None)
+        return [None if o is None else result(o) for o in outcomes]
 
     def _ran(self):
         if self.on_run:
             self.on_run()
 
     def close(self):
-        for w in self.workers:
-            w.stop()
+        if self.pool:
+            self.pool.close()
 
     def __enter__(self):
         return self
@@ -340,67 +319,6 @@ class Runner:
     def __exit__(self, *exc):
         self.close()
         return False
-
-
-class _Worker:
-    """One worker process serving run_case over a pipe; `restart` kills it and starts
-    another (a run cannot be stopped from outside in any other way)."""
-
-    def __init__(self, context):
-        self.context = context
-        self._start()
-
-    def _start(self):
-        self.conn, child = self.context.Pipe()
-        self.process = self.context.Process(target=_serve, args=(child,), daemon=True)
-        self.process.start()
-        child.close()
-
-    def send(self, task):
-        self.conn.send(task)
-
-    def receive(self, elapsed):
-        """The run's (errors, seconds); a worker that died gives a failed run (and is
-        replaced); a bad input in the worker is one here."""
-        try:
-            kind, value = self.conn.recv()
-        except (EOFError, OSError):
-            self.restart()
-            return None, elapsed
-        if kind == "input":
-            raise InputError(value)
-        return value
-
-    def restart(self):
-        self.stop(kill=True)
-        self._start()
-
-    def stop(self, kill: bool = False):
-        try:
-            if not kill:
-                self.conn.send(None)
-        except (OSError, ValueError):
-            pass
-        self.process.join(0 if kill else 2.0)
-        if self.process.is_alive():
-            self.process.kill()
-            self.process.join()
-        self.conn.close()
-
-
-def _serve(conn):
-    """A worker's loop: run each task it is sent, until None or its pipe closes."""
-    while True:
-        try:
-            task = conn.recv()
-        except (EOFError, OSError, KeyboardInterrupt):
-            return
-        if task is None:
-            return
-        try:
-            conn.send(("result", run_case(*task)))
-        except InputError as e:
-            conn.send(("input", str(e)))
 
 
 # --- the search ----------------------------------------------------------------------------

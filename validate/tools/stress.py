@@ -10,9 +10,9 @@ Two parts:
   in dimensionless form (kind, ω_p/p 0.5–12, a_p/(g·tanα) 0.8–10) and record-like noise
   scaled to 0.5–5 × g·tanα.
 
-Every (case, engine) runs in a forked process with a wall-time limit, two at a time, so a
-hang is a time-out, not a stalled grid. A run FAILs when its histories are not finite,
-it times out or crashes, the engine reports a failure, it ends beyond α without calling
+Every (case, engine) runs in a worker process of the executor's Pool with a wall-time
+limit, two at a time, so a hang is a time-out (its worker is killed and replaced), not a
+stalled grid. A run FAILs when its histories are not finite, it times out or crashes, the engine reports a failure, it ends beyond α without calling
 it overturned or tilts past lying on its side, or (analytic) its energy balance residual
 exceeds 1e-6 of the input energy. Across engines: a contact engine that overturns where
 the analytic model does not (or the reverse) DISAGREEs when the analytic outcome is
@@ -22,7 +22,6 @@ robust (it does not flip under ±3% of the motion); a block that slid is flagged
 from __future__ import annotations
 
 import math
-import multiprocessing as mp
 import sys
 import time
 import traceback
@@ -158,7 +157,8 @@ def drawn_cases(n: int) -> list[StressCase]:
 
 # --- running -------------------------------------------------------------------------
 
-def _run_in_child(conn, engine_name, case):
+def run_one(engine_name: str, case: StressCase) -> dict:
+    """One case's measurements (a worker of the executor's Pool runs it)."""
     try:
         from isorock.validate.core.engines import get_engine
         engine = get_engine(engine_name)
@@ -182,67 +182,40 @@ def _run_in_child(conn, engine_name, case):
                    energy_residual=tr.energy.relative_residual if tr.energy is not None else None)
     except Exception as e:  # reported as the case's failure, never silently
         out = dict(status="error", error=f"{type(e).__name__}: {e}", trace=traceback.format_exc(limit=3))
-    conn.send(out)
-    conn.close()
+    return out
 
 
 def run_case(engine: str, case: StressCase, time_limit: float) -> dict:
-    """One case in a forked process; killed and reported as 'timeout' past time_limit."""
+    """One case in a worker process; stopped and reported as 'timeout' past time_limit."""
     return run_cases([(engine, case)], time_limit, workers=1)[0]
 
 
 def run_cases(todo, time_limit: float, *, workers: int = 2, on_result=None) -> list[dict]:
-    """Every (engine, case) of `todo` in a forked process, `workers` at a time, each killed
-    and reported as 'timeout' past time_limit; results in the order of `todo`."""
-    from multiprocessing.connection import wait
-    ctx = mp.get_context("fork")
+    """Every (engine, case) of `todo` in the executor's worker processes (core.executor.Pool),
+    `workers` at a time, each stopped and reported as 'timeout' past time_limit s of wall
+    time; results in the order of `todo`."""
+    from isorock.validate.core.executor import Pool
     results: list[dict | None] = [None] * len(todo)
-    running = {}  # pipe → (index, process, start)
-    pending = list(range(len(todo)))[::-1]
-    while pending or running:
-        while pending and len(running) < max(1, workers):
-            i = pending.pop()
-            parent, child = ctx.Pipe(duplex=False)
-            proc = ctx.Process(target=_run_in_child, args=(child, *todo[i]), daemon=True)
-            proc.start()
-            child.close()
-            running[parent] = (i, proc, time.perf_counter())
-        now = time.perf_counter()
-        next_deadline = min(start + time_limit for _, _, start in running.values())
-        for pipe in wait(list(running), timeout=max(0.0, next_deadline - now)):
-            i, proc, start = running.pop(pipe)
-            try:
-                result = pipe.recv()
-            except EOFError:
-                result = None
-            _reap(proc)
-            results[i] = _finish(result, todo[i], time.perf_counter() - start, time_limit, proc)
-            if on_result:
-                on_result(results[i])
-        now = time.perf_counter()
-        for pipe, (i, proc, start) in list(running.items()):
-            if now - start >= time_limit:
-                running.pop(pipe)
-                _reap(proc)
-                results[i] = _finish(None, todo[i], now - start, time_limit, proc)
-                if on_result:
-                    on_result(results[i])
+
+    def arrived(i, outcome):
+        results[i] = _finish(outcome, todo[i], time_limit)
+        if on_result:
+            on_result(results[i])
+    with Pool(max(1, min(workers, len(todo) or 1))) as pool:
+        pool.map(run_one, todo, budget=time_limit, on_result=arrived)
     return results
 
 
-def _reap(proc):
-    proc.join(0.5)
-    if proc.is_alive():
-        proc.kill()
-        proc.join()
-
-
-def _finish(result, item, elapsed, time_limit, proc) -> dict:
+def _finish(outcome, item, time_limit) -> dict:
     engine, case = item
-    if result is None:
-        timed_out = elapsed >= time_limit
-        result = dict(status="timeout" if timed_out else "crashed",
-                      error=f"no result within {time_limit:g} s" if timed_out else f"exit code {proc.exitcode}")
+    if outcome.done:
+        result = outcome.value
+    elif outcome.status == "timeout":
+        result = dict(status="timeout", error=f"no result within {time_limit:g} s")
+    elif outcome.status == "crashed":
+        result = dict(status="crashed", error=f"exit code {outcome.value}")
+    else:
+        result = dict(status="error", error=outcome.value)
     result.update(engine=engine, case=case.name, what=case.what, duration=case.scenario.duration)
     result["verdict"] = verdict(result)
     return result
@@ -295,7 +268,7 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=True, dra
     # drawn cases compare the report's engines; the edges break every registered one
     todo = [(e, c) for c in edges for e in engines if c.engines is None or e in c.engines]
     todo += [(e, c) for c in draws for e in engines if e in ENGINE_NAMES]
-    for e in dict.fromkeys(e for e, _ in todo):  # loaded once here, so forked children do not load them again
+    for e in dict.fromkeys(e for e, _ in todo):  # an engine that cannot be loaded is named before the grid
         get_engine(e)
     bar = ProgressBar(len(todo), "stress", enabled=None if progress else False)
     results = run_cases(todo, time_limit, workers=workers, on_result=lambda r: bar.advance(note=r["case"][:30]))
