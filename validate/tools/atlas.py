@@ -14,8 +14,7 @@ integral (compare.exact_first_impact_time) on a fixed base; on an isolated base 
 closed form and the analytic model (its impact an event located to rtol 1e-10) is the
 reference. A run that fails, slides, overturns, misses impacts the rigid model has, or
 runs past its CPU budget (the executor's Pool stops it) is reported as such in its row and
-in the verdict, never as a
-small error.
+in the verdict, never as a small error.
 
 Data flow: System (one per cell) → engine → raw history → measure → effective β and t₁
 against the oracles (in the worker that ran it) → rows → summaries per preset → verdict,
