@@ -83,16 +83,20 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
 
     # connect before writing anything: an unreachable scheduler leaves no folder behind
     live, close = client_for(client, workers, scheduler) if todo else (None, False)
+    bar = None
     try:
         if out is not None:
             from isorock.validate.io.output import write_text
             parts_dir.mkdir(parents=True, exist_ok=True)
             write_text(out / MARKER, json.dumps({"tool": "isorock sweep", "campaign": spec.name,
                                                  "fingerprint": spec.fingerprint()}) + "\n")
-        bar = (Progress(sum(len(t.cases) for t in todo), work=sum(map(expected_cost, todo)))
+        # a campaign lasts hours: its log gets a line every 10 s when not on a terminal
+        bar = (Progress(sum(len(t.cases) for t in todo), work=sum(map(expected_cost, todo)), enabled=True)
                if progress and todo else None)
         ran = execute(todo, client=live, threads=None, on_done=on_done, progress=bar, cost=expected_cost)
     finally:
+        if bar is not None:
+            bar.close()
         if close:
             close_client(live)
     if parts_dir is None:

@@ -400,7 +400,8 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     contact = ex.Task("m", EngineSetting("mujoco"), tuple(Case(i, system, motion, 10.0) for i in range(4)))
     tasks = [batch, contact, contact]
     out = io.StringIO()
-    bar = bars.Progress(sum(len(t.cases) for t in tasks), work=sum(map(ex.expected_cost, tasks)), stream=out, every=0)
+    bar = bars.Progress(sum(len(t.cases) for t in tasks), work=sum(map(ex.expected_cost, tasks)), stream=out, every=0,
+                        enabled=True)
     clock[0] += 1.0
     bar.update(len(batch.cases), ex.expected_cost(batch))  # 400 of 408 runs, a sliver of the work
     eta = float(re.search(r"ETA\s+([\d.]+) s", out.getvalue().splitlines()[-1]).group(1))
@@ -416,7 +417,8 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     # cluster's start) give no rate to extrapolate: the ETA is "?" until the contact work moves
     out = io.StringIO()
     many = [contact] * 100
-    bar = bars.Progress(400 + 400, work=ex.expected_cost(batch) + sum(map(ex.expected_cost, many)), stream=out, every=0)
+    bar = bars.Progress(400 + 400, work=ex.expected_cost(batch) + sum(map(ex.expected_cost, many)), stream=out, every=0,
+                        enabled=True)
     clock[0] += 3.0
     bar.update(len(batch.cases), ex.expected_cost(batch))
     assert "ETA     ? s" in out.getvalue()

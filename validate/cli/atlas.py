@@ -53,7 +53,7 @@ def expand(items) -> list[str]:
 
 def cmd_atlas(a) -> int:
     from isorock.validate.io.output import check_folder
-    from isorock.validate.io.progress import ProgressBar
+    from isorock.validate.io.progress import Progress
     engines = expand(a.engines) if a.engines else default_engines()
     if a.workers is not None and a.workers < 1:
         raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
@@ -65,8 +65,8 @@ def cmd_atlas(a) -> int:
 
     def progress(done, total, label):
         if not bars:
-            bars.append(ProgressBar(total, "atlas", enabled=False if a.quiet else None))
-        bars[0].advance(done - bars[0].done, note=label)
+            bars.append(Progress(total, "atlas", enabled=False if a.quiet else None))
+        bars[0].update(done - bars[0].done, note=label)
     atlas = build(engines, grid, workers=a.workers, budget=a.run_budget, progress=progress)
     for bar in bars:
         bar.close()

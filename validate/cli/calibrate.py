@@ -61,7 +61,7 @@ def cmd_calibrate(a) -> int:
     from isorock.validate.cli.options import SYSTEM_KEYS, engine_settings_from_args, system_from_options
     from isorock.validate.core.engines import get_engine
     from isorock.validate.io.output import Outputs, to_json
-    from isorock.validate.io.progress import ProgressBar
+    from isorock.validate.io.progress import Progress
     from isorock.validate.core.runner import default_workers
     engine = get_engine(a.engine)
     if engine.spec.tuning is None:
@@ -80,15 +80,17 @@ def cmd_calibrate(a) -> int:
     with Outputs() as outputs:  # bad paths are refused before minutes of simulation
         preset = outputs.file("out", a.out) if a.out else None
         report = outputs.file("json", a.json) if a.json else None
-        bar = ProgressBar(1, "calibrate", enabled=None if not a.quiet else False)
+        bars = []  # made at the first run, when the search's budget of runs is known
 
         def progress(done, total, best):
-            bar.total = total
-            bar.advance(done - bar.done, f"best 2σ bound {100 * best:.3f}%" if math.isfinite(best) else "")
+            if not bars:
+                bars.append(Progress(total, "calibrate", enabled=None if not a.quiet else False))
+            bars[0].update(done - bars[0].done, note=f"best 2σ bound {100 * best:.3f}%" if math.isfinite(best) else "")
         r = tool.calibrate(a.engine, system, settings=settings, n_tilts=a.tilts, max_evals=a.max_evals,
-                      workers=workers, progress=progress)
-        bar.advance(bar.total - bar.done)  # Nelder–Mead may converge before the budget is spent
-        bar.close()
+                           workers=workers, progress=progress)
+        for bar in bars:
+            bar.update(bar.total - bar.done)  # Nelder–Mead may converge before the budget is spent
+            bar.close()
         lines = report_lines(r, system, _command(a))
         ok = preset_worthy(r)
         if preset is not None:

@@ -107,7 +107,7 @@ def _read_config(path) -> dict:
 def run(args) -> int:
     from isorock.validate.cli.options import ENGINE_OPTIONS, system_from_options
     from isorock.validate.io.output import check_folder
-    from isorock.validate.io.progress import ProgressBar
+    from isorock.validate.io.progress import Progress
     from isorock.validate.tools.report_render import verdict, write_report
     from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig, build
     from isorock.validate.cli.run import engine_labels
@@ -132,12 +132,11 @@ def run(args) -> int:
             resolve(name, report.overrides_for(name))
         except ImportError:
             pass  # reported as a skipped engine
-    bars = []  # made at the first result, when the number of runs is known
+    bars = []  # made by the report once it knows how many runs it makes
 
-    def progress(done, total):
-        if not bars:
-            bars.append(ProgressBar(total, "validate", enabled=False if args.quiet else None))
-        bars[0].advance(done - bars[0].done)
+    def progress(total):
+        bars.append(Progress(total, "validate", enabled=False if args.quiet else None))
+        return bars[-1]
     results = build(report, progress=progress)
     for bar in bars:
         bar.close()

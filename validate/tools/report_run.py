@@ -288,7 +288,8 @@ def ensemble_scales(config: ReportConfig, system: System, motion: GroundMotion, 
 
 def build(config: ReportConfig, *, progress=None) -> Results:
     """Run every part of the report. Bad input raises InputError before anything runs.
-    `progress`: a callable(done, total) called as runs finish."""
+    `progress(total)`: makes the progress object (io.progress.Progress, or anything with
+    update(n, work)) once the number of runs is known; None shows none."""
     start = time.perf_counter()
     motions = load_motions(config)          # bad input fails here, before any simulation
     if config.scales is not None:
@@ -316,7 +317,7 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         tasks += [Task(("history", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o, rule)
                   for i, sc in enumerate(histories)]
     total = len(tasks) + len(engines) * sum(len(s) for s in scales)
-    bar = _Advance(progress, total)
+    bar = progress(total) if progress else _Silent()
     # one pool for every run: a Dask cluster when a contact engine runs on several
     # processes (its workers start once), nothing when every run is made here
     client = _cluster(config, engines)
@@ -426,17 +427,11 @@ def _with_robustness(ens: Ensemble, sc: HistoryRuns) -> Ensemble:
     return replace(ens, robust=np.array([bool(r) and _robust(sc, f) for r, f in zip(rocks, ens.scales)]))
 
 
-class _Advance:
-    """The report's progress(done, total) callback as the campaign's update(n, work): the
-    report counts runs, so the work is not read."""
+class _Silent:
+    """No progress to show: update(n, work) does nothing."""
 
-    def __init__(self, progress, total: int):
-        self.progress, self.total, self.done = progress, total, 0
-
-    def update(self, n: int, work: float = 0.0) -> None:
-        self.done += n
-        if self.progress:
-            self.progress(self.done, self.total)
+    def update(self, n: int = 1, work: float = 0.0) -> None:
+        pass
 
 
 def _cluster(config: ReportConfig, engines):

@@ -260,7 +260,7 @@ def compare_engines(results: list[dict]) -> None:
 def run_stress(*, quick=False, engines=None, time_limit=None, progress=True, drawn: int | None = None,
                workers: int = 2) -> list[dict]:
     from isorock.validate.core.engines import ENGINE_NAMES, campaign_engines, get_engine
-    from isorock.validate.io.progress import ProgressBar
+    from isorock.validate.io.progress import Progress
     engines = list(engines or campaign_engines())
     time_limit = time_limit or (30.0 if quick else 120.0)
     edges = edge_cases(quick)
@@ -270,8 +270,8 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=True, dra
     todo += [(e, c) for c in draws for e in engines if e in ENGINE_NAMES]
     for e in dict.fromkeys(e for e, _ in todo):  # an engine that cannot be loaded is named before the grid
         get_engine(e)
-    bar = ProgressBar(len(todo), "stress", enabled=None if progress else False)
-    results = run_cases(todo, time_limit, workers=workers, on_result=lambda r: bar.advance(note=r["case"][:30]))
+    bar = Progress(len(todo), "stress", enabled=None if progress else False)
+    results = run_cases(todo, time_limit, workers=workers, on_result=lambda r: bar.update(note=r["case"][:30]))
     bar.close()
     compare_engines(results)
     return results
