@@ -76,7 +76,7 @@ def test_a_run_that_hops_after_its_impacts_has_failed_whatever_its_beta():
     from isorock.validate.tools.calibrate import Case, lift_off_limit, run_case
     from isorock.validate.core.engines import get_engine
     system = paper_system(fixed_base=True)
-    case = Case("hop", system, 0.3, 4, 2.1)
+    case = Case("hop", system, "none", 2.1, 0.3, impacts=4)
     good = get_engine("mujoco").settings(timestep=2e-3)
     hopping = ENGINE.tuning.apply(good, [math.log2(2.2), 0.7, 0.9])
     tr = get_engine("mujoco").simulate(system, None, settings=hopping, duration=2.1, theta0=0.3 * system.alpha)
@@ -95,7 +95,8 @@ def test_a_run_past_its_time_limit_is_stopped_and_its_worker_replaced():
     from isorock.validate.core.engines import get_engine
     system = paper_system(fixed_base=True)
     settings = get_engine("mujoco").settings(timestep=2e-3)
-    endless, short = Case("long", system, 0.3, 4, 400.0), Case("short", system, 0.3, 4, 2.1)
+    endless, short = (Case("long", system, "none", 400.0, 0.3, impacts=4),
+                      Case("short", system, "none", 2.1, 0.3, impacts=4))
     with Runner("mujoco", workers=1) as runner:
         runner.time_limit = 1.0
         start = time.perf_counter()
@@ -129,7 +130,7 @@ def test_a_bad_start_is_calibrated_and_holds_on_runs_it_was_not_fitted_on(small_
     got = []
     for case in cases(system, n_tilts=2)[1]:
         tr = engine.simulate(case.system, None, settings=settings, duration=case.duration,
-                             theta0=case.theta0_over_alpha * case.system.alpha)
+                             theta0=case.theta0)
         got.append([i.theta_dot_post / i.theta_dot_pre / housner_beta(case.system) - 1
                     for i in tr.counted_impacts[:IMPACTS]])
     assert np.allclose(got, held["after"]["errors"], rtol=0, atol=1e-9)

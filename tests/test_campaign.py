@@ -396,8 +396,8 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     clock = [100.0]
     monkeypatch.setattr(bars.time, "monotonic", lambda: clock[0])
     system, motion = paper_system(fixed_base=True), GroundMotion.zero()
-    batch = ex.Task("a", EngineSetting("analytic"), tuple(Case(i, system, motion, 10.0) for i in range(400)))
-    contact = ex.Task("m", EngineSetting("mujoco"), tuple(Case(i, system, motion, 10.0) for i in range(4)))
+    batch = ex.Chunk("a", EngineSetting("analytic"), tuple(Case(i, system, motion, 10.0) for i in range(400)))
+    contact = ex.Chunk("m", EngineSetting("mujoco"), tuple(Case(i, system, motion, 10.0) for i in range(4)))
     tasks = [batch, contact, contact]
     out = io.StringIO()
     bar = bars.Progress(sum(len(t.cases) for t in tasks), work=sum(map(ex.expected_cost, tasks)), stream=out, every=0,

@@ -4,7 +4,7 @@ or a scheduler's), and reports each result as it arrives.
 - `execute(tasks, client=…, run=…, on_done=…)` runs any list of tasks; `here(task)` keeps
   some in this process while the cluster works on the others (the analytic model's, done
   in milliseconds). `validate`'s histories (core.runner) and every table of runs use it.
-- A *chunk* (`Task`) is a list of cases for one engine choice: the analytic engine runs a
+- A `Chunk` is a list of cases for one engine choice: the analytic engine runs a
   chunk (hundreds of cases) in one call of the compiled kernel
   (`analytic.fast.simulate_batch`); a contact engine runs its chunk case by case. Its rows
   are summary rows (core.summary). `run_cases` runs in-memory cases into a table.
@@ -44,7 +44,10 @@ def runs_as_batch(engine: str) -> bool:
 
 
 @dataclass(frozen=True)
-class Task:
+class Chunk:
+    """Cases run together under one engine choice: the unit of work sent to a worker and
+    stored as one part (campaign.parts), named by `id` (chunk_id)."""
+
     id: str
     setting: EngineChoice
     cases: tuple[Case, ...]
@@ -65,19 +68,19 @@ def chunk_id(setting: EngineChoice, cases, overturn_rule: str | None = None) -> 
 
 
 def make_tasks(cases: list[Case], settings, *, analytic_chunk: int, contact_chunk: int,
-               overturn_rule: str | None = None) -> list[Task]:
+               overturn_rule: str | None = None) -> list[Chunk]:
     tasks = []
     for setting in settings:
         size = analytic_chunk if runs_as_batch(setting.engine) else contact_chunk
         for lo in range(0, len(cases), size):
             chunk = tuple(cases[lo:lo + size])
-            tasks.append(Task(chunk_id(setting, chunk, overturn_rule), setting, chunk, overturn_rule))
+            tasks.append(Chunk(chunk_id(setting, chunk, overturn_rule), setting, chunk, overturn_rule))
     return tasks
 
 
-# --- running one task (in a worker, or here) --------------------------------------------
+# --- running one chunk (in a worker, or here) -------------------------------------------
 
-def run_task(task: Task, threads: int | None = 1) -> list[dict]:
+def run_chunk(task: Chunk, threads: int | None = 1) -> list[dict]:
     """The rows of one chunk. threads: the analytic kernel's threads, or a contact
     engine's runs side by side (1 in a Dask worker, which is one core; None: all cores,
     for the serial path)."""
@@ -86,7 +89,7 @@ def run_task(task: Task, threads: int | None = 1) -> list[dict]:
     return _run_contact(task, threads)
 
 
-def _run_batch(task: Task, threads) -> list[dict]:
+def _run_batch(task: Chunk, threads) -> list[dict]:
     from dataclasses import replace
 
     from isorock.analytic.fast import simulate_batch
@@ -104,7 +107,7 @@ def _run_batch(task: Task, threads) -> list[dict]:
              **row_of_batch(case, r), "runtime_s": per_case} for case, r in zip(cases, out)]
 
 
-def _run_contact(task: Task, threads: int | None) -> list[dict]:
+def _run_contact(task: Chunk, threads: int | None) -> list[dict]:
     """A contact engine's chunk: its batch path (MuJoCo's: one scene per system, `threads`
     runs side by side) or one run after another; each row what the run alone gives.
     Impacts are counted, not mapped to effective β: no column reads it."""
@@ -131,7 +134,7 @@ def _run_contact(task: Task, threads: int | None) -> list[dict]:
 BATCH_COST = 1e-4
 
 
-def expected_cost(task: Task) -> float:
+def expected_cost(task: Chunk) -> float:
     """A task's expected cost, in contact-engine simulated seconds: what the progress
     bar's ETA is measured in (the run count alone made a campaign's analytic third, done
     in seconds, promise the contact runs in seconds too)."""
@@ -143,14 +146,14 @@ def execute(tasks: list, *, client=None, threads: int | None = None, on_done, pr
             run=None, weight=None, cost=None) -> int:
     """Run `tasks`, calling on_done(task, result) here as each one finishes (in the order
     they finish). client: a dask.distributed Client, or None to run serially in this
-    process. run(task, threads): a task's result (default: `run_task`, a chunk's rows;
+    process. run(task, threads): a task's result (default: `run_chunk`, a chunk's rows;
     `isorock validate` runs its histories through here too). here(task): tasks that run
     in this process even with a client (e.g. the analytic model's, loaded here already and
     done in milliseconds), while the cluster works on the others. progress.update(n) after
     each task, n = weight(task) (default: its number of cases), with the work it was,
     cost(task) (the ETA's measure, `expected_cost`; 0 without `cost`). Returns the number
     of tasks run."""
-    run = run or run_task
+    run = run or run_chunk
     weight = weight or (lambda task: len(task.cases))
     local = [t for t in tasks if client is None or (here is not None and here(t))]
     remote = [t for t in tasks if client is not None and not (here is not None and here(t))]

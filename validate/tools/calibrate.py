@@ -37,6 +37,7 @@ from dataclasses import asdict, dataclass, fields
 import numpy as np
 
 from isorock.analytic.errors import InputError
+from isorock.validate.core.scenarios import Scenario
 from isorock.validate.core.tolerances import limit
 
 #: Free-rocking tilts, fractions of α: `tilts` fitted tilts spread evenly over this range,
@@ -79,14 +80,12 @@ NOISE_SIGMAS = 1.0
 
 
 @dataclass(frozen=True)
-class Case:
-    label: str
-    system: object
-    theta0_over_alpha: float
-    #: the counted impacts compared (IMPACTS, or fewer where the rigid model has fewer)
-    impacts: int
-    #: s: past the rigid model's impact after the last compared one
-    duration: float
+class Case(Scenario):
+    """A free-rocking Scenario (motion "none") and the counted impacts compared: IMPACTS, or
+    fewer where the rigid model has fewer; its duration runs past the rigid model's impact
+    after the last compared one."""
+
+    impacts: int = IMPACTS
 
 
 def tilts(n: int = DEFAULT_TILTS) -> tuple[tuple[float, ...], tuple[float, ...]]:
@@ -129,7 +128,7 @@ def cases(system, n_tilts: int = DEFAULT_TILTS, impacts: int = IMPACTS) -> tuple
             raise InputError(f"system: free rocking from {fraction}·α has no impact above the counting threshold; "
                              "nothing to calibrate on")
         end = times[n] if len(times) > n else times[-1] + 0.5
-        return Case(f"θ0 = {fraction:g}α, {name}", sys_, fraction, n, float(end + MARGIN))
+        return Case(f"θ0 = {fraction:g}α, {name}", sys_, "none", float(end + MARGIN), fraction, impacts=n)
 
     pairs = tuple(zip(names, (system, other)))
     return ([make(f, n, s) for n, s in pairs for f in fitted_tilts],
@@ -236,7 +235,7 @@ def run_case(engine_name: str, settings, case: Case, time_limit: float | None = 
 
     try:
         tr = get_engine(engine_name).simulate(case.system, None, settings=settings, duration=case.duration,
-                                              theta0=case.theta0_over_alpha * case.system.alpha, progress=watch)
+                                              theta0=case.theta0, progress=watch)
         errs = beta_errors(tr, case.impacts)
     except InputError:
         raise
@@ -439,8 +438,8 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
         "start": dict(zip(tuning.names, map(float, x0))),
         "parameters": dict(zip(tuning.names, map(float, best_x))),
         "settings_before": start_settings, "settings_after": best_settings, "improved": improved,
-        "fitted": _part([c.label for c in fitted], before_fit, after_fit),
-        "held_out": _part([c.label for c in held], before_held, after_held),
+        "fitted": _part([c.name for c in fitted], before_fit, after_fit),
+        "held_out": _part([c.name for c in held], before_held, after_held),
         "tilts": tilts(n_tilts), "impacts": impacts,
         "evaluations": len(evaluated), "wall_s": time.perf_counter() - t0,
     }
