@@ -1,6 +1,6 @@
 """The compiled kernel ("analytic") against the SciPy reference ("analytic-reference") on
 seeded random pulse cases plus model.md's block that leans past α and returns
-(analytic/agreement.py; the few-hundred-case version is docs/scripts/kernel_agreement.py).
+(tests/agreement_cases.py; the few-hundred-case version is docs/scripts/kernel_agreement.py).
 Same integrator steps and the same physics module: θmax/α agrees to rounding, impacts
 and overturning exactly."""
 import math
@@ -9,7 +9,7 @@ import pytest
 
 pytest.importorskip("isorock.analytic.fast", reason="numba is not installed")
 from isorock.analytic import GroundMotion, Pulse, System  # noqa: E402
-from isorock.analytic.agreement import compare_paths, random_cases  # noqa: E402
+from agreement_cases import compare_paths, random_cases  # noqa: E402
 
 
 def test_kernel_agrees_with_reference_on_random_cases():

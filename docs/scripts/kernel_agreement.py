@@ -8,9 +8,13 @@ that lean past α and return), which random draws rarely hit.
 """
 import argparse
 import json
+import sys
 import time
+from pathlib import Path
 
-from isorock.analytic.agreement import compare_paths, random_cases, safe_band_cases
+# the cases and the comparison are test code, kept beside the tests (not in the product)
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests"))
+from agreement_cases import compare_paths, random_cases, safe_band_cases  # noqa: E402
 
 
 def main(argv=None):

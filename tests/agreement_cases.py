@@ -7,9 +7,9 @@ import math
 
 import numpy as np
 
-from .motion import GroundMotion, Pulse
-from .settings import AnalyticSettings
-from .system import System
+from isorock.analytic.motion import GroundMotion, Pulse
+from isorock.analytic.settings import AnalyticSettings
+from isorock.analytic.system import System
 
 
 def random_cases(seed: int, n: int) -> list[tuple[System, GroundMotion]]:
@@ -49,8 +49,8 @@ def safe_band_cases(seed: int, n: int) -> list[tuple[System, GroundMotion]]:
 
 def compare_paths(cases, settings: AnalyticSettings | None = None) -> dict:
     """Run every case on both paths; the per-case rows and the worst disagreements."""
-    from .fast import simulate_fast
-    from .hybrid import simulate
+    from isorock.analytic.fast import simulate_fast
+    from isorock.analytic.hybrid import simulate
     settings = settings or AnalyticSettings()
     rows = []
     for k, (system, motion) in enumerate(cases):
