@@ -217,6 +217,18 @@ def resolve(label: str, overrides: dict | None = None):
     choice = choose(label, overrides)
     return get_engine(choice.engine), choice.settings()
 
+
+def runs_here(label: str) -> bool:
+    """Are the engine's runs kept in this process, even when a cluster is at hand? The
+    analytic engines' are (their impacts are exact events; a run takes milliseconds to a
+    second, and the compiled kernel is loaded here already); a contact engine's go to the
+    cluster's workers. The one predicate the executor's callers ask. An engine that
+    cannot be imported here stays here too, where its failure is reported."""
+    try:
+        return get_engine(str(label).partition(":")[0]).capabilities.exact_impacts
+    except ImportError:
+        return True
+
 def campaign_engines() -> tuple[str, ...]:
     """The registered engines fast enough for grids of thousands of runs that can be
     imported here: what bench and stress run unless told otherwise."""

@@ -251,7 +251,7 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
 
     overturn_rule: model.md's rule for every engine (None: past α). threads: the serial
     path's threads (None: every core). batch_here: with a cluster, the analytic chunks
-    still run in this process (where the kernel is loaded; they take milliseconds) while
+    (engines.runs_here) still run in this process (where the kernel is loaded; they take milliseconds) while
     the cluster runs the contact engines'. progress: an object with update(n, work)
     (io.progress.Progress), or None."""
     from .engines import choose
@@ -264,7 +264,8 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
                        overturn_rule=overturn_rule)
     rows = []
     live, close = client_for(client, workers, None)
-    here = (lambda task: runs_as_batch(task.setting.engine)) if batch_here else None
+    from .engines import runs_here
+    here = (lambda task: runs_here(task.setting.engine)) if batch_here else None
     try:
         execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=progress,
                 here=here, cost=expected_cost)

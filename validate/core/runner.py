@@ -87,10 +87,8 @@ def _one(work, task: Task, threads: int | None = None):
 
 
 def _light(task: Task) -> bool:
-    from .engines import get_engine
-    try:
-        return get_engine(task.engine.partition(":")[0]).capabilities.exact_impacts
-    except ImportError:
-        return True  # reported by run_task in this process
+    from .engines import runs_here
+    return runs_here(task.engine)
+
 
 __all__ = ["Task", "run_task", "run_tasks", "default_workers"]

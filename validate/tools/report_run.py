@@ -31,7 +31,7 @@ from isorock.validate.core.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENC
 from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 from isorock.validate.core.measure import beta_errors
 from isorock.validate.io.naming import describe_motion
-from isorock.validate.core.engines import resolve
+from isorock.validate.core.engines import resolve, runs_here
 from isorock.validate.core.runner import Task, default_workers, run_tasks
 from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
@@ -438,7 +438,7 @@ def _cluster(config: ReportConfig, engines):
     """A LocalCluster of config.workers processes (default: runner.default_workers) when
     a contact engine runs, else None (the analytic model runs here in milliseconds)."""
     workers = default_workers() if config.workers is None else config.workers
-    if workers <= 1 or all(e.capabilities.exact_impacts for e in engines.values()):
+    if workers <= 1 or all(runs_here(name) for name in engines):
         return None
     from isorock.validate.core.executor import local_client
     return local_client(workers)
