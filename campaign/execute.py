@@ -100,7 +100,16 @@ def chunk_id(setting: EngineSetting, cases, overturn_rule: str | None = None) ->
         head.append(["preset", setting.preset])
     if overturn_rule is not None:
         head.append(["overturn_rule", overturn_rule])
-    body = json.dumps([*head, [_case_inputs(c) for c in cases]], sort_keys=True, default=str)
+    # a record's content joins its case's inputs (a pulse's inputs define it whole, so its
+    # ids stay as they were)
+    from .build import record_digest
+    inputs = []
+    for c in cases:
+        row, digest = _case_inputs(c), record_digest(c)
+        if digest is not None:
+            row["record_sha256"] = digest
+        inputs.append(row)
+    body = json.dumps([*head, inputs], sort_keys=True, default=str)
     return hashlib.sha256(body.encode()).hexdigest()[:20]
 
 
@@ -214,6 +223,29 @@ def write_part(path: Path, rows: list[dict]) -> None:
     import pyarrow.parquet as pq
     from isorock.validate.output import write_atomic
     write_atomic(path, lambda tmp: pq.write_table(rows_to_table(rows), tmp))
+
+
+def part_problem(path: Path, task: Task) -> str | None:
+    """Why the part at `path` cannot stand for `task`'s rows (None: it can): unreadable,
+    another schema, or not exactly one row per case of the chunk under its engine and
+    setting. A part copied over another, damaged or from another version of the table
+    is run again instead of being trusted by its name."""
+    import pyarrow.parquet as pq
+    try:
+        table = pq.read_table(path)
+    except FileNotFoundError:
+        return "missing"
+    except Exception as e:  # noqa: BLE001 - any unreadable file is a part to run again
+        return f"unreadable ({type(e).__name__})"
+    if table.schema.remove_metadata() != _schema():
+        return "another schema"
+    want = sorted(c.case for c in task.cases)
+    if sorted(table["case"].to_pylist()) != want:
+        return f"{table.num_rows} rows whose cases are not the chunk's {len(want)}"
+    if set(table["engine"].to_pylist()) != {task.setting.engine} or \
+            set(table["setting"].to_pylist()) != {task.setting.label}:
+        return "rows of another engine or setting"
+    return None
 
 
 def read_parts(paths) -> "pyarrow.Table":

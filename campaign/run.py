@@ -9,13 +9,14 @@ in batches, contact engines in worker processes) and read the rows back.
 from __future__ import annotations
 
 import json
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from isorock.analytic.errors import InputError
 
-from .execute import (Progress, close_client, execute, expected_cost, local_client, make_tasks, read_parts, rows_to_table,
-                      runs_as_batch, sort_table, write_part)
+from .execute import (Progress, close_client, execute, expected_cost, local_client, make_tasks, part_problem,
+                      read_parts, rows_to_table, runs_as_batch, sort_table, write_part)
 from .spec import ANALYTIC_CHUNK, CONTACT_CHUNK, CampaignSpec, EngineSetting, load_spec
 
 #: The file that marks a folder as written by `isorock sweep`: a sweep fills a new or
@@ -84,7 +85,14 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     memory = []
     if out is not None:
         check_output_folder(out)
-        todo = [t for t in tasks if not (parts_dir / f"{t.id}.parquet").is_file()]
+        todo = []
+        for t in tasks:
+            path = parts_dir / f"{t.id}.parquet"
+            problem = part_problem(path, t) if path.exists() else "missing"
+            if problem is not None and problem != "missing":
+                print(f"isorock sweep: {PARTS}/{path.name}: {problem}; running its chunk again", file=sys.stderr)
+            if problem is not None:
+                todo.append(t)
     else:
         todo = tasks
 
