@@ -722,11 +722,9 @@ def cmd_calibrate(a) -> int:
     if workers < 1:
         raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
     system = system_from_options(a) or paper_system(fixed_base=True)
-    if a.out and Path(a.out).exists():
-        raise InputError(f"out = {a.out!r}: exists; give a new file (isorock does not replace files it did not write)")
     settings = engine_settings_from_args(engine, a)
     with Outputs() as outputs:  # bad paths are refused before minutes of simulation
-        preset = outputs.file("out", a.out) if a.out else None
+        preset = outputs.file("out", a.out, exclusive=True) if a.out else None
         report = outputs.file("json", a.json) if a.json else None
         bar = ProgressBar(1, "calibrate", enabled=None if not a.quiet else False)
 
