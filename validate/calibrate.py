@@ -703,8 +703,6 @@ def add_parser(sub) -> None:
 
 
 def cmd_calibrate(a) -> int:
-    from pathlib import Path
-
     from isorock.analytic.system import paper_system
     from isorock.validate.cli import SYSTEM_KEYS, engine_settings_from_args, system_from_options
     from isorock.validate.engines import get_engine
