@@ -83,7 +83,7 @@ from . import physics
 from .errors import InputError, require, require_positive_finite
 from .kernel_cache import ahead_of_time, cached_jit, call_kernel
 from .limits import available_cores
-from .overturning import describe
+from .overturning import describe, theta_max_over_alpha
 from .settings import AnalyticSettings
 from .motion import GroundMotion
 from .protocol import run_inputs
@@ -1412,7 +1412,8 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
             continue
         rows.append({
             "system": int(case_sys[c]), "motion": int(case_mot[c]), "status": status,
-            "theta_max_over_alpha": float(r[1] / alphas[case_sys[c]]), "impacts": int(r[2]),
+            "theta_max_over_alpha": float(theta_max_over_alpha(r[1], alphas[case_sys[c]], status == "overturned",
+                                                               settings.overturn)), "impacts": int(r[2]),
             "impacts_all": int(r[3]), "uplifts": int(r[4]), "overturned": status == "overturned",
             "overturn_time": float(r[5]) if status == "overturned" and math.isfinite(r[5]) else None,
             "u_max": float(r[6]), "duration": float(r[7]), "overturn_rule": settings.overturn,
