@@ -77,6 +77,8 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     if spec.motions["type"] == "records":
         from .records import load_suite
         records = load_suite(spec.motions)
+        from .spec import check_limits
+        check_limits(spec, max((r.end_time for r in records.values()), default=0.0))
     cases = spec.cases(records)
     tasks = make_tasks(cases, spec.engines, analytic_chunk=spec.analytic_chunk,
                        contact_chunk=spec.contact_chunk)
