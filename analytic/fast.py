@@ -62,6 +62,7 @@ from __future__ import annotations
 
 import math
 import os
+import threading
 import time
 import types
 
@@ -83,7 +84,7 @@ from . import physics
 from .errors import InputError, require, require_positive_finite
 from .kernel_cache import ahead_of_time, cached_jit, call_kernel
 from .limits import available_cores
-from .overturning import describe
+from .overturning import describe, theta_max_over_alpha
 from .settings import AnalyticSettings
 from .motion import GroundMotion
 from .engine_protocol import run_inputs
@@ -1382,9 +1383,9 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
             float(settings.max_step), int(settings.max_events), float(impact_threshold),
             settings.overturn == physics.AT_ALPHA, motion_end, out)
     failures = {}  # case: why the kernel raised
-    if workers == 1 or n == 1:
+    if n == 1 or (workers == 1 and threading.current_thread() is not threading.main_thread()):
         _run_cases(args, 0, n, failures)
-    elif backend == "threads":
+    elif backend == "threads" or workers == 1:  # the main thread waits, and so hears signals
         _batch_pool(args, workers or available_cores(), failures)
     else:
         old = numba.get_num_threads()
@@ -1412,7 +1413,8 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
             continue
         rows.append({
             "system": int(case_sys[c]), "motion": int(case_mot[c]), "status": status,
-            "theta_max_over_alpha": float(r[1] / alphas[case_sys[c]]), "impacts": int(r[2]),
+            "theta_max_over_alpha": float(theta_max_over_alpha(r[1], alphas[case_sys[c]], status == "overturned",
+                                                               settings.overturn)), "impacts": int(r[2]),
             "impacts_all": int(r[3]), "uplifts": int(r[4]), "overturned": status == "overturned",
             "overturn_time": float(r[5]) if status == "overturned" and math.isfinite(r[5]) else None,
             "u_max": float(r[6]), "duration": float(r[7]), "overturn_rule": settings.overturn,
@@ -1448,8 +1450,15 @@ def _batch_pool(args, workers, failures):
     from concurrent.futures import ThreadPoolExecutor
     n = args[6].size
     bounds = np.linspace(0, n, min(n, workers * 16) + 1).astype(int)
-    with ThreadPoolExecutor(max_workers=workers) as pool:
-        list(pool.map(lambda k: _run_cases(args, bounds[k], bounds[k + 1], failures), range(bounds.size - 1)))
+    pool = ThreadPoolExecutor(max_workers=workers)
+    try:
+        for f in [pool.submit(_run_cases, args, bounds[k], bounds[k + 1], failures) for k in range(bounds.size - 1)]:
+            f.result()  # the waiting thread hears signals; the kernel's threads do not
+    finally:
+        # on a signal (or an error) the cases not started are dropped and the running ones
+        # not waited for: `with` waited for the whole batch, hours for a long chunk, and a
+        # sweep told to stop went on (issue 24, item 10)
+        pool.shutdown(wait=False, cancel_futures=True)
 
 
 def _batch_chunk(payload):

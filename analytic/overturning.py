@@ -24,7 +24,7 @@ from .errors import require
 from .physics import AT_ALPHA, OVERTURN_RULES, PAST_ALPHA, SIDE_ANGLE
 
 __all__ = ["Overturning", "judge_overturning", "describe", "REASONS", "OVERTURN_RULES", "PAST_ALPHA",
-           "AT_ALPHA", "SIDE_ANGLE"]
+           "AT_ALPHA", "SIDE_ANGLE", "THETA_MAX_DEFINITION", "theta_max_over_alpha"]
 
 #: physics.overturn_code's verdicts, as words
 REASONS = {0: "survived", 1: "reached-alpha", 2: "reached-side", 3: "ended-past-alpha"}
@@ -52,6 +52,26 @@ def describe(code: int, t: float, t_alpha: float | None, theta_end_over_alpha: f
     if code == 2:
         return f"|θ| reached π/2 at t = {t:.6g} s{since}"
     return f"|θ| = {abs(theta_end_over_alpha):.4g}·α > α at t = {t:.6g} s, falling{since}"
+
+
+#: What θmax/α means, stated in every run's JSON (one definition for every motion and
+#: engine: where a run stops once the block's fate is known must not change it).
+THETA_MAX_DEFINITION = {
+    PAST_ALPHA: "the largest |θ|/α reached; for an overturned block π/(2α): it ends on its side "
+                "(π/2), however early the run stopped once the fall was certain",
+    AT_ALPHA: "the largest |θ|/α reached; for an overturned block 1: the conservative rule stops "
+              "at α",
+}
+
+
+def theta_max_over_alpha(theta_max: float, alpha: float, overturned: bool, rule: str = PAST_ALPHA) -> float:
+    """θmax/α by THETA_MAX_DEFINITION: an overturned block's is its end, π/2 (rule
+    'past-alpha') or α (rule 'alpha'), not the angle where its run happened to stop (a
+    fixed base past α after the motion stops early, a record's quiet tail runs on to π/2,
+    a contact engine's block rests a little short of π/2)."""
+    if overturned and math.isfinite(theta_max):
+        return 1.0 if rule == AT_ALPHA else SIDE_ANGLE / alpha
+    return theta_max / alpha
 
 
 def _crossing(t, a, i, level):

@@ -126,7 +126,16 @@ class Trajectory:
 
     @property
     def theta_max_over_alpha(self) -> float:
-        return float(np.max(np.abs(self.theta)) / self.alpha) if self.theta.size else 0.0
+        """overturning.THETA_MAX_DEFINITION under the run's rule."""
+        from .overturning import PAST_ALPHA, theta_max_over_alpha
+        if not self.theta.size:
+            return 0.0
+        return float(theta_max_over_alpha(float(np.max(np.abs(self.theta))), self.alpha, self.overturned,
+                                          self.extras.get("overturn_rule", PAST_ALPHA)))
+
+    def _theta_max_definition(self) -> str:
+        from .overturning import PAST_ALPHA, THETA_MAX_DEFINITION
+        return THETA_MAX_DEFINITION.get(self.extras.get("overturn_rule", PAST_ALPHA), "")
 
     @property
     def counted_impacts(self) -> tuple[Impact, ...]:
@@ -163,6 +172,7 @@ class Trajectory:
             "mass_ratio": self.system.mu,
             "fixed_base": self.system.fixed_base,
             "theta_max_over_alpha": self.theta_max_over_alpha,
+            "theta_max_over_alpha_definition": self._theta_max_definition(),
             "impacts": self.impact_count,
             "impacts_total": len(self.impacts),
             "impact_threshold": self.impact_threshold,

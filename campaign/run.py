@@ -9,6 +9,7 @@ rows (core.summary), stored as parts (campaign.parts) and drawn as products.
 from __future__ import annotations
 
 import json
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -18,7 +19,7 @@ from isorock.validate.core.executor import client_for, close_client, execute, ex
 from isorock.validate.core.summary import rows_to_table, sort_table
 from isorock.validate.io.progress import Progress
 
-from .parts import read_parts, write_part
+from .parts import part_problem, read_parts, write_part
 from .spec import CampaignSpec, load_spec
 
 #: The file that marks a folder as written by `isorock sweep`: a sweep fills a new or
@@ -63,6 +64,8 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     if spec.motions["type"] == "records":
         from .records import load_suite
         records = load_suite(spec.motions)
+        from .spec import check_limits
+        check_limits(spec, max((r.end_time for r in records.values()), default=0.0))
     cases = spec.cases(records)
     tasks = make_tasks(cases, spec.engines, analytic_chunk=spec.analytic_chunk,
                        contact_chunk=spec.contact_chunk)
@@ -71,7 +74,14 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     memory = []
     if out is not None:
         check_output_folder(out)
-        todo = [t for t in tasks if not (parts_dir / f"{t.id}.parquet").is_file()]
+        todo = []
+        for t in tasks:
+            path = parts_dir / f"{t.id}.parquet"
+            problem = part_problem(path, t) if path.exists() else "missing"
+            if problem is not None and problem != "missing":
+                print(f"isorock sweep: {PARTS}/{path.name}: {problem}; running its chunk again", file=sys.stderr)
+            if problem is not None:
+                todo.append(t)
     else:
         todo = tasks
 

@@ -14,7 +14,7 @@ import itertools
 import json
 import math
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -163,9 +163,19 @@ class CampaignSpec:
             return len(m["pulse"]) * len(m["frequency_ratio"]) * len(m["amplitude_ratio"])
         return m["n_records"] * len(m["levels"])
 
+    def n_systems(self) -> int:
+        """len(system_grid()), from the grids' lengths (nothing is built: a grid of 10¹²
+        systems is refused in microseconds, not after minutes or a MemoryError)."""
+        s = self.systems
+        geometry = (len(s["height"]) * len(s["width"]) if "height" in s
+                    else len(s["slenderness"]) * len(s["size"]))
+        per_geometry = ("fixed" in s["base"]) + ("isolated" in s["base"]) * (
+            len(s.get("mass_ratio", ())) * len(s.get("period", ())) * len(s.get("damping_ratio", ())))
+        return geometry * len(s["mass"]) * per_geometry
+
     @property
     def n_cases(self) -> int:
-        return len(self.system_grid()) * self.n_motions_per_system()
+        return self.n_systems() * self.n_motions_per_system()
 
     @property
     def n_runs(self) -> int:
@@ -313,7 +323,7 @@ def _engines(t) -> tuple[EngineSetting, ...]:
                 raise InputError(f"{key}.settings[{j}]: {err}") from None
             except (TypeError, ValueError) as err:
                 raise InputError(f"{key}.settings[{j}]: {err}") from None
-            setting = EngineSetting(name, overrides)
+            setting = EngineSetting(name, overrides, where=f"{key}.settings[{j}]")
             if setting in out:
                 raise InputError(f"{key}.settings[{j}] = {setting.label!r}: listed twice for {name}")
             out.append(setting)
@@ -368,12 +378,60 @@ def parse_spec(data: dict, source: Path = Path("campaign.toml")) -> CampaignSpec
         n = count_records(spec.motions)
         object.__setattr__(spec, "motions", {**spec.motions, "n_records": n})
     _check_size(spec)
+    if spec.motions["type"] == "pulse":  # a record suite's lengths are known once it is read (run_campaign)
+        check_limits(spec, longest_pulse(spec))
     if "agreement" in spec.products:
         for k in ("x", "y"):
             v = spec.products["agreement"].get(k)
             if v is not None and v not in AXES:
                 raise _where(f"products.agreement.{k}", v, f"one of {', '.join(AXES)}")
     return spec
+
+
+def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
+    """analytic/limits.py's bounds, as `run` applies them, on the campaign's longest
+    case (its longest motion, `longest_motion` s, and the duration rule), its shortest
+    isolator period and each engine setting's steps: an InputError naming the key the
+    user wrote, before anything runs."""
+    from isorock.analytic.limits import check_duration, check_isolator, check_settings
+    d = spec.duration
+    if "end" in d:
+        longest = check_duration("duration.end", d["end"])
+    else:
+        longest = longest_motion + d["tail"]
+        check_duration("duration.tail", longest, f" (the longest motion, {longest_motion:.3g} s, + tail "
+                                                  f"{d['tail']:g} s)")
+    s = spec.systems
+    if "isolated" in s["base"]:
+        from types import SimpleNamespace
+        T = min(s["period"])
+        # the stiffness is only quoted by the message; the bound is on duration / period
+        shortest = SimpleNamespace(fixed_base=False, period=T, stiffness=math.nan)
+        try:
+            check_isolator(shortest, longest)
+        except InputError as e:
+            raise InputError(f"systems.period: {str(e).replace(' (stiffness nan N/m)', '')}") from None
+    for e in spec.engines:
+        try:
+            check_settings(e.settings(), longest)
+        except InputError as err:
+            raise InputError(f"{e.where or e.engine}: {err}") from None
+
+
+def longest_pulse(spec: CampaignSpec) -> float:
+    """The longest pulse of a pulse campaign (s): the lowest frequency ratio on the
+    largest block (the smallest p), for each pulse kind."""
+    from isorock.validate.core.cases import pulse_for
+    from isorock.analytic.system import System
+    s, m = spec.systems, spec.motions
+    if "height" in s:
+        H, B = max(s["height"]), max(s["width"])
+    else:
+        lam, R = min(s["slenderness"]), max(s["size"])
+        b = R / math.sqrt(1 + lam * lam)
+        H, B = 2 * lam * b, 2 * b
+    big = System.fixed(height=H, width=B, mass=1.0)
+    return max(pulse_for(big, kind, min(m["frequency_ratio"]), 1.0, m["cycles"]).end_time for kind in m["pulse"])
 
 
 def _check_size(spec: CampaignSpec) -> None:

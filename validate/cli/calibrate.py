@@ -55,8 +55,6 @@ def add_parser(sub) -> None:
 
 
 def cmd_calibrate(a) -> int:
-    from pathlib import Path
-
     from isorock.analytic.system import paper_system
     from isorock.validate.cli.options import SYSTEM_KEYS, engine_settings_from_args, system_from_options
     from isorock.validate.core.engines import get_engine
@@ -74,11 +72,9 @@ def cmd_calibrate(a) -> int:
     if workers < 1:
         raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
     system = system_from_options(a) or paper_system(fixed_base=True)
-    if a.out and Path(a.out).exists():
-        raise InputError(f"out = {a.out!r}: exists; give a new file (isorock does not replace files it did not write)")
     settings = engine_settings_from_args(engine, a)
     with Outputs() as outputs:  # bad paths are refused before minutes of simulation
-        preset = outputs.file("out", a.out) if a.out else None
+        preset = outputs.file("out", a.out, exclusive=True) if a.out else None
         report = outputs.file("json", a.json) if a.json else None
         bars = []  # made at the first run, when the search's budget of runs is known
 

@@ -12,13 +12,14 @@
     isorock sweep    campaigns: spectra, fragility curves, agreement maps (Dask)
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
-Outputs go through validate.output: checked before the work, written all or none.
+Outputs go through validate.io.output: checked before the work, written all or none.
 SIGTERM or SIGHUP end a command cleanly: nothing staged is left, exit 128 + signal.
 """
 from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
@@ -201,8 +202,20 @@ def _engines_with_scenes():
     return out
 
 
+def _stopped(code: int, *, as_process: bool) -> int:
+    """A command stopped by a signal, its cleanup done: as a process, exit now, so that a
+    worker thread still inside a compiled kernel (it hears no signal) cannot hold the
+    exit (the interpreter joins its threads at exit: a stopped sweep went on for hours)."""
+    if as_process:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    return code
+
+
 def main(argv=None) -> int:
     from isorock.validate.io.output import Terminated, signals_end_cleanly
+    argv_given = argv
     argv = sys.argv[1:] if argv is None else list(argv)
     command = next((x for x in argv if not x.startswith("-")), None)
     parser = build_parser(command)
@@ -216,12 +229,14 @@ def main(argv=None) -> int:
         except InputError as e:
             print(f"isorock {args.command}: error: {e}", file=sys.stderr)
             return 2
-        except KeyboardInterrupt:
-            print(f"isorock {args.command}: interrupted; no output written", file=sys.stderr)
-            return 130
+        except KeyboardInterrupt as e:
+            print(f"isorock {args.command}: interrupted; {getattr(e, 'outcome', 'no output written')}",
+                  file=sys.stderr)
+            return _stopped(130, as_process=argv_given is None)
         except Terminated as e:
-            print(f"isorock {args.command}: terminated by {e.name}; no output written", file=sys.stderr)
-            return 128 + e.signum
+            print(f"isorock {args.command}: terminated by {e.name}; {getattr(e, 'outcome', 'no output written')}",
+                  file=sys.stderr)
+            return _stopped(128 + e.signum, as_process=argv_given is None)
         except BrokenPipeError:
             return 141
 

@@ -35,7 +35,15 @@ def run(a) -> int:
     spec = load_spec(a.spec)
     out = Path(a.out) if a.out else Path(f"sweep-{Path(a.spec).stem}")
     workers = available_cores() if a.workers is None else a.workers
-    result = run_campaign(spec, out, workers=workers, scheduler=a.scheduler, products=not a.no_products)
+    from isorock.validate.io.output import Terminated
+    try:
+        result = run_campaign(spec, out, workers=workers, scheduler=a.scheduler, products=not a.no_products)
+    except (Terminated, KeyboardInterrupt) as e:
+        # what a stopped sweep leaves is its finished chunks, on purpose: say so
+        kept = len(list((out / "parts").glob("*.parquet"))) if (out / "parts").is_dir() else 0
+        e.outcome = (f"{kept} finished chunks kept in {out / 'parts'}; rerun the same command to resume"
+                     if kept else "no output written")
+        raise
     print(f"{result.out}: {result.table.num_rows} rows; {result.tasks_run} of {result.tasks_total} chunks "
           f"run now, {result.tasks_skipped} already done", file=sys.stderr)
     return 0

@@ -5,7 +5,9 @@ pulse from its dimensionless form (`pulse_for`). A case's inputs are the table's
 columns, so they are the whole definition of a case."""
 from __future__ import annotations
 
+import hashlib
 import math
+import weakref
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -124,6 +126,28 @@ class _LazyScaled:
 
     def motion(self) -> GroundMotion:
         return self.record.scaled(self.factor)
+
+
+#: a record's content digest, computed once per loaded record (a suite's cases share it)
+_DIGESTS: "weakref.WeakKeyDictionary[GroundMotion, str]" = weakref.WeakKeyDictionary()
+
+
+def record_digest(case: Case) -> str | None:
+    """SHA-256 of the samples and step of the record a case runs (after its units were
+    read, before its scale factor): None for a pulse, which its inputs define whole. A
+    record's name, level and scale do not define it: a file replaced by another of the
+    same name, PGA and length must not pass for the old one (a resumed sweep kept the
+    old rows)."""
+    m = case.motion
+    record = m.record if isinstance(m, _LazyScaled) else m
+    if isinstance(m, _LazyPulse) or not isinstance(record, GroundMotion) or record.pulse is not None:
+        return None
+    digest = _DIGESTS.get(record)
+    if digest is None:
+        h = hashlib.sha256(np.float64(record.dt).tobytes())
+        h.update(np.ascontiguousarray(record.acceleration, dtype="<f8").tobytes())
+        digest = _DIGESTS[record] = h.hexdigest()
+    return digest
 
 
 def motion_of(case: Case) -> GroundMotion:

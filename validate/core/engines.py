@@ -11,7 +11,7 @@ loads a physics engine.
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass, fields, replace
+from dataclasses import dataclass, field, fields, replace
 
 from typing import TYPE_CHECKING
 
@@ -166,6 +166,8 @@ class EngineChoice:
     engine: str
     overrides: tuple[tuple[str, object], ...] = ()
     preset: str = ""
+    #: the key the user wrote it under (a campaign file's engines[i]), for messages alone
+    where: str = field(default="", compare=False, hash=False)
 
     @property
     def name(self) -> str:

@@ -10,7 +10,7 @@ or a scheduler's), and reports each result as it arrives.
   are summary rows (core.summary). `run_cases` runs in-memory cases into a table.
 - A chunk's id is a hash of the engine, its settings and its cases' inputs, so it depends
   on what is computed and on nothing else (not on workers, order or time): campaigns
-  store each finished chunk under it (campaign.execute) and never redo one.
+  store each finished chunk under it (campaign.parts) and never redo one.
 - Rows are independent of how they were computed: the kernel and the engines are
   deterministic, so serial, local-cluster and remote-cluster tables are identical except
   `runtime_s`.
@@ -63,7 +63,16 @@ def chunk_id(setting: EngineChoice, cases, overturn_rule: str | None = None) -> 
         head.append(["preset", setting.preset])
     if overturn_rule is not None:
         head.append(["overturn_rule", overturn_rule])
-    body = json.dumps([*head, [case_inputs(c) for c in cases]], sort_keys=True, default=str)
+    # a record's content joins its case's inputs (a pulse's inputs define it whole, so its
+    # ids stay as they were)
+    from .cases import record_digest
+    inputs = []
+    for c in cases:
+        row, digest = case_inputs(c), record_digest(c)
+        if digest is not None:
+            row["record_sha256"] = digest
+        inputs.append(row)
+    body = json.dumps([*head, inputs], sort_keys=True, default=str)
     return hashlib.sha256(body.encode()).hexdigest()[:20]
 
 

@@ -190,8 +190,15 @@ def limit(name: str) -> float:
 SAME_MODEL = {"analytic-fast": "analytic", "analytic-reference": "analytic"}
 
 
+def judged_as(engine: str) -> str:
+    """The table's row for an engine label: a preset (ENGINE:PRESET) is the engine's
+    settings changed, judged by the engine's limits; a same model by its model's."""
+    engine = engine.partition(":")[0]
+    return SAME_MODEL.get(engine, engine)
+
+
 def tolerance(engine: str, metric: str) -> Tolerance:
-    engine = SAME_MODEL.get(engine, engine)
+    engine = judged_as(engine)
     try:
         return TOLERANCES[(engine, metric)]
     except KeyError:
@@ -201,7 +208,7 @@ def tolerance(engine: str, metric: str) -> Tolerance:
 
 
 def has_tolerance(engine: str, metric: str) -> bool:
-    return (SAME_MODEL.get(engine, engine), metric) in TOLERANCES
+    return (judged_as(engine), metric) in TOLERANCES
 
 
 @dataclass(frozen=True)

@@ -174,10 +174,13 @@ class FileOutput:
     """One output file of a command: stage it with write_text/write(callable), then the
     command's Outputs commits it."""
 
-    def __init__(self, field: str, path: str):
+    def __init__(self, field: str, path: str, exclusive: bool = False):
         self.field, self.given = field, path
         self.staged: str | None = None
         self._created: list[Path] = []
+        #: a new file only: refused if it exists now, and created exclusively at commit,
+        #: so a file that appears there meanwhile (another run's, a user's) is kept
+        self.exclusive = exclusive
         if path is None or str(path) == "":
             _refuse(field, path, "must be a file path, or - for standard output")
         path = str(path)
@@ -185,6 +188,8 @@ class FileOutput:
             self.kind, self.target, self.identity = "stdout", None, ("stdout",)
             return
         p = Path(path)
+        if exclusive and os.path.lexists(p):
+            _refuse(field, path, "exists; give a new file (isorock does not replace files it did not write)")
         if os.path.lexists(p):
             try:
                 st = os.stat(p)
@@ -244,6 +249,12 @@ class FileOutput:
         try:
             if self.kind == "file":
                 os.chmod(self.staged, self._mode if self._mode is not None else _file_mode())
+                if self.exclusive:  # claim the name first: O_EXCL fails if anything holds it
+                    try:
+                        os.close(os.open(self.target, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o600))
+                    except FileExistsError:
+                        _refuse(self.field, self.given, "was created by something else while this command ran; "
+                                                        "not replacing it (nothing written)")
                 os.replace(self.staged, self.target)
                 self.staged = None
                 self._created = []
@@ -418,8 +429,8 @@ class Outputs:
     def __init__(self):
         self.targets: list[FileOutput | FolderOutput] = []
 
-    def file(self, field: str, path) -> FileOutput:
-        return self._add(FileOutput(field, path))
+    def file(self, field: str, path, *, exclusive: bool = False) -> FileOutput:
+        return self._add(FileOutput(field, path, exclusive))
 
     def folder(self, field: str, path) -> FolderOutput:
         return self._add(FolderOutput(field, path))
@@ -436,7 +447,9 @@ class Outputs:
         # streams first: a full device or a closed pipe fails before any file is replaced
         with _signals_held():
             try:
-                for t in sorted(self.targets, key=lambda t: getattr(t, "kind", None) not in ("stdout", "stream")):
+                # exclusive files next: the one commit that may be refused, before anything is replaced
+                for t in sorted(self.targets, key=lambda t: (getattr(t, "kind", None) not in ("stdout", "stream"),
+                                                             not getattr(t, "exclusive", False))):
                     t.commit()
             except BaseException:
                 self.discard()

@@ -1,0 +1,53 @@
+"""A campaign's work is bounded when its file is read (issue 24, items 8-9): the
+bounds of analytic/limits.py that `run` applies (duration, steps, isolator periods)
+name the key the user wrote, and the grid's size is the product of its lengths,
+known before any grid is built."""
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from isorock.analytic.errors import InputError
+from isorock.campaign import load_spec
+from isorock.campaign.spec import MAX_RUNS
+
+from test_campaign import write_spec
+
+MUJOCO_FINE = '\n[[engines]]\nname = "mujoco"\nsettings = [{timestep = 1e-12}]\n'
+
+
+@pytest.mark.parametrize("edit, key, bound", [
+    (lambda s: s.replace("tail = 1.0", "end = 1e9"), "duration.end", "MAX_DURATION"),
+    (lambda s: s.replace("tail = 1.0", "tail = 3600"), "duration.tail", "MAX_DURATION"),
+    (lambda s: s.replace("period = 1.5", "period = 1e-9"), "systems.period", "MAX_ISOLATOR_CYCLES"),
+    (lambda s: s.replace('name = "analytic"', 'name = "analytic"\nsettings = [{max_step = 1e-12}]'),
+     "engines[0].settings[0]", "MAX_STEPS"),
+    (lambda s: s + MUJOCO_FINE, "engines[1].settings[0]", "MAX_STEPS"),
+])
+def test_unbounded_work_is_refused_when_the_file_is_read(tmp_path, edit, key, bound):
+    spec = write_spec(tmp_path, more="")
+    spec.write_text(edit(spec.read_text()))
+    with pytest.raises(InputError) as e:
+        load_spec(spec)
+    assert key in str(e.value) and bound in str(e.value), str(e.value)
+
+
+@pytest.mark.parametrize("edits", [
+    {"size = 1.0": "size = {from = 0.5, to = 2, num = 1000000}",
+     "mass = 1000.0": "mass = {from = 10, to = 2000, num = 1000000}"},
+    {"size = 1.0": "size = {from = 0.5, to = 2, num = 1000}", "period = 1.5": "period = {from = 1, to = 3, num = 1000}",
+     "mass_ratio = 1.0": "mass_ratio = {from = 0.1, to = 3, num = 1000}"},
+])
+def test_a_huge_grid_is_refused_from_its_lengths_before_it_is_built(tmp_path, edits):
+    spec = write_spec(tmp_path, more="")
+    text = spec.read_text()
+    for old, new in edits.items():
+        text = text.replace(old, new)
+    spec.write_text(text)
+    # in a child process, bounded: the grid built first took minutes or a MemoryError
+    code = ("import sys\nfrom isorock.campaign import load_spec\nfrom isorock.analytic.errors import InputError\n"
+            f"try:\n    load_spec({str(spec)!r})\nexcept InputError as e:\n    print(e)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0 and "campaign size" in out.stdout and str(MAX_RUNS) in out.stdout, out

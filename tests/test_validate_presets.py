@@ -1,0 +1,39 @@
+"""A preset is judged by its engine's tolerances, and a bad engine list is refused
+before any run (issue 24, item 4)."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from isorock.analytic.errors import InputError
+from isorock.validate.cli.main import main
+from isorock.validate.core.tolerances import TOLERANCES, tolerance
+
+from test_validate import TINY
+
+
+def test_a_preset_has_its_engines_tolerances():
+    for (engine, metric), tol in TOLERANCES.items():
+        for preset in ("fast", "fine", "anything"):
+            assert tolerance(f"{engine}:{preset}", metric) is tol
+
+
+def test_validate_with_a_preset_writes_its_report_judged_by_the_engines_limits(tmp_path, capsys):
+    out = tmp_path / "rep"
+    rc = main(TINY + ["--engines", "analytic", "mujoco:fast", "--workers", "1", "--out", str(out)])
+    err = capsys.readouterr().err
+    assert rc in (0, 1), err
+    m = json.loads((out / "metrics.json").read_text())
+    checks = [c for c in m["checks"] if c["engine"] == "mujoco:fast" and c["status"] in ("pass", "fail")]
+    assert checks
+    for c in checks:
+        assert c["limit"] == tolerance("mujoco", c["metric"]).limit
+
+
+def test_an_engine_list_with_an_unknown_preset_is_refused_before_any_run(tmp_path, capsys):
+    out = tmp_path / "rep"
+    assert main(TINY + ["--engines", "analytic", "mujoco:finest", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "finest" in err
+    assert not out.exists()

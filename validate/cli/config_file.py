@@ -1,0 +1,195 @@
+"""`isorock validate --config FILE.toml`: the file's schema, checked in full before any run.
+
+A pydantic model (strict types: a TOML `true` is not the number 1, "no" is not a
+boolean, a string is not a list of its characters, an empty list is not "the
+defaults", an unknown key is not ignored). Every error is one InputError line naming
+the key as the user wrote it, the value, and what is allowed:
+
+    config key system.height = true: must be a number (a boolean is not a number)
+
+`read_config(path)` returns the keys the file gives (a dict; absent keys absent), as
+`isorock validate` reads them.
+"""
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import fields
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, ValidationError, field_validator
+
+from isorock.analytic.errors import InputError
+
+#: ξ of an isolator this command runs: below 1 (underdamped), as `isorock sweep` takes
+#: it; ξ = 1e6 made the report's search for the uplift scale run for ever (issue 24)
+MAX_DAMPING_RATIO = 1.0
+
+
+def _number(v, *, positive: bool = True):
+    """A TOML number (integer or float) as a finite float; booleans, strings and
+    integers too large for a float are refused, each with its reason."""
+    if isinstance(v, bool):
+        raise ValueError("must be a number (a boolean is not a number)")
+    if isinstance(v, str):
+        raise ValueError("must be a number, not a string (write 10, not \"10\")")
+    if not isinstance(v, (int, float)):
+        raise ValueError("must be a number")
+    try:
+        x = float(v)
+    except OverflowError:
+        raise ValueError("must be a finite number (this integer is beyond a float's range)") from None
+    if not math.isfinite(x):
+        raise ValueError("must be a finite number")
+    if positive and x <= 0:
+        raise ValueError("must be a positive number")
+    if not positive and x < 0:
+        raise ValueError("must be zero or a positive number")
+    return x
+
+
+Positive = Annotated[float, BeforeValidator(_number)]
+NonNegative = Annotated[float, BeforeValidator(lambda v: _number(v, positive=False))]
+
+
+def _strings(v):
+    if isinstance(v, str):
+        raise ValueError("must be a list of strings, e.g. [\"a\", \"b\"] (a string alone would be read as its "
+                         "characters)")
+    if not isinstance(v, list):
+        raise ValueError("must be a list of strings")
+    if not v:
+        raise ValueError("must list one or more (an empty list is not the defaults: leave the key out for them)")
+    for item in v:
+        if not isinstance(item, str) or not item.strip():
+            raise ValueError(f"must be a list of non-empty strings ({item!r} is not one)")
+    return v
+
+
+Strings = Annotated[list[str], BeforeValidator(_strings)]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True, frozen=True)
+
+
+class SystemTable(_Strict):
+    height: Positive | None = None
+    width: Positive | None = None
+    mass: Positive | None = None
+    base_mass: Positive | None = None
+    period: Positive | None = None
+    damping_ratio: NonNegative | None = None
+    stiffness: Positive | None = None
+    dashpot: NonNegative | None = None
+    fixed_base: StrictBool | None = None
+
+    @field_validator("damping_ratio")
+    @classmethod
+    def _underdamped(cls, v):
+        if v is not None and v >= MAX_DAMPING_RATIO:
+            raise ValueError(f"must be below {MAX_DAMPING_RATIO:g} (an underdamped isolator)")
+        return v
+
+
+class ConfigFile(_Strict):
+    system: SystemTable | None = None
+    engines: Strings | None = None
+    motions: Strings | None = None
+    settings: dict[str, dict[str, object]] | None = None
+    units: Literal["m/s2", "g", "gal", "cm/s2"] | None = None
+    format: Literal["at2", "jma", "csv"] | None = None
+    quick: StrictBool | None = None
+    duration: Positive | None = None
+
+    @field_validator("settings")
+    @classmethod
+    def _known_settings(cls, tables):
+        from isorock.validate.core.engines import ALL_ENGINES, get_engine
+        every = set()
+        per_engine = {}
+        for name in ALL_ENGINES:
+            try:
+                per_engine[name] = {f.name for f in fields(get_engine(name).Settings)}
+            except ImportError:  # an engine not installed here: its table is checked where it is
+                per_engine[name] = None
+            every |= per_engine[name] or set()
+        for table, values in tables.items():
+            base = table.partition(":")[0]
+            if table != "*" and base not in per_engine:
+                raise ValueError(f"[settings.{table}]: not an engine (allowed: *, {', '.join(ALL_ENGINES)}, "
+                                 "or ENGINE:PRESET)")
+            known = every if table == "*" else per_engine[base]
+            for key, value in values.items():
+                if known is not None and key not in known:
+                    raise ValueError(f"[settings.{table}] {key}: not a setting of {table} (allowed: "
+                                     f"{', '.join(sorted(known))})")
+                if isinstance(value, bool) and key not in _BOOLEAN_SETTINGS:
+                    raise ValueError(f"[settings.{table}] {key} = {value!r}: must be a number or a word, "
+                                     "not a boolean")
+        return tables
+
+
+#: engine settings that are booleans (none today: every setting is a number, a word or a list)
+_BOOLEAN_SETTINGS: frozenset[str] = frozenset()
+
+
+def _where(loc) -> str:
+    return ".".join(str(p) for p in loc)
+
+
+def describe(e: ValidationError, prefix: str = "config key") -> InputError:
+    """The first error of a pydantic ValidationError as the project's one line."""
+    err = e.errors(include_url=False)[0]
+    key, value, kind = _where(err["loc"]), err.get("input"), err["type"]
+    msg = err["msg"].removeprefix("Value error, ")
+    if kind == "extra_forbidden":
+        return InputError(f"{prefix} {key}: not known")
+    if kind == "missing":
+        return InputError(f"{prefix} {key}: missing")
+    if kind in ("dict_type", "model_type"):
+        return InputError(f"{prefix} {key} = {value!r}: must be a table")
+    if kind == "literal_error":
+        return InputError(f"{prefix} {key} = {value!r}: {msg.replace('Input should be', 'must be')}")
+    if kind == "bool_type":
+        return InputError(f"{prefix} {key} = {value!r}: must be true or false")
+    if key.startswith("settings") and msg.startswith("[settings."):
+        return InputError(f"config {msg}")
+    return InputError(f"{prefix} {key} = {value!r}: {msg}")
+
+
+def parse_text(data: bytes, path: str) -> dict:
+    """The file's bytes as a TOML table: UTF-8 (a byte-order mark allowed), or an error line."""
+    try:
+        text = data.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise InputError(f"config = {path!r}: not UTF-8 text (byte {e.start}: {data[e.start:e.start + 1]!r})") from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise InputError(f"config = {path!r}: not valid TOML ({e})") from None
+
+
+def read_config(path) -> dict:
+    """The validated keys of a --config file (only those it gives)."""
+    try:
+        with open(path, "rb") as f:
+            data = f.read()
+    except OSError as e:
+        raise InputError(f"config = {str(path)!r}: cannot be read ({e.strerror or e})") from None
+    raw = parse_text(data, str(path))
+    try:
+        model = ConfigFile.model_validate(raw)
+    except ValidationError as e:
+        raise describe(e) from None
+    out = model.model_dump(exclude_unset=True)
+    if "system" in out:
+        out["system"] = {k: v for k, v in out["system"].items()}
+    return out
+
+
+def check_damping_ratio(system) -> None:
+    """An isolator the report can run: ξ below MAX_DAMPING_RATIO, whichever way it was given."""
+    if system is not None and not system.fixed_base and not system.damping_ratio < MAX_DAMPING_RATIO:
+        raise InputError(f"damping-ratio = {system.damping_ratio:.6g}: must be below {MAX_DAMPING_RATIO:g} "
+                         "(an underdamped isolator)")
