@@ -47,8 +47,8 @@ Public entry points:
   "analytic-fast", a name that still works);
 - `simulate_batch(systems, motions, ...) -> list[dict]`, summaries over many cases
   on all cores (threads over the GIL-free kernel; prange and processes on request);
-- `benchmark_against_solve_ivp(...) -> dict`, the kernel against the reference,
-  timed in one process.
+- `compare_on_grid(a, b)`, the largest |Δθ| of two histories on their shared output grid.
+(`isorock bench` times the kernel against the reference: validate/tools/bench.py.)
 
 The kernel is compiled on first use (said on stderr, with how long it took) and cached on
 disk (analytic/kernel_cache.py: stamped with physics.py too, a writable folder found for
@@ -1495,61 +1495,3 @@ def compare_on_grid(a: Trajectory, b: Trajectory, dt: float = 0.005) -> float:
     if common.size == 0:
         return math.nan
     return float(np.max(np.abs(xa[ia] - xb[ib])))
-
-
-def benchmark_against_solve_ivp(system: System, motion: GroundMotion, *,
-                                duration: float = 40.0, repeats: int = 21, reference_repeats: int = 3,
-                                settings: AnalyticSettings | None = None) -> dict:
-    """Time the compiled kernel and the reference (`analytic.hybrid.simulate`: SciPy
-    solve_ivp, DOP853 with events, the same rtol/atol/max_step) on one case, side by
-    side in this process, on one core (`isorock bench` passes its Kobe scenario).
-
-    Returns a dict of seconds (medians after a warm-up call): fast_s (the public
-    wrapper, Trajectory included), kernel_s (the compiled integration alone),
-    reference_s, ratio = reference_s / fast_s, kernel_ratio, first_call_s (this
-    process's first call: compilation or loading the cache), max_abs_dtheta (rad, over
-    the common output grid) and both runs' θmax/α and impact counts.
-    """
-    from .hybrid import simulate
-    require(isinstance(system, System), "system", system, "a System")
-    settings = _check_settings(settings)
-    require(isinstance(repeats, int) and repeats >= 1, "repeats", repeats, "a positive integer")
-    require(isinstance(reference_repeats, int) and reference_repeats >= 1, "reference_repeats",
-            reference_repeats, "a positive integer")
-    a = time.perf_counter()
-    fast = simulate_fast(system, motion, settings=settings, duration=duration)
-    first = time.perf_counter() - a
-    fast_t = []
-    for _ in range(repeats):
-        a = time.perf_counter()
-        fast = simulate_fast(system, motion, settings=settings, duration=duration)
-        fast_t.append(time.perf_counter() - a)
-    sp = _system_params(system, settings)
-    mp, acc = _motion_params(motion or GroundMotion.zero())
-    brk = _breaks(motion or GroundMotion.zero(), duration)
-    y0 = np.zeros(6)
-    cap = int(2.5 * duration / settings.output_dt) + 256
-    kern_t = []
-    for _ in range(repeats):
-        a = time.perf_counter()
-        _call_integrate(sp, mp, acc, brk, duration, y0, settings.rtol, settings.atol, settings.max_step,
-                        settings.max_events, settings.output_dt, True, cap, DEFAULT_IMPACT_THRESHOLD,
-                        settings.overturn == physics.AT_ALPHA, (motion or GroundMotion.zero()).end_time)
-        kern_t.append(time.perf_counter() - a)
-    ref_t = []
-    for _ in range(reference_repeats):
-        a = time.perf_counter()
-        ref = simulate(system, motion, settings=settings, duration=duration)
-        ref_t.append(time.perf_counter() - a)
-    fast_s, kernel_s, ref_s = (float(np.median(x)) for x in (fast_t, kern_t, ref_t))
-    return {
-        "case": f"{motion.name if motion else 'none'}, duration {duration:g} s",
-        "repeats": repeats, "reference_repeats": reference_repeats,
-        "first_call_s": first, "fast_s": fast_s, "fast_min_s": float(min(fast_t)),
-        "kernel_s": kernel_s, "reference_s": ref_s,
-        "ratio": ref_s / fast_s, "kernel_ratio": ref_s / kernel_s,
-        "max_abs_dtheta": compare_on_grid(fast, ref, settings.output_dt),
-        "theta_max_over_alpha": fast.theta_max_over_alpha,
-        "reference_theta_max_over_alpha": ref.theta_max_over_alpha,
-        "impacts": fast.impact_count, "reference_impacts": ref.impact_count,
-    }

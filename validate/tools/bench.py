@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from isorock.analytic.errors import InputError
 from isorock.analytic.hybrid import AnalyticSettings
 from isorock.analytic.hybrid import simulate as reference_simulate
 from isorock.validate.core.scenarios import KOBE, Scenario, bench_scenarios
@@ -115,13 +116,49 @@ def _fast_available() -> bool:
 
 def speed_ratio(quick: bool) -> dict | None:
     """The compiled kernel against solve_ivp (DOP853 with events) at the same tolerance,
-    side by side in this run, on the Kobe scenario (the kernel module owns the measurement)."""
-    from isorock.analytic.fast import benchmark_against_solve_ivp
+    side by side in this run, on the Kobe scenario."""
     kobe = next((sc for sc in bench_scenarios(quick) if sc.name == "kobe-40s"), None)
     if kobe is None:
         return None
-    return benchmark_against_solve_ivp(kobe.system, kobe.ground_motion(), duration=kobe.duration,
-                                       repeats=5 if quick else 20)
+    return against_solve_ivp(kobe.system, kobe.ground_motion(), duration=kobe.duration, repeats=5 if quick else 20)
+
+
+def against_solve_ivp(system, motion, *, duration: float = 40.0, repeats: int = 21, reference_repeats: int = 3,
+                      settings=None) -> dict:
+    """Time the compiled engine (`analytic.fast.simulate_fast`) and the reference
+    (`analytic.hybrid.simulate`: SciPy solve_ivp, DOP853 with events, the same rtol/atol/
+    max_step) on one case, side by side in this process, on one core.
+
+    Returns a dict of seconds (medians after a warm-up call): fast_s (the whole run,
+    Trajectory included), reference_s, ratio = reference_s / fast_s, first_call_s (this
+    process's first call: loading the compiled kernel), max_abs_dtheta (rad, over the
+    common output grid) and both runs' θmax/α and impact counts."""
+    from isorock.analytic.fast import compare_on_grid, simulate_fast
+    settings = settings or AnalyticSettings()
+    if not (isinstance(repeats, int) and repeats >= 1 and isinstance(reference_repeats, int) and reference_repeats >= 1):
+        raise InputError(f"repeats = {(repeats, reference_repeats)!r}: must be positive whole numbers")
+
+    def timed(run, n):
+        out, seconds = None, []
+        for _ in range(n):
+            start = time.perf_counter()
+            out = run()
+            seconds.append(time.perf_counter() - start)
+        return out, seconds
+    _, first = timed(lambda: simulate_fast(system, motion, settings=settings, duration=duration), 1)
+    fast, fast_t = timed(lambda: simulate_fast(system, motion, settings=settings, duration=duration), repeats)
+    ref, ref_t = timed(lambda: reference_simulate(system, motion, settings=settings, duration=duration),
+                       reference_repeats)
+    fast_s, ref_s = statistics.median(fast_t), statistics.median(ref_t)
+    return {
+        "case": f"{motion.name if motion else 'none'}, duration {duration:g} s",
+        "repeats": repeats, "reference_repeats": reference_repeats,
+        "first_call_s": first[0], "fast_s": fast_s, "fast_min_s": min(fast_t), "reference_s": ref_s,
+        "ratio": ref_s / fast_s, "max_abs_dtheta": compare_on_grid(fast, ref, settings.output_dt),
+        "theta_max_over_alpha": fast.theta_max_over_alpha,
+        "reference_theta_max_over_alpha": ref.theta_max_over_alpha,
+        "impacts": fast.impact_count, "reference_impacts": ref.impact_count,
+    }
 
 
 def fastest(rows, engine, level) -> dict | None:
