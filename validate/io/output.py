@@ -168,6 +168,15 @@ def _make_parents(folders: list[Path], created: list[Path]) -> None:
             created.append(d)
 
 
+def _remove_folders(created: list[Path]) -> None:
+    """Remove the folders a discarded output made, innermost first (left where not empty)."""
+    for d in reversed(created):
+        try:
+            d.rmdir()
+        except OSError:
+            pass
+
+
 # --- targets ------------------------------------------------------------------------------
 
 class FileOutput:
@@ -278,11 +287,7 @@ class FileOutput:
             except FileNotFoundError:
                 pass
             self.staged = None
-        for d in reversed(self._created):
-            try:
-                d.rmdir()
-            except OSError:
-                pass
+        _remove_folders(self._created)
         self._created = []
 
 
@@ -391,11 +396,7 @@ class FolderOutput:
         if self._staging is not None:
             shutil.rmtree(self._staging, ignore_errors=True)
             self._staging = None
-        for d in reversed(self._created):
-            try:
-                d.rmdir()
-            except OSError:
-                pass
+        _remove_folders(self._created)
         self._created = []
 
 
