@@ -161,7 +161,8 @@ def _run_batch(task: Task, threads) -> list[dict]:
     for case, r in zip(cases, out):
         overturned = bool(r["overturned"])
         rows.append({**_case_inputs(case), "engine": task.setting.engine, "setting": task.setting.label,
-                     "status": str(r["status"]), "message": "",
+                     # a failed case says why (the kernel's message); others need no words
+                     "status": str(r["status"]), "message": str(r.get("message", "")),
                      "theta_max_over_alpha": float(r["theta_max_over_alpha"]), "overturned": overturned,
                      # a batch run stops when the block falls, so its impacts all precede it
                      "overturn_mode": _overturn_mode(overturned, int(r["impacts"])),
