@@ -56,6 +56,9 @@ def _client_for(client, workers, scheduler):
         return client, False
     if scheduler:
         from dask.distributed import Client
+
+        from .execute import check_scheduler
+        check_scheduler(scheduler)
         try:
             return Client(scheduler, timeout="10s"), True
         except (OSError, TimeoutError) as e:
