@@ -28,6 +28,7 @@ from pathlib import Path
 
 import numpy as np
 
+from isorock.analytic import limits
 from isorock.analytic.limits import available_cores
 
 from .spec import Case, EngineSetting
@@ -184,7 +185,7 @@ def _run_contact(task: Task, threads: int | None) -> list[dict]:
     start = time.perf_counter()
     results = engine.simulate_many([(c.system, motion_of(c), c.duration, c.theta0) for c in task.cases],
                                    settings=task.setting.settings(), overturn_rule=task.overturn_rule,
-                                   effective_beta=False,
+                                   effective_beta=False, budget_s=limits.RUN_BUDGET_S,
                                    threads=available_cores() if threads is None else threads)
     # runs overlap in threads, so a run's own wall time says little: each row gets the
     # chunk's time shared equally, as an analytic chunk's rows do

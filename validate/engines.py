@@ -92,7 +92,7 @@ class Engine:
 
     def simulate(self, system, motion=None, *, settings=None, duration=None, theta0=0.0,
                  impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule=None,
-                 progress=None, effective_beta: bool = True) -> Trajectory:
+                 progress=None, effective_beta: bool = True, budget_s: float | None = None) -> Trajectory:
         """Run the engine and measure its history: θ0 in rad; impact_threshold as a
         fraction of α (model.md's counting rule); contact_window (s) is how a contact
         engine's history is measured (validate.measure); overturn_rule ("past-alpha" or
@@ -108,6 +108,9 @@ class Engine:
         from isorock.validate import measure
         if settings is None:
             settings = self.settings()
+        if budget_s is not None:  # a wall-clock budget (analytic/limits.py): the run stops past it
+            from isorock.analytic.limits import RunBudget
+            progress = RunBudget(budget_s, progress)
         if overturn_rule is not None and hasattr(settings, "overturn"):
             settings = replace(settings, overturn=overturn_rule)
         kwargs = dict(settings=settings, duration=duration, theta0=theta0, progress=progress)
@@ -122,7 +125,7 @@ class Engine:
         return out
 
     def simulate_many(self, runs, *, settings=None, overturn_rule=None, effective_beta: bool = True,
-                      threads: int = 1) -> list:
+                      threads: int = 1, budget_s: float | None = None) -> list:
         """`simulate` of each (system, motion, duration, theta0) in `runs`: per run its
         Trajectory, or the exception it raised. An engine with a batch path
         (EngineSpec.simulate_many: MuJoCo's, `threads` runs at a time) runs them
@@ -136,7 +139,8 @@ class Engine:
             for system, motion, duration, theta0 in runs:
                 try:
                     out.append(self.simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
-                                             overturn_rule=overturn_rule, effective_beta=effective_beta))
+                                             overturn_rule=overturn_rule, effective_beta=effective_beta,
+                                             budget_s=budget_s))
                 except Exception as e:  # noqa: BLE001 — one bad case is that case's result
                     out.append(e)
             return out

@@ -53,8 +53,9 @@ def run_task(task: Task, threads: int | None = None):
     (campaign.execute) and means nothing to one run."""
     try:
         engine, settings = resolve(task.engine, task.overrides)
+        from isorock.analytic.limits import RUN_BUDGET_S
         traj = engine.simulate(task.system, task.motion, settings=settings, duration=task.duration,
-                               theta0=task.theta0, overturn_rule=task.overturn_rule)
+                               theta0=task.theta0, overturn_rule=task.overturn_rule, budget_s=RUN_BUDGET_S)
         return task.key, traj, None
     except InputError:
         raise
