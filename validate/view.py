@@ -97,7 +97,7 @@ def _check(a) -> None:
     for name in ("fps", "speed"):
         value = getattr(a, name)
         if not (value > 0 and value < 1e4):
-            raise InputError(f"{name} = {value!r}: must be a positive number")
+            raise InputError(f"{name} = {value!r}: must be a positive number below 10000")
     if a.out is not None and Path(a.out).suffix.lower() != ".gif":
         raise InputError(f"out = {a.out!r}: must end in .gif")
     if not abs(a.theta0_over_alpha) < 1:
@@ -136,6 +136,8 @@ def run(a) -> int:
         return replay_in_viewer(traj, speed=a.speed)
     try:
         write_gif(traj, out, fps=a.fps, speed=a.speed, size=size, title=label)
+    except InputError:
+        raise  # bad input (too many frames) is one line and exit 2, not a rendering failure
     except Exception as e:  # noqa: BLE001 — MuJoCo's GL errors have no common type
         print(f"isorock view: offscreen rendering failed with MUJOCO_GL={os.environ.get('MUJOCO_GL')}: "
               f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}", file=sys.stderr)
@@ -168,8 +170,17 @@ def frame_qpos(model, layout, system, u: float, theta: float):
     return qpos
 
 
+#: most frames one GIF or replay may have (a 40 s run at 20 fps is 800): `--speed 1e-6`
+#: asked for 8e8 and ran out of memory after 27 s
+MAX_FRAMES = 20_000
+
+
 def frames(traj, dt: float):
-    """(t, u, θ) at t = 0, dt, 2dt, … of the run."""
+    """(t, u, θ) at t = 0, dt, 2dt, … of the run (at most MAX_FRAMES)."""
+    n = (float(traj.t[-1]) if traj.t.size else 0.0) / dt
+    if n > MAX_FRAMES:
+        raise InputError(f"speed = the run's {traj.t[-1]:.3g} s at {dt:.3g} s of run per frame make {n:.3g} frames; "
+                         f"must be at most {MAX_FRAMES} (MAX_FRAMES): a larger --speed or a smaller --fps")
     r = traj.resample(dt)
     return list(zip(r.t.tolist(), r.u.tolist(), r.theta.tolist()))
 
