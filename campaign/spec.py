@@ -137,7 +137,15 @@ class EngineSetting:
         if not self.preset:
             return engine.settings(**self.settings_kwargs)
         from dataclasses import replace
-        return replace(engine.preset(self.preset), **self.settings_kwargs)
+        preset = engine.preset(self.preset)
+        try:
+            return replace(preset, **self.settings_kwargs)
+        except InputError as e:
+            # a setting the user did not give (the preset's solref, made for its own step)
+            # must not be blamed alone: say which of theirs made it unfit
+            given = ", ".join(f"{k} = {v!r}" for k, v in self.settings_kwargs.items())
+            raise InputError(f"{given} on preset {self.engine}:{self.preset}: the preset's other settings do not fit "
+                             f"it ({e}); give them too, or leave out the preset") from None
 
 
 @dataclass(frozen=True)
