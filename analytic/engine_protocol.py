@@ -110,7 +110,7 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     θ0 (rad) must be a finite tilt below α; the counting threshold in [0, 1). The work
     bounds of analytic.limits: the duration, the isolator periods it spans and, when the
     engine's `settings` are given, the steps they imply."""
-    from .errors import require, require_positive_finite
+    from .errors import InputError, require, require_positive_finite
     from .limits import check_duration, check_isolator, check_settings
     from .motion import GroundMotion
     from .system import System
@@ -130,6 +130,12 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     if system.fixed_base:
         require(u0 == 0 and u_dot0 == 0, "u0/u_dot0", (u0, u_dot0), "zero on a fixed base")
     require(0 <= impact_threshold < 1, "impact_threshold", impact_threshold, "in [0, 1)")
+    # a stepping engine samples the ground motion once per (control) step: a pulse that
+    # ends within two of them is lost, or reduced to one sample, without a word
+    step = getattr(settings, "control_step", None) or getattr(settings, "timestep", None)
+    if step and motion.pulse is not None and not motion.is_zero and motion.end_time < 2 * step:
+        raise InputError(f"motion = {motion.name or 'pulse'}: lasts {motion.end_time:.3g} s, less than two of this "
+                         f"engine's steps ({step:g} s): it would be lost; a longer pulse or a shorter --timestep")
     return motion, duration
 
 

@@ -239,14 +239,43 @@ def _module_name(dispatcher) -> str:
     return f"isorock_{dispatcher.__name__.strip('_')}_{_stamp(dispatcher)}"
 
 
-def _find_module(name: str) -> str | None:
+def _find_modules(name: str) -> list[str]:
+    """Every cached copy of `name`'s module, most preferred folder first."""
     import importlib.machinery
-    for folder in cache_dirs():
-        for suffix in importlib.machinery.EXTENSION_SUFFIXES:
-            path = os.path.join(folder, name + suffix)
-            if os.path.isfile(path):
-                return path
-    return None
+    return [path for folder in cache_dirs() for suffix in importlib.machinery.EXTENSION_SUFFIXES
+            if os.path.isfile(path := os.path.join(folder, name + suffix))]
+
+
+def _find_module(name: str) -> str | None:
+    found = _find_modules(name)
+    return found[0] if found else None
+
+
+def clear_leftovers(folder: str) -> None:
+    """Remove the `.build-PID-*` folders of builds whose process is gone (killed midway):
+    each held half a build (C sources, objects) that nothing else would remove."""
+    try:
+        entries = os.listdir(folder)
+    except OSError:
+        return
+    for entry in entries:
+        if not entry.startswith(".build-"):
+            continue
+        pid = entry.split("-")[1] if entry.count("-") >= 2 else ""
+        if pid.isdigit() and _alive(int(pid)):
+            continue
+        import shutil
+        shutil.rmtree(os.path.join(folder, entry), ignore_errors=True)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        return True  # another user's process
+    return True
 
 
 def _load_module(name: str, path: str):
@@ -280,7 +309,8 @@ def _build_module(dispatcher, name: str) -> str:
             super().__init__(*args, **kwargs)
             self.release_gil = True
 
-    tmp = tempfile.mkdtemp(prefix=".build-", dir=folder)
+    clear_leftovers(folder)
+    tmp = tempfile.mkdtemp(prefix=f".build-{os.getpid()}-", dir=folder)  # the pid: a killed build's is cleared
     try:
         cc = CC(name)
         cc.output_dir = tmp
@@ -314,19 +344,25 @@ def _aot_function(dispatcher):
     if os.environ.get("ISOROCK_KERNEL", "aot") != "jit":
         try:
             name = _module_name(dispatcher)
-            path = _find_module(name)
-            if path is not None:
+            damaged = []
+            for path in _find_modules(name):  # a damaged copy must not hide a good one further on
                 try:
                     fn = _load_module(name, path).run
-                except (ImportError, OSError) as e:  # a damaged file: rebuilt below
-                    _say(f"the compiled kernel {path} does not load ({type(e).__name__}: {e}); rebuilding it")
+                    break
+                except (ImportError, OSError):
+                    damaged.append(path)
                     try:
                         os.remove(path)
                     except OSError:
-                        pass
-            if fn is None:
-                _say(f"compiling the analytic kernel {dispatcher.__name__} ahead of time (first use, cached in "
-                     f"{writable_cache_dir() or '?'}; about 1-2 minutes)...")
+                        pass  # an unwritable folder: the next copy, or a build elsewhere, serves
+            why = (f"the compiled kernel {damaged[0]}{f' (and {len(damaged) - 1} more)' if len(damaged) > 1 else ''}"
+                   " does not load" if damaged else "")
+            if damaged and fn is not None:  # one line: a good copy further on serves
+                _say(f"{why}; using another cached copy")
+            if fn is None:  # the reason and the build in one line (and its end in another)
+                _say(f"{why + '; ' if why else ''}compiling the analytic kernel {dispatcher.__name__} ahead of "
+                     f"time ({'again' if why else 'first use'}, cached in {writable_cache_dir() or '?'}; "
+                     "about 1-2 minutes)...")
                 start = time.perf_counter()
                 fn = _load_module(name, _build_module(dispatcher, name)).run
                 _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import os
+import time
 
 from .errors import InputError
 
@@ -33,6 +34,35 @@ MAX_ISOLATOR_CYCLES = 100_000
 #: smallest Zeno floor (× p·α): below it the impact sequence is resolved beneath the
 #: reference integrator's tolerance (rtol 1e-10 on θ ~ α) and never reaches the floor
 MIN_REST_VELOCITY = 1e-9
+
+
+#: wall-clock seconds one run may take, in every command: a run past it fails with that
+#: reason (its row or history says so) instead of holding a report or a campaign for
+#: hours (validate with Drake had not finished after 46 minutes, issue 24). The longest
+#: run of the README's examples takes ~40 s (Drake, 20 s of Kobe at 0.27 simulated s per
+#: wall s, docs/drake.md).
+RUN_BUDGET_S = 300.0
+
+
+class BudgetExceeded(RuntimeError):
+    """A run took longer than its wall-clock budget (RUN_BUDGET_S)."""
+
+
+class RunBudget:
+    """An engine's progress callback (t, duration) that stops the run once it has taken
+    `seconds` of wall time since it was made (then `chained`, the caller's own callback).
+    Engines call progress about once a second (kinematics.Throttle), so a run stops within
+    about a second of its budget."""
+
+    def __init__(self, seconds: float, chained=None):
+        self.seconds, self.chained, self.start = seconds, chained, time.monotonic()
+
+    def __call__(self, t: float, duration: float) -> None:
+        if self.chained is not None:
+            self.chained(t, duration)
+        if time.monotonic() - self.start > self.seconds:
+            raise BudgetExceeded(f"stopped at its budget of {self.seconds:g} s wall time (RUN_BUDGET_S) at "
+                                 f"t = {t:.3g} s of {duration:.3g} s simulated")
 
 
 def _fmt(x: float) -> str:

@@ -280,6 +280,8 @@ def _uniform_step(t: np.ndarray, n: int, name: str) -> float:
 def _numbers(tokens, path, lineno):
     out = []
     for tok in tokens:
+        if "_" in tok:  # Python reads 1_000 as 1000; no record format writes digit separators
+            raise InputError(f"{path}:{lineno}: {tok!r} is not a number (digit separators '_' are not read)")
         try:
             x = float(tok.replace("D", "E").replace("d", "e"))
         except ValueError:
@@ -421,6 +423,9 @@ def read_two_column(path, units: str | None = None) -> GroundMotion:
         c = _COMMENT_UNITS.match(line)
         if c and stated is None:
             stated, where = c.group(1), f"line {k}"
+        elif c and units_from_text(c.group(1)) != units_from_text(stated):
+            raise InputError(f"{path}:{k}: states units {c.group(1)!r}, contradicting {where} ({stated!r}); "
+                             "state them once")
         s = line.split("#", 1)[0].strip()
         if not s:
             continue

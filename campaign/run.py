@@ -97,7 +97,10 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     try:
         if out is not None:
             from isorock.validate.io.output import write_text
-            parts_dir.mkdir(parents=True, exist_ok=True)
+            try:
+                parts_dir.mkdir(parents=True, exist_ok=True)
+            except OSError as e:  # a read-only or full file system: one line, not a traceback
+                raise InputError(f"--out = {str(out)!r}: cannot be written ({e.strerror or e})") from None
             write_text(out / MARKER, json.dumps({"tool": "isorock sweep", "campaign": spec.name,
                                                  "fingerprint": spec.fingerprint()}) + "\n")
         # a campaign lasts hours: its log gets a line every 10 s when not on a terminal
@@ -121,5 +124,9 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     made = []
     if products:
         from .products import write_products
-        made = write_products(table, out, spec)
+        try:
+            made = write_products(table, out, spec)
+        except OSError as e:  # a full disk while drawing: the table is whole, the figures are not
+            raise InputError(f"--out = {str(out)!r}: the figures and summary could not be written "
+                             f"({e.strerror or e}); {RESULTS} is complete: rerun with room to write them") from None
     return CampaignResult(table, out, len(tasks), ran, made)

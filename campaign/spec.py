@@ -354,6 +354,8 @@ def _products(t) -> dict:
 
 
 def parse_spec(data: dict, source: Path = Path("campaign.toml")) -> CampaignSpec:
+    from .schema import check_campaign  # types, keys, duplicates, the isolator's base (pydantic)
+    check_campaign(data)
     for k in data:
         if k not in _TOP_KEYS:
             raise InputError(f"{k}: unknown key (a campaign has {', '.join(sorted(_TOP_KEYS))})")
@@ -451,7 +453,7 @@ def load_spec(path) -> CampaignSpec:
     if not path.is_file():
         raise InputError(f"campaign file {str(path)!r}: no such file")
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))  # a byte-order mark is UTF-8 too
     except tomllib.TOMLDecodeError as e:
         raise InputError(f"campaign file {str(path)!r}: not valid TOML ({e})") from None
     except (OSError, UnicodeDecodeError) as e:

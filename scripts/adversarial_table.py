@@ -1,9 +1,9 @@
 """Run every hostile input of tests/adversarial_cases.py as a real `isorock` process and
-print the table for issue 13's closing note: per class, how many cases, how many ended
+print the table for issues 13 and 24's closing notes: per class, how many cases, how many ended
 with exit 2 and one line, how many gave the correct result, how many anything else
 (traceback, hang, wrong result, a file touched outside the command's own outputs).
 
-    python scripts/adversarial_table.py [--jobs 2] [--markdown]
+    python scripts/adversarial_table.py [--jobs 2] [--markdown] [--classes campaign-files,cache]
 
 Each case runs in a fresh temporary folder; the folder it is started from, /dev/null
 and /dev/full are checked unchanged afterwards. Exit code 1 when any case is "other".
@@ -27,11 +27,14 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--jobs", type=int, default=2, help="cases run at once (default 2)")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
+    ap.add_argument("--classes", help="only these classes, comma-separated (default: all)")
+    ap.add_argument("--match", help="only cases whose name contains this")
     a = ap.parse_args()
     here = Path.cwd()
     before = snapshot(here)
     devices = {p: os.stat(p).st_mode for p in ("/dev/null", "/dev/full")}
-    all_cases = cases()
+    all_cases = [c for c in cases() if (not a.classes or c.cls in a.classes.split(","))
+                 and (not a.match or a.match in c.name)]
 
     def one(case):
         with tempfile.TemporaryDirectory(prefix="isorock-adversarial-") as d:
@@ -67,9 +70,9 @@ def main() -> int:
         for ln in lines:
             print("| " + " | ".join(str(x) for x in ln) + " |")
     else:
-        print(f"{'class':12s}" + "".join(f"{c:>16s}" for c in cols))
+        print(f"{'class':16s}" + "".join(f"{c:>16s}" for c in cols))
         for ln in lines:
-            print(f"{ln[0]:12s}" + "".join(f"{x:>16d}" for x in ln[1:]))
+            print(f"{ln[0]:16s}" + "".join(f"{x:>16d}" for x in ln[1:]))
     print(f"\nfiles changed in the starting folder: {len(outside)}; /dev/null and /dev/full still devices: "
           f"{'yes' if devices_ok else 'NO'}")
     for o in others:

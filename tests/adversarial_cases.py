@@ -33,6 +33,7 @@ class Case:
     outputs: tuple[str, ...] = ()               # paths the command may create or change
     check: Callable[[Path, str], bool] | None = None  # (folder, stdout) -> the result is right
     in_process: bool = True                     # False: only as a real process (it uses fd 1)
+    env: dict = field(default_factory=dict)     # environment variables for the process
 
 
 def _files(**contents) -> Callable[[Path], None]:
@@ -253,6 +254,8 @@ def cases() -> list[Case]:
         add(Case("work", " ".join(extra), [*FIXED, *SHORT, *extra]))
     add(Case("work", "isolated, 2 s of a pulse", [*ISOLATED, "--motion", "sine:amp=0.5,freq=2", "--duration", "2"],
              "ok", check=lambda d, out: json.loads(out)["status"] in ("completed", "overturned")))
+    from adversarial_round_two import round_two  # issue 24: campaigns, config files, calibration, cache
+    c += round_two(Case)
     return c
 
 
@@ -307,8 +310,12 @@ class Outcome:
 
 
 def _touched(before: dict, after: dict, allowed) -> list[str]:
+    """Changed paths not among `allowed` (an entry ending in '/' allows that folder and
+    everything under it: a sweep's output folder)."""
     changed = {k for k in before.keys() | after.keys() if before.get(k) != after.get(k)}
-    return sorted(changed - set(allowed))
+    folders = tuple(a for a in allowed if a.endswith("/"))
+    return sorted(k for k in changed - set(allowed)
+                  if not any(k == f[:-1] or k.startswith(f) for f in folders))
 
 
 def run_in_process(case: Case, d: Path) -> Outcome:
@@ -361,7 +368,7 @@ def run_as_process(case: Case, d: Path, python: str) -> Outcome:
     before = snapshot(d)
     try:
         p = subprocess.run([python, "-m", "isorock.validate.cli.main", *case.argv], cwd=d, capture_output=True,
-                           text=True, timeout=TIME_LIMIT)
+                           text=True, timeout=TIME_LIMIT, env={**os.environ, **case.env} if case.env else None)
     except subprocess.TimeoutExpired as e:
         return Outcome(None, "", str(e), _touched(before, snapshot(d), case.outputs), False, True)
     return Outcome(p.returncode, p.stdout, p.stderr, _touched(before, snapshot(d), case.outputs),

@@ -28,3 +28,15 @@ def test_a_file_created_during_the_calibration_is_not_replaced(tmp_path, monkeyp
     out.unlink()
     assert main(["calibrate", "--engine", "mujoco", "--quiet", "--out", str(out)]) == 0
     assert "[settings.mujoco]" in out.read_text()
+
+
+def test_an_empty_out_path_is_refused_before_any_run(monkeypatch, capsys):
+    from isorock.validate.tools import calibrate as module
+
+    def must_not_run(*a, **k):
+        raise AssertionError("calibrated although --out '' is bad input")
+    monkeypatch.setattr(module, "calibrate", must_not_run)
+    for option in ("--out", "--json"):
+        assert main(["calibrate", "--engine", "mujoco", "--quiet", option, ""]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and option.lstrip("-") in err, err

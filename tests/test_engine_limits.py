@@ -43,3 +43,14 @@ def test_run_with_bullet_on_a_featherweight_base_is_one_line_exit_2(tmp_path, ca
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and "mass_ratio" in err and "1000" in err, err
     assert not js.exists()
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "bullet"])
+def test_a_pulse_shorter_than_two_steps_is_refused_not_lost(engine):
+    """A 1e4 Hz one-cycle sine lasts 1e-4 s, less than MuJoCo's 5e-4 s step and
+    PyBullet's 4 ms control step: it was sampled to nothing (issue 24, item 16)."""
+    short = GroundMotion.from_pulse(Pulse("sine", amp=5.0, freq=1e4, cycles=1))
+    with pytest.raises(InputError, match="lasts 0.0001 s"):
+        get_engine(engine).simulate(_system(1.0), short, duration=0.5)
+    # the analytic model integrates the pulse itself: it keeps it
+    get_engine("analytic").simulate(_system(1.0), short, duration=0.5)

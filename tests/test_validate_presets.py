@@ -37,3 +37,12 @@ def test_an_engine_list_with_an_unknown_preset_is_refused_before_any_run(tmp_pat
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "finest" in err
     assert not out.exists()
+
+
+def test_a_setting_that_unfits_a_presets_own_settings_is_blamed_on_what_was_given(capsys):
+    """mujoco:fine's solref follows its 1e-4 s step; --timestep 5e-4 on it blamed that
+    solref alone, which the user never gave (issue 24, item 15)."""
+    rc = main(["run", "--engine", "mujoco:fine", "--timestep", "0.0005", "--height", "2", "--width", "0.7",
+               "--mass", "3800", "--base-mass", "3800", "--fixed-base", "--duration", "0.5", "--quiet"])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and "timestep = 0.0005" in err and "mujoco:fine" in err, err

@@ -74,8 +74,9 @@ def cmd_calibrate(a) -> int:
     system = system_from_options(a) or paper_system(fixed_base=True)
     settings = engine_settings_from_args(engine, a)
     with Outputs() as outputs:  # bad paths are refused before minutes of simulation
-        preset = outputs.file("out", a.out, exclusive=True) if a.out else None
-        report = outputs.file("json", a.json) if a.json else None
+        # `is not None`: an empty path is refused as bad input, not read as "no output" (it ran for minutes)
+        preset = outputs.file("out", a.out, exclusive=True) if a.out is not None else None
+        report = outputs.file("json", a.json) if a.json is not None else None
         bars = []  # made at the first run, when the search's budget of runs is known
 
         def progress(done, total, best):

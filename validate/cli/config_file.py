@@ -26,30 +26,7 @@ from isorock.analytic.errors import InputError
 MAX_DAMPING_RATIO = 1.0
 
 
-def _number(v, *, positive: bool = True):
-    """A TOML number (integer or float) as a finite float; booleans, strings and
-    integers too large for a float are refused, each with its reason."""
-    if isinstance(v, bool):
-        raise ValueError("must be a number (a boolean is not a number)")
-    if isinstance(v, str):
-        raise ValueError("must be a number, not a string (write 10, not \"10\")")
-    if not isinstance(v, (int, float)):
-        raise ValueError("must be a number")
-    try:
-        x = float(v)
-    except OverflowError:
-        raise ValueError("must be a finite number (this integer is beyond a float's range)") from None
-    if not math.isfinite(x):
-        raise ValueError("must be a finite number")
-    if positive and x <= 0:
-        raise ValueError("must be a positive number")
-    if not positive and x < 0:
-        raise ValueError("must be zero or a positive number")
-    return x
-
-
-Positive = Annotated[float, BeforeValidator(_number)]
-NonNegative = Annotated[float, BeforeValidator(lambda v: _number(v, positive=False))]
+from isorock.validate.io.schema import NonNegative, Positive, number as _number  # noqa: F401 (shared)
 
 
 def _strings(v):

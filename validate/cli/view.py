@@ -7,7 +7,7 @@ from isorock.validate.tools import view as tool
 from pathlib import Path
 import os
 import sys
-from isorock.validate.tools.view import DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_BACKENDS, PAPER, _size, has_display, offscreen_backend, replay_in_viewer, write_gif
+from isorock.validate.tools.view import DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_BACKENDS, PAPER, _size, replay_in_viewer, write_gif
 
 
 def add_parser(sub) -> None:
@@ -38,7 +38,7 @@ def _check(a) -> None:
     for name in ("fps", "speed"):
         value = getattr(a, name)
         if not (value > 0 and value < 1e4):
-            raise InputError(f"{name} = {value!r}: must be a positive number")
+            raise InputError(f"{name} = {value!r}: must be a positive number below 10000")
     if a.out is not None and Path(a.out).suffix.lower() != ".gif":
         raise InputError(f"out = {a.out!r}: must end in .gif")
     if not abs(a.theta0_over_alpha) < 1:
@@ -57,12 +57,12 @@ def run(a) -> int:
         raise InputError(f"engine = {a.engine!r}: view replays one engine")
     system = system_from_args(a, default_isolator=(PAPER_PERIOD, PAPER_DAMPING_RATIO))
     motion = motion_from_args(a)
-    interactive = has_display() and a.out is None
+    interactive = tool.has_display() and a.out is None
     out = a.out or DEFAULT_OUT
     if not interactive:
         if a.out is None and Path(out).exists():
             raise InputError(f"out = {out!r}: exists; give --out FILE.gif to write elsewhere or replace it")
-        backend = offscreen_backend()
+        backend = tool.offscreen_backend()
         if backend is None:
             tried = os.environ.get("MUJOCO_GL") or " and ".join(OFFSCREEN_BACKENDS)
             print(f"isorock view: no display and no offscreen OpenGL renderer ({tried} tried; install EGL "
@@ -77,6 +77,8 @@ def run(a) -> int:
         return replay_in_viewer(traj, speed=a.speed)
     try:
         write_gif(traj, out, fps=a.fps, speed=a.speed, size=size, title=label)
+    except InputError:
+        raise  # bad input (too many frames) is one line and exit 2, not a rendering failure
     except Exception as e:  # noqa: BLE001 — MuJoCo's GL errors have no common type
         print(f"isorock view: offscreen rendering failed with MUJOCO_GL={os.environ.get('MUJOCO_GL')}: "
               f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}", file=sys.stderr)

@@ -69,6 +69,10 @@ def peak_ground_velocity(motion: GroundMotion) -> float:
 def record_factor(record: GroundMotion, scale_by: str, level: float) -> float:
     """The factor that scales the record to PGA = level (g) or PGV = level (m/s)."""
     peak = record.pga_g if scale_by == "pga" else peak_ground_velocity(record)
+    if not peak > 0:
+        from isorock.analytic.errors import InputError
+        raise InputError(f"motions.scale_by = {scale_by!r}: record {record.name!r} has a "
+                         f"{'PGA' if scale_by == 'pga' else 'PGV'} of 0 and cannot be scaled to a level")
     return level / peak
 
 

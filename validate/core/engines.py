@@ -90,7 +90,7 @@ class Engine:
 
     def simulate(self, system, motion=None, *, settings=None, duration=None, theta0=0.0,
                  impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule=None,
-                 progress=None, effective_beta: bool = True) -> Trajectory:
+                 progress=None, effective_beta: bool = True, budget_s: float | None = None) -> Trajectory:
         """Run the engine and measure its history: θ0 in rad; impact_threshold as a
         fraction of α (model.md's counting rule); contact_window (s) is how a contact
         engine's history is measured (validate.measure); overturn_rule ("past-alpha" or
@@ -106,6 +106,9 @@ class Engine:
         from isorock.validate.core import measure
         if settings is None:
             settings = self.settings()
+        if budget_s is not None:  # a wall-clock budget (analytic/limits.py): the run stops past it
+            from isorock.analytic.limits import RunBudget
+            progress = RunBudget(budget_s, progress)
         if overturn_rule is not None and hasattr(settings, "overturn"):
             settings = replace(settings, overturn=overturn_rule)
         kwargs = dict(settings=settings, duration=duration, theta0=theta0, progress=progress)
@@ -120,7 +123,7 @@ class Engine:
         return out
 
     def simulate_many(self, runs, *, settings=None, overturn_rule=None, effective_beta: bool = True,
-                      threads: int = 1) -> list:
+                      threads: int = 1, budget_s: float | None = None) -> list:
         """`simulate` of each (system, motion, duration, theta0) in `runs`: per run its
         Trajectory, or the exception it raised. An engine with a batch path
         (EngineSpec.simulate_many: MuJoCo's, `threads` runs at a time) runs them
@@ -134,7 +137,8 @@ class Engine:
             for system, motion, duration, theta0 in runs:
                 try:
                     out.append(self.simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
-                                             overturn_rule=overturn_rule, effective_beta=effective_beta))
+                                             overturn_rule=overturn_rule, effective_beta=effective_beta,
+                                             budget_s=budget_s))
                 except Exception as e:  # noqa: BLE001 — one bad case is that case's result
                     out.append(e)
             return out
@@ -190,7 +194,15 @@ class EngineChoice:
         engine = get_engine(self.engine)
         if not self.preset:
             return engine.settings(**self.settings_kwargs)
-        return replace(engine.preset(self.preset), **self.settings_kwargs)
+        preset = engine.preset(self.preset)
+        try:
+            return replace(preset, **self.settings_kwargs)
+        except InputError as e:
+            # a setting the user did not give (the preset's solref, made for its own step)
+            # must not be blamed alone: say which of theirs made it unfit
+            given = ", ".join(f"{k} = {v!r}" for k, v in self.settings_kwargs.items())
+            raise InputError(f"{given} on preset {self.engine}:{self.preset}: the preset's other settings do not fit "
+                             f"it ({e}); give them too, or leave out the preset") from None
 
 
 def choose(label: str, overrides: dict | None = None, *, strict: bool = False) -> EngineChoice:

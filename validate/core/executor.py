@@ -19,12 +19,14 @@ from __future__ import annotations
 
 import hashlib
 import json
+import socket
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
 from isorock.analytic.errors import InputError
+from isorock.analytic import limits
 from isorock.analytic.limits import available_cores
 
 from .cases import Case, motion_of
@@ -125,7 +127,7 @@ def _run_contact(task: Chunk, threads: int | None) -> list[dict]:
     start = time.perf_counter()
     results = engine.simulate_many([(c.system, motion_of(c), c.duration, c.theta0) for c in task.cases],
                                    settings=task.setting.settings(), overturn_rule=task.overturn_rule,
-                                   effective_beta=False,
+                                   effective_beta=False, budget_s=limits.RUN_BUDGET_S,
                                    threads=available_cores() if threads is None else threads)
     # runs overlap in threads, so a run's own wall time says little: each row gets the
     # chunk's time shared equally, as an analytic chunk's rows do
@@ -226,6 +228,52 @@ def local_client(workers: int):
         return Client(cluster)
 
 
+#: how long a scheduler has to greet a probe (s): a Dask scheduler writes its handshake
+#: as soon as it accepts a connection, within milliseconds on a network
+GREETING_TIMEOUT = 10.0
+#: a Dask handshake's first 8 bytes are its length (little-endian uint64): a few hundred
+#: bytes; "HTTP/1.1" read so is 3.5e18 (the "Unable to allocate 3.07 EiB" a 403 gave)
+MAX_GREETING = 1 << 20
+
+
+def check_scheduler(address: str, timeout: float = GREETING_TIMEOUT) -> None:
+    """Refuse (InputError) an address that is not one, or a TCP server that does not
+    greet as a Dask scheduler does, within `timeout` s. Dask's own connect bounds the TCP
+    connect alone: an HTTP server, which waits for a request, held it for ever."""
+    from urllib.parse import urlsplit
+
+    def refuse(why):
+        return InputError(f"--scheduler = {address!r}: must be a running Dask scheduler, e.g. "
+                          f"tcp://host:8786 ({why})")
+    text = address if "://" in address else f"tcp://{address}"
+    try:
+        parts = urlsplit(text)
+        host, port = parts.hostname, parts.port
+    except ValueError as e:
+        raise refuse(f"not an address: {e}") from None
+    if parts.scheme not in ("tcp", "tls", "inproc", "ucx", "ws", "wss") or not host or " " in address:
+        raise refuse("not an address")
+    if parts.scheme != "tcp":
+        return  # TLS and the others greet inside their own protocol: Dask's connect judges them
+    if port is None:
+        raise refuse("no port")
+    try:
+        with socket.create_connection((host, port), timeout=timeout) as sock:
+            sock.settimeout(timeout)
+            head = b""
+            while len(head) < 8:
+                chunk = sock.recv(8 - len(head))
+                if not chunk:
+                    raise refuse("it closed the connection without a Dask handshake")
+                head += chunk
+    except TimeoutError:
+        raise refuse(f"no Dask handshake within {timeout:g} s") from None
+    except OSError as e:
+        raise refuse(e.strerror or str(e)) from None
+    if not 0 < int.from_bytes(head, "little") <= MAX_GREETING:
+        raise refuse(f"it answered {head!r}, not a Dask handshake")
+
+
 def close_client(client) -> None:
     """Close a client opened here, and its LocalCluster if it started one."""
     cluster = getattr(client, "cluster", None)
@@ -241,6 +289,7 @@ def client_for(client=None, workers: int = 0, scheduler: str | None = None):
         return client, False
     if scheduler:
         from dask.distributed import Client
+        check_scheduler(scheduler)
         try:
             return Client(scheduler, timeout="10s"), True
         except (OSError, TimeoutError) as e:

@@ -33,8 +33,9 @@ def run_task(task: Task, threads: int | None = None):
     from .engines import resolve
     try:
         engine, settings = resolve(task.engine, task.overrides)
+        from isorock.analytic.limits import RUN_BUDGET_S
         traj = engine.simulate(task.system, task.motion, settings=settings, duration=task.duration,
-                               theta0=task.theta0, overturn_rule=task.overturn_rule)
+                               theta0=task.theta0, overturn_rule=task.overturn_rule, budget_s=RUN_BUDGET_S)
         return task.key, traj, None
     except InputError:
         raise

@@ -63,7 +63,8 @@ def row_of_batch(case, result: dict) -> dict:
     """The result columns of one case of `analytic.fast.simulate_batch`."""
     overturned = bool(result["overturned"])
     # a batch run stops when the block falls, so its impacts all precede it
-    return {"status": str(result["status"]), "message": "",
+    # a failed case says why (the kernel's message); others need no words
+    return {"status": str(result["status"]), "message": str(result.get("message", "")),
             "theta_max_over_alpha": float(result["theta_max_over_alpha"]), "overturned": overturned,
             "overturn_mode": overturn_mode(overturned, int(result["impacts"])),
             "overturn_time": math.nan if result["overturn_time"] is None else float(result["overturn_time"]),

@@ -196,6 +196,8 @@ class FileOutput:
         if path == "-":
             self.kind, self.target, self.identity = "stdout", None, ("stdout",)
             return
+        if path.endswith(("/", os.sep)):  # `--out newdir/` wrote a file named newdir
+            _refuse(field, path, "ends in a folder separator; give a file path (e.g. newdir/scene.xml)")
         p = Path(path)
         if exclusive and os.path.lexists(p):
             _refuse(field, path, "exists; give a new file (isorock does not replace files it did not write)")

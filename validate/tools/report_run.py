@@ -16,6 +16,7 @@ from __future__ import annotations
 import importlib.metadata
 import math
 import platform
+import sys
 import time
 from dataclasses import dataclass, field, replace
 from datetime import datetime, timezone
@@ -317,6 +318,13 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         tasks += [Task(("history", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o, rule)
                   for i, sc in enumerate(histories)]
     total = len(tasks) + len(engines) * sum(len(s) for s in scales)
+    if progress is not None:  # a long report says so before it starts (core.estimate)
+        from isorock.validate.core.estimate import estimate_line
+        simulated = {name: sum(t.duration for t in tasks if t.engine == name)
+                     + sum(len(s) * sc.duration for s, sc in zip(scales, histories)) for name in engines}
+        line = estimate_line(simulated, workers=config.workers or 2)
+        if line:
+            print(line, file=sys.stderr)
     bar = progress(total) if progress else _Silent()
     # one pool for every run: a Dask cluster when a contact engine runs on several
     # processes (its workers start once), nothing when every run is made here

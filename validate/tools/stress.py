@@ -107,14 +107,24 @@ def edge_cases(quick: bool = False) -> list[StressCase]:
     return [x for x in c if x.quick] if quick else c
 
 
+_HOMES: list = []  # Hypothesis's temporary homes, kept until the process ends
+
+
 def drawn_cases(n: int) -> list[StressCase]:
     """`n` cases drawn by Hypothesis (derandomized, so every run draws the same ones) over
     geometry, base, pulses in dimensionless form and record-like noise; each named by
     its numbers, so a failing one can be run again by hand."""
     if n <= 0:
         return []
-    from hypothesis import HealthCheck, Phase, given, settings
+    import tempfile
+
+    from hypothesis import HealthCheck, Phase, configuration, given, settings
     from hypothesis import strategies as st
+    # Hypothesis keeps caches in ./.hypothesis, the user's working folder: a private
+    # temporary home instead (removed at exit), so `stress` writes only its own outputs
+    home = tempfile.TemporaryDirectory(prefix="isorock-hypothesis-")
+    configuration.set_hypothesis_home_dir(home.name)
+    _HOMES.append(home)
     out: list[StressCase] = []
 
     def number(lo, hi):

@@ -77,8 +77,17 @@ def replay_scene(system):
     return get_engine("mujoco").spec.replay_scene(system)
 
 
+#: most frames one GIF or replay may have (a 40 s run at 20 fps is 800): `--speed 1e-6`
+#: asked for 8e8 and ran out of memory after 27 s
+MAX_FRAMES = 20_000
+
+
 def frames(traj, dt: float):
-    """(t, u, θ) at t = 0, dt, 2dt, … of the run."""
+    """(t, u, θ) at t = 0, dt, 2dt, … of the run (at most MAX_FRAMES)."""
+    n = (float(traj.t[-1]) if traj.t.size else 0.0) / dt
+    if n > MAX_FRAMES:
+        raise InputError(f"speed = the run's {traj.t[-1]:.3g} s at {dt:.3g} s of run per frame make {n:.3g} frames; "
+                         f"must be at most {MAX_FRAMES} (MAX_FRAMES): a larger --speed or a smaller --fps")
     r = traj.resample(dt)
     return list(zip(r.t.tolist(), r.u.tolist(), r.theta.tolist()))
 
@@ -124,6 +133,7 @@ def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], ti
 
     from isorock.validate.io.output import write_atomic
     system = traj.system
+    shots = frames(traj, speed / fps)  # too many frames is bad input, refused before any rendering
     model, pose = replay_scene(system)
     data = mujoco.MjData(model)
     width, height = size
@@ -133,7 +143,7 @@ def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], ti
     cam = _camera(system)
     images = []
     try:
-        for t, u, theta in frames(traj, speed / fps):
+        for t, u, theta in shots:
             data.qpos[:] = pose(u, theta)
             mujoco.mj_forward(model, data)
             renderer.update_scene(data, camera=cam)
@@ -157,6 +167,7 @@ def replay_in_viewer(traj, *, speed: float) -> int:
     import mujoco
     import mujoco.viewer
     system = traj.system
+    shots = frames(traj, speed / fps)  # too many frames is bad input, refused before any rendering
     model, pose = replay_scene(system)
     data = mujoco.MjData(model)
     dt = 1 / 60

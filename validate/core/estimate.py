@@ -1,0 +1,42 @@
+"""The cost of a long command, announced before it starts (issue 24, item 13).
+
+    estimate_line({"analytic": 1200.0, "drake": 3600.0})  # simulated seconds per engine
+    → "validate: about 230 runs' worth ... ≈ 30 min (drake ≈ 0.27 simulated s per wall s)"
+
+Each engine's speed is its measured simulated seconds per wall second on a rocking block
+(the slow case: impacts); see SPEEDS. An estimate under ANNOUNCE_AFTER is not announced.
+"""
+from __future__ import annotations
+
+#: simulated seconds per wall second of one run on one core, with the block rocking
+#: (impacts are what is slow): `python /tmp/speed.py`-style loops over the paper's block
+#: under Kobe ×2.5 (20 s), both bases, and docs/drake.md's free-rocking table for Drake
+#: (continuous preset: 0.27). An engine not listed counts as the slowest.
+SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.0, "mujoco": 40.0,
+          "bullet": 20.0, "drake": 0.27}
+#: wall seconds from which the estimate is announced
+ANNOUNCE_AFTER = 120.0
+
+
+def estimate_s(simulated: dict[str, float], workers: int = 1) -> float:
+    """Wall seconds for `simulated` seconds per engine label (ENGINE or ENGINE:PRESET),
+    the contact engines' runs spread over `workers` processes."""
+    slowest = min(SPEEDS.values())
+    total = 0.0
+    for label, seconds in simulated.items():
+        engine = label.partition(":")[0]
+        share = 1 if engine.startswith("analytic") else max(1, workers)
+        total += seconds / SPEEDS.get(engine, slowest) / share
+    return total
+
+
+def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = "validate") -> str | None:
+    """One line for stderr, or None when the work is short."""
+    wall = estimate_s(simulated, workers)
+    if wall < ANNOUNCE_AFTER:
+        return None
+    slowest = max(simulated, key=lambda k: simulated[k] / SPEEDS.get(k.partition(":")[0], min(SPEEDS.values())))
+    speed = SPEEDS.get(slowest.partition(":")[0], min(SPEEDS.values()))
+    return (f"{command}: about {sum(simulated.values()):.0f} simulated s in all; estimated ≈ {wall / 60:.0f} min "
+            f"on {workers} worker{'s' if workers != 1 else ''} (mostly {slowest}, ≈ {speed:g} simulated s per wall s "
+            f"on a rocking block); each run stops at its budget of RUN_BUDGET_S")
