@@ -29,6 +29,8 @@ PAPER = "[system]\nheight = 2.0\nwidth = 0.7\nmass = 3800\nbase_mass = 3800\nper
     ('engines = "analytic"\n', "engines"),
     ('motions = "sine:amp=0.5,freq=1"\n', "motions"),
     ("[settings.analytic]\nrtol = true\n", "rtol"),
+    ('[settings."mujoco:finest"]\ntimestep = 1e-3\n', "mujoco:finest"),   # ran the report, table ignored
+    (PAPER + "[settings.mujoco]\ntimestep = 1e-9\n", "timestep"),          # a worker's logged traceback
 ])
 def test_a_bad_config_value_is_one_line_naming_the_key(tmp_path, capsys, text, key):
     cfg = tmp_path / "c.toml"

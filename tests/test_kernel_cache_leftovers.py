@@ -87,3 +87,10 @@ def test_view_bounds_its_frames_and_says_why(tmp_path, capsys, option, value, wh
                     capsys)
     assert code == 2 and err.count("\n") == 1 and why in err, err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_killed_writers_staging_files_are_cleared_by_the_next_write(tmp_path, capsys):
+    stale = tmp_path / ".isorock-staging-999999999-x.json.abc123"  # its writer was killed with SIGKILL
+    stale.write_text("half a file")
+    code, _ = _in(tmp_path, ["run", *BLOCK, "--theta0", "0.5", "--duration", "1", "--json", "x.json"], capsys)
+    assert code == 0 and sorted(p.name for p in tmp_path.iterdir()) == ["x.json"]

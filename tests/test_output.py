@@ -1,4 +1,4 @@
-"""validate.output: a command writes only its own outputs, whole or not at all, with
+"""validate.io.output: a command writes only its own outputs, whole or not at all, with
 the user's normal permissions; bad paths are refused before any work (issue 13)."""
 import json
 import os

@@ -46,3 +46,17 @@ def test_a_setting_that_unfits_a_presets_own_settings_is_blamed_on_what_was_give
                "--mass", "3800", "--base-mass", "3800", "--fixed-base", "--duration", "0.5", "--quiet"])
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and "timestep = 0.0005" in err and "mujoco:fine" in err, err
+
+
+def test_a_metric_without_a_tolerance_is_skipped_with_the_reason_not_an_error_after_the_runs(tmp_path, capsys,
+                                                                                               monkeypatch):
+    """validate --quick --engines analytic drake ran 568 s and then exited 2: "tolerance
+    ('drake', 'beta2_abs_error'): not in the table". The same with MuJoCo's β₂ limit taken
+    out of the table: the report is written, that metric skipped with the reason."""
+    monkeypatch.delitem(TOLERANCES, ("mujoco", "beta2_abs_error"))
+    out = tmp_path / "rep"
+    rc = main(TINY + ["--engines", "analytic", "mujoco", "--workers", "1", "--out", str(out)])
+    assert rc in (0, 1), capsys.readouterr().err
+    m = json.loads((out / "metrics.json").read_text())
+    b2 = [c for c in m["checks"] if c["engine"] == "mujoco" and c["metric"] == "beta2_abs_error"]
+    assert b2 and all(c["status"] == "skip" and "no tolerance" in c["note"] for c in b2)

@@ -96,6 +96,12 @@ class ConfigFile(_Strict):
             if table != "*" and base not in per_engine:
                 raise ValueError(f"[settings.{table}]: not an engine (allowed: *, {', '.join(ALL_ENGINES)}, "
                                  "or ENGINE:PRESET)")
+            preset = table.partition(":")[2]
+            if preset and per_engine[base] is not None:
+                try:
+                    get_engine(base).preset(preset)
+                except InputError as e:
+                    raise ValueError(f"[settings.{table}]: {e}") from None
             known = every if table == "*" else per_engine[base]
             for key, value in values.items():
                 if known is not None and key not in known:

@@ -177,6 +177,37 @@ def _remove_folders(created: list[Path]) -> None:
             pass
 
 
+# --- staging names: the writer's process id, so a killed writer's leftovers can be known ---
+
+def _staging_prefix(name: str) -> str:
+    return f"{STAGING_PREFIX}{os.getpid()}-{name}."
+
+
+def clear_stale_staging(folder: Path) -> None:
+    """Remove the staging files and folders of writers that no longer run (killed with
+    SIGKILL before they could clean up): `.isorock-staging-PID-…` whose PID is gone."""
+    try:
+        entries = list(Path(folder).iterdir())
+    except OSError:
+        return
+    for e in entries:
+        rest = e.name[len(STAGING_PREFIX):] if e.name.startswith(STAGING_PREFIX) else ""
+        pid = rest.split("-", 1)[0]
+        if not pid.isdigit() or "-" not in rest:
+            continue  # another shape: not ours to judge
+        try:
+            os.kill(int(pid), 0)
+            continue  # its writer still runs
+        except ProcessLookupError:
+            pass
+        except OSError:
+            continue
+        try:
+            shutil.rmtree(e) if e.is_dir() and not e.is_symlink() else e.unlink()
+        except OSError:
+            pass
+
+
 # --- targets ------------------------------------------------------------------------------
 
 class FileOutput:
@@ -238,7 +269,8 @@ class FileOutput:
         try:
             if self.kind == "file":
                 _make_parents(self._parents, self._created)
-                fd, tmp = tempfile.mkstemp(prefix=f"{STAGING_PREFIX}{self.target.name}.", dir=self.target.parent)
+                clear_stale_staging(self.target.parent)
+                fd, tmp = tempfile.mkstemp(prefix=_staging_prefix(self.target.name), dir=self.target.parent)
             else:  # streams are written at commit, from a private staging copy
                 fd, tmp = tempfile.mkstemp(prefix=STAGING_PREFIX)
             os.close(fd)
@@ -331,7 +363,8 @@ class FolderOutput:
                 self._staging = Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=self.target))
             else:
                 _make_parents(self._parents, self._created)
-                self._staging = Path(tempfile.mkdtemp(prefix=f"{STAGING_PREFIX}{self.target.name}.",
+                clear_stale_staging(self.target.parent)
+                self._staging = Path(tempfile.mkdtemp(prefix=_staging_prefix(self.target.name),
                                                       dir=self.target.parent))
         except OSError as e:
             self.discard()

@@ -469,7 +469,7 @@ def file_stem(label: str) -> str:
 
 
 def write(atlas: dict, out: str, *, quick: bool) -> None:
-    """The whole folder, or nothing (validate.output)."""
+    """The whole folder, or nothing (validate.io.output)."""
     import csv
     import io
 

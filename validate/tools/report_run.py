@@ -318,6 +318,9 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         tasks += [Task(("history", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o, rule)
                   for i, sc in enumerate(histories)]
     total = len(tasks) + len(engines) * sum(len(s) for s in scales)
+    from isorock.analytic.limits import check_settings
+    for t in tasks:  # the work bounds before any run: in a worker they were a logged traceback
+        check_settings(settings[t.engine], t.duration)
     if progress is not None:  # a long report says so before it starts (core.estimate)
         from isorock.validate.core.estimate import estimate_line
         simulated = {name: sum(t.duration for t in tasks if t.engine == name)

@@ -82,12 +82,17 @@ def replay_scene(system):
 MAX_FRAMES = 20_000
 
 
-def frames(traj, dt: float):
-    """(t, u, θ) at t = 0, dt, 2dt, … of the run (at most MAX_FRAMES)."""
+def check_frames(traj, dt: float) -> None:
+    """At most MAX_FRAMES frames of `dt` s of run each: bad input before any rendering."""
     n = (float(traj.t[-1]) if traj.t.size else 0.0) / dt
     if n > MAX_FRAMES:
         raise InputError(f"speed = the run's {traj.t[-1]:.3g} s at {dt:.3g} s of run per frame make {n:.3g} frames; "
                          f"must be at most {MAX_FRAMES} (MAX_FRAMES): a larger --speed or a smaller --fps")
+
+
+def frames(traj, dt: float):
+    """(t, u, θ) at t = 0, dt, 2dt, … of the run (at most MAX_FRAMES)."""
+    check_frames(traj, dt)
     r = traj.resample(dt)
     return list(zip(r.t.tolist(), r.u.tolist(), r.theta.tolist()))
 
