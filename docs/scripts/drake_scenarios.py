@@ -1,6 +1,6 @@
 """Drake beside MuJoCo and PyBullet on the report's history scenarios (docs/drake.md).
 
-The report's default pulses (validate.report.DEFAULT_MOTIONS: one-sine 0.6 g 1.3 Hz two
+The report's default pulses (validate.tools.report_run.DEFAULT_MOTIONS: one-sine 0.6 g 1.3 Hz two
 cycles, Ricker 0.5 g 1 Hz) on the paper's block, isolated (T 1.5 s, ξ 0.2, μ = 1) and
 fixed, each for the pulse + the full report's tail (4 s); every engine through the
 registry (validate.engines) at its default settings. Per engine: θmax/α and its
@@ -26,7 +26,8 @@ import time
 from isorock.analytic.motion import load_motion
 from isorock.validate.core.compare import compare, reference_sensitivity
 from isorock.validate.core.engines import get_engine
-from isorock.validate.report import BETA_MIN_AMPLITUDE, DEFAULT_MOTIONS, FULL, paper_bases
+from isorock.validate.core.scenarios import paper_bases
+from isorock.validate.tools.report_run import BETA_MIN_AMPLITUDE, DEFAULT_MOTIONS, FULL
 from isorock.validate.core.tolerances import ROBUST_SPREAD
 
 ENGINES = ("analytic", "mujoco", "bullet", "drake")
