@@ -123,6 +123,8 @@ def read_test(path, test: int | None = None) -> TableMotion:
     # only; a missing, repeated or out-of-order sample is off by a whole step
     dt = float((t[-1] - t[0]) / (t.size - 1))
     off = np.abs(t - (t[0] + dt * np.arange(t.size)))
+    steps = np.diff(t)
+    off = np.maximum(off, np.concatenate(([0.0], np.abs(steps - dt))))  # a lost sample: a step of 2dt
     if not dt > 0 or off.max() > STEP_TOLERANCE * dt:
         i = int(np.argmax(off)) + 2
         raise InputError(f"{path}:{i}: time {t[i - 2]!r} s is off the uniform grid of step {dt:.6g} s; "
