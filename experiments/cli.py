@@ -22,7 +22,7 @@ def add_parser(sub) -> None:
     p.add_argument("--data", default=str(study.default_data()), metavar="DIR",
                    help="the shake-table data folder, or a clone of the original repository (default: "
                         "%(default)s)")
-    p.add_argument("--engines", default="analytic", metavar="E[,E]",
+    p.add_argument("--engines", default="analytic,asymmetric", metavar="E[,E]",
                    help=f"engines to run, comma-separated, from {', '.join(study.ENGINES)} (default: "
                         "%(default)s; mujoco adds about 0.4 s per test, specimen and sign)")
     p.add_argument("--steps", default=",".join(processing.DEFAULT_STEPS), metavar="S[,S]",

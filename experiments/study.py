@@ -4,6 +4,9 @@ Engines (each a predictor of "specimen s overturned in test k"):
 - analytic:forward / analytic:backward — the rigid rocking model (isorock.analytic, fixed
   base) on the specimen's equivalent symmetric block of its forward (smaller α) or backward
   (larger α) rocking edge: the planar symmetric model cannot have both (see docs).
+- asymmetric:+x / asymmetric:-x — the rigid model of the rock's own two edges (α, R, I of
+  each, the impact law re-derived for an asymmetric body: asymmetric.py), the record along
+  +x or −x of the rest pose.
 - mujoco:+x / mujoco:-x — the rock's convex hull on a free joint (mujoco_models.mesh_scene),
   the measured acceleration along +x or −x of the rest pose (the data do not state which
   way the record's positive sign points in the rock's frame; the sign is fitted like any
@@ -32,7 +35,7 @@ from isorock.analytic.errors import InputError
 from . import data, processing, scores, specimen
 
 DEFAULT_DATA = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "vsr"
-ENGINES = ("analytic", "mujoco")
+ENGINES = ("analytic", "asymmetric", "mujoco")
 #: A run past this θmax/α counts as overturned in the continuous score (an overturned run's
 #: θmax/α is not a measure of how far it was from overturning: it is "beyond").
 OVERTURNED_SCORE = 100.0
@@ -69,6 +72,22 @@ def run_analytic(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
             score = OVERTURNED_SCORE if tr.overturned else float(tr.theta_max_over_alpha)
             rows[test] = (bool(tr.overturned), score, wall)
         out[f"analytic:{name}"] = rows
+    return out
+
+
+def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
+    """The asymmetric rigid model (asymmetric.py) with the rock's own two edges, the
+    acceleration along +x and along −x of the rest pose."""
+    from . import asymmetric
+    params = asymmetric.parameters(spec)
+    out = {}
+    for name, sign in (("+x", 1.0), ("-x", -1.0)):
+        rows = {}
+        for test, a in accel.items():
+            start = time.perf_counter()
+            over, peak, _ = asymmetric.simulate(params, sign * a, dt[test], pad=PAD)
+            rows[test] = (bool(over), OVERTURNED_SCORE if over else float(peak), time.perf_counter() - start)
+        out[f"asymmetric:{name}"] = rows
     return out
 
 
@@ -142,6 +161,8 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
             start = time.perf_counter()
             if eng == "analytic":
                 runs.update(run_analytic(sp, accel, dts))
+            elif eng == "asymmetric":
+                runs.update(run_asymmetric(sp, accel, dts))
             elif eng == "mujoco":
                 runs.update(run_mujoco(sp, accel, dts, progress))
             result["cost"][f"{eng} SP{s}"] = time.perf_counter() - start
@@ -168,13 +189,21 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
         rows["pga threshold"] = dict(cv=scores.bootstrap(y, held, pga), thresholds=thr, held=held.tolist())
         result["scores"][s] = rows
     if sensitivity:
-        result["sensitivity"] = processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz)
+        result["sensitivity"], candidates = processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz)
+        # the processing is a fitted choice too: chosen with the setting and the threshold on
+        # the training folds only, scored on the held-out fold
+        for s, cands in candidates.items():
+            y = np.array([outcomes[t].measured[s] for t in testlist], bool)
+            held, chosen = select_cv(y, cands)
+            result["scores"][s]["analytic (CV-selected processing)"] = dict(
+                cv=scores.bootstrap(y, held), chosen=chosen, held=held.tolist())
     return result
 
 
 def processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz) -> list[dict]:
-    """The analytic engines' held-out accuracy with all the chosen steps, each one left
-    out, and none (the raw record)."""
+    """The analytic engines' accuracy (own verdict, and held-out threshold) with all the
+    chosen steps, each one left out, and none (the raw record); and every (setting,
+    processing) pair's predictions, for the cross-validated choice among them."""
     variants = [("all: " + ",".join(steps), tuple(steps))]
     variants += [(f"without {s}", tuple(x for x in steps if x != s)) for s in steps]
     variants += [("none (raw)", ())]
@@ -183,6 +212,7 @@ def processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz) -> l
     testlist = sorted(outcomes)
     dts = {t: motions[t].dt for t in testlist}
     out = []
+    candidates: dict = {s: {} for s in specimens}
     for label, st in variants:
         accel = {t: _motion(motions[t], st, lowpass_hz) for t in testlist}
         row = dict(variant=label)
@@ -193,7 +223,8 @@ def processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz) -> l
                 pred = np.array([r[t][0] for t in testlist])
                 score = np.array([r[t][1] for t in testlist])
                 held, _ = scores.cross_validated(y, score)
+                candidates[s][f"{name} | {label}"] = (pred, score)
                 row[f"{name} SP{s} own"] = float((pred == y).mean())
                 row[f"{name} SP{s} cv"] = float((held == y).mean())
         out.append(row)
-    return out
+    return out, candidates
