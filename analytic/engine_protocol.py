@@ -73,7 +73,11 @@ class EngineSpec:
     duration, theta0) at once, each result what `simulate` returns for it alone or the
     exception it raised (without it, the registry runs them one by one);
     `replay_scene(system)` (optional) is (model, pose(u, θ) → joint positions): a scene of
-    the engine's viewer in which any engine's history can be replayed (`isorock view`)."""
+    the engine's viewer in which any engine's history can be replayed (`isorock view`);
+    `simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration)`
+    (optional) is a free rigid body of that convex hull on a flat table moved by a
+    horizontal acceleration history (m/s², step dt s): a dict with `overturned`,
+    `tilt_max` (rad) and `wall_s` (`isorock experiments`)."""
 
     name: str
     label: str
@@ -88,6 +92,7 @@ class EngineSpec:
     tuning: Tuning | None = None
     simulate_many: Callable[..., list] | None = None
     replay_scene: Callable[..., tuple] | None = None
+    simulate_body: Callable[..., dict] | None = None
 
     def settings(self, **overrides):
         if self.settings_for is not None:

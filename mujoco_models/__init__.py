@@ -55,10 +55,16 @@ def _replay_scene(system):
     return replay_scene(system)
 
 
+def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=None):
+    from . import mesh_scene  # the rock's hull on a free joint, for measured shake-table tests
+    return mesh_scene.simulate(mesh_scene.scene_xml(vertices, com, inertia, mass), acceleration, dt, duration=duration)
+
+
 ENGINE = EngineSpec(
     name="mujoco", label="MuJoCo", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, replay_scene=_replay_scene,
+    simulate_body=_simulate_body,
     presets={
         "default": Settings,
         # Newton, MuJoCo's own solver and the default's: named so that it reads beside cg

@@ -10,6 +10,7 @@
     isorock calibrate  fit a contact engine's contact parameters to the closed-form β
     isorock atlas    the contact-model atlas: every preset's β and t₁ error over λ × μ × size, and its cost
     isorock sweep    campaigns: spectra, fragility curves, agreement maps (Dask)
+    isorock experiments  the engines scored against measured shake-table tests of two rocks
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
 Outputs go through validate.io.output: checked before the work, written all or none.
@@ -42,6 +43,8 @@ EXTRA_COMMANDS = {
     "view": ("isorock.validate.cli.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
                                       "display"),
     "sweep": ("isorock.validate.cli.sweep", "run a campaign (TOML): overturning spectra, fragility curves, agreement maps"),
+    "experiments": ("isorock.validate.cli.experiments", "score the rigid model and the contact engines against measured "
+                                                        "shake-table tests"),
 }
 
 

@@ -1,0 +1,108 @@
+"""Scores of an overturn prediction against the measured outcomes: the confusion matrix,
+accuracy, precision, recall, F1, ROC AUC of a continuous score, bootstrap intervals over
+tests, and the held-out (k-fold cross-validated) scores of a threshold fitted on the
+continuous score.
+
+Conventions: outcome 1 = overturned (the positive class). Precision with no positive
+prediction, recall with no positive outcome and F1 with neither are NaN (undefined), not 0.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+BOOTSTRAP = 2000  # resamples of the tests
+LEVEL = 0.95
+FOLDS = 5
+SEED = 20260621  # fixed: the same folds and resamples every run (the first test day)
+
+
+def confusion(y, pred) -> dict:
+    y, pred = np.asarray(y, bool), np.asarray(pred, bool)
+    return dict(tp=int((y & pred).sum()), fp=int((~y & pred).sum()), fn=int((y & ~pred).sum()),
+                tn=int((~y & ~pred).sum()))
+
+
+def _ratio(a, b):
+    return a / b if b else math.nan
+
+
+def metrics(y, pred) -> dict:
+    c = confusion(y, pred)
+    n = sum(c.values())
+    precision, recall = _ratio(c["tp"], c["tp"] + c["fp"]), _ratio(c["tp"], c["tp"] + c["fn"])
+    f1 = _ratio(2 * c["tp"], 2 * c["tp"] + c["fp"] + c["fn"])
+    return dict(accuracy=_ratio(c["tp"] + c["tn"], n), precision=precision, recall=recall, f1=f1, **c)
+
+
+def roc_auc(y, score) -> float:
+    """P(score of an overturned test > score of a standing one), ties counting one half
+    (the Mann–Whitney statistic); NaN without both classes."""
+    y, s = np.asarray(y, bool), np.asarray(score, float)
+    pos, neg = s[y], s[~y]
+    if pos.size == 0 or neg.size == 0:
+        return math.nan
+    from scipy.stats import rankdata
+    r = rankdata(np.concatenate((pos, neg)))
+    return float((r[:pos.size].sum() - pos.size * (pos.size + 1) / 2) / (pos.size * neg.size))
+
+
+def scored(y, pred, score=None) -> dict:
+    out = metrics(y, pred)
+    if score is not None:
+        out["auc"] = roc_auc(y, score)
+    return out
+
+
+def bootstrap(y, pred, score=None, *, n=BOOTSTRAP, level=LEVEL, seed=SEED) -> dict:
+    """Each metric with its percentile interval over `n` resamples of the tests."""
+    y, pred = np.asarray(y), np.asarray(pred)
+    score = None if score is None else np.asarray(score, float)
+    point = scored(y, pred, score)
+    rng = np.random.default_rng(seed)
+    keys = ["accuracy", "precision", "recall", "f1"] + (["auc"] if score is not None else [])
+    draws = {k: [] for k in keys}
+    for _ in range(n):
+        i = rng.integers(0, y.size, y.size)
+        s = scored(y[i], pred[i], None if score is None else score[i])
+        for k in keys:
+            draws[k].append(s[k])
+    lo, hi = (1 - level) / 2, (1 + level) / 2
+    out = dict(point)
+    for k in keys:
+        d = np.asarray(draws[k], float)
+        d = d[np.isfinite(d)]
+        out[k + "_ci"] = [float(np.quantile(d, lo)), float(np.quantile(d, hi))] if d.size else [math.nan, math.nan]
+    return out
+
+
+def best_threshold(y, score) -> float:
+    """The threshold t (predict overturned when score ≥ t) of the highest accuracy on (y,
+    score), the midpoint between neighbouring scores; ties go to the smallest t."""
+    y, s = np.asarray(y, bool), np.asarray(score, float)
+    cand = np.unique(s)
+    mids = np.concatenate(([cand[0] - 1.0], (cand[1:] + cand[:-1]) / 2, [cand[-1] + 1.0]))
+    mids = np.where(np.isfinite(mids), mids, np.where(mids > 0, 1e300, -1e300))
+    acc = [((s >= t) == y).mean() for t in mids]
+    return float(mids[int(np.argmax(acc))])
+
+
+def folds(n: int, k: int = FOLDS, seed: int = SEED) -> np.ndarray:
+    """The fold (0..k-1) of each of n tests: a fixed random partition."""
+    rng = np.random.default_rng(seed)
+    return rng.permutation(np.arange(n) % k)
+
+
+def cross_validated(y, score, k: int = FOLDS, seed: int = SEED) -> tuple[np.ndarray, list[float]]:
+    """Held-out predictions of the fitted threshold: each test predicted by the threshold
+    fitted on the other k−1 folds only. (predictions, the k thresholds)."""
+    y, s = np.asarray(y, bool), np.asarray(score, float)
+    f = folds(y.size, k, seed)
+    pred = np.zeros(y.size, bool)
+    thresholds = []
+    for j in range(k):
+        t = best_threshold(y[f != j], s[f != j])
+        thresholds.append(t)
+        pred[f == j] = s[f == j] >= t
+    return pred, thresholds

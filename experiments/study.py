@@ -1,0 +1,231 @@
+"""The study: every engine on every test and specimen, scored; and `isorock experiments`.
+
+Engines (each a predictor of "specimen s overturned in test k"):
+- analytic:forward / analytic:backward — the rigid rocking model (isorock.analytic, fixed
+  base) on the specimen's equivalent symmetric block of its forward (smaller α) or backward
+  (larger α) rocking edge: the planar symmetric model cannot have both (see docs).
+- asymmetric:+x / asymmetric:-x — the rigid model of the rock's own two edges (α, R, I of
+  each, the impact law re-derived for an asymmetric body: asymmetric.py), the record along
+  +x or −x of the rest pose.
+- mujoco:+x / mujoco:-x — the rock's convex hull on a free joint (mujoco_models.mesh_scene),
+  the measured acceleration along +x or −x of the rest pose (the data do not state which
+  way the record's positive sign points in the rock's frame; the sign is fitted like any
+  other parameter, on training folds only).
+- dem:KN=.. — the data's own discrete-element predictions (the baseline), as given.
+- pga — the null model: overturned when the test's scaled PGA passes a threshold.
+
+Scores per engine and specimen: the engine's own verdict (nothing fitted), and the held-out
+verdict of a threshold on its continuous score (θmax/α, or the peak tilt over the smaller
+α) fitted by 5-fold cross-validation, each with a 95% bootstrap interval over tests; the
+"selected" rows choose, in each training fold, the setting (and threshold) with the best
+training accuracy, and are scored on the held-out fold only.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from isorock.analytic.errors import InputError
+
+from . import data, processing, scores, specimen
+
+DEFAULT_DATA = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "vsr"
+ENGINES = ("analytic", "asymmetric", "mujoco")
+#: A run past this θmax/α counts as overturned in the continuous score (an overturned run's
+#: θmax/α is not a measure of how far it was from overturning: it is "beyond").
+OVERTURNED_SCORE = 100.0
+PAD = 5.0  # s simulated after the record: a rock still rocking at its end may yet fall
+
+
+def default_data() -> Path:
+    return DEFAULT_DATA
+
+
+def _motion(tm: data.TableMotion, steps, lowpass_hz):
+    return processing.process(tm.acceleration, tm.dt, steps, lowpass_hz=lowpass_hz)
+
+
+def run_analytic(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
+    """{setting: {test: (overturned, θmax/α, wall s)}} of the rigid model on the specimen's
+    forward and backward equivalent blocks."""
+    from isorock.analytic.motion import GroundMotion
+    from isorock.analytic.system import System
+    from isorock.validate.core.engines import get_engine
+    engine = get_engine("analytic")
+    out = {}
+    for name, sign in (("forward", 1), ("backward", -1)):
+        d = spec.direction(sign)
+        system = System.fixed(height=d["block_height"], width=d["block_width"], mass=spec.mass)
+        rows = {}
+        for test, a in accel.items():
+            motion = GroundMotion.from_array(a, dt=dt[test], units="m/s2", name=f"Test{test:03d}")
+            start = time.perf_counter()
+            tr = engine.simulate(system, motion, duration=motion.end_time + PAD)
+            wall = time.perf_counter() - start
+            if tr.status.is_failure:
+                raise RuntimeError(f"analytic run failed on test {test}: {tr.message}")
+            score = OVERTURNED_SCORE if tr.overturned else float(tr.theta_max_over_alpha)
+            rows[test] = (bool(tr.overturned), score, wall)
+        out[f"analytic:{name}"] = rows
+    return out
+
+
+def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
+    """The asymmetric rigid model (asymmetric.py) with the rock's own two edges, the
+    acceleration along +x and along −x of the rest pose."""
+    from . import asymmetric
+    params = asymmetric.parameters(spec)
+    out = {}
+    for name, sign in (("+x", 1.0), ("-x", -1.0)):
+        rows = {}
+        for test, a in accel.items():
+            start = time.perf_counter()
+            over, peak, _ = asymmetric.simulate(params, sign * a, dt[test], pad=PAD)
+            rows[test] = (bool(over), OVERTURNED_SCORE if over else float(peak), time.perf_counter() - start)
+        out[f"asymmetric:{name}"] = rows
+    return out
+
+
+def run_mujoco(spec: specimen.Specimen, accel: dict, dt: dict, progress=None) -> dict:
+    from isorock.validate.core.engines import get_engine
+    body = get_engine("mujoco").spec.simulate_body  # the engine's own rigid body on a table
+    alpha = min(spec.direction(1)["alpha"], spec.direction(-1)["alpha"])
+    out = {}
+    for name, sign in (("+x", 1.0), ("-x", -1.0)):
+        rows = {}
+        for test, a in accel.items():
+            r = body(spec.vertices, spec.com, spec.inertia, spec.mass, sign * a, dt[test],
+                     duration=(a.size - 1) * dt[test] + PAD)
+            score = OVERTURNED_SCORE if r["overturned"] else r["tilt_max"] / alpha
+            rows[test] = (bool(r["overturned"]), score, r["wall_s"])
+            if progress:
+                progress()
+        out[f"mujoco:{name}"] = rows
+    return out
+
+
+def score_engine(y, pred, score, k=scores.FOLDS) -> dict:
+    """The engine's own verdict and its cross-validated threshold, both with intervals."""
+    own = scores.bootstrap(y, pred, score)
+    held, thresholds = scores.cross_validated(y, score, k)
+    cv = scores.bootstrap(y, held, score)
+    return dict(own=own, cv=cv, thresholds=thresholds)
+
+
+def select_cv(y, candidates: dict, k=scores.FOLDS, threshold=True) -> tuple[np.ndarray, list]:
+    """Held-out predictions of the setting (and threshold on its score) that does best on the
+    training folds, chosen afresh in each fold. candidates: name → (pred, score)."""
+    y = np.asarray(y, bool)
+    f = scores.folds(y.size, k)
+    out = np.zeros(y.size, bool)
+    chosen = []
+    for j in range(k):
+        tr = f != j
+        best = None
+        for name, (pred, score) in candidates.items():
+            if threshold and score is not None:
+                t = scores.best_threshold(y[tr], score[tr])
+                p_tr, p_te = score[tr] >= t, score[f == j] >= t
+            else:
+                t, p_tr, p_te = None, pred[tr], pred[f == j]
+            acc = (p_tr == y[tr]).mean()
+            if best is None or acc > best[0]:
+                best = (acc, name, t, p_te)
+        out[f == j] = best[3]
+        chosen.append((best[1], best[2]))
+    return out, chosen
+
+
+def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz=processing.LOWPASS_HZ,
+          tests=None, sensitivity=False, progress=None) -> dict:
+    outcomes, files = data.load(folder, tests)
+    t0 = time.perf_counter()
+    motions = {t: data.read_test(files[t], t) for t in outcomes}
+    read_s = time.perf_counter() - t0
+    specimens = {s: specimen.load_specimen(folder, s) for s in data.SPECIMENS}
+    testlist = sorted(outcomes)
+    dts = {t: motions[t].dt for t in testlist}
+    result = dict(tests=testlist, steps=list(steps), lowpass_hz=lowpass_hz, read_s=read_s,
+                  specimens={s: sp.describe() for s, sp in specimens.items()}, runs={}, scores={}, cost={},
+                  outcomes={t: dict(measured=outcomes[t].measured, pga=outcomes[t].scaled_pga_g,
+                                    pgv_over_pga=outcomes[t].pgv_over_pga_s) for t in testlist})
+    accel = {t: _motion(motions[t], steps, lowpass_hz) for t in testlist}
+    for s, sp in specimens.items():
+        y = np.array([outcomes[t].measured[s] for t in testlist], bool)
+        runs = {}
+        for eng in engines:
+            start = time.perf_counter()
+            if eng == "analytic":
+                runs.update(run_analytic(sp, accel, dts))
+            elif eng == "asymmetric":
+                runs.update(run_asymmetric(sp, accel, dts))
+            elif eng == "mujoco":
+                runs.update(run_mujoco(sp, accel, dts, progress))
+            result["cost"][f"{eng} SP{s}"] = time.perf_counter() - start
+        rows = {}
+        by_engine: dict = {}
+        for name, r in runs.items():
+            pred = np.array([r[t][0] for t in testlist])
+            score = np.array([r[t][1] for t in testlist])
+            rows[name] = score_engine(y, pred, score)
+            by_engine.setdefault(name.split(":")[0], {})[name] = (pred, score)
+            result["runs"].setdefault(s, {})[name] = {t: list(r[t]) for t in testlist}
+        for eng, cands in by_engine.items():
+            held, chosen = select_cv(y, cands)
+            rows[f"{eng} (CV-selected)"] = dict(cv=scores.bootstrap(y, held), chosen=chosen, held=held.tolist())
+        # the baseline: each DEM setting as given, and the setting chosen on training folds
+        dem = {f"dem:{k}": (np.array([outcomes[t].baseline[s][k] for t in testlist], bool), None)
+               for k in outcomes[testlist[0]].baseline[s]}
+        for name, (pred, _) in dem.items():
+            rows[name] = dict(own=scores.bootstrap(y, pred))
+        held, chosen = select_cv(y, dem, threshold=False)
+        rows["dem (CV-selected)"] = dict(cv=scores.bootstrap(y, held), chosen=chosen, held=held.tolist())
+        pga = np.array([outcomes[t].scaled_pga_g for t in testlist])
+        held, thr = scores.cross_validated(y, pga)
+        rows["pga threshold"] = dict(cv=scores.bootstrap(y, held, pga), thresholds=thr, held=held.tolist())
+        result["scores"][s] = rows
+    if sensitivity:
+        result["sensitivity"], candidates = processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz)
+        # the processing is a fitted choice too: chosen with the setting and the threshold on
+        # the training folds only, scored on the held-out fold
+        for s, cands in candidates.items():
+            y = np.array([outcomes[t].measured[s] for t in testlist], bool)
+            held, chosen = select_cv(y, cands)
+            result["scores"][s]["analytic (CV-selected processing)"] = dict(
+                cv=scores.bootstrap(y, held), chosen=chosen, held=held.tolist())
+    return result
+
+
+def processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz) -> list[dict]:
+    """The analytic engines' accuracy (own verdict, and held-out threshold) with all the
+    chosen steps, each one left out, and none (the raw record); and every (setting,
+    processing) pair's predictions, for the cross-validated choice among them."""
+    variants = [("all: " + ",".join(steps), tuple(steps))]
+    variants += [(f"without {s}", tuple(x for x in steps if x != s)) for s in steps]
+    variants += [("none (raw)", ())]
+    if "highpass" not in steps:
+        variants.append(("drift → highpass", tuple("highpass" if x == "drift" else x for x in steps)))
+    testlist = sorted(outcomes)
+    dts = {t: motions[t].dt for t in testlist}
+    out = []
+    candidates: dict = {s: {} for s in specimens}
+    for label, st in variants:
+        accel = {t: _motion(motions[t], st, lowpass_hz) for t in testlist}
+        row = dict(variant=label)
+        for s, sp in specimens.items():
+            y = np.array([outcomes[t].measured[s] for t in testlist], bool)
+            runs = run_analytic(sp, accel, dts)
+            for name, r in runs.items():
+                pred = np.array([r[t][0] for t in testlist])
+                score = np.array([r[t][1] for t in testlist])
+                held, _ = scores.cross_validated(y, score)
+                candidates[s][f"{name} | {label}"] = (pred, score)
+                row[f"{name} SP{s} own"] = float((pred == y).mean())
+                row[f"{name} SP{s} cv"] = float((held == y).mean())
+        out.append(row)
+    return out, candidates

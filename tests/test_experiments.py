@@ -1,0 +1,303 @@
+"""isorock experiments (issue 21): readers, processing, resting pose, scores, the MuJoCo hull
+scene and the command. The shake-table data (GPL-3.0) are read from ../shared/data/vsr at
+run time, never copied here; tests that need them skip when the folder is absent. Every
+other test builds its own synthetic input."""
+import gzip
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from isorock.analytic.errors import InputError
+from isorock.experiments import data, processing, scores, specimen
+
+ROOT = Path(__file__).resolve().parent.parent
+VSR = ROOT.parent / "shared" / "data" / "vsr"
+G = 9.81
+
+
+@pytest.fixture(scope="module")
+def vsr_dir() -> Path:
+    if not (VSR / "results.csv").is_file():
+        pytest.skip(f"shared shake-table data not found at {VSR} (expected beside the repository)")
+    return VSR
+
+
+# --- readers ------------------------------------------------------------------------------
+
+def _write_test(path: Path, t, a, *, columns=2, header="Time [s]\tAcceleration [g]", gz=True):
+    lines = [header]
+    for ti, ai in zip(t, a):
+        extra = "\t0.5" * (columns - 2)
+        lines.append(f"{ti:.6g}\t{ai:.7g}{extra}")
+    text = "\n".join(lines) + "\n"
+    if gz:
+        with gzip.open(path, "wt") as f:
+            f.write(text)
+    else:
+        path.write_text(text)
+
+
+def test_both_layouts_read_the_same_motion_in_m_per_s2(tmp_path):
+    t = np.arange(4000) / 800.0  # printed to 6 significant digits, as the data are
+    a = 0.1 * np.sin(2 * np.pi * 1.5 * t)
+    shared = tmp_path / "shared" / "Shake_Table_Response"
+    clone = tmp_path / "clone" / "data" / "Shake_Table_Response"
+    shared.mkdir(parents=True)
+    clone.mkdir(parents=True)
+    _write_test(shared / "Test007.txt.gz", t, a)
+    _write_test(clone / "Test007.txt", t, a, columns=8, header="Time [s]\tAcceleration [g]\tAy [g]\tx1\tx2\tx3\tx4\tx5",
+                gz=False)
+    m1 = data.read_test(data.test_files(tmp_path / "shared")[7])
+    m2 = data.read_test(data.test_files(tmp_path / "clone")[7])
+    assert m1.dt == pytest.approx(1 / 800, rel=1e-6) and m2.dt == pytest.approx(1 / 800, rel=1e-6)
+    assert np.allclose(m1.acceleration, a * G, rtol=1e-6, atol=1e-9)
+    assert np.array_equal(m1.acceleration, m2.acceleration)
+    assert m1.units == "g"
+
+
+@pytest.mark.parametrize("header, lines, match", [
+    ("Time [s]\tAcceleration", ["0\t1", "0.1\t1", "0.2\t1"], "states no units"),
+    ("Time [s]\tAcceleration [ft/s2]", ["0\t1", "0.1\t1", "0.2\t1"], "not one of"),
+    ("Time [s]\tAcceleration [g]", ["0\t1", "0.1\tx", "0.2\t1"], ":3: "),
+    ("Time [s]\tAcceleration [g]", ["0\t1", "0.1\t1", "0.3\t1", "0.4\t1"], "off the uniform grid"),
+])
+def test_bad_test_files_are_refused_with_the_line(tmp_path, header, lines, match):
+    p = tmp_path / "Test001.txt"
+    p.write_text(header + "\n" + "\n".join(lines) + "\n")
+    with pytest.raises(InputError, match=match):
+        data.read_test(p)
+
+
+def test_results_csv_reader_and_its_refusals(tmp_path):
+    head = ("test,Experimental Results for response-Specimen 1,Experimental Results for response-Specimen 2,"
+            "Specimen 1-Numerical KN=1 KS=1,Specimen 2-Numerical KN=3 KS=1,ground_motion,pgv_over_pga_s,scaled_pga_g")
+    p = tmp_path / "results.csv"
+    p.write_text(head + "\n5,1,0,1,0,'X.xlsx',0.05,0.3\n")
+    out = data.read_results(p)
+    assert out[5].measured == {1: 1, 2: 0} and out[5].baseline == {1: {"KN=1 KS=1": 1}, 2: {"KN=3 KS=1": 0}}
+    assert out[5].ground_motion == "X" and out[5].scaled_pga_g == 0.3
+    p.write_text(head + "\n5,2,0,1,0,X,0.05,0.3\n")
+    with pytest.raises(InputError, match="must be 0 or 1"):
+        data.read_results(p)
+
+
+def test_real_tests_read_at_800_hz_and_their_peak_matches_the_data_own(vsr_dir):
+    """Independent oracle: results.csv's scaled PGA of each test (the data's own number)
+    against the peak of our processed record."""
+    outcomes, files = data.load(vsr_dir)
+    for test in sorted(files)[:3]:
+        m = data.read_test(files[test], test)
+        assert m.dt == pytest.approx(1 / 800, rel=1e-4) and 20 < m.duration < 60 and m.units == "g"
+        a = processing.process(m.acceleration, m.dt)
+        assert np.abs(a).max() / G == pytest.approx(outcomes[test].scaled_pga_g, rel=0.15)
+
+
+# --- processing -------------------------------------------------------------------------
+
+def test_offset_removal_recovers_a_signal_with_a_known_offset():
+    dt = 0.01
+    t = dt * np.arange(3000)
+    true = np.where(t > 1.0, np.sin(2 * np.pi * (t - 1.0)), 0.0)
+    out = processing.remove_offset(true + 0.37, dt)
+    assert np.abs(out - true).max() < 1e-12
+
+
+def test_drift_removal_removes_a_polynomial_error_and_keeps_a_whole_cycle_sine():
+    dt = 0.005
+    t = dt * np.arange(4001)
+    drift = 0.02 - 0.003 * t + 1e-4 * t ** 2  # integrates to a cubic velocity: removed exactly
+    assert np.abs(processing.remove_drift(drift, dt)).max() < 1e-9
+    shake = np.sin(2 * np.pi * 2.0 * t)  # 40 whole cycles: its velocity's trend is tiny
+    assert np.abs(processing.remove_drift(shake + drift, dt) - shake).max() < 0.01
+
+
+def test_lowpass_keeps_the_shaking_and_removes_the_chatter():
+    dt = 1 / 800
+    t = dt * np.arange(16000)
+    slow = np.sin(2 * np.pi * 2.0 * t)
+    out = processing.lowpass(slow + 0.3 * np.sin(2 * np.pi * 120.0 * t), dt, 20.0)
+    inner = slice(800, -800)  # away from the ends' filter transients
+    assert np.abs(out[inner] - slow[inner]).max() < 0.01
+
+
+def test_trim_keeps_the_loud_part_and_the_pad():
+    dt = 0.01
+    a = np.zeros(5000)
+    a[2000:2500] = 1.0
+    out, start = processing.trim(a, dt, fraction=0.05, pad=1.0)
+    assert start == 1900 and out.size == 700
+
+
+def test_unknown_step_is_refused():
+    with pytest.raises(InputError, match="'smooth' is not a step"):
+        processing.parse_steps("offset,smooth")
+
+
+# --- specimens ----------------------------------------------------------------------------
+
+def _prism(lx, lz, w):
+    """A right triangular prism: the right angle at the origin, legs lx along x and lz
+    along z, width w along y (closed, outward triangles)."""
+    tri = np.array([[0, 0], [lx, 0], [0, lz]], float)
+    v = np.array([[x, y, z] for y in (-w / 2, w / 2) for x, z in tri])
+    f = [[0, 2, 1], [3, 4, 5],  # ends
+         [0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4], [2, 0, 3], [2, 3, 5]]
+    return v, np.array(f)
+
+
+def _box(a, b, c):
+    v = np.array([[x, y, z] for x in (-a / 2, a / 2) for y in (-b / 2, b / 2) for z in (-c / 2, c / 2)])
+    from scipy.spatial import ConvexHull
+    h = ConvexHull(v)
+    f = h.simplices.copy()
+    for k, (eq, s) in enumerate(zip(h.equations, f)):  # orient outward
+        if np.dot(np.cross(v[s[1]] - v[s[0]], v[s[2]] - v[s[0]]), eq[:3]) < 0:
+            f[k] = s[[0, 2, 1]]
+    return v, f
+
+
+def test_box_mass_properties_and_rest_pose_match_the_closed_form():
+    a, b, c, m = 0.4, 0.3, 1.2, 500.0
+    v, f = _box(a, b, c)
+    vol, com, I = specimen.mass_properties(v, f)
+    assert vol == pytest.approx(a * b * c, rel=1e-12) and np.allclose(com, 0, atol=1e-12)
+    assert np.allclose(np.diag(I) * m / vol, [m * (b * b + c * c) / 12, m * (a * a + c * c) / 12,
+                                             m * (a * a + b * b) / 12], rtol=1e-12)
+    # placed lying almost on its side (80° about y): it rests on the long face nearest down
+    placement = specimen.quat_matrix([0, math.sin(math.radians(40)), 0, math.cos(math.radians(40))])
+    sp = specimen.resting(v, f, m, placement)
+    assert sp.com[2] == pytest.approx(a / 2, rel=1e-9)
+    assert sp.checks["stable_faces"] == 6
+    fw, bw = sp.direction(1), sp.direction(-1)
+    assert fw["alpha"] == pytest.approx(math.atan2(c / 2, a / 2), rel=1e-9)
+    assert bw["alpha"] == pytest.approx(fw["alpha"], rel=1e-9)
+    # the equivalent block of a box is the box itself (same α, same p)
+    assert fw["block_height"] == pytest.approx(a, rel=1e-9) and fw["block_width"] == pytest.approx(c, rel=1e-9)
+
+
+def test_wedge_rocks_forward_and_backward_at_different_alpha():
+    """Closed form: a right-triangle prism's centre of mass is at (lx/3, lz/3); on its long
+    leg it rocks about x = lx (b = 2lx/3) or x = 0 (b = lx/3)."""
+    lx, lz = 0.6, 0.9
+    v, f = _prism(lx, lz, 0.5)
+    sp = specimen.resting(v, f, 100.0, np.eye(3))
+    assert sp.com[2] == pytest.approx(lz / 3, rel=1e-9)
+    assert sp.direction(1)["alpha"] == pytest.approx(math.atan2(2 * lx / 3, lz / 3), rel=1e-9)
+    assert sp.direction(-1)["alpha"] == pytest.approx(math.atan2(lx / 3, lz / 3), rel=1e-9)
+
+
+def test_real_specimens_rest_on_a_face_near_the_data_placement_and_match_its_com(vsr_dir):
+    for n in (1, 2):
+        sp = specimen.load_specimen(vsr_dir, n)
+        c = sp.checks
+        assert c["settle_tilt_deg"] < 5 and c["margin_m"] > 0
+        assert np.linalg.norm(c["mesh_com"]) < 2e-3  # the meshes are centred at their centre of mass
+        assert 2500 < c["density_kg_m3"] < 3000  # granite
+    # SP1's URDF inertia (principal, the PCA mesh frame) agrees with the mesh at uniform density
+    assert specimen.load_specimen(vsr_dir, 1).checks["inertia_rel_diff"] < 0.1
+
+
+# --- scores -------------------------------------------------------------------------------
+
+def test_scores_against_a_hand_computed_confusion_matrix():
+    y = [1, 1, 1, 0, 0, 0, 0, 1]
+    p = [1, 0, 1, 0, 1, 1, 0, 1]  # tp 3, fn 1, fp 2, tn 2
+    m = scores.metrics(y, p)
+    assert (m["tp"], m["fn"], m["fp"], m["tn"]) == (3, 1, 2, 2)
+    assert m["accuracy"] == 5 / 8 and m["precision"] == 3 / 5 and m["recall"] == 3 / 4
+    assert m["f1"] == pytest.approx(2 / 3, abs=1e-15)
+    assert scores.roc_auc([1, 1, 0, 0], [0.9, 0.4, 0.5, 0.1]) == 0.75
+    b = scores.bootstrap(y, p, n=200)
+    assert b["accuracy_ci"][0] <= 5 / 8 <= b["accuracy_ci"][1]
+
+
+def test_cross_validated_prediction_never_sees_its_own_label():
+    rng = np.random.default_rng(1)
+    score = rng.uniform(0, 2, 60)
+    y = score > 1.0
+    pred, _ = scores.cross_validated(y, score)
+    assert pred.tolist() == y.tolist()  # separable: every fold's threshold separates
+    for i in (0, 17, 42):
+        flipped = y.copy()
+        flipped[i] = ~flipped[i]
+        assert scores.cross_validated(flipped, score)[0][i] == pred[i]
+
+
+# --- the MuJoCo hull scene ------------------------------------------------------------------
+
+def test_mujoco_hull_rock_uplifts_only_past_g_tan_alpha():
+    """Quasi-static closed form: a block on a table accelerating at a constant a stays when
+    a < g·tan α and overturns when a is well above it (held 2 s)."""
+    from isorock.mujoco_models import mesh_scene
+    v, f = _box(0.2, 0.2, 1.0)  # α = atan(0.1/0.5) = 0.197, g tan α = 0.2 g
+    sp = specimen.resting(v, f, 100.0, np.eye(3))
+    xml = mesh_scene.scene_xml(sp.vertices, sp.com, sp.inertia, sp.mass)
+    dt = 0.01
+    stay = mesh_scene.simulate(xml, np.full(201, 0.1 * G), dt)
+    fall = mesh_scene.simulate(xml, np.full(201, 0.5 * G), dt)
+    assert not stay["overturned"] and stay["tilt_max"] < 0.02
+    assert fall["overturned"]
+
+
+# --- the command ------------------------------------------------------------------------------
+
+def test_bad_engine_and_data_exit_2_with_one_line(tmp_path, capsys):
+    from isorock.validate.cli.main import main
+    assert main(["experiments", "--engines", "bullet", "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "bullet" in err[0]
+    assert main(["experiments", "--data", str(tmp_path / "none"), "--out", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "not a folder" in err[0]
+    assert not (tmp_path / "o").exists()
+
+
+def test_command_on_three_real_tests_writes_its_outputs(vsr_dir, tmp_path, capsys):
+    from isorock.validate.cli.main import main
+    tests = ",".join(str(t) for t in sorted(data.test_files(vsr_dir))[:3])
+    out = tmp_path / "o"
+    assert main(["experiments", "--data", str(vsr_dir), "--tests", tests, "--out", str(out)]) == 0
+    assert {p.name for p in out.iterdir()} >= {"experiments.md", "scores.csv", "runs.csv", "study.json", "errors.png"}
+    rows = (out / "runs.csv").read_text().splitlines()
+    assert len(rows) == 1 + 2 * 4 * 3  # header + specimens × (analytic, asymmetric: 2 settings each) × tests
+
+
+# --- the asymmetric rigid model -----------------------------------------------------------
+
+def test_asymmetric_impact_map_reduces_to_housner_for_a_rectangle():
+    from isorock.experiments.asymmetric import impact_ratio
+    h, b, m = 0.6, 0.15, 10.0
+    R = math.hypot(h, b)
+    alpha = math.atan2(b, h)
+    assert impact_ratio(m * R * R / 3, m, h, b, b, R) == pytest.approx(1 - 1.5 * math.sin(alpha) ** 2, rel=1e-14)
+    # and conserves angular momentum about the striking edge on an asymmetric body (by hand:
+    # H = I_c ω + m (h² − b_f b_b) ω before, I_new ω' after)
+    I_c, bf, bb = 2.0, 0.1, 0.3
+    Rb = math.hypot(h, bb)
+    assert impact_ratio(I_c, m, h, bf, bb, Rb) * (I_c + m * Rb ** 2) == pytest.approx(I_c + m * (h * h - bf * bb))
+
+
+def test_asymmetric_model_of_a_rectangle_agrees_with_the_exact_analytic_model():
+    """Independent computation: the same symmetric block under sine pulses, the analytic
+    engine (event-located impacts, rtol 1e-10) against the asymmetric model's RK4."""
+    from isorock.analytic.motion import GroundMotion
+    from isorock.analytic.system import System
+    from isorock.experiments import asymmetric
+    from isorock.validate.core.engines import get_engine
+    H, B, m = 0.7, 0.2, 100.0
+    h, b = H / 2, B / 2
+    R, alpha = math.hypot(h, b), math.atan2(b, h)
+    p = dict(alpha=np.array([alpha, alpha]), R=np.array([R, R]), I=np.full(2, 4 / 3 * m * R * R), m=m, g=9.81,
+             ratio=np.full(2, asymmetric.impact_ratio(m * R * R / 3, m, h, b, b, R)))
+    system = System.fixed(height=H, width=B, mass=m)
+    dt = 1 / 800
+    for amp, f, falls in ((0.6, 4.0, False), (0.45, 3.0, False), (0.5, 2.0, True)):
+        t = dt * np.arange(int(1 / f / dt) + 1)
+        a = amp * 9.81 * np.sin(2 * np.pi * f * t)
+        exact = get_engine("analytic").simulate(system, GroundMotion.from_array(a, dt=dt), duration=t[-1] + 5)
+        over, peak, _ = asymmetric.simulate(p, a, dt)
+        assert over == exact.overturned == falls
+        if not falls:
+            assert peak == pytest.approx(exact.theta_max_over_alpha, rel=0.005)

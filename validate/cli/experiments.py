@@ -1,0 +1,155 @@
+"""`isorock experiments [--data DIR] [--engines …] [--out DIR]`: the study of study.py,
+written as experiments.md (tables), scores.csv, runs.csv, study.json and errors.png,
+through validate.output (all or none; the folder must be new, empty or an earlier isorock
+output)."""
+from __future__ import annotations
+
+import csv
+import math
+import sys
+
+from isorock.analytic.errors import InputError
+
+from isorock.experiments import processing, study
+
+DEFAULT_OUT = "isorock-experiments"
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("experiments", help="score the rigid rocking model and the contact engines against "
+                                           "measured shake-table tests (overturned or not)",
+                       description=__doc__.split("\n\n")[0])
+    p.add_argument("--data", default=str(study.default_data()), metavar="DIR",
+                   help="the shake-table data folder, or a clone of the original repository (default: "
+                        "%(default)s)")
+    p.add_argument("--engines", default="analytic,asymmetric", metavar="E[,E]",
+                   help=f"engines to run, comma-separated, from {', '.join(study.ENGINES)} (default: "
+                        "%(default)s; mujoco adds about 0.4 s per test, specimen and sign)")
+    p.add_argument("--steps", default=",".join(processing.DEFAULT_STEPS), metavar="S[,S]",
+                   help=f"processing steps of the table acceleration, from {', '.join(processing.STEPS)}, "
+                        "or none (default: %(default)s)")
+    p.add_argument("--lowpass-hz", type=float, default=processing.LOWPASS_HZ, metavar="HZ",
+                   help="the low-pass corner (default: %(default)s)")
+    p.add_argument("--tests", metavar="N[,N]", help="only these test numbers (default: every test with a file "
+                                                    "and an outcome)")
+    p.add_argument("--sensitivity", action="store_true",
+                   help="also run the analytic engines with each processing step left out (about 10 s per variant)")
+    p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR", help="output folder (default: %(default)s)")
+    p.set_defaults(func=main)
+
+
+def _engines(text):
+    names = [x.strip() for x in text.split(",") if x.strip()]
+    for n in names:
+        if n not in study.ENGINES:
+            raise InputError(f"engines = {text!r}: {n!r} is not one of {', '.join(study.ENGINES)}")
+    if not names:
+        raise InputError(f"engines = {text!r}: name at least one of {', '.join(study.ENGINES)}")
+    return tuple(dict.fromkeys(names))
+
+
+def _tests(text):
+    if text is None:
+        return None
+    try:
+        return [int(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise InputError(f"tests = {text!r}: must be comma-separated test numbers") from None
+
+
+def main(a) -> int:
+    from isorock.validate.io.output import Outputs
+    engines = _engines(a.engines)
+    steps = processing.parse_steps(a.steps)
+    if not (a.lowpass_hz > 0 and math.isfinite(a.lowpass_hz)):
+        raise InputError(f"lowpass-hz = {a.lowpass_hz!r}: must be a positive number of Hz below the Nyquist frequency")
+    tests = _tests(a.tests)
+    with Outputs() as outputs:
+        out = outputs.folder("out", a.out)  # refused before the runs, not after
+        result = study.build(a.data, engines=engines, steps=steps, lowpass_hz=a.lowpass_hz, tests=tests,
+                             sensitivity=a.sensitivity)
+        from isorock.validate.io.provenance import provenance
+        result["provenance"] = provenance()
+        out.write(lambda folder: write(result, folder))
+        outputs.commit()
+    print("\n".join(table_lines(result)))
+    print(f"wrote {a.out}/experiments.md, scores.csv, runs.csv, study.json, errors.png")
+    return 0
+
+
+def _ci(row, key):
+    v, (lo, hi) = row[key], row[key + "_ci"]
+    return "—" if v != v else f"{v:.3f} [{lo:.3f}, {hi:.3f}]"
+
+
+def score_rows(result):
+    """(specimen, name, kind, metrics) of every scored row; kind 'own' (nothing fitted) or
+    'held-out' (cross-validated)."""
+    for s, rows in result["scores"].items():
+        for name, row in rows.items():
+            for kind, key in (("own", "own"), ("held-out", "cv")):
+                if key in row:
+                    yield s, name, kind, row[key]
+
+
+def table_lines(result) -> list[str]:
+    lines = ["| specimen | predictor | verdict | accuracy [95% CI] | precision | recall | F1 | ROC AUC |",
+             "|---|---|---|---|---|---|---|---|"]
+    for s, name, kind, m in score_rows(result):
+        lines.append(f"| SP{s} | {name} | {kind} | {_ci(m, 'accuracy')} | {_ci(m, 'precision')} | "
+                     f"{_ci(m, 'recall')} | {_ci(m, 'f1')} | {_ci(m, 'auc') if 'auc' in m else '—'} |")
+    return lines
+
+
+def sensitivity_lines(result) -> list[str]:
+    rows = result.get("sensitivity")
+    if not rows:
+        return []
+    keys = [k for k in rows[0] if k != "variant"]
+    lines = ["| processing | " + " | ".join(keys) + " |", "|---|" + "---|" * len(keys)]
+    for r in rows:
+        lines.append(f"| {r['variant']} | " + " | ".join(f"{r[k]:.3f}" for k in keys) + " |")
+    return lines
+
+
+def specimen_lines(result) -> list[str]:
+    lines = ["| specimen | direction | b (m) | h (m) | R (m) | α (rad) | p (1/s) | block H × B (m) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for s, d in result["specimens"].items():
+        for direction in ("forward", "backward"):
+            e = d[direction]
+            lines.append(f"| SP{s} | {direction} | {e['b']:.4f} | {e['h']:.4f} | {e['R']:.4f} | {e['alpha']:.4f} | "
+                         f"{e['p']:.3f} | {e['block_height']:.4f} × {e['block_width']:.4f} |")
+    return lines
+
+
+def write(result, folder) -> None:
+    from isorock.validate.io.output import to_json
+    (folder / "study.json").write_text(to_json(result) + "\n")
+    with open(folder / "scores.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        keys = ["accuracy", "precision", "recall", "f1", "auc"]
+        w.writerow(["specimen", "predictor", "verdict"] + [x for k in keys for x in (k, k + "_lo", k + "_hi")]
+                   + ["tp", "fp", "fn", "tn"])
+        for s, name, kind, m in score_rows(result):
+            vals = []
+            for k in keys:
+                vals += [m.get(k, ""), *(m.get(k + "_ci") or ["", ""])]
+            w.writerow([s, name, kind] + vals + [m["tp"], m["fp"], m["fn"], m["tn"]])
+    with open(folder / "runs.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["specimen", "engine", "test", "measured", "predicted", "score", "wall_s"])
+        for s, engines in result["runs"].items():
+            for name, rows in engines.items():
+                for t, (pred, score, wall) in rows.items():
+                    w.writerow([s, name, t, result["outcomes"][t]["measured"][s], int(pred), score, wall])
+    md = ["# isorock experiments", "", f"Tests: {len(result['tests'])}; processing: "
+          f"{', '.join(result['steps']) or 'none'} (low-pass {result['lowpass_hz']:g} Hz).", "",
+          "## Scores", "", *table_lines(result), "", "## Equivalent blocks", "", *specimen_lines(result), "",
+          "## Cost (wall s)", "", *(f"- {k}: {v:.1f} s" for k, v in result["cost"].items())]
+    sens = sensitivity_lines(result)
+    if sens:
+        md += ["", "## Processing sensitivity (accuracy)", "", *sens]
+    (folder / "experiments.md").write_text("\n".join(md) + "\n")
+    from isorock.experiments.figures import error_figure
+    error_figure(result, folder / "errors.png")
