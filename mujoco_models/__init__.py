@@ -61,6 +61,8 @@ ENGINE = EngineSpec(
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, replay_scene=_replay_scene,
     presets={
         "default": Settings,
+        # the contact scene stepped throughout, also while the block rests on its base (phases.py)
+        "full": lambda: Settings(phased=False),
         # Newton, MuJoCo's own solver and the default's: named so that it reads beside cg
         "newton": lambda: Settings(solver="Newton"),
         # conjugate gradient, MuJoCo's other solver for soft contacts: cheaper iterations, more of them

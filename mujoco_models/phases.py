@@ -31,7 +31,7 @@ from isorock.analytic.system import System
 #: time constant's worth before it lifts, and a record's acceleration can jump within a
 #: step, so the margin is both a fraction of the threshold and a time (measured,
 #: docs/mujoco.md).
-F_HIGH = 0.6
+F_HIGH = 0.7
 LEAD_TIME = 0.05
 #: Back to the reduced scene after the block has rested SETTLE_TIME (s) with
 #: |a| < F_LOW·g·tanα at the last of those rows.

@@ -52,7 +52,7 @@ class Settings:
     impact_timestep: float | None = None
     solver: str = "Newton"
     #: step the contact scene only where contact can happen (phases.py, docs/mujoco.md)
-    phased: bool = False
+    phased: bool = True
 
     def __post_init__(self):
         dt = require_positive_finite("timestep", self.timestep)

@@ -2,8 +2,11 @@
 stepping, side by side on the golden scenarios, Kobe 40 s (isolated and fixed base), the
 report's Ricker pulse and free rocking: θmax/α, counted impacts, first uplift, worst β
 error against the analytic model, and the median wall time of REPEATS runs each.
+With --speed: Kobe 40 s alone and as a batch of 16 (the record scaled 0.6–1.35×,
+Engine.simulate_many, threads=2), full against phased, medians of REPEATS; and the raw
+cost of one step of the contact scene (mujoco.rollout of the block at rest, no Python).
 
-    nice -n 5 python docs/scripts/phased_mujoco.py [--repeats 5]
+    nice -n 5 python docs/scripts/phased_mujoco.py [--repeats 5] [--speed]
 """
 from __future__ import annotations
 
@@ -34,7 +37,13 @@ def scenarios():
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--speed", action="store_true")
     args = ap.parse_args()
+    from isorock.mujoco_models import phases
+    print(f"phases: F_HIGH {phases.F_HIGH}, LEAD_TIME {phases.LEAD_TIME} s, F_LOW {phases.F_LOW}, "
+          f"SETTLE_TIME {phases.SETTLE_TIME} s; repeats {args.repeats}\n")
+    if args.speed:
+        return speed(args.repeats)
     ref_settings = AnalyticSettings(rtol=1e-12, atol=1e-14)
     print("| scenario | stepping | θmax/α | Δθmax/α vs full | impacts (analytic) | first uplift s (Δ vs full) "
           "| worst β err (4) | wall s (median) | sim s / wall s |")
@@ -45,7 +54,7 @@ def main():
         ref = get_engine("analytic").simulate(sc.system, motion, settings=ref_settings,
                                               duration=sc.duration, theta0=sc.theta0)
         full = None
-        for label, settings in (("full", Settings()), ("phased", replace(Settings(), phased=True))):
+        for label, settings in (("full", replace(Settings(), phased=False)), ("phased", replace(Settings(), phased=True))):
             walls = []
             for _ in range(args.repeats):
                 t = time.perf_counter()
@@ -62,6 +71,48 @@ def main():
                   f"| {c.first_uplift if c.first_uplift is None else round(c.first_uplift, 4)}"
                   f" ({'–' if dup is None else f'{dup * 1e3:+.2f} ms'}) "
                   f"| {max(berr) * 100 if berr else float('nan'):.3f}% | {wall:.3f} | {sc.duration / wall:.0f} |", flush=True)
+
+
+def speed(repeats):
+    import mujoco
+    import numpy as np
+    from mujoco import rollout
+
+    from isorock.mujoco_models import build_model
+    from isorock.mujoco_models.state import Layout
+    eng = get_engine("mujoco")
+    print("| base | stepping | one run: sim s / wall s | batch of 16, threads=2: sim s / wall s |")
+    print("|---|---|---|---|")
+    for fixed in (False, True):
+        system = paper_system(fixed_base=fixed)
+        motion = Scenario("k", system, str(KOBE), 40.0).ground_motion()
+        batch = [(system, motion.scaled(0.6 + 0.05 * i), 40.0, 0.0) for i in range(16)]
+        for label, settings in (("full", replace(Settings(), phased=False)), ("phased", replace(Settings(), phased=True))):
+            one, many = [], []
+            for _ in range(repeats):
+                t = time.perf_counter()
+                eng.simulate(system, motion, settings=settings, duration=40.0)
+                one.append(time.perf_counter() - t)
+                t = time.perf_counter()
+                out = eng.simulate_many(batch, settings=settings, threads=2)
+                many.append(time.perf_counter() - t)
+                assert not any(isinstance(o, Exception) for o in out), out
+            print(f"| {'fixed' if fixed else 'isolated'} | {label} | {40.0 / statistics.median(one):.0f} "
+                  f"| {16 * 40.0 / statistics.median(many):.0f} |", flush=True)
+    for fixed in (False, True):  # the floor: rollout's cost per step of the contact scene, nothing else
+        system = paper_system(fixed_base=fixed)
+        model = build_model(system, Settings())
+        lay = Layout(model, system, "planar")
+        state = lay.initial_state(model, system, 0.0)
+        n = 80_000
+        f = np.zeros((1, n, lay.nv))
+        per = []
+        for _ in range(repeats):
+            t = time.perf_counter()
+            rollout.rollout(model, mujoco.MjData(model), state, f, control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED)
+            per.append((time.perf_counter() - t) / n)
+        print(f"raw step, {'fixed' if fixed else 'isolated'} base: {statistics.median(per) * 1e6:.2f} µs "
+              f"({5e-4 / statistics.median(per):.0f} sim s / wall s at 5e-4 s)")
 
 
 if __name__ == "__main__":
