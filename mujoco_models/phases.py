@@ -42,7 +42,7 @@ SETTLE_TIME = 0.1
 #: block's own scales, so the rule holds at any size).
 REST_TILT = 1e-4
 REST_RATE = 1e-4
-REST_SPEED = 1e-5
+REST_SPEED = 1e-4
 #: Steps per full-scene rollout call while looking for rest (the steps of a call past
 #: the row where rest is found are discarded).
 FULL_CHUNK = 256
