@@ -81,24 +81,29 @@ def speed(repeats):
     from isorock.mujoco_models import build_model
     from isorock.mujoco_models.state import Layout
     eng = get_engine("mujoco")
-    print("| base | stepping | one run: sim s / wall s | batch of 16, threads=2: sim s / wall s |")
-    print("|---|---|---|---|")
+    print("| base | stepping | one run: sim s / wall s | one run: sim s / CPU s | stepping loop alone (runtime_s): sim s / wall s "
+          "| batch of 16, threads=2: sim s / wall s |")
+    print("|---|---|---|---|---|---|")
     for fixed in (False, True):
         system = paper_system(fixed_base=fixed)
         motion = Scenario("k", system, str(KOBE), 40.0).ground_motion()
         batch = [(system, motion.scaled(0.6 + 0.05 * i), 40.0, 0.0) for i in range(16)]
         for label, settings in (("full", replace(Settings(), phased=False)), ("phased", replace(Settings(), phased=True))):
-            one, many = [], []
+            one, cpu, loop, many = [], [], [], []
             for _ in range(repeats):
-                t = time.perf_counter()
-                eng.simulate(system, motion, settings=settings, duration=40.0)
+                t, c = time.perf_counter(), time.process_time()
+                traj = eng.simulate(system, motion, settings=settings, duration=40.0)
                 one.append(time.perf_counter() - t)
+                cpu.append(time.process_time() - c)
+                loop.append(traj.runtime_s)
                 t = time.perf_counter()
                 out = eng.simulate_many(batch, settings=settings, threads=2)
                 many.append(time.perf_counter() - t)
                 assert not any(isinstance(o, Exception) for o in out), out
-            print(f"| {'fixed' if fixed else 'isolated'} | {label} | {40.0 / statistics.median(one):.0f} "
-                  f"| {16 * 40.0 / statistics.median(many):.0f} |", flush=True)
+            sim = traj.t[-1]  # a run that overturns stops early
+            print(f"| {'fixed' if fixed else 'isolated'} | {label} | {sim / statistics.median(one):.0f} "
+                  f"| {sim / statistics.median(cpu):.0f} | {sim / statistics.median(loop):.0f} "
+                  f"| {sum(o.t[-1] for o in out) / statistics.median(many):.0f} |", flush=True)
     for fixed in (False, True):  # the floor: rollout's cost per step of the contact scene, nothing else
         system = paper_system(fixed_base=fixed)
         model = build_model(system, Settings())
