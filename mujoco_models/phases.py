@@ -104,8 +104,8 @@ class Phases:
             return np.abs(self.xg[np.minimum(steps, self.xg.size - 1)])
         return np.abs(self.system.stiffness * u + self.system.damping * u_dot) / self.system.total_mass
 
-    def rest_finder(self, start: int):
-        """until(chunk, done) for the full phase from step `start`: the index of the row
+    def rest_finder(self):
+        """until(chunk, done) for a full phase: the index of the row
         ending SETTLE_TIME of rest with |a| < F_LOW·threshold, or None."""
         lay, streak = self.lay, [0]
 
@@ -116,10 +116,14 @@ class Phases:
                     & (np.abs(vel[:, lay.x_v] - h["u_dot"]) < self.speed) & (np.abs(vel[:, self.z_v]) < self.speed))
             steps = done + np.arange(1, chunk.shape[0] + 1)
             quiet = self.absolute_acceleration(h["u"], h["u_dot"], steps) < F_LOW * self.threshold
-            for i in range(chunk.shape[0]):  # a run of rest rows, carried across chunks
-                streak[0] = streak[0] + 1 if rest[i] else 0
-                if streak[0] >= self.settle and quiet[i]:
-                    return i
+            # length of the run of rest rows ending at each row, carried across chunks
+            i = np.arange(chunk.shape[0])
+            last_break = np.maximum.accumulate(np.where(rest, -1, i))
+            run = np.where(last_break >= 0, i - last_break, streak[0] + i + 1)
+            streak[0] = int(run[-1])
+            found = np.nonzero((run >= self.settle) & quiet)[0]
+            if found.size:
+                return int(found[0])
             return None
         return until
 

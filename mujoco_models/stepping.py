@@ -155,7 +155,7 @@ def _phased(model, data, lay, system, motion, settings, xg, forces, state0, rows
     while True:
         rows, status, message, stop_reason, k, _ = _roll(model, data, lay, system, motion, forces, state, warm,
                                                          rows, nstep, phases.FULL_CHUNK, dt, throttle, warnings,
-                                                         start=k, until=ph.rest_finder(k))
+                                                         start=k, until=ph.rest_finder())
         if status is not Status.COMPLETED or stop_reason is not None or k >= nstep:
             return rows, status, message, stop_reason
         rest, k, warm = ph.rest(rows[-1][-1], k, nstep)
