@@ -97,3 +97,10 @@ def test_the_full_scene_takes_over_before_the_threshold(fixed, monkeypatch):
             assert np.all(a[k:end + lead] < phases.F_HIGH * s.uplift_acceleration)
     assert any(end < uplift - lead for _, end in spans)
     assert not any(k < uplift <= end for k, end in spans)
+
+
+@pytest.mark.parametrize("bad", ["yes", 1, None])
+def test_phased_must_be_a_boolean(bad):
+    from isorock.analytic.errors import InputError
+    with pytest.raises(InputError, match="phased"):
+        Settings(phased=bad)
