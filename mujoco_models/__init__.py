@@ -67,6 +67,8 @@ ENGINE = EngineSpec(
     simulate_body=_simulate_body,
     presets={
         "default": Settings,
+        # the contact scene stepped throughout, also while the block rests on its base (phases.py)
+        "full": lambda: Settings(phased=False),
         # Newton, MuJoCo's own solver and the default's: named so that it reads beside cg
         "newton": lambda: Settings(solver="Newton"),
         # conjugate gradient, MuJoCo's other solver for soft contacts: cheaper iterations, more of them

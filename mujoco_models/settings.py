@@ -51,6 +51,8 @@ class Settings:
     contact: str = "box"
     impact_timestep: float | None = None
     solver: str = "Newton"
+    #: step the contact scene only where contact can happen (phases.py, docs/mujoco.md)
+    phased: bool = True
 
     def __post_init__(self):
         dt = require_positive_finite("timestep", self.timestep)
@@ -89,6 +91,7 @@ class Settings:
         require(isinstance(self.noslip, (int, np.integer)) and not isinstance(self.noslip, bool)
                 and self.noslip >= 0, "noslip", self.noslip, "a non-negative whole number of iterations")
         object.__setattr__(self, "noslip", int(self.noslip))
+        require(isinstance(self.phased, bool), "phased", self.phased, "true or false")
 
 
 #: The default contact time constant in steps: solref = (SOLREF_STEPS · timestep, 2).

@@ -34,6 +34,7 @@ from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
 from .scene import build_model
+from . import phases
 from .settings import Settings
 from .state import Layout, raw_history, stop_in, warning_failure, warnings_as_status
 #: Steps per call of mujoco.rollout: the progress callback and the stop rules run
@@ -75,13 +76,18 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
 
     chunk_steps = chunk_steps or CHUNK_STEPS
     data = mujoco.MjData(model)
-    forces = lay.forces(system, np.asarray(motion((np.arange(nstep) + 0.5) * dt), dtype=float))
+    xg = np.asarray(motion((np.arange(nstep) + 0.5) * dt), dtype=float)
+    forces = lay.forces(system, xg)
     state0 = lay.initial_state(model, system, theta0)
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
     throttle = kinematics.Throttle(progress, duration)
-    rows, status, message, stop_reason = _roll(model, data, lay, system, motion, forces, state0, warm, rows,
-                                               nstep, chunk_steps, dt, throttle, warnings)
+    if phases.applies(settings, theta0, xg):
+        rows, status, message, stop_reason = _phased(model, data, lay, system, motion, settings, xg, forces,
+                                                     state0, rows, nstep, dt, throttle, warnings)
+    else:
+        rows, status, message, stop_reason, _, _ = _roll(model, data, lay, system, motion, forces, state0, warm,
+                                                         rows, nstep, chunk_steps, dt, throttle, warnings)
     runtime = time.perf_counter() - start
     return raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
 
@@ -140,9 +146,36 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1) -
     return [alone(item) for item in prepared] if warned else out
 
 
-def _roll(model, data, lay, system, motion, forces, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings):
+def _phased(model, data, lay, system, motion, settings, xg, forces, state0, rows, nstep, dt, throttle, warnings):
+    """Full-scene stepping only where contact can happen (phases.py): full phases until
+    the block has settled, rest phases (no contact scene) until the base's acceleration
+    nears the uplift threshold."""
+    ph = phases.Phases(model, lay, system, settings, xg, dt)
+    k, state, warm = 0, state0, np.zeros(lay.nv)
+    while True:
+        rows, status, message, stop_reason, k, _ = _roll(model, data, lay, system, motion, forces, state, warm,
+                                                         rows, nstep, phases.FULL_CHUNK, dt, throttle, warnings,
+                                                         start=k, until=ph.rest_finder())
+        if status is not Status.COMPLETED or stop_reason is not None or k >= nstep:
+            return rows, status, message, stop_reason
+        rest, k, warm = ph.rest(rows[-1][-1], k, nstep)
+        if rest.shape[0]:
+            rows.append(rest)
+            state = rest[-1]
+        else:
+            state = rows[-1][-1]
+        throttle(k * dt)
+        if k >= nstep:
+            return rows, status, message, stop_reason
+
+
+def _roll(model, data, lay, system, motion, forces, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings,
+          start=0, until=None):
+    """Full-scene rollout from step `start` to `nstep`, or, with `until(chunk, done)`, to the
+    row it names (the phased run's rest). Returns (rows, status, message, stop_reason,
+    steps done, warm start)."""
     status, message, stop_reason = Status.COMPLETED, "reached the end time", None
-    done = 0
+    done = start
     while done < nstep:
         n = min(chunk_steps, nstep - done)
         state, _ = rollout.rollout(model, data, state0, forces[done:done + n][None],
@@ -169,8 +202,13 @@ def _roll(model, data, lay, system, motion, forces, state0, warm, rows, nstep, c
             rows.append(chunk[:k + 1])
             stop_reason = reason
             break
+        settled = until(chunk, done - n) if until is not None else None
+        if settled is not None:
+            rows.append(chunk[:settled + 1])
+            done += settled + 1 - n
+            break
         rows.append(chunk)
         state0 = chunk[-1]
         warm = data.qacc_warmstart.copy()
         throttle(done * dt)
-    return rows, status, message, stop_reason
+    return rows, status, message, stop_reason, done, warm

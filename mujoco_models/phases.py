@@ -1,0 +1,205 @@
+"""Stepping that follows the run's phase (`Settings.phased`, docs/mujoco.md "Phased
+stepping"): while the block sits on its base and the base's absolute acceleration
+|a| = |ü + ẍg| stays well below the uplift threshold g·tanα (= g·b/h), nothing about
+contact happens, so the contact scene is not stepped:
+
+- on a fixed base the block moves with the ground: its state is constant;
+- on an isolated base block and base move as one body, the 1-DOF oscillator
+  M ü + c u̇ + k u = −M ẍg (M = m + m_b), integrated by MuJoCo's own step of a reduced
+  scene (one body of mass M on the same slide joint, same stiffness, damping, timestep
+  and integrator, no contact), so the history stays MuJoCo's integration of the
+  isolator; that step is written out (`isolator_steps`, equal to MuJoCo's to rounding,
+  tested), since MuJoCo's fixed cost per step would make the rest phase cost a third of
+  the contact scene's.
+
+The full scene takes over LEAD_TIME before |a| first reaches F_HIGH·g·tanα (restored
+from the resting block's offsets, recorded when the rest phase began), and the reduced
+one again once the block has rested for SETTLE_TIME with |a| < F_LOW·g·tanα. Every step
+still gives one row in the full scene's state layout, so measuring is unchanged.
+Runs that start tilted (free rocking) are stepped in full throughout.
+"""
+from __future__ import annotations
+
+import functools
+
+import mujoco
+import numpy as np
+from mujoco import rollout
+from scipy.signal import lfilter
+
+from isorock.analytic.system import System
+
+#: The full scene takes over LEAD_TIME (s) before the base's absolute acceleration first
+#: reaches F_HIGH of the uplift threshold: the block's compliant rest tilts by a contact
+#: time constant's worth before it lifts, and a record's acceleration can jump within a
+#: step, so the margin is both a fraction of the threshold and a time (0.05 s: 25 contact
+#: time constants, 10 samples of a 0.005 s record). Against full stepping F_HIGH 0.8
+#: moved the fixed-base Ricker's θmax/α by 1.9e-3, 0.7 by ≤ 2.5e-4 on the Rickers and
+#: 1.3e-3 on Kobe (the limit is 0.02; docs/mujoco.md).
+F_HIGH = 0.7
+LEAD_TIME = 0.05
+#: Back to the reduced scene after the block has rested SETTLE_TIME (s) with
+#: |a| < F_LOW·g·tanα at the last of those rows.
+F_LOW = 0.5
+SETTLE_TIME = 0.1
+#: "At rest": |θ| below REST_TILT·α, |θ̇| below REST_RATE·α·p, and the block's sliding
+#: and vertical speeds relative to the base below REST_SPEED·g/p (dimensionless in the
+#: block's own scales, so the rule holds at any size). The speed bound allows the soft
+#: friction contact's elastic creep (2e-5·g/p measured on Kobe after rocking); true
+#: sliding needs |a| > μg, far above F_LOW·g·tanα.
+REST_TILT = 1e-4
+REST_RATE = 1e-4
+REST_SPEED = 1e-4
+#: Steps per full-scene rollout call while looking for rest (the steps of a call past
+#: the row where rest is found are discarded).
+FULL_CHUNK = 256
+
+
+def applies(settings, theta0: float, xg: np.ndarray) -> bool:
+    """Whether a run is stepped by phases: asked for, starting at rest (free rocking
+    starts tilted and is stepped in full), with the planar joints of the default
+    stepping scheme, and a record that moves."""
+    return (getattr(settings, "phased", False) and theta0 == 0.0 and settings.joint == "planar"
+            and settings.impact_timestep is None and xg.size > 0 and bool(np.any(xg != 0.0)))
+
+
+@functools.lru_cache(maxsize=32)
+def reduced_model(mass: float, stiffness: float, damping: float, timestep: float, integrator: str) -> mujoco.MjModel:
+    """Block and base as one body on the isolator's slide joint: no contact, no gravity
+    (nothing vertical moves)."""
+    xml = f"""<mujoco model="isorock-rest">
+  <option timestep="{timestep!r}" integrator="{integrator}" gravity="0 0 0">
+    <flag autoreset="disable" island="disable" contact="disable"/>
+  </option>
+  <worldbody>
+    <body name="rigid">
+      <joint name="base_slide" type="slide" axis="1 0 0" stiffness="{stiffness!r}" damping="{damping!r}"/>
+      <inertial pos="0 0 0" mass="{mass!r}" diaginertia="1 1 1"/>
+    </body>
+  </worldbody>
+</mujoco>"""
+    return mujoco.MjModel.from_xml_string(xml)
+
+
+class Phases:
+    """What a phased run needs besides the full scene: the threshold, the rest test over
+    state rows, and the rest phase's rows."""
+
+    def __init__(self, model, lay, system: System, settings, xg: np.ndarray, dt: float):
+        self.lay, self.system, self.xg, self.dt = lay, system, xg, dt
+        self.z_v = model.jnt_dofadr[model.joint("block_z").id]
+        self.threshold = system.uplift_acceleration
+        self.lead = int(round(LEAD_TIME / dt))
+        self.settle = max(1, int(round(SETTLE_TIME / dt)))
+        scale_v = system.gravity / system.p
+        self.tilt, self.rate, self.speed = REST_TILT * system.alpha, REST_RATE * system.alpha * system.p, REST_SPEED * scale_v
+        self.integrator = settings.integrator
+        v0 = 1 + lay.nq
+        self.v = slice(v0, v0 + lay.nv)
+
+    def absolute_acceleration(self, u, u_dot, steps) -> np.ndarray:
+        """|ü + ẍg| of the base at rows after `steps`: on an isolated base (block resting
+        on it) the isolator's force over the whole mass; on a fixed base the record."""
+        if self.system.fixed_base:
+            return np.abs(self.xg[np.minimum(steps, self.xg.size - 1)])
+        return np.abs(self.system.stiffness * u + self.system.damping * u_dot) / self.system.total_mass
+
+    def rest_finder(self):
+        """until(chunk, done) for a full phase: the index of the row
+        ending SETTLE_TIME of rest with |a| < F_LOW·threshold, or None."""
+        lay, streak = self.lay, [0]
+
+        def until(chunk, done):
+            h = lay.histories(self.system, chunk)
+            vel = chunk[:, self.v]
+            rest = ((np.abs(h["theta"]) < self.tilt) & (np.abs(h["theta_dot"]) < self.rate)
+                    & (np.abs(vel[:, lay.x_v] - h["u_dot"]) < self.speed) & (np.abs(vel[:, self.z_v]) < self.speed))
+            steps = done + np.arange(1, chunk.shape[0] + 1)
+            quiet = self.absolute_acceleration(h["u"], h["u_dot"], steps) < F_LOW * self.threshold
+            # length of the run of rest rows ending at each row, carried across chunks
+            i = np.arange(chunk.shape[0])
+            last_break = np.maximum.accumulate(np.where(rest, -1, i))
+            run = np.where(last_break >= 0, i - last_break, streak[0] + i + 1)
+            streak[0] = int(run[-1])
+            found = np.nonzero((run >= self.settle) & quiet)[0]
+            if found.size:
+                return int(found[0])
+            return None
+        return until
+
+    def rest(self, row: np.ndarray, k: int, nstep: int):
+        """The rest phase from step k (the full scene's row `row`, block at rest): the rows
+        of steps k+1 … s in the full layout, the step s where the full scene takes over
+        (nstep: never), and the warm start to resume it with."""
+        lay, dt = self.lay, self.dt
+        template = row.copy()
+        template[self.v] = 0.0
+        if self.system.fixed_base:
+            hot = np.nonzero(np.abs(self.xg[k:]) >= F_HIGH * self.threshold)[0]
+            s = nstep if hot.size == 0 else max(k, k + int(hot[0]) - self.lead)
+            rows = np.repeat(template[None, :], s - k, axis=0)
+            rows[:, 0] = (k + 1 + np.arange(s - k)) * dt
+            return rows, s, np.zeros(lay.nv)
+        u0 = row[1 + lay.base_q]
+        dx = row[1 + lay.xq] - u0
+        u, v = self._isolator(u0, row[1 + lay.nq + lay.base_v], k, nstep)
+        s = nstep
+        hot = np.nonzero(self.absolute_acceleration(u, v, None) >= F_HIGH * self.threshold)[0]
+        if hot.size:  # u[i] is the state after step k + i
+            s = max(k, k + int(hot[0]) + 1 - self.lead)
+        red = np.column_stack((u, v))[:s - k]
+        rows = np.repeat(template[None, :], red.shape[0], axis=0)
+        rows[:, 0] = (k + 1 + np.arange(red.shape[0])) * dt
+        rows[:, 1 + lay.base_q] = red[:, 0]
+        rows[:, 1 + lay.xq] = red[:, 0] + dx
+        rows[:, 1 + lay.nq + lay.base_v] = red[:, 1]
+        rows[:, 1 + lay.nq + lay.x_v] = red[:, 1]
+        warm = np.zeros(lay.nv)
+        if red.shape[0] >= 2:  # block and base accelerate together: qacc of the last step
+            acc = (red[-1, 1] - red[-2, 1]) / dt
+            warm[lay.base_v] = warm[lay.x_v] = acc
+        return rows, s, warm
+
+    def _isolator(self, u0: float, v0: float, k: int, nstep: int) -> tuple[np.ndarray, np.ndarray]:
+        """u and u̇ after steps k … nstep−1 of the 1-DOF oscillator from (u0, v0)."""
+        sy, f = self.system, -self.system.total_mass * self.xg[k:nstep]
+        if self.integrator in MATCHED:
+            return isolator_steps(sy.total_mass, sy.stiffness, sy.damping, self.dt, u0, v0, f)
+        return reduced_steps(sy.total_mass, sy.stiffness, sy.damping, self.dt, self.integrator, u0, v0, f)
+
+
+#: Integrators whose step of the reduced scene `isolator_steps` writes out: semi-implicit
+#: Euler with the joint damping implicit (MuJoCo's Euler, implicit and implicitfast are
+#: the same map for one slide joint with a linear spring and dashpot).
+MATCHED = ("Euler", "implicit", "implicitfast")
+
+
+def isolator_steps(mass, stiffness, damping, dt, u0, v0, f) -> tuple[np.ndarray, np.ndarray]:
+    """MuJoCo's step of the reduced scene, written out: with M̃ = M + dt·c,
+    v' = v + dt (f − k u − c v)/M̃, u' = u + dt v'. A linear map x' = A x + B f, run
+    mode by mode through scipy's lfilter (C speed; a Python loop, or MuJoCo's own step of
+    the one-body scene, costs ~2 µs a step, as much as stepping the contact scene).
+    Agrees with `reduced_steps` to rounding (tested)."""
+    mt = mass + dt * damping
+    a = np.array([[1 - dt * dt * stiffness / mt, dt * (1 - dt * damping / mt)],
+                  [-dt * stiffness / mt, 1 - dt * damping / mt]])
+    b = np.array([dt * dt / mt, dt / mt])
+    lam, vec = np.linalg.eig(a)
+    if np.linalg.cond(vec) > 1e6:  # a repeated mode (critical damping): step MuJoCo's scene
+        return reduced_steps(mass, stiffness, damping, dt, "implicitfast", u0, v0, f)
+    inv = np.linalg.inv(vec)
+    z0, g = inv @ np.array([u0, v0], dtype=complex), inv @ b
+    f = np.asarray(f, dtype=float)
+    modes = [lfilter([g[i]], [1.0, -lam[i]], f.astype(complex), zi=[lam[i] * z0[i]])[0] for i in range(2)]
+    x = vec @ np.vstack(modes)
+    return x[0].real.copy(), x[1].real.copy()
+
+
+def reduced_steps(mass, stiffness, damping, dt, integrator, u0, v0, f) -> tuple[np.ndarray, np.ndarray]:
+    """The reduced scene stepped by MuJoCo (`reduced_model`): u and u̇ after each step."""
+    model = reduced_model(mass, stiffness, damping, dt, integrator)
+    state = np.zeros(mujoco.mj_stateSize(model, mujoco.mjtState.mjSTATE_FULLPHYSICS))
+    state[1], state[2] = u0, v0
+    out, _ = rollout.rollout(model, mujoco.MjData(model), state, np.asarray(f, dtype=float)[None, :, None],
+                             control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED)
+    return out[0][:, 1].copy(), out[0][:, 2].copy()
