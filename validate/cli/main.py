@@ -222,22 +222,24 @@ def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     command = next((x for x in argv if not x.startswith("-")), None)
     parser = build_parser(command)
+    name = command or ""
     with signals_end_cleanly():
         try:
-            args = parser.parse_args(argv)
-        except SystemExit as e:  # argparse: --help (0) or one error line (2)
-            return e.code if isinstance(e.code, int) else 2
-        try:
+            try:
+                args = parser.parse_args(argv)
+            except SystemExit as e:  # argparse: --help (0) or one error line (2)
+                return e.code if isinstance(e.code, int) else 2
+            name = args.command
             return int(args.func(args) or 0)
         except InputError as e:
-            print(f"isorock {args.command}: error: {e}", file=sys.stderr)
+            print(f"isorock {name}: error: {e}", file=sys.stderr)
             return 2
+        # a signal may arrive at any point once it is heard, parsing included: one line
         except KeyboardInterrupt as e:
-            print(f"isorock {args.command}: interrupted; {getattr(e, 'outcome', 'no output written')}",
-                  file=sys.stderr)
+            print(f"isorock {name}: interrupted; {getattr(e, 'outcome', 'no output written')}", file=sys.stderr)
             return _stopped(130, as_process=argv_given is None)
         except Terminated as e:
-            print(f"isorock {args.command}: terminated by {e.name}; {getattr(e, 'outcome', 'no output written')}",
+            print(f"isorock {name}: terminated by {e.name}; {getattr(e, 'outcome', 'no output written')}",
                   file=sys.stderr)
             return _stopped(128 + e.signum, as_process=argv_given is None)
         except BrokenPipeError:
