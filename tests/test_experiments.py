@@ -316,3 +316,16 @@ def test_cv_selection_of_a_setting_never_sees_the_held_out_label():
         flipped = y.copy()
         flipped[i] = ~flipped[i]
         assert select_cv(flipped, cands)[0][i] == held[i]
+
+
+def test_vectorized_bootstrap_equals_scoring_each_resample():
+    rng = np.random.default_rng(0)
+    y = rng.uniform(size=80) < 0.4
+    score = rng.uniform(size=80) + 0.5 * y
+    pred = score > 0.8
+    b = scores.bootstrap(y, pred, score, n=300)
+    idx = np.random.default_rng(scores.SEED).integers(0, 80, (300, 80))
+    for k in ("accuracy", "precision", "recall", "f1", "auc"):
+        d = np.array([scores.scored(y[i], pred[i], score[i])[k] for i in idx])
+        d = d[np.isfinite(d)]
+        assert b[k + "_ci"] == pytest.approx([np.quantile(d, 0.025), np.quantile(d, 0.975)], abs=1e-12)
