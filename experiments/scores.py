@@ -56,22 +56,26 @@ def scored(y, pred, score=None) -> dict:
 
 
 def bootstrap(y, pred, score=None, *, n=BOOTSTRAP, level=LEVEL, seed=SEED) -> dict:
-    """Each metric with its percentile interval over `n` resamples of the tests."""
-    y, pred = np.asarray(y), np.asarray(pred)
+    """Each metric with its percentile interval over `n` resamples of the tests (all
+    resamples at once: one array of n × tests)."""
+    y, pred = np.asarray(y, bool), np.asarray(pred, bool)
     score = None if score is None else np.asarray(score, float)
-    point = scored(y, pred, score)
-    rng = np.random.default_rng(seed)
-    keys = ["accuracy", "precision", "recall", "f1"] + (["auc"] if score is not None else [])
-    draws = {k: [] for k in keys}
-    for _ in range(n):
-        i = rng.integers(0, y.size, y.size)
-        s = scored(y[i], pred[i], None if score is None else score[i])
-        for k in keys:
-            draws[k].append(s[k])
+    out = scored(y, pred, score)
+    idx = np.random.default_rng(seed).integers(0, y.size, (n, y.size))
+    yy, pp = y[idx], pred[idx]
+    tp, fp = (yy & pp).sum(1), (~yy & pp).sum(1)
+    fn, tn = (yy & ~pp).sum(1), (~yy & ~pp).sum(1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        draws = dict(accuracy=(tp + tn) / y.size, precision=tp / (tp + fp), recall=tp / (tp + fn),
+                     f1=2 * tp / (2 * tp + fp + fn))
+        if score is not None:
+            from scipy.stats import rankdata
+            ss = score[idx]
+            ranks = rankdata(ss, axis=1)
+            npos, nneg = yy.sum(1), (~yy).sum(1)
+            draws["auc"] = ((ranks * yy).sum(1) - npos * (npos + 1) / 2) / (npos * nneg)
     lo, hi = (1 - level) / 2, (1 + level) / 2
-    out = dict(point)
-    for k in keys:
-        d = np.asarray(draws[k], float)
+    for k, d in draws.items():
         d = d[np.isfinite(d)]
         out[k + "_ci"] = [float(np.quantile(d, lo)), float(np.quantile(d, hi))] if d.size else [math.nan, math.nan]
     return out

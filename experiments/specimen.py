@@ -25,7 +25,7 @@ from pathlib import Path
 import xml.etree.ElementTree as ET
 
 import numpy as np
-from scipy.spatial import ConvexHull, Delaunay
+from scipy.spatial import ConvexHull
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import STANDARD_GRAVITY

@@ -22,15 +22,10 @@ training accuracy, and are scored on the held-out fold only.
 """
 from __future__ import annotations
 
-import csv
-import math
-import sys
 import time
 from pathlib import Path
 
 import numpy as np
-
-from isorock.analytic.errors import InputError
 
 from . import data, processing, scores, specimen
 

@@ -301,3 +301,31 @@ def test_asymmetric_model_of_a_rectangle_agrees_with_the_exact_analytic_model():
         assert over == exact.overturned == falls
         if not falls:
             assert peak == pytest.approx(exact.theta_max_over_alpha, rel=0.005)
+
+
+def test_cv_selection_of_a_setting_never_sees_the_held_out_label():
+    """A setting that is right only on one test must not be picked for that test: the
+    held-out prediction of test i does not change when test i's label flips."""
+    from isorock.experiments.study import select_cv
+    rng = np.random.default_rng(3)
+    y = rng.uniform(size=50) < 0.4
+    cands = {"a": (rng.uniform(size=50) < 0.5, rng.uniform(0, 2, 50)), "b": (y.copy(), y * 2.0)}
+    held, chosen = select_cv(y, cands)
+    assert [c[0] for c in chosen] == ["b"] * 5 and held.tolist() == y.tolist()
+    for i in (1, 30):
+        flipped = y.copy()
+        flipped[i] = ~flipped[i]
+        assert select_cv(flipped, cands)[0][i] == held[i]
+
+
+def test_vectorized_bootstrap_equals_scoring_each_resample():
+    rng = np.random.default_rng(0)
+    y = rng.uniform(size=80) < 0.4
+    score = rng.uniform(size=80) + 0.5 * y
+    pred = score > 0.8
+    b = scores.bootstrap(y, pred, score, n=300)
+    idx = np.random.default_rng(scores.SEED).integers(0, 80, (300, 80))
+    for k in ("accuracy", "precision", "recall", "f1", "auc"):
+        d = np.array([scores.scored(y[i], pred[i], score[i])[k] for i in idx])
+        d = d[np.isfinite(d)]
+        assert b[k + "_ci"] == pytest.approx([np.quantile(d, 0.025), np.quantile(d, 0.975)], abs=1e-12)

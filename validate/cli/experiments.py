@@ -1,12 +1,13 @@
-"""`isorock experiments [--data DIR] [--engines …] [--out DIR]`: the study of study.py,
-written as experiments.md (tables), scores.csv, runs.csv, study.json and errors.png,
-through validate.output (all or none; the folder must be new, empty or an earlier isorock
-output)."""
+"""Score the rigid rocking model and MuJoCo against measured shake-table tests of two
+granite rocks (overturned or not), beside the data's discrete-element baseline.
+
+`isorock experiments [--data DIR] [--engines …] [--out DIR]` runs study.py and writes
+experiments.md (tables), scores.csv, runs.csv, study.json and errors.png through
+validate.output (all or none; the folder must be new, empty or an earlier isorock output)."""
 from __future__ import annotations
 
 import csv
 import math
-import sys
 
 from isorock.analytic.errors import InputError
 
