@@ -126,3 +126,21 @@ def test_confidence_and_limits_live_in_the_table():
     for engine in ("mujoco", "bullet"):
         for metric in ("ensemble_overturn_median", "ensemble_overturn_dispersion", "ensemble_theta_max_diff"):
             assert tolerance(engine, metric).reason
+
+
+def test_own_horizon_is_the_whole_run_unperturbed_and_shorter_under_a_large_change():
+    """The model against itself: with the motion unchanged it never parts (horizon = the
+    run); scaled by ±30% on a rocking pulse it parts, before the end; the units follow
+    from the horizon (× p, and the reference's impacts counted before it)."""
+    from isorock.analytic.motion import load_motion
+    from isorock.analytic.system import paper_system
+    from isorock.validate.core.compare import own_horizon
+    from isorock.validate.core.engines import get_engine
+    system, motion = paper_system(fixed_base=True), load_motion("ricker:amp=0.5,freq=1")
+    ref = get_engine("analytic").simulate(system, motion, duration=6.0)
+    same = own_horizon(system, motion, ref, duration=6.0, scale=0.0)
+    assert not same["parted"] and same["s"] == pytest.approx(6.0, abs=2e-3)
+    far = own_horizon(system, motion, ref, duration=6.0, scale=0.3)
+    assert far["parted"] and far["s"] < 6.0
+    assert far["p_units"] == pytest.approx(far["s"] * math.sqrt(3 * 9.81 / (4 * system.R)), rel=1e-3)
+    assert far["impacts"] == len([i for i in ref.impacts if i.counted and i.t < far["s"]])

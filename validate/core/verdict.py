@@ -156,7 +156,8 @@ def overturn_verdicts(intensity, engine, reference, *, median_limit: float, disp
     step = float(np.max(np.diff(np.log(levels)))) if levels.size > 1 else math.inf
     return (_judge("ln(median ratio)", dm, samples[:, 0], median_limit, confidence, n, min_cases, widen=step,
                    note=f"interval widened by ±{step:.3g}, the ensemble's largest step of ln(scale)"),
-            _judge("Δ dispersion β", db, samples[:, 1], dispersion_limit, confidence, n, min_cases))
+            _judge("Δ dispersion β", db, samples[:, 1], dispersion_limit, confidence, n, min_cases, widen=step,
+                   note=f"interval widened by ±{step:.3g}: a dispersion below the step is not resolved"))
 
 
 def quantile_verdict(engine, reference, *, limit: float, confidence: float, min_cases: int, q: float = 0.5,

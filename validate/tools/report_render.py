@@ -21,7 +21,7 @@ from isorock.validate.io.naming import describe_motion
 from isorock.validate.io.output import write_folder_atomic, write_json
 from isorock.validate.io.provenance import provenance
 from isorock.validate.tools.paper import PAPER_FIGURE5, is_kobe, paper_blocks
-from isorock.validate.tools.report_run import PAPER_SLENDERNESS, Results
+from isorock.validate.tools.report_run import OWN, PAPER_SLENDERNESS, Results
 from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
 
 #: The families of checks the scorecard shows, in order: (title, metrics).
@@ -295,6 +295,15 @@ def _blocks(results: Results, images: dict) -> list:
                 _f(r.get("beta2_over_h"), ".4f"), _f(r.get("first_impact_time"), ".4f"),
                 str(r.get("impacts_used", "–")) if not r["error"] else "error: " + r["error"]]
                for r in results.free]))
+    B.append(("h2", "Agreement horizons"))
+    B.append(("table", ["history", "engine", "horizon (s)", "× 1/p", "impacts before it", "parted"],
+              [[sc.name, name if name == OWN else _label(name), _f(h["s"], ".2f"), _f(h["p_units"], ".1f"),
+                str(h["impacts"]), _f(h["parted"])]
+               for sc in results.scenarios for name, h in sc.horizons.items()]))
+    B.append(("p", "How long each engine's θ stays within 0.1·α of the analytic model's before they part, in "
+                   "seconds, in units of 1/p (p = √(3g/4R)) and in the model's counted impacts; and the analytic "
+                   f"model's own horizon with the motion scaled by ±0.5% ('{OWN}'). An engine whose horizon "
+                   "reaches the model's own has done all that physics allows: beyond it, histories part by chaos."))
     B.append(("h2", "Ensembles"))
     ens_rows = []
     for sc, ens in zip(results.scenarios, results.ensembles):
@@ -483,6 +492,7 @@ def metrics(results: Results) -> dict:
             "exercised": sc.exercised, "base_acceleration_peak": sc.base_acceleration_peak,
             "runs": {n: tr.summary() for n, tr in sc.runs.items()}, "errors": sc.errors,
             "comparisons": {n: c.as_dict() for n, c in sc.comparisons.items()},
+            "agreement_horizons": sc.horizons,
         } for sc in results.scenarios],
         "ensembles": [e.as_dict() for e in results.ensembles],
         "checks": [c.as_dict() for c in results.checks],

@@ -26,7 +26,8 @@ from isorock.analytic.coefficients import beta as beta_closed, beta2 as beta2_cl
 from isorock.analytic.errors import InputError, require
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
-from isorock.validate.core.compare import Comparison, compare, exact_first_impact_time, reference_sensitivity
+from isorock.validate.core.compare import (Comparison, compare, exact_first_impact_time, horizon_units, own_horizon,
+                                           reference_sensitivity)
 from isorock.validate.core.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine
 from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 from isorock.validate.core.measure import beta_errors
@@ -145,6 +146,8 @@ class HistoryRuns:
     errors: dict = field(default_factory=dict)       # engine → message
     comparisons: dict = field(default_factory=dict)  # engine → Comparison
     sensitivity: dict | None = None
+    #: agreement horizons: engine → {s, p_units, impacts, parted}; "model under ±0.5%" the model's own
+    horizons: dict = field(default_factory=dict)
     base_acceleration_peak: float | None = None      # m/s², the base's largest |absolute acceleration|
 
     @property
@@ -345,6 +348,9 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         ref = sc.runs.get(REFERENCE)
         if ref is not None:
             sc.comparisons = {name: compare(tr, ref) for name, tr in sc.runs.items() if name != REFERENCE}
+            sc.horizons = {name: dict(horizon_units(c.horizon, ref, sc.system), parted=c.parted)
+                           for name, c in sc.comparisons.items()}
+            sc.horizons[OWN] = own_horizon(sc.system, sc.motion, ref, duration=sc.duration)
         checks += _history_checks(sc, engines)
     for i, sc in enumerate(histories):
         ensembles[i] = _with_robustness(ensembles[i], sc)
@@ -353,6 +359,10 @@ def build(config: ReportConfig, *, progress=None) -> Results:
                    ensembles=ensembles, checks=checks, versions=versions(), started=started,
                    wall_s=time.perf_counter() - start, settings=settings,
                    record_paths=tuple(p for _, p in motions if p))
+
+
+#: The key of the analytic model's own horizon (under ±0.5% of the motion) in HistoryRuns.horizons.
+OWN = "model under ±0.5% of the motion"
 
 
 def _free_rocking(engines, scenarios, results):
