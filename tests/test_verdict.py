@@ -144,3 +144,14 @@ def test_own_horizon_is_the_whole_run_unperturbed_and_shorter_under_a_large_chan
     assert far["parted"] and far["s"] < 6.0
     assert far["p_units"] == pytest.approx(far["s"] * math.sqrt(3 * 9.81 / (4 * system.R)), rel=1e-3)
     assert far["impacts"] == len([i for i in ref.impacts if i.counted and i.t < far["s"]])
+
+
+def test_rate_interval_against_the_closed_forms():
+    """Clopper–Pearson at k = 0 and k = n has a closed form: the upper bound of 0 of n is
+    1 − (α/2)^(1/n), the lower of n of n is (α/2)^(1/n); and it brackets k/n."""
+    from isorock.validate.core.verdict import rate_interval
+    a = 1 - CONF
+    assert rate_interval(0, 40, CONF) == (0.0, pytest.approx(1 - (a / 2) ** (1 / 40), rel=1e-9))
+    assert rate_interval(40, 40, CONF) == (pytest.approx((a / 2) ** (1 / 40), rel=1e-9), 1.0)
+    lo, hi = rate_interval(3, 40, CONF)
+    assert lo < 3 / 40 < hi and hi - lo < 0.25

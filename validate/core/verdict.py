@@ -175,3 +175,15 @@ def quantile_verdict(engine, reference, *, limit: float, confidence: float, min_
                        INCONCLUSIVE, None, "no case")
     return _judge(quantity or f"Δ q{q:g}", diff(np.arange(n)), bootstrap(diff, n, resamples=resamples, seed=seed),
                   limit, confidence, n, min_cases)
+
+
+def rate_interval(k: int, n: int, confidence: float) -> tuple[float, float]:
+    """The exact (Clopper–Pearson) interval of a rate from k of n: what a count of
+    disagreements over a grid of cases says about the engine's rate, not only the count."""
+    from scipy import stats
+    if n <= 0:
+        return math.nan, math.nan
+    a = 1 - confidence
+    lo = 0.0 if k == 0 else float(stats.beta.ppf(a / 2, k, n - k + 1))
+    hi = 1.0 if k == n else float(stats.beta.ppf(1 - a / 2, k + 1, n - k))
+    return lo, hi
