@@ -163,7 +163,7 @@ def _edges(v):
 
 def fragility_fits(cols) -> list[dict]:
     """One lognormal fit per (system, engine, setting) over the record cases."""
-    from .fragility import fit_fragility
+    from isorock.validate.core.fragility import fit_fragility
     out = []
     for idx in _groups(cols, SYSTEM_KEYS + ("engine", "setting")):
         g = _select(cols, idx)

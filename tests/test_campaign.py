@@ -358,7 +358,7 @@ def test_lognormal_mle_recovers_known_parameters_from_synthetic_data():
     recovers them to within the sampling error of 2000 runs per level."""
     from scipy import stats
 
-    from isorock.campaign.fragility import fit_counts, fit_fragility
+    from isorock.validate.core.fragility import fit_counts, fit_fragility
     rng = np.random.default_rng(7)
     theta, beta = 0.6, 0.35
     levels = np.linspace(0.2, 1.6, 12)
@@ -380,7 +380,7 @@ def test_lognormal_mle_recovers_known_parameters_from_synthetic_data():
 
 
 def test_fragility_without_any_overturning_says_so():
-    from isorock.campaign.fragility import fit_fragility
+    from isorock.validate.core.fragility import fit_fragility
     fit = fit_fragility([0.1, 0.2], np.zeros((5, 2)))
     assert math.isnan(fit.median) and fit.note == "no run overturned"
 

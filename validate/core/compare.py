@@ -172,3 +172,29 @@ def reference_sensitivity(system: System, motion: GroundMotion, *, duration: flo
     return {"scales": [1 - scale, 1.0, 1 + scale], "theta_max_over_alpha": values,
             "overturned": over, "spread": max(values) - min(values),
             "overturn_flips": len(set(over)) > 1}
+
+
+#: The analytic model's own horizon (issue 20): the motion scaled by 1 ± this, a
+#: record's accuracy (a 0.5% error of amplitude is well inside a strong-motion
+#: instrument's calibration).
+OWN_HORIZON_SCALE = 0.005
+
+
+def horizon_units(horizon: float, ref: Trajectory, system: System) -> dict:
+    """A horizon (s) in the units of the physics: times 1/p (p = √(3g/4R), the block's
+    frequency parameter) and in the reference's counted impacts before it."""
+    return {"s": float(horizon), "p_units": float(horizon * system.p),
+            "impacts": int(sum(1 for i in ref.counted_impacts if i.t < horizon))}
+
+
+def own_horizon(system: System, motion: GroundMotion, ref: Trajectory, *, duration: float,
+                scale: float = OWN_HORIZON_SCALE) -> dict:
+    """How long the analytic model agrees with itself (|Δθ| ≤ AGREEMENT_FRACTION·α) when
+    the motion is scaled by 1 ± scale: the most any engine can be asked to hold. An
+    engine whose horizon reaches this one has done all that physics allows."""
+    from isorock.validate.core.engines import REFERENCE, get_engine
+    simulate = get_engine(REFERENCE).simulate
+    runs = [agreement(simulate(system, motion.scaled(f), duration=duration), ref)
+            for f in (1 - scale, 1 + scale)]
+    horizon = min(r[0] for r in runs)
+    return dict(horizon_units(horizon, ref, system), parted=any(r[1] for r in runs), scale=scale)

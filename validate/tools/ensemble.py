@@ -51,12 +51,7 @@ class Ensemble:
         t, o = self.theta_max[engine], self.overturned[engine]
         ok = np.isfinite(t) & np.isfinite(ref_t)
         d = np.abs(np.minimum(t, 1.0) - np.minimum(ref_t, 1.0))[ok]
-        # cases where the reference rocks and neither overturns: the median over all
-        # cases is mostly zeros (no uplift at small scales, both overturned at large); and,
-        # where measured, where the reference is robust (a chaotic peak tests no engine)
-        rocking = (ok & (ref_t > ROCKING) & ~o & ~ref_o)
-        if self.robust is not None:
-            rocking &= self.robust
+        rocking = self.rocking_mask(engine)
         dr = np.abs(t - ref_t)[rocking]
         return {
             "overturn_agreement": float(np.mean(o[ok] == ref_o[ok])) if ok.any() else math.nan,
@@ -66,6 +61,15 @@ class Ensemble:
             "rocking_cases": int(rocking.sum()),
             "median_theta_max_diff_rocking": float(np.median(dr)) if dr.size else math.nan,
         }
+
+    def rocking_mask(self, engine: str) -> np.ndarray:
+        """The cases where the reference rocks and neither overturns (the median over all
+        cases is mostly zeros: no uplift at small scales, both overturned at large), and,
+        where measured, where the reference is robust (a chaotic peak tests no engine)."""
+        ref_t, ref_o = self.theta_max[REFERENCE], self.overturned[REFERENCE]
+        t, o = self.theta_max[engine], self.overturned[engine]
+        rocking = np.isfinite(t) & np.isfinite(ref_t) & (np.nan_to_num(ref_t) > ROCKING) & ~o & ~ref_o
+        return rocking & self.robust if self.robust is not None else rocking
 
     def rocking_count(self) -> int:
         """How many cases the reference rocks in (θmax/α above ROCKING)."""

@@ -21,8 +21,8 @@ from isorock.validate.io.naming import describe_motion
 from isorock.validate.io.output import write_folder_atomic, write_json
 from isorock.validate.io.provenance import provenance
 from isorock.validate.tools.paper import PAPER_FIGURE5, is_kobe, paper_blocks
-from isorock.validate.tools.report_run import PAPER_SLENDERNESS, Results
-from isorock.validate.core.tolerances import has_tolerance, tolerance
+from isorock.validate.tools.report_run import OWN, PAPER_SLENDERNESS, Results
+from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
 
 #: The families of checks the scorecard shows, in order: (title, metrics).
 FAMILIES = (
@@ -34,10 +34,11 @@ FAMILIES = (
     ("overturning", ("overturn_agree",)),
     ("base displacement", ("u_max_rel_error",)),
     ("ensemble θmax/α", ("ensemble_theta_max_diff",)),
-    ("ensemble overturn agreement", ("ensemble_overturn_agreement",)),
+    ("ensemble overturning (fragility)", ("ensemble_overturn_median", "ensemble_overturn_dispersion")),
     ("energy balance", ("energy_residual",)),
 )
 NOT_EXERCISED = "not exercised"
+INCONCLUSIVE = "inconclusive"
 AGREES, CAVEATS, DISAGREES, UNTESTED = "agrees", "agrees with caveats", "disagrees", "was not tested"
 
 
@@ -56,6 +57,9 @@ def family_of(metric: str) -> str:
 def _margin(c) -> float | None:
     """How far a checked value is inside its tolerance, as a fraction of the limit
     (negative: outside); None for a check without a value."""
+    if c.kind == "within" and c.interval is not None:  # a statistical verdict: the interval's far end
+        far = max(abs(c.interval[0]), abs(c.interval[1]))
+        return (c.limit - far) / (abs(c.limit) or 1.0) if math.isfinite(far) else -math.inf
     if c.value is None or not math.isfinite(c.value):
         return None
     if c.kind == "equal":
@@ -81,6 +85,7 @@ def engine_verdicts(results: Results) -> dict:
         passes = [c for c in mine if c.status == "pass"]
         skips = [c for c in mine if c.status == "skip"]
         idle = [c for c in mine if c.status == NOT_EXERCISED]
+        open_ = [c for c in mine if c.status == INCONCLUSIVE]
         odd = sorted({f"{sc.name}: {sc.runs[name].status}" for sc in results.scenarios
                       if name in sc.runs and str(sc.runs[name].status) in ("slid", "failed", "event-limit")})
         reasons = []
@@ -90,8 +95,13 @@ def engine_verdicts(results: Results) -> dict:
             reasons.append(f"{len(skips)} skipped (chaotic references are judged by their ensembles)")
         if idle:
             reasons.append(f"{len(idle)} not exercised (no engine lifted the block there)")
+        if open_:
+            need = [c.note for c in open_]
+            reasons.append(f"{len(open_)} inconclusive (an ensemble's interval straddles its limit: "
+                           f"{'; '.join(need)})")
         reasons += odd
-        word = DISAGREES if fails else UNTESTED if not passes else CAVEATS if (skips or idle or odd) else AGREES
+        word = (DISAGREES if fails else UNTESTED if not passes else
+                CAVEATS if (skips or idle or odd or open_) else AGREES)
         out[name] = (word, reasons)
     return out
 
@@ -102,11 +112,16 @@ def verdict(results: Results) -> str:
     n_pass = sum(c.status == "pass" for c in checks)
     n_skip = sum(c.status == "skip" for c in checks)
     n_idle = sum(c.status == NOT_EXERCISED for c in checks)
+    stats = [c for c in checks if c.interval is not None]
     failed = results.failed
     engines = "; ".join(f"{_label(n)} {word}" for n, (word, _) in engine_verdicts(results).items()
                         if n != REFERENCE)
     skipped_engines = f" Engines skipped: {', '.join(results.skipped)}." if results.skipped else ""
     tail = f"({n_skip} skipped, {n_idle} not exercised)"
+    if stats:  # what the ensembles decided, and with what confidence
+        words = [("agree", "pass"), ("disagree", "fail"), ("inconclusive", INCONCLUSIVE)]
+        tail += (f"; ensembles judged at {_confidence():.0%} confidence: "
+                 + ", ".join(f"{sum(c_.status == st for c_ in stats)} {w}" for w, st in words))
     if failed:
         worst = ", ".join(sorted({f"{c.engine} {c.metric}" for c in failed}))
         head = f"Result: FAILED — {len(failed)} of {len(checks)} checks failed ({worst}) {tail}"
@@ -142,19 +157,41 @@ def _score(checks) -> str:
         parts.append(f"{'FAIL' if n_fail else 'PASS'} {len(judged) - n_fail}/{len(judged)}")
         if with_margin:
             worst = min(with_margin, key=lambda x: x[0])[1]
-            sign = {"max": "≤", "min": "≥", "equal": "="}[worst.kind]
-            parts.append(f"worst {_f(worst.value, '.3g')} {sign} {worst.limit:g} ({_margin_text(worst)})")
+            if worst.interval is not None:
+                lo, hi = worst.interval
+                parts.append(f"worst [{lo:+.3g}, {hi:+.3g}] within ±{worst.limit:g} at {_confidence():.0%}")
+            else:
+                sign = {"max": "≤", "min": "≥", "equal": "="}[worst.kind]
+                parts.append(f"worst {_f(worst.value, '.3g')} {sign} {worst.limit:g} ({_margin_text(worst)})")
         elif n_fail:
             parts.append("not measured")
     else:
         parts.append("SKIP")
     n_skip = sum(c.status == "skip" for c in checks)
     n_idle = sum(c.status == NOT_EXERCISED for c in checks)
+    for c in checks:
+        if c.status == INCONCLUSIVE:
+            lo, hi = c.interval
+            parts.append(f"inconclusive [{lo:+.3g}, {hi:+.3g}] against ±{c.limit:g}")
     if n_skip:
         parts.append(f"{n_skip} skipped")
     if n_idle:
         parts.append(f"{n_idle} not exercised")
     return " · ".join(parts)
+
+
+def _interval_cell(c) -> str:
+    """A statistical check as 'estimate [lo, hi] / ±limit: word'."""
+    if c is None:
+        return "–"
+    if c.interval is None:
+        return c.status
+    word = {"pass": "agrees", "fail": "disagrees"}.get(c.status, c.status)
+    return f"{c.value:+.3f} [{c.interval[0]:+.3f}, {c.interval[1]:+.3f}] / ±{c.limit:g}: {word}"
+
+
+def _confidence() -> float:
+    return limit("verdict_confidence")
 
 
 def _margin_text(c) -> str:
@@ -258,16 +295,38 @@ def _blocks(results: Results, images: dict) -> list:
                 _f(r.get("beta2_over_h"), ".4f"), _f(r.get("first_impact_time"), ".4f"),
                 str(r.get("impacts_used", "–")) if not r["error"] else "error: " + r["error"]]
                for r in results.free]))
+    B.append(("h2", "Agreement horizons"))
+    B.append(("table", ["history", "engine", "horizon (s)", "× 1/p", "impacts before it", "parted"],
+              [[sc.name, name if name == OWN else _label(name), _f(h["s"], ".2f"), _f(h["p_units"], ".1f"),
+                str(h["impacts"]), _f(h["parted"])]
+               for sc in results.scenarios for name, h in sc.horizons.items()]))
+    B.append(("p", "How long each engine's θ stays within 0.1·α of the analytic model's before they part, in "
+                   "seconds, in units of 1/p (p = √(3g/4R)) and in the model's counted impacts; and the analytic "
+                   f"model's own horizon with the motion scaled by ±0.5% ('{OWN}'). An engine whose horizon "
+                   "reaches the model's own has done all that physics allows: beyond it, histories part by chaos."))
     B.append(("h2", "Ensembles"))
     ens_rows = []
-    for ens in results.ensembles:
+    for sc, ens in zip(results.scenarios, results.ensembles):
         for name, a in ens.as_dict()["agreement"].items():
+            by = {c.metric: c for c in results.checks if c.engine == name and c.scenario == f"ensemble {sc.name}"}
             ens_rows.append([f"{ens.motion}, {'fixed' if ens.system.fixed_base else 'isolated'} base", _label(name),
-                             f"{ens.rocking_count()} of {a['cases']}", _f(a["overturn_agreement"] * 100, ".0f") + " %",
-                             _f(a["median_theta_max_diff"]), _f(a["max_theta_max_diff"]),
+                             f"{ens.rocking_count()} of {a['cases']}",
+                             *(_interval_cell(by.get(m)) for m in ("ensemble_overturn_median",
+                                                                   "ensemble_overturn_dispersion",
+                                                                   "ensemble_theta_max_diff")),
+                             _f(a["overturn_agreement"] * 100, ".0f") + " %",
                              f"{_f(a['median_theta_max_diff_rocking'])} ({a['rocking_cases']})"])
-    B.append(("table", ["ensemble", "engine", "cases that rock", "overturning agrees", "median |Δθmax/α|",
-                        "max |Δθmax/α|", "median |Δθmax/α|, robust rocking cases (n)"], ens_rows))
+    B.append(("table", ["ensemble", "engine", "cases that rock",
+                        f"ln(median ratio) of the overturning fragility, {_confidence():.0%} interval",
+                        "Δ dispersion β", "Δ median θmax/α, robust rocking cases",
+                        "overturning as the model (not judged)", "median |Δθmax/α|, robust rocking cases (n)"],
+              ens_rows))
+    B.append(("p", f"Each ensemble is judged as statistics (core/verdict.py): a contact engine disagrees only "
+                   f"when the {_confidence():.0%} bootstrap interval (over the ensemble's cases, engine and model "
+                   "paired) of its difference from the model lies wholly beyond the tolerance table's limit, agrees "
+                   "when it lies wholly within, and is otherwise inconclusive, with the ensemble size that would "
+                   "decide (the interval narrows as 1/√n). The fraction of cases overturning as the model is shown "
+                   "for reference only: it flips with the sample."))
     B.append(("p", "θmax/α is capped at 1 (overturned) before differencing. Robust rocking cases: the analytic "
                    "block rocks (θmax/α > 0.01), neither overturns, and the analytic θmax/α moves by less than "
                    "0.05 under ±1% of the motion (a chaotic peak tests no engine)."))
@@ -294,7 +353,7 @@ def _check_blocks(results: Results) -> list:
         for reason_key in dict.fromkeys((c.engine, c.metric) for c in mine):
             c0 = next(c for c in mine if (c.engine, c.metric) == reason_key)
             out.append(("p", f"{_label(c0.engine)}, {c0.metric} "
-                             f"({ {'max': '≤', 'min': '≥', 'equal': '='}[c0.kind]} {c0.limit:g}): {c0.reason}"))
+                             f"({ {'max': '≤', 'min': '≥', 'equal': '=', 'within': '±'}[c0.kind]} {c0.limit:g}): {c0.reason}"))
         out.append(("table", ["result", "engine", "metric", "scenario", "value", "note"],
                     [[c.status.upper(), _label(c.engine), c.metric, c.scenario, _f(c.value, ".4g"), c.note]
                      for c in mine]))
@@ -396,7 +455,8 @@ def render_html(blocks, folder: Path) -> str:
 
 def _css(cell) -> str:
     text = str(cell)
-    for word, cls in (("PASS", "pass"), ("FAIL", "fail"), ("SKIP", "skip"), (NOT_EXERCISED.upper(), "skip")):
+    for word, cls in (("PASS", "pass"), ("FAIL", "fail"), ("SKIP", "skip"), (NOT_EXERCISED.upper(), "skip"),
+                      (INCONCLUSIVE.upper(), "skip")):
         if text == word or text.startswith(word + " "):
             return cls
     return ""
@@ -432,6 +492,7 @@ def metrics(results: Results) -> dict:
             "exercised": sc.exercised, "base_acceleration_peak": sc.base_acceleration_peak,
             "runs": {n: tr.summary() for n, tr in sc.runs.items()}, "errors": sc.errors,
             "comparisons": {n: c.as_dict() for n, c in sc.comparisons.items()},
+            "agreement_horizons": sc.horizons,
         } for sc in results.scenarios],
         "ensembles": [e.as_dict() for e in results.ensembles],
         "checks": [c.as_dict() for c in results.checks],

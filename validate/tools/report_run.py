@@ -27,7 +27,8 @@ from isorock.analytic.coefficients import beta as beta_closed, beta2 as beta2_cl
 from isorock.analytic.errors import InputError, require
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
-from isorock.validate.core.compare import Comparison, compare, exact_first_impact_time, reference_sensitivity
+from isorock.validate.core.compare import (Comparison, compare, exact_first_impact_time, horizon_units, own_horizon,
+                                           reference_sensitivity)
 from isorock.validate.core.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine
 from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 from isorock.validate.core.measure import beta_errors
@@ -36,7 +37,9 @@ from isorock.validate.core.engines import resolve, runs_here
 from isorock.validate.core.runner import Task, default_workers, run_tasks
 from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
-from isorock.validate.core.tolerances import ROBUST_SPREAD, Check, check, has_tolerance, not_exercised, skipped
+from isorock.validate.core.tolerances import (ROBUST_SPREAD, Check, check, has_tolerance, judged, limit, not_exercised,
+                                             skipped, tolerance)
+from isorock.validate.core.verdict import overturn_verdicts, quantile_verdict
 
 #: Built-in pulses of the default report, chosen with the analytic model so that the
 #: paper's block rocks on both bases without overturning, and (the sine) robustly:
@@ -144,6 +147,8 @@ class HistoryRuns:
     errors: dict = field(default_factory=dict)       # engine → message
     comparisons: dict = field(default_factory=dict)  # engine → Comparison
     sensitivity: dict | None = None
+    #: agreement horizons: engine → {s, p_units, impacts, parted}; "model under ±0.5%" the model's own
+    horizons: dict = field(default_factory=dict)
     base_acceleration_peak: float | None = None      # m/s², the base's largest |absolute acceleration|
 
     @property
@@ -355,6 +360,9 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         ref = sc.runs.get(REFERENCE)
         if ref is not None:
             sc.comparisons = {name: compare(tr, ref) for name, tr in sc.runs.items() if name != REFERENCE}
+            sc.horizons = {name: dict(horizon_units(c.horizon, ref, sc.system), parted=c.parted)
+                           for name, c in sc.comparisons.items()}
+            sc.horizons[OWN] = own_horizon(sc.system, sc.motion, ref, duration=sc.duration)
         checks += _history_checks(sc, engines)
     for i, sc in enumerate(histories):
         ensembles[i] = _with_robustness(ensembles[i], sc)
@@ -363,6 +371,10 @@ def build(config: ReportConfig, *, progress=None) -> Results:
                    ensembles=ensembles, checks=checks, versions=versions(), started=started,
                    wall_s=time.perf_counter() - start, settings=settings,
                    record_paths=tuple(p for _, p in motions if p))
+
+
+#: The key of the analytic model's own horizon (under ±0.5% of the motion) in HistoryRuns.horizons.
+OWN = "model under ±0.5% of the motion"
 
 
 def _free_rocking(engines, scenarios, results):
@@ -463,24 +475,42 @@ def _robust(sc: HistoryRuns, scale: float) -> bool:
 
 
 def _ensemble_checks(ens: Ensemble, label: str, engines) -> list[Check]:
+    """Statistical verdicts over the ensemble (core.verdict): each engine's overturning
+    fragility (median and dispersion against the scale) and its median θmax/α over the
+    robust rocking cases, against the model's, at the table's confidence."""
     checks = []
     scenario = f"ensemble {label}"
     rocked = ens.rocking_count()
+    confidence, min_cases = limit("verdict_confidence"), int(limit("verdict_min_cases"))
     for name in engines:
         if name == REFERENCE:
             continue
-        a = ens.agreement(name)
         note = "; ".join(f"×{f:.3g}: {m}" for f, m in ens.failed.get(name, []))
         if rocked == 0:
             why = f"not exercised: the block rocks in none of the {ens.scales.size} cases"
-            checks.append(not_exercised(name, "ensemble_overturn_agreement", scenario, why))
-            checks.append(not_exercised(name, "ensemble_theta_max_diff", scenario, why))
+            for metric in ("ensemble_overturn_median", "ensemble_overturn_dispersion", "ensemble_theta_max_diff"):
+                checks.append(not_exercised(name, metric, scenario, why))
             continue
-        checks.append(check(name, "ensemble_overturn_agreement", scenario, a["overturn_agreement"],
-                            note=note or f"the block rocks in {rocked} of {ens.scales.size} cases"))
+        ok = np.isfinite(ens.theta_max[name]) & np.isfinite(ens.theta_max[REFERENCE])
+        fits = overturn_verdicts(ens.scales[ok], ens.overturned[name][ok], ens.overturned[REFERENCE][ok],
+                                 median_limit=tolerance(name, "ensemble_overturn_median").limit,
+                                 dispersion_limit=tolerance(name, "ensemble_overturn_dispersion").limit,
+                                 confidence=confidence, min_cases=min_cases)
+        if fits is None:
+            why = ("neither overturns in any case" if not ens.overturned[REFERENCE][ok].any()
+                   else "both overturn in every case")
+            for metric in ("ensemble_overturn_median", "ensemble_overturn_dispersion"):
+                checks.append(not_exercised(name, metric, scenario, f"{why} of {int(ok.sum())}"))
+        else:
+            checks.append(judged(name, "ensemble_overturn_median", scenario, fits[0], note=note))
+            checks.append(judged(name, "ensemble_overturn_dispersion", scenario, fits[1], note=note))
+        a = ens.agreement(name)
         if a["rocking_cases"]:
-            checks.append(check(name, "ensemble_theta_max_diff", scenario, a["median_theta_max_diff_rocking"],
-                                note=note or f"median over the {a['rocking_cases']} robust rocking cases"))
+            rocking = ens.rocking_mask(name)
+            v = quantile_verdict(ens.theta_max[name][rocking], ens.theta_max[REFERENCE][rocking],
+                                 limit=tolerance(name, "ensemble_theta_max_diff").limit, confidence=confidence,
+                                 min_cases=min_cases, quantity="Δ median θmax/α")
+            checks.append(judged(name, "ensemble_theta_max_diff", scenario, v, note=note))
         else:
             checks.append(skipped(name, "ensemble_theta_max_diff", scenario,
                                   "the reference rocks robustly without overturning in no case"))

@@ -35,6 +35,7 @@ from isorock.analytic.kinematics import LYING
 from isorock.validate.core.engines import REFERENCE
 from isorock.validate.core.scenarios import Scenario, block
 from isorock.validate.core.tolerances import limit
+from isorock.validate.core.verdict import rate_interval
 
 #: The stress grid's limits, with their reasons, are in the one tolerance table.
 ENERGY_TOLERANCE = limit("stress_energy_residual")
@@ -317,6 +318,10 @@ def stress_verdict(results) -> str:
     s = summary(results)
     compared = s["agree"] + s["disagree"]
     rate = f"{100 * s['agree'] / compared:.1f}%" if compared else "–"
+    if compared:  # what the count says about the engines' rate, at the table's confidence (core.verdict)
+        conf = limit("verdict_confidence")
+        lo, hi = rate_interval(s["disagree"], compared, conf)
+        rate += f"; disagreement rate {100 * lo:.1f}–{100 * hi:.1f}% at {conf:.0%} confidence"
     head = "stress: PASS" if not failures(results) else "stress: FAIL"
     return (f"{head} — {s['runs']} runs of {s['cases']} cases: {s['fail']} broke; contact engines agree with the "
             f"analytic model on overturning in {s['agree']} of {compared} robust comparisons ({rate}), "

@@ -1,0 +1,157 @@
+"""Statistical verdicts (core.verdict, issue 20) against independent oracles: intervals
+that cover a known truth as often as their confidence says (binomial bounds), engines
+that are identical, clearly different or barely sampled, and the rule's monotonicity
+(a narrower interval never reverses a decision: quick never contradicts full)."""
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from isorock.validate.core.tolerances import LIMITS, limit, tolerance
+from isorock.validate.core.verdict import (AGREES, DISAGREES, INCONCLUSIVE, decide, interval, overturn_verdicts,
+                                           quantile_verdict)
+
+CONF = limit("verdict_confidence")
+MIN = int(limit("verdict_min_cases"))
+MEDIAN = tolerance("mujoco", "ensemble_overturn_median").limit
+SPREAD = tolerance("mujoco", "ensemble_overturn_dispersion").limit
+
+
+def test_the_rule_on_intervals():
+    assert decide(0.0, -0.05, 0.05, 0.1, 20) == (AGREES, None)
+    assert decide(0.3, 0.2, 0.4, 0.1, 20) == (DISAGREES, None)
+    assert decide(-0.3, -0.4, -0.2, 0.1, 20) == (DISAGREES, None)
+    word, need = decide(0.0, -0.2, 0.2, 0.1, 20)
+    # half-width 0.2 must shrink to the room 0.1: ×4 the cases (1/√n)
+    assert word == INCONCLUSIVE and need == 80
+    word, need = decide(0.2, 0.05, 0.35, 0.1, 10)  # must shrink from 0.15 to 0.1: ×2.25
+    assert word == INCONCLUSIVE and need == 23
+    assert decide(0.1, 0.0, 0.2, 0.1, 10) == (INCONCLUSIVE, None)  # on the limit: no size decides
+
+
+def test_a_narrower_interval_never_reverses_a_decision():
+    """The property behind 'quick never contradicts full': every interval nested in
+    another decides as the wider one did, or is the one that decides."""
+    grid = np.linspace(-0.4, 0.4, 17)
+    for lo1, hi1 in itertools.combinations(grid, 2):
+        wide, _ = decide((lo1 + hi1) / 2, lo1, hi1, 0.1, 10)
+        for lo2, hi2 in itertools.combinations(grid[(grid >= lo1) & (grid <= hi1)], 2):
+            narrow, _ = decide((lo2 + hi2) / 2, lo2, hi2, 0.1, 40)
+            assert wide == INCONCLUSIVE or narrow == wide, (lo1, hi1, lo2, hi2)
+
+
+def test_quantile_interval_covers_the_true_difference_as_often_as_stated():
+    """Engine and model draw θmax/α from known lognormals: the 95% interval of the
+    difference of medians must cover the true one in 95 of 100 ensembles within
+    binomial bounds (3σ of Binomial(100, 0.95): ≥ 88; the percentile bootstrap of a
+    median undercovers a little at n = 60)."""
+    mu_e, mu_r, s, n = math.log(0.3), math.log(0.28), 0.4, 60
+    truth = math.exp(mu_e) - math.exp(mu_r)
+    hits = 0
+    for seed in range(100):
+        rng = np.random.default_rng(seed)
+        v = quantile_verdict(rng.lognormal(mu_e, s, n), rng.lognormal(mu_r, s, n), limit=0.02, confidence=CONF,
+                             min_cases=MIN, seed=seed)
+        hits += v.interval[0] <= truth <= v.interval[1]
+    assert 88 <= hits <= 100, hits
+
+
+def _threshold(x, theta, rng=None, beta=0.0):
+    """Outcomes of a lognormal fragility (deterministic at β = 0) at intensities x."""
+    if beta == 0:
+        return x >= theta
+    return rng.random(x.size) < stats.norm.cdf(np.log(x / theta) / beta)
+
+
+#: resamples in these tests: each is two maximum-likelihood fits (ms each); the rule's
+#: decisions here are far from the limits, so 50 resamples decide as the report's 200
+R = 50
+FULL = np.linspace(1.2, 2.5, 21)   # the report's full grid (× the uplift scale)
+QUICK = FULL[::4]                  # its quick grid: 6 of the same scales
+
+
+def test_identical_engine_agrees_clearly_different_disagrees_tiny_sample_inconclusive():
+    ref = _threshold(FULL, 1.8)
+    same = overturn_verdicts(FULL, ref, ref, median_limit=MEDIAN, dispersion_limit=SPREAD, confidence=CONF,
+                             min_cases=MIN, resamples=R)
+    assert same[0].word == AGREES and same[0].estimate == 0
+    # 1.45× the median: ln 1.45 = 0.37 ≫ 0.1
+    other = overturn_verdicts(FULL, _threshold(FULL, 1.8 / 1.45), ref, median_limit=MEDIAN,
+                              dispersion_limit=SPREAD, confidence=CONF, min_cases=MIN, resamples=R)
+    assert other[0].word == DISAGREES and other[0].estimate == pytest.approx(-math.log(1.45), abs=0.08)
+    tiny = FULL[[5, 10, 15]]
+    few = overturn_verdicts(tiny, _threshold(tiny, 1.5), _threshold(tiny, 1.8), median_limit=MEDIAN,
+                            dispersion_limit=SPREAD, confidence=CONF, min_cases=MIN, resamples=R)
+    assert few[0].word == INCONCLUSIVE and few[1].word == INCONCLUSIVE
+    # nothing overturns in either: the ensemble says nothing about overturning
+    assert overturn_verdicts(FULL, FULL > 9, FULL > 9, median_limit=MEDIAN, dispersion_limit=SPREAD,
+                             confidence=CONF, min_cases=MIN) is None
+
+
+def test_an_engine_that_never_overturns_is_never_said_to_agree():
+    """Its median lies beyond the scales tried: the interval is open on that side."""
+    v = overturn_verdicts(FULL, FULL > 9, _threshold(FULL, 2.4), median_limit=MEDIAN, dispersion_limit=SPREAD,
+                          confidence=CONF, min_cases=MIN, resamples=R)[0]
+    assert v.word != AGREES and math.isinf(v.interval[1])
+
+
+@pytest.mark.parametrize("ratio", [1.0, 1.08, 1.3])
+@pytest.mark.parametrize("beta", [0.0, 0.08])
+def test_quick_never_contradicts_full(ratio, beta):
+    """The quick grid is 6 of the full grid's 21 scales, with the same outcomes there:
+    quick may be inconclusive where full decides, never decide the other way."""
+    rng = np.random.default_rng(7)
+    ref_full = _threshold(FULL, 1.8, rng, beta)
+    eng_full = _threshold(FULL, 1.8 * ratio, rng, beta)
+    kw = dict(median_limit=MEDIAN, dispersion_limit=SPREAD, confidence=CONF, min_cases=MIN, resamples=R)
+    full = overturn_verdicts(FULL, eng_full, ref_full, **kw)
+    quick = overturn_verdicts(QUICK, eng_full[::4], ref_full[::4], **kw)
+    if full is None or quick is None:
+        return
+    for q, f in zip(quick, full):
+        assert q.word == INCONCLUSIVE or q.word == f.word, (q.describe(), f.describe())
+
+
+def test_interval_keeps_censored_sides():
+    assert interval([1.0, 2.0, math.inf, math.inf], 0.5) == (1.0, math.inf)
+    assert all(math.isnan(b) for b in interval([math.nan], 0.95))
+
+
+def test_confidence_and_limits_live_in_the_table():
+    assert LIMITS["verdict_confidence"].reason and 0.5 < CONF < 1
+    for engine in ("mujoco", "bullet"):
+        for metric in ("ensemble_overturn_median", "ensemble_overturn_dispersion", "ensemble_theta_max_diff"):
+            assert tolerance(engine, metric).reason
+
+
+def test_own_horizon_is_the_whole_run_unperturbed_and_shorter_under_a_large_change():
+    """The model against itself: with the motion unchanged it never parts (horizon = the
+    run); scaled by ±30% on a rocking pulse it parts, before the end; the units follow
+    from the horizon (× p, and the reference's impacts counted before it)."""
+    from isorock.analytic.motion import load_motion
+    from isorock.analytic.system import paper_system
+    from isorock.validate.core.compare import own_horizon
+    from isorock.validate.core.engines import get_engine
+    system, motion = paper_system(fixed_base=True), load_motion("ricker:amp=0.5,freq=1")
+    ref = get_engine("analytic").simulate(system, motion, duration=6.0)
+    same = own_horizon(system, motion, ref, duration=6.0, scale=0.0)
+    assert not same["parted"] and same["s"] == pytest.approx(6.0, abs=2e-3)
+    far = own_horizon(system, motion, ref, duration=6.0, scale=0.3)
+    assert far["parted"] and far["s"] < 6.0
+    assert far["p_units"] == pytest.approx(far["s"] * math.sqrt(3 * 9.81 / (4 * system.R)), rel=1e-3)
+    assert far["impacts"] == len([i for i in ref.impacts if i.counted and i.t < far["s"]])
+
+
+def test_rate_interval_against_the_closed_forms():
+    """Clopper–Pearson at k = 0 and k = n has a closed form: the upper bound of 0 of n is
+    1 − (α/2)^(1/n), the lower of n of n is (α/2)^(1/n); and it brackets k/n."""
+    from isorock.validate.core.verdict import rate_interval
+    a = 1 - CONF
+    assert rate_interval(0, 40, CONF) == (0.0, pytest.approx(1 - (a / 2) ** (1 / 40), rel=1e-9))
+    assert rate_interval(40, 40, CONF) == (pytest.approx((a / 2) ** (1 / 40), rel=1e-9), 1.0)
+    lo, hi = rate_interval(3, 40, CONF)
+    assert lo < 3 / 40 < hi and hi - lo < 0.25
