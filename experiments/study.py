@@ -86,9 +86,12 @@ def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
     return out
 
 
-def run_mujoco(spec: specimen.Specimen, accel: dict, dt: dict, progress=None) -> dict:
+def run_mujoco(spec: specimen.Specimen, accel: dict, dt: dict, progress=None, *, friction=None,
+               dampratio=None) -> dict:
     from isorock.mujoco_models import mesh_scene
-    xml = mesh_scene.scene_xml(spec.vertices, spec.com, spec.inertia, spec.mass)
+    friction = mesh_scene.FRICTION if friction is None else friction
+    solref = (mesh_scene.SOLREF[0], mesh_scene.SOLREF[1] if dampratio is None else dampratio)
+    xml = mesh_scene.scene_xml(spec.vertices, spec.com, spec.inertia, spec.mass, friction=friction, solref=solref)
     alpha = min(spec.direction(1)["alpha"], spec.direction(-1)["alpha"])
     out = {}
     for name, sign in (("+x", 1.0), ("-x", -1.0)):
@@ -136,7 +139,8 @@ def select_cv(y, candidates: dict, k=scores.FOLDS, threshold=True) -> tuple[np.n
 
 
 def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz=processing.LOWPASS_HZ,
-          tests=None, sensitivity=False, progress=None) -> dict:
+          tests=None, sensitivity=False, progress=None, mujoco_contact=None) -> dict:
+    """mujoco_contact: {'friction': μ, 'dampratio': ζ} for the hull scene (default: mesh_scene's)."""
     outcomes, files = data.load(folder, tests)
     t0 = time.perf_counter()
     motions = {t: data.read_test(files[t], t) for t in outcomes}
@@ -159,7 +163,7 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
             elif eng == "asymmetric":
                 runs.update(run_asymmetric(sp, accel, dts))
             elif eng == "mujoco":
-                runs.update(run_mujoco(sp, accel, dts, progress))
+                runs.update(run_mujoco(sp, accel, dts, progress, **(mujoco_contact or {})))
             result["cost"][f"{eng} SP{s}"] = time.perf_counter() - start
         rows = {}
         by_engine: dict = {}
