@@ -74,7 +74,8 @@ class EngineSpec:
     exception it raised (without it, the registry runs them one by one);
     `replay_scene(system)` (optional) is (model, pose(u, θ) → joint positions): a scene of
     the engine's viewer in which any engine's history can be replayed (`isorock view`);
-    `simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration)`
+    `simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration, friction,
+    dampratio)`
     (optional) is a free rigid body of that convex hull on a flat table moved by a
     horizontal acceleration history (m/s², step dt s): a dict with `overturned`,
     `tilt_max` (rad) and `wall_s` (`isorock experiments`)."""

@@ -86,9 +86,16 @@ def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
     return out
 
 
-def run_mujoco(spec: specimen.Specimen, accel: dict, dt: dict, progress=None) -> dict:
+def run_mujoco(spec: specimen.Specimen, accel: dict, dt: dict, progress=None, *, friction=None,
+               dampratio=None) -> dict:
+    """MuJoCo's rigid body (the rock's hull on a free joint), through the registry; friction
+    and the contact's damping ratio None: the engine's own (mujoco_models.mesh_scene)."""
     from isorock.validate.core.engines import get_engine
-    body = get_engine("mujoco").spec.simulate_body  # the engine's own rigid body on a table
+    simulate_body = get_engine("mujoco").spec.simulate_body  # the engine's own rigid body on a table
+    contact = {k: v for k, v in (("friction", friction), ("dampratio", dampratio)) if v is not None}
+
+    def body(*args, **kwargs):
+        return simulate_body(*args, **kwargs, **contact)
     alpha = min(spec.direction(1)["alpha"], spec.direction(-1)["alpha"])
     out = {}
     for name, sign in (("+x", 1.0), ("-x", -1.0)):
@@ -137,7 +144,8 @@ def select_cv(y, candidates: dict, k=scores.FOLDS, threshold=True) -> tuple[np.n
 
 
 def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz=processing.LOWPASS_HZ,
-          tests=None, sensitivity=False, progress=None) -> dict:
+          tests=None, sensitivity=False, progress=None, mujoco_contact=None) -> dict:
+    """mujoco_contact: {'friction': μ, 'dampratio': ζ} for the hull scene (default: mesh_scene's)."""
     outcomes, files = data.load(folder, tests)
     t0 = time.perf_counter()
     motions = {t: data.read_test(files[t], t) for t in outcomes}
@@ -160,7 +168,7 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
             elif eng == "asymmetric":
                 runs.update(run_asymmetric(sp, accel, dts))
             elif eng == "mujoco":
-                runs.update(run_mujoco(sp, accel, dts, progress))
+                runs.update(run_mujoco(sp, accel, dts, progress, **(mujoco_contact or {})))
             result["cost"][f"{eng} SP{s}"] = time.perf_counter() - start
         rows = {}
         by_engine: dict = {}

@@ -55,9 +55,12 @@ def _replay_scene(system):
     return replay_scene(system)
 
 
-def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=None):
+def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=None, friction=None, dampratio=None):
     from . import mesh_scene  # the rock's hull on a free joint, for measured shake-table tests
-    return mesh_scene.simulate(mesh_scene.scene_xml(vertices, com, inertia, mass), acceleration, dt, duration=duration)
+    solref = (mesh_scene.SOLREF[0], mesh_scene.SOLREF[1] if dampratio is None else dampratio)
+    xml = mesh_scene.scene_xml(vertices, com, inertia, mass, solref=solref,
+                               friction=mesh_scene.FRICTION if friction is None else friction)
+    return mesh_scene.simulate(xml, acceleration, dt, duration=duration)
 
 
 ENGINE = EngineSpec(

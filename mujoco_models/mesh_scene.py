@@ -10,7 +10,7 @@ with a flat table (the table touches nothing inside it). The rock's inertia is t
 given (the mesh's at uniform density), not MuJoCo's from the hull.
 
 Contact: the data's own simulation used friction 0.3–0.5 (its README): FRICTION 0.5; a
-soft contact of time constant SOLREF[0] (2 ms, MuJoCo's guidance: ≥ 2 timesteps).
+soft contact of time constant SOLREF[0] (4 ms: MuJoCo asks for ≥ 2 timesteps; critically damped).
 """
 from __future__ import annotations
 

@@ -35,6 +35,10 @@ def add_parser(sub) -> None:
                                                     "and an outcome)")
     p.add_argument("--sensitivity", action="store_true",
                    help="also run the analytic engines with each processing step left out (about 10 s per variant)")
+    p.add_argument("--mujoco-friction", type=float, metavar="MU",
+                   help="mujoco: table–rock friction coefficient (default 0.5, the data's own simulation's)")
+    p.add_argument("--mujoco-dampratio", type=float, metavar="ZETA",
+                   help="mujoco: contact damping ratio, solref's second number (default 1: critical)")
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR", help="output folder (default: %(default)s)")
     p.set_defaults(func=main)
 
@@ -65,10 +69,16 @@ def main(a) -> int:
     if not (a.lowpass_hz > 0 and math.isfinite(a.lowpass_hz)):
         raise InputError(f"lowpass-hz = {a.lowpass_hz!r}: must be a positive number of Hz below the Nyquist frequency")
     tests = _tests(a.tests)
+    contact = {}
+    for name, value in (("friction", a.mujoco_friction), ("dampratio", a.mujoco_dampratio)):
+        if value is not None:
+            if not (value > 0 and math.isfinite(value)):
+                raise InputError(f"mujoco-{name} = {value!r}: must be a positive number")
+            contact[name] = value
     with Outputs() as outputs:
         out = outputs.folder("out", a.out)  # refused before the runs, not after
         result = study.build(a.data, engines=engines, steps=steps, lowpass_hz=a.lowpass_hz, tests=tests,
-                             sensitivity=a.sensitivity)
+                             sensitivity=a.sensitivity, mujoco_contact=contact)
         from isorock.validate.io.provenance import provenance
         result["provenance"] = provenance()
         out.write(lambda folder: write(result, folder))
