@@ -69,9 +69,9 @@ class EngineSpec:
     can ask for as ENGINE:PRESET to a zero-argument callable returning Settings;
     `ladder(quick)` lists (label, Settings) from cheapest to most accurate, for
     work-precision benchmarks; `tuning` is what `isorock calibrate` may move;
-    `simulate_many(runs, *, settings, threads)` (optional) runs many (system, motion,
-    duration, theta0) at once, each result what `simulate` returns for it alone or the
-    exception it raised (without it, the registry runs them one by one);
+    `simulate_many(runs, *, settings, threads, budget_s)` (optional) runs many (system,
+    motion, duration, theta0) at once, each within `budget_s` s of wall time, each result
+    what `simulate` returns for it alone or the exception it raised (without it, the registry runs them one by one);
     `replay_scene(system)` (optional) is (model, pose(u, θ) → joint positions): a scene of
     the engine's viewer in which any engine's history can be replayed (`isorock view`);
     `simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration, friction,

@@ -29,6 +29,7 @@ from mujoco import rollout
 from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
+from isorock.analytic.limits import RunBudget
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
@@ -92,7 +93,7 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     return raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
 
 
-def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1) -> list:
+def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, budget_s: float | None = None) -> list:
     """Many runs, each exactly as `simulate` makes it: `runs` is a sequence of (system,
     motion, duration, theta0), as `simulate` takes them; returns, per run, its RawHistory
     or the exception it raised (one bad case is that case's result, not a lost batch).
@@ -129,7 +130,9 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1) -
             return item
         model, system, motion, duration, theta0 = item
         try:
-            return _run(model, system, motion, settings, duration, theta0, None, None, warnings)
+            # each run its own wall-clock budget (analytic.limits.RunBudget), as `simulate` gives one
+            progress = None if budget_s is None else RunBudget(budget_s)
+            return _run(model, system, motion, settings, duration, theta0, progress, None, warnings)
         except Exception as e:  # noqa: BLE001
             return e
 

@@ -294,3 +294,15 @@ def test_one_engine_refuses_an_output_in_a_missing_folder(tmp_path, monkeypatch,
                  "--fixed-base", "--json", "new/deeper/out.json"])
     assert code == 2 and "does not exist" in capsys.readouterr().err
     assert not (tmp_path / "new").exists()
+
+
+def test_scene_refuses_to_replace_a_users_file_as_calibrate_does(tmp_path, capsys):
+    """Issue 24 item 16: `scene --out` replaced a user's file where `calibrate --out` refuses
+    to; both write a file a user keeps and edits, so both refuse one that exists."""
+    mine = tmp_path / "my-scene.xml"
+    mine.write_text("my own edits")
+    code, _, err = run_cli(["scene", "--engine", "mujoco", "--out", str(mine)], capsys)
+    assert code == 2 and "exists" in err and err.count("\n") == 1
+    assert mine.read_text() == "my own edits"
+    fresh = tmp_path / "new.xml"
+    assert run_cli(["scene", "--engine", "mujoco", "--out", str(fresh)], capsys)[0] == 0 and fresh.stat().st_size > 0

@@ -44,3 +44,13 @@ def test_the_estimate_of_a_long_report_is_announced():
     line = estimate_line({"analytic": 1000.0, "drake": 3600.0})
     assert line is not None and "drake" in line and "min" in line
     assert estimate_line({"analytic": 1000.0}) is None  # seconds: nothing to announce
+
+
+def test_mujocos_batch_path_gives_each_run_the_budget():
+    """MuJoCo runs a batch side by side (its own simulate_many); each run still stops at its
+    budget: a long run that steps throughout (mujoco:full) against half a second."""
+    from isorock.validate.core.engines import choose
+    settings = choose("mujoco:full").settings()
+    runs = [(paper_system(), MOTION, LONG, 0.0)] * 2
+    out = get_engine("mujoco").simulate_many(runs, settings=settings, threads=2, budget_s=0.5)
+    assert all(isinstance(r, BudgetExceeded) and _stopped_at(str(r)) < LONG for r in out), out

@@ -170,7 +170,10 @@ def cmd_scene(a) -> int:
     from isorock.validate.core.engines import get_engine
     from isorock.validate.io.output import Outputs
     with Outputs() as outputs:
-        out = outputs.file("out", a.out)
+        # a model file is kept and edited: a file of that name is not replaced (as calibrate's
+        # preset); standard output, a device or a pipe are written as streams
+        regular = a.out != "-" and (os.path.isfile(a.out) or not os.path.lexists(a.out))
+        out = outputs.file("out", a.out, exclusive=regular)
         engine = get_engine(a.engine)
         if not engine.has_scene:
             raise InputError(f"engine = {a.engine!r}: has no model file to write (those that do: "

@@ -143,7 +143,7 @@ class Engine:
                     out.append(e)
             return out
         raws = self.spec.simulate_many(runs, settings=settings if settings is not None else self.settings(),
-                                       threads=threads)
+                                       threads=threads, budget_s=budget_s)
         return [raw if isinstance(raw, Exception) else
                 measure.measure(raw, motion or GroundMotion.zero(), overturn_rule=overturn_rule or PAST_ALPHA,
                                 effective_beta=effective_beta)
