@@ -31,6 +31,8 @@ def test_the_rule_on_intervals():
     word, need = decide(0.2, 0.05, 0.35, 0.1, 10)  # must shrink from 0.15 to 0.1: ×2.25
     assert word == INCONCLUSIVE and need == 23
     assert decide(0.1, 0.0, 0.2, 0.1, 10) == (INCONCLUSIVE, None)  # on the limit: no size decides
+    # an interval that is all grid step (±0.2 around 0, limit 0.1): the step shrinks as 1/m, so ×2
+    assert decide(0.0, -0.2, 0.2, 0.1, 6, widen=0.2) == (INCONCLUSIVE, 12)
 
 
 def test_a_narrower_interval_never_reverses_a_decision():

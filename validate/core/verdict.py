@@ -63,18 +63,21 @@ class Verdict:
         return asdict(self)
 
 
-def decide(estimate: float, lo: float, hi: float, limit: float, n: int) -> tuple[str, int | None]:
+def decide(estimate: float, lo: float, hi: float, limit: float, n: int, widen: float = 0.0) -> tuple[str, int | None]:
     """The three-way rule on an interval [lo, hi] against ±limit, and for an
-    inconclusive one the ensemble size whose interval (half-width ∝ 1/√n, centred on
-    the estimate) would clear the limit on the estimate's side."""
+    inconclusive one the ensemble size m whose interval (centred on the estimate) would
+    clear the limit on the estimate's side: its bootstrap half-width shrinks as 1/√m,
+    the part `widen` added for the grid's step (over the same range) as 1/m."""
     if lo > limit or hi < -limit:
         return DISAGREES, None
     if lo >= -limit and hi <= limit:
         return AGREES, None
-    half, room = (hi - lo) / 2, abs(limit - abs(estimate))
+    half, room = (hi - lo) / 2 - widen, abs(limit - abs(estimate))
     if not (math.isfinite(half) and math.isfinite(room)) or room <= 0 or n <= 0:
         return INCONCLUSIVE, None
-    return INCONCLUSIVE, max(n + 1, math.ceil(n * (half / room) ** 2))
+    # half·s + widen·s² = room, s = √(n/m)
+    s = room / half if widen <= 0 else (-half + math.sqrt(half * half + 4 * widen * room)) / (2 * widen)
+    return INCONCLUSIVE, max(n + 1, math.ceil(n / s ** 2))
 
 
 def interval(samples, confidence: float) -> tuple[float, float]:
@@ -104,7 +107,7 @@ def _judge(quantity, estimate, samples, limit, confidence, n, min_cases, note=""
     if n < min_cases:  # a percentile bootstrap over a handful of cases has no width to speak of
         return Verdict(quantity, float(estimate), (lo, hi), limit, confidence, n, INCONCLUSIVE,
                        int(min_cases), f"fewer than {min_cases} cases: no interval")
-    word, need = decide(estimate, lo, hi, limit, n)
+    word, need = decide(estimate, lo, hi, limit, n, widen)
     dropped = int(np.isnan(samples).sum())
     if dropped:
         note = "; ".join(filter(None, [note, f"{dropped} of {len(samples)} resamples bound no difference"]))
