@@ -204,8 +204,16 @@ class GroundMotion:
 
     @property
     def pga(self) -> float:
-        """Peak |ẍg| (m/s²)."""
-        return float(np.max(np.abs(self.acceleration))) * (self.scale if self.pulse else 1.0)
+        """Peak |ẍg| (m/s²) of the samples, which carry any scale applied (a pulse's too)."""
+        return float(np.max(np.abs(self.acceleration)))
+
+    @property
+    def pgv(self) -> float:
+        """Peak |ẋg| (m/s): the samples integrated by the trapezoidal rule from rest (no
+        baseline correction: a record of a suite is processed already)."""
+        a = np.asarray(self.acceleration, dtype=float)
+        v = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * self.dt)])
+        return float(np.max(np.abs(v)))
 
     @property
     def pga_g(self) -> float:
@@ -229,6 +237,12 @@ class GroundMotion:
         target = require_positive_finite("pga", pga_g)
         require(self.pga > 0, "motion", self.name, "non-zero to scale to a PGA")
         return self.scaled(target / self.pga_g)
+
+    def scaled_to_pgv(self, pgv: float) -> "GroundMotion":
+        """The motion scaled to a peak ground velocity of `pgv` m/s (GroundMotion.pgv)."""
+        target = require_positive_finite("pgv", pgv)
+        require(self.pgv > 0, "motion", self.name, "non-zero to scale to a PGV")
+        return self.scaled(target / self.pgv)
 
     def trimmed(self, start: float = 0.0, end: float | None = None) -> "GroundMotion":
         """The part between `start` and `end` (s), re-based to start at t = 0."""

@@ -306,3 +306,26 @@ def test_scene_refuses_to_replace_a_users_file_as_calibrate_does(tmp_path, capsy
     assert mine.read_text() == "my own edits"
     fresh = tmp_path / "new.xml"
     assert run_cli(["scene", "--engine", "mujoco", "--out", str(fresh)], capsys)[0] == 0 and fresh.stat().st_size > 0
+
+
+@pytest.mark.parametrize("option, value, field", [("--pga", "0.3", "pga_g"), ("--pgv", "0.25", None)])
+def test_run_scales_a_record_to_a_target_pga_or_pgv(tmp_path, capsys, option, value, field):
+    """`--pga G` / `--pgv V` scale the motion to that peak (issue 25): the JSON's motion says
+    so, checked against the motion's own peaks computed here."""
+    import json
+
+    from isorock.analytic.motion import load_motion
+    out = tmp_path / "r.json"
+    code, _, err = run_cli(["run", *FIXED, "--motion", "sine:amp=0.6,freq=1.3,cycles=1", option, value,
+                            "--duration", "1", "--json", str(out), "--quiet"], capsys)
+    assert code == 0, err
+    motion = json.loads(out.read_text())["motion"]
+    base = load_motion("sine:amp=0.6,freq=1.3,cycles=1")
+    factor = float(value) / (base.pga_g if option == "--pga" else base.pgv)
+    assert motion["pga_g"] == pytest.approx(base.pga_g * factor, rel=1e-9)
+
+
+def test_pga_with_scale_is_refused(tmp_path, capsys):
+    code, _, err = run_cli(["run", *FIXED, "--motion", "sine:amp=0.6,freq=1.3,cycles=1", "--pga", "0.3",
+                            "--scale", "2"], capsys)
+    assert code == 2 and "pga" in err and err.count("\n") == 1

@@ -248,3 +248,16 @@ def test_record_size_is_bounded():
         GroundMotion.from_array(np.zeros(MAX_RECORD_SAMPLES + 1), dt=1e-5)
     with pytest.raises(InputError, match="MAX_DURATION"):
         GroundMotion.from_array(np.zeros(3), dt=MAX_DURATION)
+
+
+def test_a_scaled_pulse_reports_the_peak_it_applies():
+    """A pulse scaled by 2 applies twice its amplitude (its samples and its call agree);
+    its PGA said 4× (the samples, already scaled, were scaled again)."""
+    import numpy as np
+
+    from isorock.analytic.motion import load_motion
+    m = load_motion("sine:amp=0.5,freq=1,cycles=1").scaled(2.0)
+    t = np.linspace(0.0, 1.0, 20001)
+    applied = float(np.max(np.abs(m(t)))) / m.pga * m.pga_g
+    assert m.pga_g == pytest.approx(1.0, rel=1e-3) and applied == pytest.approx(m.pga_g, rel=1e-3)
+    assert m.scaled_to_pga(0.3).pga_g == pytest.approx(0.3, rel=1e-9)

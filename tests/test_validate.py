@@ -317,3 +317,14 @@ def test_a_config_file_with_an_unknown_key_is_bad_input(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "system.widht" in err and err.count("\n") == 1
     assert not (tmp_path / "rep").exists()
+
+
+def test_validate_scales_its_motions_to_a_target_pga():
+    """`validate --pga G` (issue 25): every motion the report runs has that peak."""
+    from isorock.validate.tools.report_run import ReportConfig, load_motions
+    for target in (0.25, 0.9):
+        motions = load_motions(ReportConfig(motions=("sine:amp=0.6,freq=1.3,cycles=2", "ricker:amp=0.5,freq=1"),
+                                            pga=target))
+        assert [round(m.pga_g, 12) for m, _ in motions] == [target, target]
+    with pytest.raises(InputError, match="pga/pgv"):
+        ReportConfig(pga=0.3, pgv=0.2)

@@ -135,6 +135,11 @@ def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
                         "guessed from the file when omitted")
     add_units_option(g)
     g.add_argument("--scale", type=number, default=1.0, help="factor applied to the motion (default: 1)")
+    g.add_argument("--pga", type=number, metavar="G",
+                   help="scale the motion to this peak ground acceleration, g (instead of --scale)")
+    g.add_argument("--pgv", type=number, metavar="V",
+                   help="scale the motion to this peak ground velocity, m/s (its samples integrated from rest; "
+                        "instead of --scale)")
 
 
 def add_units_option(g) -> None:
@@ -145,8 +150,18 @@ def add_units_option(g) -> None:
 
 
 def motion_from_args(a):
+    """The motion the options describe: read, then scaled by --scale, or to --pga / --pgv."""
     from isorock.analytic.motion import load_motion
+    targets = [(k, getattr(a, k, None)) for k in ("pga", "pgv") if getattr(a, k, None) is not None]
+    if len(targets) > 1 or (targets and a.scale != 1.0):
+        given = ", ".join(f"--{k} {v:g}" for k, v in targets) + (f", --scale {a.scale:g}" if a.scale != 1.0 else "")
+        raise InputError(f"{given}: give one of --scale, --pga and --pgv")
     m = load_motion(a.motion, format=a.format, units=a.units)
+    if targets:
+        key, value = targets[0]
+        if m.is_zero:
+            raise InputError(f"--{key} = {value:g}: the motion 'none' has no peak to scale")
+        return m.scaled_to_pga(value) if key == "pga" else m.scaled_to_pgv(value)
     return m if a.scale == 1.0 else m.scaled(a.scale)
 
 

@@ -40,6 +40,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="record format; guessed from the file when omitted")
     from isorock.validate.cli.options import add_units_option, number
     add_units_option(p)
+    p.add_argument("--pga", type=number, metavar="G",
+                   help="scale every motion to this peak ground acceleration, g (the ensembles scale from there)")
+    p.add_argument("--pgv", type=number, metavar="V",
+                   help="scale every motion to this peak ground velocity, m/s (instead of --pga)")
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
                    help="report folder: a new or empty folder, or one an earlier isorock run wrote (replaced "
                         "whole when the report is done); any other folder is refused (default: %(default)s)")
@@ -109,7 +113,8 @@ def run(args) -> int:
                           duration=args.duration if args.duration is not None else config.get("duration"),
                           scales=_scales(args.scales), format=args.format or config.get("format"),
                           units=args.units or config.get("units"), system=system_from_options(args, config.get("system")),
-                          overrides=overrides, workers=args.workers, overturn_rule=args.overturn)
+                          overrides=overrides, workers=args.workers, overturn_rule=args.overturn,
+                          pga=args.pga, pgv=args.pgv)
     from isorock.validate.cli.config_file import check_damping_ratio
     check_damping_ratio(report.system)
     from isorock.validate.core.engines import resolve

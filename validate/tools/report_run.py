@@ -97,9 +97,12 @@ class ReportConfig:
     overrides: dict = field(default_factory=dict)
     workers: int | None = None
     overturn_rule: str | None = None
+    pga: float | None = None             # g: every motion scaled to this peak ground acceleration
+    pgv: float | None = None             # m/s: … or to this peak ground velocity
 
     def __post_init__(self):
         require(len(self.motions) > 0, "motion", self.motions, "at least one motion")
+        require(self.pga is None or self.pgv is None, "pga/pgv", (self.pga, self.pgv), "one of the two, not both")
         for name in self.engines:
             base, _, preset = name.partition(":")
             require(base in ENGINE_MODULES, "engines", name, f"one of {', '.join(ENGINE_MODULES)} "
@@ -262,6 +265,10 @@ def load_motions(config: ReportConfig):
             raise InputError(f"motion = {spec!r}: the report needs a ground motion ('none' has none)")
         if m.pulse is None and m.end_time > RECORD_WINDOW and config.duration is None:
             m = m.trimmed(0.0, RECORD_WINDOW)
+        if config.pga is not None:  # scaled to the target on the window the report runs
+            m = m.scaled_to_pga(config.pga)
+        elif config.pgv is not None:
+            m = m.scaled_to_pgv(config.pgv)
         motions.append((m, spec if m.pulse is None and Path(spec).is_file() else None))
     return motions
 
