@@ -50,7 +50,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     or 10 s without motion) from rest, tilted by `theta0` (rad) about its corner.
     progress: optional callable(t, duration), called between rollout chunks about
     once a second."""
-    settings = settings or Settings()
+    settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
     model = build_model(system, settings)
     return run_model(model, system, motion, settings=settings, duration=duration, theta0=theta0,
@@ -90,7 +90,10 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
         rows, status, message, stop_reason, _, _ = _roll(model, data, lay, system, motion, forces, state0, warm,
                                                          rows, nstep, chunk_steps, dt, throttle, warnings)
     runtime = time.perf_counter() - start
-    return raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
+    raw = raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
+    # the numbers this run used (Settings.for_system may have made them finer than asked)
+    raw.extras.update(timestep=float(dt), solref_0=float(settings.solref[0]), solref_1=float(settings.solref[1]))
+    return raw
 
 
 def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, budget_s: float | None = None) -> list:
@@ -113,10 +116,12 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
     def prepare(run):
         system, motion, duration, theta0 = run
         motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
-                                      settings=settings)
+                                      settings=settings.for_system(system))
         if system not in models:
-            models[system] = build_model(system, settings)
-        return models[system], system, motion, duration, theta0
+            derived = settings.for_system(system)  # the step and contact follow each system
+            models[system] = (build_model(system, derived), derived)
+        model, derived = models[system]
+        return model, derived, system, motion, duration, theta0
 
     prepared = []
     for run in runs:
@@ -128,11 +133,11 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
     def one(item, warnings):
         if isinstance(item, Exception):
             return item
-        model, system, motion, duration, theta0 = item
+        model, derived, system, motion, duration, theta0 = item
         try:
             # each run its own wall-clock budget (analytic.limits.RunBudget), as `simulate` gives one
             progress = None if budget_s is None else RunBudget(budget_s)
-            return _run(model, system, motion, settings, duration, theta0, progress, None, warnings)
+            return _run(model, system, motion, derived, duration, theta0, progress, None, warnings)
         except Exception as e:  # noqa: BLE001
             return e
 

@@ -57,7 +57,8 @@ def test_mujocos_calibration_coordinates_are_its_own_timeconst_and_dampratio():
     solref (τ, ζ): the same run to rounding, and back the same coordinates."""
     from isorock.mujoco_models import ENGINE, Settings, simulate
     tuning = ENGINE.tuning
-    given = Settings(timestep=1e-3, solref=(0.004, 1.5), solimp=(0.85, 0.95, 0.002))
+    # follow_system off: the direct form is used as given, so the (τ, ζ) form must be too
+    given = Settings(timestep=1e-3, solref=(0.004, 1.5), solimp=(0.85, 0.95, 0.002), follow_system=False)
     x = tuning.start(given)
     assert x == pytest.approx([2.0, 1.5, 0.85])
     direct = tuning.apply(given, x)

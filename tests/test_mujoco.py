@@ -3,6 +3,7 @@
 Runs are short (a few simulated seconds at the default settings) so the whole file
 stays fast; the analytic model is the oracle for overturning.
 """
+import dataclasses
 import math
 import xml.etree.ElementTree as ET
 
@@ -107,7 +108,8 @@ def test_scene_carries_settings():
 
 
 def test_settings_for_timestep_ties_solref_to_the_step():
-    assert scene.settings_for_timestep(5e-4) == scene.Settings()  # the defaults are one rung
+    # the defaults are one rung (a rung is its named step: it does not follow the system)
+    assert scene.settings_for_timestep(5e-4) == dataclasses.replace(scene.Settings(), follow_system=False)
     s = scene.settings_for_timestep(2.5e-4, friction=2.0)
     assert s.timestep == 2.5e-4 and s.solref == (1e-3, 2.0) and s.friction == 2.0
     # from 1e-3 up: the direct form, stiffness 0.05/dt² and damping 0.6/dt
@@ -347,7 +349,7 @@ def test_rollout_matches_python_loop():
     """The C loop against a plain mj_step loop that sets qfrc_applied each step (the
     contact scene stepped throughout: phased stepping has its own tests)."""
     system, motion = isolated(), load_motion(PULSE)
-    s = scene.Settings(phased=False)
+    s = scene.Settings(phased=False).for_system(system)  # what simulate steps with, in full
     duration = 1.2
     traj = MUJOCO.simulate(system, motion, settings=s, duration=duration)
     model = scene.build_model(system, s)
@@ -371,7 +373,9 @@ def test_progress_reports_simulated_time(monkeypatch):
     monkeypatch.setattr(stepping, "CHUNK_STEPS", 500)
     monkeypatch.setattr(kinematics, "PROGRESS_INTERVAL", 0.0)  # report after every chunk
     calls = []
-    scene.simulate(isolated(), None, duration=1.0, progress=lambda t, total: calls.append((t, total)))
+    # the default's own 5e-4 s step (not the system's finer one): 500 steps are 0.25 s
+    scene.simulate(isolated(), None, settings=scene.Settings(follow_system=False), duration=1.0,
+                   progress=lambda t, total: calls.append((t, total)))
     assert [round(t, 9) for t, _ in calls] == [0.25, 0.5, 0.75, 1.0]
     assert all(total == 1.0 for _, total in calls)
 
@@ -401,7 +405,8 @@ def test_a_blown_up_state_is_a_failure_and_leaves_no_log_file(tmp_path, monkeypa
     the working directory (MuJoCo's MUJOCO_LOG.TXT)."""
     monkeypatch.chdir(tmp_path)
     stiff = System.isolated(height=H, width=B07, mass=M, base_mass=M, period=0.001, damping_ratio=0.2)
-    traj = MUJOCO.simulate(stiff, load_motion("sine:amp=0.6,freq=1.3,cycles=2"), duration=2.0)
+    traj = MUJOCO.simulate(stiff, load_motion("sine:amp=0.6,freq=1.3,cycles=2"),
+                           settings=scene.Settings(follow_system=False), duration=2.0)  # dt 5e-4 as said
     assert traj.status == "failed" and "QACC" in traj.message
     assert list(tmp_path.iterdir()) == []
 

@@ -86,7 +86,7 @@ def test_the_full_scene_takes_over_before_the_threshold(fixed, monkeypatch):
 
     monkeypatch.setattr(phases.Phases, "rest", recording)
     raw = simulate(s, motion, settings=PHASED, duration=motion.end_time + 2.0)
-    dt = Settings.timestep
+    dt = PHASED.for_system(s).timestep  # the step the run took (it follows the system)
     a = (np.abs(motion((np.arange(raw.t.size) + 0.5) * dt)) if fixed else
          np.abs(s.stiffness * raw.u + s.damping * raw.u_dot) / s.total_mass)
     lead = int(round(phases.LEAD_TIME / dt))

@@ -204,10 +204,13 @@ def engine_settings_from_args(engine, a):
         raise InputError(str(e).replace("_", "-")) from None
 
 
-def settings_dict(settings):
+def settings_dict(settings, system=None):
     """Every setting the run used, with those derived from them (e.g. PyBullet's control
-    step): a timestep given alone brings other settings along, and the JSON says which."""
+    step): a timestep given alone brings other settings along, and the JSON says which.
+    An engine whose settings follow the system (`for_system`) reports them as derived."""
     from dataclasses import asdict
+    if system is not None and hasattr(settings, "for_system"):
+        settings = settings.for_system(system)
     out = asdict(settings)
     for name in dir(type(settings)):
         if isinstance(getattr(type(settings), name), property):
