@@ -19,6 +19,16 @@ from typing import TYPE_CHECKING, Any, Callable, Protocol
 #: has one home.
 DEFAULT_IMPACT_THRESHOLD = 0.01
 
+
+
+def contact_scale(system: "System", time: float, share: float) -> float:
+    """The factor by which a contact engine multiplies a default `time` of its contact (s: a
+    contact time constant, a physics step) so that time·p_eff = `share`: every block then
+    meets the same contact in units of its own rocking time 1/p_eff (System.rocking_rate),
+    as the similarity law of the rigid model asks (tests/test_similarity.py)."""
+    return share / (time * system.rocking_rate)
+
+
 if TYPE_CHECKING:  # the registry loads this module for every command: keep it light
     from .motion import GroundMotion
     from .system import System
@@ -78,7 +88,9 @@ class EngineSpec:
     dampratio)`
     (optional) is a free rigid body of that convex hull on a flat table moved by a
     horizontal acceleration history (m/s², step dt s): a dict with `overturned`,
-    `tilt_max` (rad) and `wall_s` (`isorock experiments`)."""
+    `tilt_max` (rad) and `wall_s` (`isorock experiments`); `step_cost(system, settings)`
+    (optional) is the CPU time (s) of one physics step of the engine's scene, the block at
+    rest, with no Python between steps: the limit of its speed (`isorock bench`)."""
 
     name: str
     label: str
@@ -94,6 +106,7 @@ class EngineSpec:
     simulate_many: Callable[..., list] | None = None
     replay_scene: Callable[..., tuple] | None = None
     simulate_body: Callable[..., dict] | None = None
+    step_cost: Callable[..., float] | None = None
 
     def settings(self, **overrides):
         if self.settings_for is not None:

@@ -133,6 +133,15 @@ class System:
         return 0.0 if self.fixed_base else self.damping / (2 * self.total_mass * self.omega)
 
     @property
+    def rocking_rate(self) -> float:
+        """p_eff (rad/s): the block's small-angle rocking rate with its base's recoil. A free
+        base takes m·h²·μ/(1+μ) of the block's inertia about its pivot, (4/3)·m·R², so
+        p_eff = p/√(1 − ¾·cos²α·μ/(1+μ)); p on a fixed base. Contact engines scale their
+        steps with it (docs/mujoco.md, "A rule that follows the system")."""
+        share = 0.0 if self.fixed_base else self.mu / (1 + self.mu)
+        return self.p / math.sqrt(1 - 0.75 * math.cos(self.alpha) ** 2 * share)
+
+    @property
     def uplift_acceleration(self) -> float:
         """|a| above which rocking starts: g·tanα = g b/h (m/s²)."""
         return self.gravity * self.b / self.h

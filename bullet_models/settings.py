@@ -8,10 +8,11 @@ step, timestep × substeps), because a Python step costs more than Bullet's sub-
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
+from isorock.analytic.engine_protocol import contact_scale
 from isorock.analytic.errors import require, require_nonnegative_finite, require_positive_finite
 
 #: s; the control step (ground motion, isolator force, output) a timestep given alone keeps:
@@ -24,6 +25,16 @@ MAX_CONTROL_STEP = 0.01
 #: diverges (T 0.01 s at 4 ms overturned a block the analytic model rocks). 0.2 keeps
 #: the held force within a few per cent of the spring's (T ≥ 0.126 s at 4 ms).
 MAX_ISOLATOR_PHASE = 0.2
+
+
+#: s; the default physics step, right on the paper's block (docs/bullet.md).
+DEFAULT_TIMESTEP = CONTROL_STEP / 12
+#: The physics step in units of the block's rocking time 1/p_eff (System.rocking_rate):
+#: follow_system makes timestep·p_eff = STEP_SHARE. Measured over the atlas's λ 1.5–10 ×
+#: μ 0–4 × H 0.1–10 m (docs/bullet.md, "Settings that follow the block's size"): the former
+#: 1/3000 s is 0.00108 on the paper's isolated block (p_eff 3.23) and left small, squat
+#: blocks 1.2% off; 0.0003 gives 0.093 ms there.
+STEP_SHARE = 0.0003
 
 
 @dataclass(frozen=True)
@@ -41,19 +52,38 @@ class Settings:
         block rocking by less than ~0.1α then acts as a speculative contact and small
         impacts are off by up to 1.7%). linear_damping, angular_damping: Bullet's velocity
         damping of every body (1/s); model.md's physics has none. output_every: store
-        every n-th control step.
+        every n-th control step. follow_system: True: `for_system` divides the physics
+        step by contact_scale(system, 1/3000 s, STEP_SHARE), the sub-steps kept, so the
+        control step follows (on a block rocking faster than the paper's, the isolator
+        force and ground motion held over 4 ms would lag: docs/bullet.md). An
+        explicit timestep or substeps given to `settings_for` (every command's path) sets
+        it False, as does `for_system` once applied.
     """
 
-    timestep: float = CONTROL_STEP / 12
+    timestep: float = DEFAULT_TIMESTEP
     substeps: int = 12
     solver_iterations: int = 50
     friction: float = 1.0
     restitution: float = 0.0
-    contact_erp: float = 0.08
+    #: 0.04: half Bullet's 0.08, which kicks heavy squat blocks off the base after an impact
+    #: (hops of 0.6–1.4 mm, β up to 8% off at H 5 m, λ 1.5; docs/bullet.md)
+    contact_erp: float = 0.04
     contact_processing_threshold: float = 0.0
     linear_damping: float = 0.0
     angular_damping: float = 0.0
     output_every: int = 1
+    follow_system: bool = True
+
+    def for_system(self, system, duration: float | None = None) -> "Settings":
+        """These settings for `system`: with follow_system, the physics step scaled by
+        contact_scale(system, 1/3000 s, STEP_SHARE), so that timestep·p_eff = STEP_SHARE at
+        every size (a preset twice as fine stays twice as fine), the sub-steps kept; the
+        result is final (follow_system False). `duration` is not needed: a run whose
+        duration the control step does not divide ends with a shorter step."""
+        if not self.follow_system:
+            return self
+        return replace(self, timestep=self.timestep * contact_scale(system, DEFAULT_TIMESTEP, STEP_SHARE),
+                       follow_system=False)
 
     def __post_init__(self):
         require_positive_finite("timestep", self.timestep)
@@ -69,6 +99,7 @@ class Settings:
         require(0 < self.contact_erp <= 1, "contact_erp", self.contact_erp, "in (0, 1]")
         for name in ("linear_damping", "angular_damping", "contact_processing_threshold"):
             require_nonnegative_finite(name, getattr(self, name))
+        require(isinstance(self.follow_system, bool), "follow_system", self.follow_system, "true or false")
 
     @property
     def control_step(self) -> float:
@@ -102,6 +133,8 @@ MAX_MASS_RATIO = 1000.0
 def settings_for(**overrides) -> Settings:
     """Settings with `overrides`; a timestep given without substeps keeps the control
     step near CONTROL_STEP (settings_for_timestep)."""
+    if {"timestep", "substeps"} & set(overrides):
+        overrides.setdefault("follow_system", False)  # what a user sets, the run uses
     if "timestep" in overrides and "substeps" not in overrides:
         return settings_for_timestep(overrides.pop("timestep"), **overrides)
     return Settings(**overrides)
@@ -113,4 +146,5 @@ def settings_for_timestep(dt: float, **overrides) -> Settings:
     sub-steps fill it. dt = 1/3000 s gives the defaults."""
     dt = require_positive_finite("timestep", dt)
     n = max(1, round(CONTROL_STEP / dt))
-    return Settings(**{"timestep": dt, "substeps": n, **overrides})
+    # a ladder's rung is the step it names (a preset built on it passes follow_system=True)
+    return Settings(**{"timestep": dt, "substeps": n, "follow_system": False, **overrides})

@@ -40,7 +40,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     """Simulate from rest at tilt `theta0` (rad; > 0 rests on corner O, centroid towards
     +x) for `duration` s (default: motion end + 5 s, or 10 s without motion).
     progress: callable(t, duration), called about once a second."""
-    settings = settings or Settings()
+    settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
     settings.check_isolator(system)
 
@@ -126,7 +126,10 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         runtime = time.perf_counter() - start
     finally:
         client.disconnect()
-    return raw_history(system, np.array(rows), runtime, status, message, stop_reason)
+    raw = raw_history(system, np.array(rows), runtime, status, message, stop_reason)
+    # the numbers this run used (Settings.for_system may have made them finer than asked)
+    raw.extras.update(timestep=float(settings.timestep), control_step=float(settings.control_step))
+    return raw
 
 
 def _stop_in(system, rows, checked, motion_end):
@@ -139,6 +142,26 @@ def _stop_in(system, rows, checked, motion_end):
     finite = np.all(np.isfinite(new), axis=1)
     k, reason = kinematics.first_stop(new[:, 0], theta, new[:, 10], finite, system=system, motion_end=motion_end)
     return (None, None) if k is None else (checked + k, reason)
+
+
+def step_cost(system: System, settings: Settings | None = None, *, steps: int = 24_000) -> float:
+    """CPU seconds per physics step of the scene itself, the block resting on its base,
+    Bullet stepping its sub-steps in C (one stepSimulation per control step, as
+    `simulate` calls it, without the isolator force and the rows): the limit of any
+    stepping of this scene, timestep / step_cost simulated s per CPU s."""
+    settings = (settings or Settings()).for_system(system)
+    client = connect()
+    try:
+        build(client, system, settings, 0.0)
+        calls = max(1, steps // settings.substeps)
+        for _ in range(10):
+            client.stepSimulation()
+        start = time.process_time()
+        for _ in range(calls):
+            client.stepSimulation()
+        return (time.process_time() - start) / (calls * settings.substeps)
+    finally:
+        client.disconnect()
 
 
 def raw_history(system, rows, runtime, status, message, stop_reason) -> RawHistory:

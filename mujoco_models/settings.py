@@ -9,7 +9,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from isorock.analytic.engine_protocol import contact_scale
 from isorock.analytic.errors import InputError, require, require_positive_finite
+from isorock.analytic.system import paper_system
 
 INTEGRATORS = ("Euler", "implicit", "implicitfast", "RK4")
 CONES = ("pyramidal", "elliptic")
@@ -38,8 +40,8 @@ class Settings:
     each bottom corner of the block against the base box, scene.CORNER_RADIUS:
     cheaper collision, no better per unit of cost, docs/mujoco.md). solver: the
     constraint solver, one of Newton (the default), CG, PGS (MJCF `<option solver>`).
-    follow_system: True: `for_system` makes the step and the contact time constant finer
-    on a block whose rocking is faster than the paper's (contact_scale; an explicit
+    follow_system: True: `for_system` puts the step, the contact time constant and the
+    impedance width in the block's own units (contact_scale; an explicit
     timestep, solref or solimp given to `settings_for`, the path every command takes,
     sets it False, as does `for_system` once applied; `Settings(...)` built directly in
     Python keeps True unless told: pass follow_system=False to step exactly as written).
@@ -60,21 +62,29 @@ class Settings:
     phased: bool = True
     follow_system: bool = True
 
-    def for_system(self, system) -> "Settings":
-        """These settings for `system`: with follow_system, the step and the (timeconst,
-        dampratio) contact time constant divided by n = ⌈1/contact_scale(system)⌉, so that
-        every block meets the same contact in units of its rocking time (a preset twice
-        as fine as the default stays twice as fine); the direct solref form and
-        event-resolved stepping are left as they are. The result has follow_system False:
-        it is final, and applying it again changes nothing."""
+    def for_system(self, system, duration: float | None = None) -> "Settings":
+        """These settings for `system`: with follow_system, every contact length and time
+        in the block's own units (docs/mujoco.md, "A rule that follows the system"): the
+        step and the (timeconst, dampratio) time constant scaled by
+        k = contact_scale(system, 2 ms, CONTACT_SHARE), so that τ·p_eff = CONTACT_SHARE at
+        every size (a preset twice as fine as the default stays twice as fine), and the
+        impedance width (solimp's third value, m) scaled with R, since a contact that acts
+        over a time ∝ 1/p sinks by a depth ∝ R. The direct solref form and event-resolved
+        stepping keep their step and time constant. With `duration` (s), the derived step is
+        shortened (by less than a step in the run) to a whole divisor of it, so that the
+        run ends on its duration, as a step given in seconds that divides it does. The
+        result has follow_system False: it is final, and applying it again changes nothing."""
         if not self.follow_system:
             return self
-        k = contact_scale(system)
-        if k >= 1.0 or self.solref[0] < 0 or self.impact_timestep is not None:
-            return replace(self, follow_system=False)
-        n = math.ceil(1 / k - 1e-9)  # a whole divisor: the step still divides what the default's did
-        return replace(self, timestep=self.timestep / n, solref=(self.solref[0] / n, self.solref[1]),
-                       follow_system=False)
+        width = self.solimp[2] * system.R / REFERENCE_R
+        out = replace(self, solimp=(*self.solimp[:2], width, *self.solimp[3:]), follow_system=False)
+        if self.solref[0] < 0 or self.impact_timestep is not None:
+            return out
+        k = contact_scale(system, Settings.solref[0], CONTACT_SHARE)
+        step = self.timestep * k
+        if duration is not None and duration > 0:
+            step = duration / math.ceil(duration / step - 1e-9)
+        return replace(out, timestep=step, solref=(self.solref[0] * k, self.solref[1]))
 
     def __post_init__(self):
         dt = require_positive_finite("timestep", self.timestep)
@@ -116,25 +126,15 @@ class Settings:
         require(isinstance(self.phased, bool), "phased", self.phased, "true or false")
 
 
-#: The contact time constant as a share of the block's rocking time: follow_system keeps
-#: τ·p_eff ≤ CONTACT_SHARE (τ the default's time constant scaled by contact_scale). Measured
-#: (docs/mujoco.md, "A rule that follows the system"): β within 0.44% and t₁ within 0.04% on
-#: twelve atlas cells H 0.1–5 m, where the fixed 2 ms erred up to 20.5% (a light base's
-#: judged impacts are short swings, "Why the light base errs more").
-CONTACT_SHARE = 0.003
-
-
-def rocking_rate(system) -> float:
-    """p_eff (rad/s): the block's rocking rate with its base's recoil. A free base takes
-    m·h²·μ/(1+μ) of the inertia about the pivot, (4/3)·m·R²; p on a fixed base."""
-    share = 0.0 if system.fixed_base else system.mu / (1 + system.mu)
-    return system.p / math.sqrt(1 - 0.75 * math.cos(system.alpha) ** 2 * share)
-
-
-def contact_scale(system) -> float:
-    """The factor (≤ 1: never coarser than the default) by which follow_system scales the
-    step and the contact time constant: CONTACT_SHARE / (p_eff · default time constant)."""
-    return min(1.0, CONTACT_SHARE / (rocking_rate(system) * Settings.solref[0]))
+#: The contact time constant in units of the block's rocking time: follow_system makes
+#: τ·p_eff = CONTACT_SHARE (p_eff = System.rocking_rate). Measured over the atlas's
+#: λ 1.5–10 × μ 0–4 × H 0.1–10 m (docs/mujoco.md, "A rule that follows the system"): the
+#: squat λ 1.5 block on a light base needs 0.002 (0.003 left it 0.9% off at 10 m). On the
+#: paper's block it gives τ 0.62 ms isolated, 0.76 ms fixed (the former default: 2 ms).
+CONTACT_SHARE = 0.002
+#: m; the centroid-to-corner distance of the paper's block, at which the default impedance
+#: width (solimp, 1 mm) was measured: follow_system scales the width by R / REFERENCE_R.
+REFERENCE_R = paper_system().R
 
 
 #: The default contact time constant in steps: solref = (SOLREF_STEPS · timestep, 2).

@@ -50,8 +50,10 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     or 10 s without motion) from rest, tilted by `theta0` (rad) about its corner.
     progress: optional callable(t, duration), called between rollout chunks about
     once a second."""
-    settings = (settings or Settings()).for_system(system)
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
+    given = settings or Settings()
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
+                                  settings=given.for_system(system))
+    settings = given.for_system(system, duration)  # the step that ends the run on its duration
     model = build_model(system, settings)
     return run_model(model, system, motion, settings=settings, duration=duration, theta0=theta0,
                      progress=progress)
@@ -96,6 +98,23 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     return raw
 
 
+def step_cost(system: System, settings: Settings | None = None, *, steps: int = 20_000) -> float:
+    """CPU seconds per step of the contact scene itself, the block resting on its base (the
+    paper's scene: two bodies, four box–box contacts), stepped by `mujoco.rollout` in C
+    with no Python between steps: the limit of any stepping scheme over this scene,
+    timestep / step_cost simulated s per CPU s (`isorock bench` reports each run's speed
+    as a fraction of it)."""
+    settings = (settings or Settings()).for_system(system)
+    model = build_model(system, settings)
+    data = mujoco.MjData(model)
+    lay = Layout(model, system, settings.joint)
+    state0, forces = lay.initial_state(model, system, 0.0), lay.forces(system, np.zeros(steps))[None]
+    rollout.rollout(model, data, state0, forces[:, :100], control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED)
+    start = time.process_time()
+    rollout.rollout(model, data, state0, forces, control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED)
+    return (time.process_time() - start) / steps
+
+
 def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, budget_s: float | None = None) -> list:
     """Many runs, each exactly as `simulate` makes it: `runs` is a sequence of (system,
     motion, duration, theta0), as `simulate` takes them; returns, per run, its RawHistory
@@ -117,10 +136,10 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
         system, motion, duration, theta0 = run
         motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
                                       settings=settings.for_system(system))
-        if system not in models:
-            derived = settings.for_system(system)  # the step and contact follow each system
-            models[system] = (build_model(system, derived), derived)
-        model, derived = models[system]
+        derived = settings.for_system(system, duration)  # the step and contact follow each system
+        if (system, derived) not in models:
+            models[system, derived] = build_model(system, derived)
+        model = models[system, derived]
         return model, derived, system, motion, duration, theta0
 
     prepared = []

@@ -16,14 +16,29 @@ from isorock.validate.core.runner import Task
 from isorock.validate.core.tolerances import tolerance
 
 
-def test_the_full_grid_spans_issue_12s_ranges():
+def test_the_full_grid_spans_issue_12s_ranges_and_issue_19s_sizes():
     assert (min(FULL.slenderness), max(FULL.slenderness)) == (1.5, 10.0)
     assert 0.0 in FULL.mass_ratios and (min(m for m in FULL.mass_ratios if m), max(FULL.mass_ratios)) == (0.25, 4.0)
-    assert (min(FULL.heights), max(FULL.heights)) == (0.2, 5.0)
+    assert (min(FULL.heights), max(FULL.heights)) == (0.1, 10.0)
     for c in FULL.cells() + QUICK.cells():
         s = c.system()
         assert s.slenderness == pytest.approx(c.slenderness) and s.height == c.height
         assert s.fixed_base == (c.mass_ratio == 0) and s.mu == pytest.approx(c.mass_ratio)
+        if not s.fixed_base:  # one dimensionless isolator at every size: the paper's T·p, ξ
+            assert s.period * s.p == pytest.approx(1.5 * 2.6353, rel=1e-4) and s.damping_ratio == pytest.approx(0.2)
+
+
+def test_the_cells_of_one_case_are_one_dimensionless_history_at_every_size():
+    """The similarity law (Dimitrakopoulos & DeJong 2012) is the oracle: at one λ and μ the
+    reference's impacts, in units of 1/p, are the same at 0.1 and 10 m; so are the impacts
+    the atlas keeps and judges."""
+    refs = [reference(Cell(4.0, 1.0, h)) for h in (0.1, 10.0)]
+    assert refs[0]["judged_impacts"] == refs[1]["judged_impacts"]
+    assert refs[0]["impacts_kept"] == refs[1]["impacts_kept"] > refs[0]["judged_impacts"][-1] + 1
+    tp = [r["t1_reference"] * r["system"].p for r in refs]
+    assert tp[0] == pytest.approx(tp[1], rel=1e-9)
+    assert refs[0]["duration"] * refs[0]["system"].p == pytest.approx(
+        (refs[1]["duration"] - 0.1) * refs[1]["system"].p + 0.1 * refs[0]["system"].p, rel=1e-6)
 
 
 def test_the_reference_is_the_closed_forms():
@@ -121,6 +136,8 @@ def test_quick_outputs_exist_and_the_verdict_is_the_csvs(tmp_path, capsys):
             complete[label] = complete.get(label, True) and r["status"] == "ok"
             if r["status"] == "ok":
                 worst[label] = max(worst.get(label, 0.0), abs(float(r["beta_error"])))
+                # an impact above 0.05α lost, or t₁ beyond 0.2%, keeps a preset out too (issue 19)
+                complete[label] = complete[label] and int(r["impacts_lost"]) == 0 and abs(float(r["t1_error"])) <= 0.002
         verdict = next(v for v in data["verdict"] if v["engine"] == engine)
         line = next(x for x in md.splitlines() if x.startswith(f"| {engine} |"))
         for level in LEVELS:

@@ -5,6 +5,9 @@ Tolerances (at the default Settings: physics step 1/3000 s, 12 per 4 ms control 
 come from the one table, validate/tolerances.py, each with its reason and measured value
 there: β per impact, staying down at 0.99·g·tanα, pivot slip, out-of-plane drift.
 """
+import math
+from dataclasses import replace
+
 import numpy as np
 import pybullet as p
 import pytest
@@ -158,8 +161,8 @@ def test_a_timestep_is_the_physics_step_and_the_control_step_stays_near_4ms(dt, 
     for s in (settings_for_timestep(dt), get_engine("bullet").settings(timestep=dt)):
         assert s.timestep == pytest.approx(dt) and s.substeps == substeps
         assert s.control_step == pytest.approx(control_step)
-    if dt == 1 / 3000:
-        assert settings_for_timestep(dt) == Settings()
+    if dt == 1 / 3000:  # the defaults are one rung (a rung is its named step: it does not follow the system)
+        assert settings_for_timestep(dt) == replace(Settings(), follow_system=False)
     # given with its sub-steps, a timestep stands as it is
     assert get_engine("bullet").settings(timestep=dt, substeps=1).control_step == pytest.approx(dt)
 
@@ -302,7 +305,12 @@ def test_progress_is_called_with_the_duration(monkeypatch):
 
 def test_an_isolator_too_stiff_for_the_control_step_is_refused():
     stiff = System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=0.01, damping_ratio=0.2)
-    with pytest.raises(InputError, match=r"period = 0\.01: must be at least 0\.126 s"):
+    with pytest.raises(InputError, match=r"period = 0\.01: must be at least 0\.126 s"):  # ω·dt ≤ 0.2 at 4 ms
+        simulate(stiff, GroundMotion.from_pulse(Pulse("sine", 0.6, 1.3)), settings=Settings(follow_system=False),
+                 duration=1.0)
+    # the default follows the block: its control step, 12 physics steps of 0.0003/p_eff, names its own bound
+    control = 12 * 0.0003 / stiff.rocking_rate
+    with pytest.raises(InputError, match=rf"period = 0\.01: must be at least {2 * math.pi * control / 0.2:.3g} s"):
         simulate(stiff, GroundMotion.from_pulse(Pulse("sine", 0.6, 1.3)), duration=1.0)
     # a shorter control step carries it
     fine = Settings(timestep=1e-4, substeps=1)

@@ -80,11 +80,11 @@ def _rigid_case(height: float, fixed: bool):
     return np.array([i.t * system.p for i in impacts]), np.array([i.amplitude / system.alpha for i in impacts])
 
 
-#: the cases measured outside tolerance at today's defaults (docs/bullet.md): PyBullet at
-#: H 0.1 m on the isolated base (10 of 12 impacts, β 2.2%). MuJoCo's default was outside
-#: at H 0.1 m on both bases (t₁ 0.21–0.25%; isolated: 9 of 12 impacts, β 2.3%) until its
-#: step and contact followed the system (Settings.for_system): now t₁ 0.026%, β ≤ 0.14%.
-_KNOWN_DEFECT = {("bullet", False, 0.1)}
+#: the cases measured outside tolerance at the former defaults, fixed in seconds: PyBullet
+#: at H 0.1 m on the isolated base (10 of 12 impacts, β 2.2%), MuJoCo at H 0.1 m on both
+#: bases (t₁ 0.21–0.25%; isolated: 9 of 12 impacts, β 2.3%). None since their step and
+#: contact follow the system (Settings.for_system, issue 19).
+_KNOWN_DEFECT: set = set()
 _CASES = [pytest.param(e, f, h, id=f"{e}-{'fixed' if f else 'isolated'}-H{h:g}",
                        marks=[pytest.mark.xfail(strict=True, reason="issue 19: defaults fixed in seconds")]
                        if (e, f, h) in _KNOWN_DEFECT else [])
@@ -103,3 +103,43 @@ def test_contact_engine_defaults_follow_the_similarity_law(engine, fixed, height
     # half-cycle peaks θ/α against t·p's impacts: the dimensionless history at its extremes
     assert np.max(np.abs(amplitude[:n] - amplitude_ref[:n])) <= tolerance(engine, "theta_max_diff").limit
     assert max(map(abs, errors)) <= tolerance(engine, "beta_rel_error_per_impact").limit
+
+
+def test_mujocos_contact_is_in_the_blocks_own_units():
+    """MuJoCo's default puts every contact time and length in the block's units (step and
+    time constant ∝ 1/p_eff, impedance width ∝ R), and gravity is the same at every size,
+    so its scene is the same dimensionless system at 0.1, 1 and 10 m: up to the first
+    impact (before the measuring window, the one thing still in seconds) the history in
+    units of 1/p is the same to rounding, not only within the engine's tolerance."""
+    pytest.importorskip("mujoco")
+    for fixed in (True, False):
+        tp = [_contact_case("mujoco", h, fixed)[0][0] for h in HEIGHTS]
+        assert max(tp) - min(tp) <= 1e-6 * tp[0], (fixed, tp)
+
+
+@pytest.mark.parametrize("engine, share", [("mujoco", 0.002 / 4), ("bullet", 0.0003)])
+def test_run_json_lists_the_step_derived_for_the_block(engine, share, tmp_path):
+    """`isorock run --json` names the numbers the run used: a 0.2 m block on a light base
+    steps at share/p_eff, p_eff the rocking rate with the base's recoil written out here
+    from the closed form (p = √(3g/4R), the pivot inertia (4/3)mR² less m h²·μ/(1+μ))."""
+    import json
+    import math
+    from isorock.validate.cli.main import main
+    pytest.importorskip({"mujoco": "mujoco", "bullet": "pybullet"}[engine])
+    h, b, mu = 0.1, 0.025, 4.0
+    R = math.hypot(h, b)
+    p = math.sqrt(3 * 9.81 / (4 * R))
+    p_eff = p / math.sqrt(1 - (h * h / R / R) * (3 / 4) * mu / (1 + mu))
+    out = tmp_path / "run.json"
+    assert main(["run", "--engine", engine, "--height", "0.2", "--width", "0.05", "--mass", "2",
+                 "--base-mass", "0.5", "--period", "0.5", "--damping-ratio", "0.1", "--theta0", "0.5",
+                 "--duration", "0.3", "--json", str(out)]) == 0
+    settings = json.loads(out.read_text())["settings"]
+    dt = settings["timestep"]
+    if engine == "mujoco":  # the step is made a whole divisor of the run's 0.3 s: at most a step finer
+        assert 0.3 / dt == pytest.approx(round(0.3 / dt), abs=1e-6)
+        assert share * (1 - dt / 0.3) <= dt * p_eff <= share * (1 + 1e-9)
+        assert settings["solref"][0] * p_eff == pytest.approx(4 * share, rel=1e-9)  # τ·p_eff = 0.002
+    else:
+        assert dt * p_eff == pytest.approx(share, rel=1e-9)
+    assert settings["follow_system"] is False  # final: what the run used

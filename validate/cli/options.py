@@ -204,18 +204,12 @@ def engine_settings_from_args(engine, a):
         raise InputError(str(e).replace("_", "-")) from None
 
 
-def settings_dict(settings, system=None):
+def settings_dict(settings, system=None, duration=None):
     """Every setting the run used, with those derived from them (e.g. PyBullet's control
-    step): a timestep given alone brings other settings along, and the JSON says which.
-    An engine whose settings follow the system (`for_system`) reports them as derived."""
-    from dataclasses import asdict
-    if system is not None and hasattr(settings, "for_system"):
-        settings = settings.for_system(system)
-    out = asdict(settings)
-    for name in dir(type(settings)):
-        if isinstance(getattr(type(settings), name), property):
-            out[name] = getattr(settings, name)
-    return out
+    step, and the step and contact that follow the system): a timestep given alone brings
+    other settings along, and the JSON says which (core.engines.describe_settings)."""
+    from isorock.validate.core.engines import describe_settings
+    return describe_settings(settings, system, duration)
 
 
 def engine_overrides(a) -> dict:

@@ -175,14 +175,14 @@ def cmd_run(a) -> int:
             report = {
                 "reference": ref_label, "system": system.describe(),
                 "motion": dict(motion.describe(), description=describe_motion(motion)),
-                "engines": {label: dict(tr.summary(), settings=settings_dict(used[label], system))
+                "engines": {label: dict(tr.summary(), settings=settings_dict(used[label], system, duration))
                             for label, tr in runs.items()},
                 "comparisons": {label: c.as_dict() for label, c in comparisons.items()},
             }
         else:
             summary = ref.summary()
             report = dict(summary, system=system.describe(), motion=motion.describe(),
-                          settings=settings_dict(used[ref_label], system))
+                          settings=settings_dict(used[ref_label], system, duration))
         if json_out:
             from isorock.validate.io.provenance import provenance
             json_out.write_text(to_json(dict(report, provenance=provenance(record_paths=[a.motion]))) + "\n")

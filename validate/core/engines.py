@@ -118,7 +118,7 @@ class Engine:
         if isinstance(out, RawHistory):
             from isorock.analytic.motion import GroundMotion
             out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
-                                  window=measure.CONTACT_WINDOW if contact_window is None else contact_window,
+                                  window=contact_window,
                                   overturn_rule=overturn_rule or PAST_ALPHA, effective_beta=effective_beta)
         return out
 
@@ -254,6 +254,22 @@ def campaign_engines() -> tuple[str, ...]:
         except ImportError:
             continue
     return tuple(out)
+
+
+def describe_settings(settings, system=None, duration: float | None = None) -> dict:
+    """Every setting a run used, as plain values, with those derived from them (properties,
+    e.g. PyBullet's control step); for an engine whose settings follow the system
+    (`for_system`: MuJoCo's and PyBullet's step and contact), the numbers derived for
+    `system` (and a run of `duration` s: MuJoCo's step divides it), which is what the run
+    used."""
+    from dataclasses import asdict, is_dataclass
+    if system is not None and hasattr(settings, "for_system"):
+        settings = settings.for_system(system, duration)
+    out = asdict(settings) if is_dataclass(settings) else {}
+    for name in dir(type(settings)):
+        if isinstance(getattr(type(settings), name, None), property):
+            out[name] = getattr(settings, name)
+    return out
 
 
 def engine_label(name: str) -> str:

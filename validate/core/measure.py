@@ -30,6 +30,17 @@ from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, RawHis
 #: contact transient of the default scenes (time constants of a few ms), and capped at
 #: half the neighbouring half-cycles so a state never belongs to another half-cycle.
 CONTACT_WINDOW = 0.03
+#: The window in units of the block's 1/p: a contact engine whose contact time follows the
+#: block (its time constant ∝ 1/p, docs/mujoco.md) leaves a transient ∝ 1/p too, so a
+#: large, slow block needs a longer window than 30 ms (at H 10 m, λ 1.5 the 30 ms left
+#: β 0.3 points off, measured). 0.079/p is 30 ms on the paper's block (p 2.64/s).
+CONTACT_WINDOW_P = 0.079
+
+
+def contact_window(system: System) -> float:
+    """The window (s) for `system`: CONTACT_WINDOW_P/p, never shorter than CONTACT_WINDOW
+    (engines whose contact time is fixed in seconds need that much at every size)."""
+    return max(CONTACT_WINDOW, CONTACT_WINDOW_P / system.p)
 #: |θ| below this fraction of α counts as "down" when deriving the mode of a contact engine.
 REST_FRACTION = 1e-3
 #: The corner the block stands or rocks on moving along the base by more than this
@@ -41,7 +52,7 @@ SLIDING_FRACTION = 0.01
 
 
 def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = DEFAULT_IMPACT_THRESHOLD,
-            window: float = CONTACT_WINDOW, overturn_rule: str = PAST_ALPHA,
+            window: float | None = None, overturn_rule: str = PAST_ALPHA,
             effective_beta: bool = True) -> Trajectory:
     """The shared Trajectory of a contact engine's raw history: modes from |θ|, every
     impact with model.md's `counted` flag, effective β of the counted ones, uplifts,
@@ -51,6 +62,7 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
     t, u, u_dot, theta, theta_dot = (np.asarray(x, dtype=float)
                                      for x in (raw.t, raw.u, raw.u_dot, raw.theta, raw.theta_dot))
     system = raw.system
+    window = contact_window(system) if window is None else window
     rest = REST_FRACTION * system.alpha
     mode = np.where(theta > rest, 1, np.where(theta < -rest, -1, 0)).astype(np.int8)
     # a contact engine's block rests on its side through a compliant contact, a little short of π/2
@@ -147,4 +159,4 @@ def beta_errors(traj: Trajectory, n: int | None = None) -> list[float]:
     return errs[:n] if n is not None else errs
 
 
-__all__ = ["measure", "effective_impacts", "beta_errors", "CONTACT_WINDOW", "REST_FRACTION", "OVERTURN_RULES"]
+__all__ = ["measure", "effective_impacts", "beta_errors", "CONTACT_WINDOW", "contact_window", "REST_FRACTION", "OVERTURN_RULES"]

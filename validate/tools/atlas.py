@@ -30,13 +30,13 @@ from dataclasses import dataclass
 
 from isorock.analytic.errors import InputError
 from isorock.validate.core.tolerances import limit
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, paper_system
 
-#: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's:
-#: λ 1.5–10, μ 0 and 0.25–4, H 0.2–5 m.
+#: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's
+#: (λ 1.5–10, μ 0 and 0.25–4, H 0.2–5 m) with issue 19's sizes from 0.1 to 10 m.
 FULL_SLENDERNESS = (1.5, 2.5, 4.0, 6.0, 10.0)
 FULL_MASS_RATIOS = (0.0, 0.25, 1.0, 4.0)
-FULL_HEIGHTS = (0.2, 1.0, 5.0)
+FULL_HEIGHTS = (0.1, 0.2, 1.0, 5.0, 10.0)
 #: --quick: 8 cells inside the full grid's range, fixed and isolated, two sizes (the tests'
 #: grid: under a minute for every MuJoCo and PyBullet preset on 2 cores).
 QUICK_SLENDERNESS = (2.5, 6.0)
@@ -52,8 +52,18 @@ KEPT_IMPACTS = 12
 #: DURATION_PAD s: room for a contact engine's impacts to come a little late and for the
 #: measuring window after the last one.
 DURATION_FACTOR, DURATION_PAD = 1.2, 0.1
-#: The rigid model rocks to its last judged impact well within this many 1/p.
-REFERENCE_SPAN = 40.0
+#: The rigid model rocks down to its last impact above KEPT_AMPLITUDE·α well within this
+#: many 1/p (λ 10 on a fixed base, the slowest decay of the grid: about 80 impacts, 90/p).
+REFERENCE_SPAN = 400.0
+#: ×α: the rigid model's impacts that peak above this must all be counted by a contact run.
+KEPT_AMPLITUDE = limit("atlas_kept_impact_amplitude")
+#: The first impact within this of its reference for a preset to qualify.
+T1_LEVEL = limit("atlas_t1_level")
+#: T·p of every isolated cell: the paper's isolator (T 1.5 s) on the paper's block (p 2.64/s).
+#: Held in units of the block's own 1/p, so that the cells of one λ and μ at different sizes
+#: are one dimensionless case (Dimitrakopoulos & DeJong 2012): an engine that treats every
+#: size alike gives them the same errors (the similarity columns).
+PERIOD_TIMES_P = PAPER_PERIOD * paper_system().p
 #: Worst β error levels of the verdict (issue 12: 0.5% and 0.1%).
 LEVELS = (limit("atlas_level_coarse"), limit("atlas_level_fine"))
 #: Default CPU-time budget of one run (s): past it the run stops and is reported "too
@@ -92,10 +102,13 @@ class Cell:
     height: float
 
     def system(self):
+        from isorock.analytic.system import System
         from isorock.validate.core.cases import block_system
         width = self.height / self.slenderness
-        return block_system(height=self.height, slenderness=self.slenderness, mass=DENSITY * self.height * width * width,
-                            mass_ratio=self.mass_ratio)
+        mass = DENSITY * self.height * width * width
+        p = System.fixed(height=self.height, width=width, mass=mass).p
+        return block_system(height=self.height, slenderness=self.slenderness, mass=mass,
+                            mass_ratio=self.mass_ratio, period=PERIOD_TIMES_P / p)
 
     @property
     def key(self) -> tuple:
@@ -120,13 +133,21 @@ def reference(cell: Cell) -> dict:
     judged = beta_impacts(rigid)
     if not judged:  # every λ ≥ 1.5 rocks on: a grid cell without impacts is a broken reference
         raise RuntimeError(f"the analytic model gives no impact to judge β by for {cell}")
-    order = [k for k, i in enumerate(rigid.counted_impacts) if any(i is j for j in judged)]
+    impacts = rigid.counted_impacts
+    order = [k for k, i in enumerate(impacts) if any(i is j for j in judged)]
+    kept = [k for k, i in enumerate(impacts) if i.amplitude > KEPT_AMPLITUDE * system.alpha]
+    last = max(order[-1], kept[-1] if kept else 0)
+    # a contact run must have counted as many impacts by then: half a half-cycle past the
+    # rigid model's last kept impact, room for its impacts to come a little early or late
+    kept_by = impacts[last].t + 0.5 * (impacts[last].t - (impacts[last - 1].t if last else 0.0))
     fixed = system.fixed_base
     return {"system": system, "theta0": theta0, "beta_closed": beta(system.slenderness, system.mu),
             "judged_impacts": order, "impacts_expected": len(order),
-            "t1_reference": exact_first_impact_time(system, theta0) if fixed else rigid.counted_impacts[0].t,
+            # every impact up to the rigid model's last one above KEPT_AMPLITUDE·α must be counted
+            "impacts_kept": last + 1, "impacts_kept_by": kept_by,
+            "t1_reference": exact_first_impact_time(system, theta0) if fixed else impacts[0].t,
             "t1_reference_from": "closed form" if fixed else "analytic model",
-            "duration": DURATION_FACTOR * judged[-1].t + DURATION_PAD}
+            "duration": DURATION_FACTOR * impacts[last].t + DURATION_PAD}
 
 
 # --- one run, in whichever process runs it ---------------------------------------------
@@ -157,6 +178,7 @@ def run_cell(task) -> dict:
                    sim_s=float(traj.t[-1]) if len(traj.t) else 0.0, loop_s=float(traj.runtime_s),
                    impacts_counted=len(counted), beta_errors_counted=beta_errors(traj, KEPT_IMPACTS),
                    first_impact_time=counted[0].t if counted else None,
+                   impact_times=[i.t for i in counted],
                    lift_off_after_impact=traj.extras.get("lift_off_max_after_impact"),
                    pivot_slip=traj.extras.get("pivot_slip_max"))
     out.update(wall_s=time.perf_counter() - start, cpu_s=time.process_time() - cpu)
@@ -216,6 +238,10 @@ def row(label: str, cell: Cell, ref: dict, measured: dict) -> dict:
         # signed, the impact of largest |error|; only for a judged run (others are no error at all)
         "beta_error": max(errors, key=abs) if errors else None,
         "impacts_counted": measured.get("impacts_counted"), "impacts_judged": ref["impacts_expected"],
+        "impacts_kept": ref["impacts_kept"],
+        # impacts of the rigid model above KEPT_AMPLITUDE·α the run did not count
+        "impacts_lost": max(0, ref["impacts_kept"] - sum(t <= ref["impacts_kept_by"] for t in
+                                                         measured.get("impact_times", []))) if judged else None,
         "first_impact_time": t1, "t1_reference": ref["t1_reference"], "t1_reference_from": ref["t1_reference_from"],
         "t1_error": t1 / ref["t1_reference"] - 1 if judged and t1 is not None else None,
         "sim_s": measured["sim_s"], "loop_s": measured["loop_s"], "wall_s": measured["wall_s"],
@@ -226,7 +252,8 @@ def row(label: str, cell: Cell, ref: dict, measured: dict) -> dict:
 
 
 COLUMNS = ("engine", "engine_name", "preset", "slenderness", "mass_ratio", "height", "width", "mass", "base",
-           "status", "note", "beta_closed", "beta_error", "impacts_counted", "impacts_judged", "first_impact_time",
+           "status", "note", "beta_closed", "beta_error", "impacts_counted", "impacts_judged", "impacts_kept",
+           "impacts_lost", "first_impact_time",
            "t1_reference", "t1_reference_from", "t1_error", "sim_s", "loop_s", "wall_s", "cpu_s",
            "lift_off_after_impact", "pivot_slip")
 
@@ -315,6 +342,7 @@ def summarize(label: str, rows: list[dict]) -> dict:
     wall = sum(r["wall_s"] for r in rows)
     cpu = sum(r["cpu_s"] for r in rows)
     hops = [r["lift_off_after_impact"] for r in judged if r["lift_off_after_impact"] is not None]
+    lost = [r["impacts_lost"] for r in judged if r["impacts_lost"]]
     return {
         "engine": label, "engine_name": label.partition(":")[0], "preset": label.partition(":")[2] or "default",
         "cells": len(rows), "judged": len(judged), "failures": failures,
@@ -326,6 +354,11 @@ def summarize(label: str, rows: list[dict]) -> dict:
         "worst_beta_error_by_height": {h: max((abs(r["beta_error"]) for r in judged if r["height"] == h), default=None)
                                        for h in dict.fromkeys(r["height"] for r in rows)},
         "worst_t1_error": max(t1) if t1 else None,
+        "worst_t1_error_by_height": {h: max((abs(r["t1_error"]) for r in judged if r["height"] == h
+                                             and r["t1_error"] is not None), default=None)
+                                     for h in dict.fromkeys(r["height"] for r in rows)},
+        "cells_losing_impacts": len(lost), "impacts_lost": sum(lost),
+        **similarity(judged),
         "sim_per_wall": sim / loop if loop > 0 else None,
         "sim_per_wall_whole": sim / wall if wall > 0 else None,
         "sim_per_cpu_whole": sim / cpu if cpu > 0 else None,
@@ -336,10 +369,34 @@ def summarize(label: str, rows: list[dict]) -> dict:
     }
 
 
+def similarity(judged: list[dict]) -> dict:
+    """How far a preset is from treating every size alike: the cells of one λ and μ are one
+    dimensionless case at every H (PERIOD_TIMES_P), so the rigid model gives them the same
+    history in units of 1/p; the spread over H of the signed β error and of the t₁ error
+    (largest over λ, μ) is what the engine adds by size. 0 for an engine whose settings scale
+    exactly with the block; None with fewer than two sizes judged."""
+    cases = {}
+    for r in judged:
+        cases.setdefault((r["slenderness"], r["mass_ratio"]), []).append(r)
+    spread_beta = [max(r["beta_error"] for r in rs) - min(r["beta_error"] for r in rs)
+                   for rs in cases.values() if len(rs) > 1]
+    t1 = [[r["t1_error"] for r in rs if r["t1_error"] is not None] for rs in cases.values()]
+    spread_t1 = [max(v) - min(v) for v in t1 if len(v) > 1]
+    return {"similarity_beta_spread": max(spread_beta, default=None),
+            "similarity_t1_spread": max(spread_t1, default=None)}
+
+
 def qualifies(summary: dict, level: float) -> bool:
     """Every cell judged (nothing failed, slid, overturned, missed impacts or ran out of
-    time) and the worst β error over the grid within `level`."""
-    return summary["complete"] and summary["worst_beta_error"] is not None and summary["worst_beta_error"] <= level
+    time), no impact above KEPT_AMPLITUDE·α lost, t₁ within T1_LEVEL and the worst β error
+    over the grid within `level`."""
+    return (summary["complete"] and summary["worst_beta_error"] is not None and summary["worst_beta_error"] <= level
+            and not summary["impacts_lost"]
+            and summary["worst_t1_error"] is not None and summary["worst_t1_error"] <= T1_LEVEL)
+
+
+def _similar(s: dict) -> str:
+    return f"{_pct(s['similarity_beta_spread'])} / {_pct(s['similarity_t1_spread'])}"
 
 
 def verdict(summaries: list[dict]) -> list[dict]:
@@ -409,7 +466,9 @@ def markdown(atlas: dict, *, quick: bool) -> str:
              f"Per engine, the cheapest preset whose worst effective-β error over the whole grid "
              f"({len(grid.cells())} cells{', --quick' if quick else ''}) is within 0.5% and 0.1%, and its "
              "speed (simulated s per wall s of the engine's stepping, summed over the grid). A preset with "
-             "any cell that failed, slid, overturned, missed an impact or ran out of time does not qualify.", ""]
+             "any cell that failed, slid, overturned, missed an impact or ran out of time, that lost an "
+             f"impact the rigid model has above {KEPT_AMPLITUDE:g}α, or whose t₁ errs by more than "
+             f"{100 * T1_LEVEL:g}% does not qualify.", ""]
     lines += verdict_lines(atlas)
     notes = []
     for v in atlas["verdict"]:
@@ -424,22 +483,30 @@ def markdown(atlas: dict, *, quick: bool) -> str:
               "fixed base and the analytic model on an isolated one. Worst and median over the judged cells. "
               "Speed: simulated s per wall s of the engine's stepping, and of the whole call (scene built, "
               "history measured); per CPU s of the whole call (the process's CPU time, what other jobs on "
-              "the machine change least).", "",
-              "| preset | judged cells | worst β error (cell) | median β error | worst t₁ error | sim s / wall s "
+              "the machine change least). Impacts lost: judged cells that counted fewer impacts than the rigid "
+              f"model has up to its last one above {KEPT_AMPLITUDE:g}α (and how many in all). Similarity: the "
+              "cells of one λ and μ are one dimensionless case at every size (the isolator's T·p held), so "
+              "the rigid model gives them one history in units of 1/p; the spread over sizes of the signed β "
+              "error / of the t₁ error (largest over λ, μ) is what the engine adds by size.", "",
+              "| preset | judged cells | worst β error (cell) | median β error | worst t₁ error | impacts lost "
+              "| similarity: β / t₁ spread over sizes | sim s / wall s "
               "| whole call | per CPU s, whole call | largest hop after an impact | not judged |",
-              "|---|---|---|---|---|---|---|---|---|---|"]
-    by_height = ["", "Worst β error by the block's height (judged cells):", "",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    by_height = ["", "Worst β error / worst t₁ error by the block's height (judged cells):", "",
                  "| preset | " + " | ".join(f"H {h:g} m" for h in grid.heights) + " |",
                  "|---|" + "---|" * len(grid.heights)]
     for s in atlas["presets"]:
         where = f" ({s['worst_cell']})" if s["worst_cell"] else ""
         lines.append(f"| {s['engine']} | {s['judged']}/{s['cells']} | {_pct(s['worst_beta_error'])}{where} | "
-                     f"{_pct(s['median_beta_error'])} | {_pct(s['worst_t1_error'])} | {_speed(s['sim_per_wall'])} | "
+                     f"{_pct(s['median_beta_error'])} | {_pct(s['worst_t1_error'])} | "
+                     f"{s['impacts_lost']} in {s['cells_losing_impacts']} cells | {_similar(s)} | "
+                     f"{_speed(s['sim_per_wall'])} | "
                      f"{_speed(s['sim_per_wall_whole'])} | {_speed(s['sim_per_cpu_whole'])} | "
                      f"{_hop(s['largest_hop'])} | "
                      f"{_failures_text(s['failures']) or '—'} |")
-        by_height.append(f"| {s['engine']} | " + " | ".join(_pct(s["worst_beta_error_by_height"].get(h))
-                                                           for h in grid.heights) + " |")
+        by_height.append(f"| {s['engine']} | " + " | ".join(
+            f"{_pct(s['worst_beta_error_by_height'].get(h))} / {_pct(s['worst_t1_error_by_height'].get(h))}"
+            for h in grid.heights) + " |")
     lines += by_height
     for alias, label in atlas["aliases"].items():
         lines.append(f"\n{alias}: the same settings as {label}, not run again.")
@@ -448,10 +515,12 @@ def markdown(atlas: dict, *, quick: bool) -> str:
     lines += ["", "## The grid", "",
               f"- slenderness λ = H/B: {', '.join(f'{x:g}' for x in grid.slenderness)}",
               f"- mass ratio μ = m/m_b: {', '.join(f'{x:g}' for x in grid.mass_ratios)} (0: a fixed base; "
-              f"isolated: T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g})",
+              f"isolated: T·p {PERIOD_TIMES_P:.3f}, the paper's T {PAPER_PERIOD:g} s on its block, held in units "
+              f"of each block's 1/p; ξ {PAPER_DAMPING_RATIO:g})",
               f"- height H: {', '.join(f'{x:g}' for x in grid.heights)} m; square footprint B × B, density "
               f"{DENSITY:.0f} kg/m³ (the paper's block)",
-              "- free rocking from θ0 = 0.5α; each run lasts 1.2 × the rigid model's last judged impact + 0.1 s",
+              "- free rocking from θ0 = 0.5α; each run lasts 1.2 × the time of the rigid model's last impact "
+              f"above {KEPT_AMPLITUDE:g}α (or its last judged one, if later) + 0.1 s",
               f"- a run past {atlas['budget_s']:g} CPU s stops and is reported 'too slow'",
               "", "## Figures", "",
               "- `pareto.png`: cost (wall s per simulated s) against worst β error, per engine; presets not "
@@ -481,7 +550,7 @@ def write(atlas: dict, out: str, *, quick: bool) -> None:
         (tmp / "atlas.md").write_text(markdown(atlas, quick=quick), encoding="utf-8")
         data = {k: v for k, v in atlas.items() if k != "grid"}
         data.update(grid=atlas["grid"].describe(), quick=quick, levels=list(LEVELS), density=DENSITY,
-                    isolator={"period": PAPER_PERIOD, "damping_ratio": PAPER_DAMPING_RATIO},
+                    isolator={"period_times_p": PERIOD_TIMES_P, "damping_ratio": PAPER_DAMPING_RATIO},
                     rows=[{k: v for k, v in r.items()} for r in atlas["rows"]], provenance=provenance())
         (tmp / "atlas.json").write_text(to_json(data) + "\n", encoding="utf-8")
         buf = io.StringIO()

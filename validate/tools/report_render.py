@@ -12,11 +12,11 @@ from __future__ import annotations
 import base64
 import html
 import math
-from dataclasses import asdict, fields
+from dataclasses import fields
 from pathlib import Path
 
 from isorock.validate.io import figures
-from isorock.validate.core.engines import REFERENCE
+from isorock.validate.core.engines import REFERENCE, describe_settings
 from isorock.validate.io.naming import describe_motion
 from isorock.validate.io.output import write_folder_atomic, write_json
 from isorock.validate.io.provenance import provenance
@@ -361,18 +361,9 @@ def _check_blocks(results: Results) -> list:
 
 
 def engine_settings(results: Results) -> dict:
-    """Each engine's Settings as the runs used them, derived settings included."""
-    out = {}
-    for name, s in results.settings.items():
-        try:
-            d = asdict(s)
-        except TypeError:  # a Settings that is not a dataclass
-            d = {}
-        for attr in dir(type(s)):
-            if isinstance(getattr(type(s), attr, None), property):
-                d[attr] = getattr(s, attr)
-        out[name] = d
-    return out
+    """Each engine's Settings as given, derived settings included (per system: each
+    scenario's `settings` in metrics.json)."""
+    return {name: describe_settings(s) for name, s in results.settings.items()}
 
 
 # --- rendering -----------------------------------------------------------------------------
@@ -491,6 +482,9 @@ def metrics(results: Results) -> dict:
             "duration": sc.duration, "sensitivity": sc.sensitivity, "robust": sc.robust,
             "exercised": sc.exercised, "base_acceleration_peak": sc.base_acceleration_peak,
             "runs": {n: tr.summary() for n, tr in sc.runs.items()}, "errors": sc.errors,
+            # the numbers each engine used on this system (MuJoCo's and PyBullet's follow it)
+            "settings": {n: describe_settings(results.settings[n], sc.system, sc.duration)
+                         for n in sc.runs if n in results.settings},
             "comparisons": {n: c.as_dict() for n, c in sc.comparisons.items()},
             "agreement_horizons": sc.horizons,
         } for sc in results.scenarios],
