@@ -73,7 +73,7 @@ from isorock.analytic.errors import InputError, require, require_positive_finite
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.status import Status
-from isorock.analytic.system import System
+from isorock.analytic.system import System, paper_system
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
 ENGINE = "drake"
@@ -119,6 +119,9 @@ class Settings:
     corner_radius: radius (m) of the corner spheres, below b/10.
     sample_interval: the history's sample spacing (s); a multiple of timestep on a
         discrete plant.
+    follow_system: True: `for_system` puts every contact quantity in the block's own
+        units (the values above are those measured on the paper's block); an explicit
+        contact setting given to `settings_for` (every command's path) sets it False.
     """
 
     timestep: float = 0.0
@@ -133,6 +136,28 @@ class Settings:
     friction: float = 1.0
     corner_radius: float = CORNER_RADIUS
     sample_interval: float = 1e-3
+    follow_system: bool = True
+
+    def for_system(self, system: System, duration: float | None = None) -> "Settings":
+        """These settings for `system`: with follow_system, the contact in the block's own
+        units, as measured on the paper's block (docs/drake.md, "Every size"): lengths ∝ R
+        (the corner spheres), forces ∝ the block's weight (stiffness ∝ m·g/R, the
+        hydroelastic modulus ∝ m·g/R²), velocities ∝ R·p (Hunt–Crossley's dissipation, s/m,
+        ∝ 1/(R·p)), times ∝ 1/p (a discrete step, SAP's relaxation time, the sample
+        spacing, at most 0.01 s). The result is final (follow_system False); `duration`
+        is not needed (a continuous plant ends on it)."""
+        if not self.follow_system:
+            return self
+        ref = paper_system()
+        length, weight, slow = system.R / ref.R, system.mass / ref.mass, ref.p / system.p
+        step = min(self.timestep * slow, 0.01)
+        sample = min(self.sample_interval * slow, 0.01)
+        if step > 0:
+            sample = step * max(1, math.floor(sample / step + 1e-9))
+        return replace(self, stiffness=self.stiffness * weight / length, dissipation=self.dissipation * slow / length,
+                       corner_radius=self.corner_radius * length, timestep=step, sample_interval=sample,
+                       relaxation_time=self.relaxation_time * slow,
+                       hydroelastic_modulus=self.hydroelastic_modulus * weight / length ** 2, follow_system=False)
 
     def __post_init__(self):
         try:
@@ -159,6 +184,7 @@ class Settings:
             require(ratio >= 1 - 1e-9 and abs(ratio - round(ratio)) < 1e-6, "sample_interval",
                     self.sample_interval, f"a whole multiple of timestep = {dt:g} s")
         object.__setattr__(self, "sample_interval", si)
+        require(isinstance(self.follow_system, bool), "follow_system", self.follow_system, "true or false")
 
     @property
     def continuous(self) -> bool:
@@ -183,6 +209,9 @@ def settings_for(**overrides) -> Settings:
     """Settings with `overrides`; a positive timestep given without sample_interval
     takes the whole multiple of it nearest to SAMPLE_INTERVAL (a discrete plant is
     sampled on its steps)."""
+    if {"timestep", "stiffness", "dissipation", "relaxation_time", "hydroelastic_modulus", "corner_radius",
+            "sample_interval"} & set(overrides):
+        overrides.setdefault("follow_system", False)  # what a user sets, the run uses
     dt = overrides.get("timestep")
     if dt and "sample_interval" not in overrides:
         dt = require_positive_finite("timestep", dt)
@@ -369,7 +398,7 @@ def _plant_description(settings: Settings) -> str:
 def scene_text(system: System, settings: Settings | None = None) -> str:
     """The SDFormat text of this system with these settings (what `simulate` parses),
     block upright at rest."""
-    settings = settings or Settings()
+    settings = (settings or Settings()).for_system(system)
     b, h, d = system.b, system.h, DEPTH_FRACTION * system.b
     m, mb = system.mass, system.base_mass
     r = _check_radius(system, settings.corner_radius)
@@ -472,7 +501,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     or 10 s without motion) from rest, tilted by `theta0` (rad) about its corner.
     progress: optional callable(t, duration), called between AdvanceTo chunks about once
     a second."""
-    settings = settings or Settings()
+    settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
     _check_radius(system, settings.corner_radius)
     start = time.perf_counter()

@@ -217,8 +217,12 @@ def test_settings_tie_sampling_to_the_step():
     assert scene.settings_for(timestep=3e-4).sample_interval == pytest.approx(9e-4)
     with pytest.raises(InputError, match="^preset = 'cenic'"):
         scene.preset("cenic")
-    with pytest.raises(InputError, match="^corner_radius = "):
-        scene.simulate(System.fixed(height=0.02, width=0.002, mass=1.0), None, duration=0.1)
+    tiny = System.fixed(height=0.02, width=0.002, mass=1.0)
+    with pytest.raises(InputError, match="^corner_radius = "):  # 0.2 mm spheres on a 1 mm half width
+        scene.simulate(tiny, None, settings=scene.settings_for(corner_radius=2e-4), duration=0.1)
+    # the default's spheres follow the block (∝ R): on the 2 cm block they fit under b/10
+    assert scene.Settings().for_system(tiny).corner_radius == pytest.approx(2e-4 * tiny.R / 1.0594810050208545)
+    assert scene.Settings().for_system(tiny).corner_radius < tiny.b / 10
 
 
 def test_registered_as_an_engine():
