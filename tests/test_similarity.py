@@ -117,7 +117,7 @@ def test_mujocos_contact_is_in_the_blocks_own_units():
         assert max(tp) - min(tp) <= 1e-6 * tp[0], (fixed, tp)
 
 
-@pytest.mark.parametrize("engine, share", [("mujoco", 0.002 / 4), ("bullet", 0.0003)])
+@pytest.mark.parametrize("engine, share", [("mujoco", 0.002 / 6), ("bullet", 0.0003)])
 def test_run_json_lists_the_step_derived_for_the_block(engine, share, tmp_path):
     """`isorock run --json` names the numbers the run used: a 0.2 m block on a light base
     steps at share/p_eff, p_eff the rocking rate with the base's recoil written out here
@@ -139,7 +139,7 @@ def test_run_json_lists_the_step_derived_for_the_block(engine, share, tmp_path):
     if engine == "mujoco":  # the step is made a whole divisor of the run's 0.3 s: at most a step finer
         assert 0.3 / dt == pytest.approx(round(0.3 / dt), abs=1e-6)
         assert share * (1 - dt / 0.3) <= dt * p_eff <= share * (1 + 1e-9)
-        assert settings["solref"][0] * p_eff == pytest.approx(4 * share, rel=1e-9)  # τ·p_eff = 0.002
+        assert settings["solref"][0] * p_eff == pytest.approx(6 * share, rel=1e-9)  # τ·p_eff = 0.002
     else:
         assert dt * p_eff == pytest.approx(share, rel=1e-9)
     assert settings["follow_system"] is False  # final: what the run used
