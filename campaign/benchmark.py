@@ -18,7 +18,6 @@ import json
 import os
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
@@ -58,7 +57,7 @@ def bench_spectrum(workers):
 
 def _kobe():
     from isorock.analytic.motion import read_at2
-    path = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "records" / "RSN1106_KOBE_KJM000.AT2"
+    from isorock.validate.core.scenarios import KOBE as path  # the records folder found, not computed from here
     if not path.is_file():
         sys.exit(f"benchmark kobe: {path} not found")
     return read_at2(path)
