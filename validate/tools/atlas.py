@@ -30,7 +30,7 @@ from dataclasses import dataclass
 
 from isorock.analytic.errors import InputError
 from isorock.validate.core.tolerances import limit
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
+from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD
 
 #: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's:
 #: λ 1.5–10, μ 0 and 0.25–4, H 0.2–5 m.
@@ -42,10 +42,10 @@ FULL_HEIGHTS = (0.2, 1.0, 5.0)
 QUICK_SLENDERNESS = (2.5, 6.0)
 QUICK_MASS_RATIOS = (0.0, 1.0)
 QUICK_HEIGHTS = (0.5, 2.0)
-#: kg/m³: the paper's block (3800 kg, 2.0 × 0.7 × 0.7 m), so that an engine's absolute
+#: kg/m³: the paper's block's (3800 kg, 2.0 × 0.7 × 0.7 m), so that an engine's absolute
 #: contact parameters (Drake's stiffness in N/m, MuJoCo's impedance width in m) meet the
 #: mass and size a statue of that shape would have.
-DENSITY = 3800.0 / (2.0 * 0.7 * 0.7)
+DENSITY = PAPER_BLOCK["mass"] / (PAPER_BLOCK["height"] * PAPER_BLOCK["width"] * PAPER_BLOCK["width"])
 #: How many of a run's counted impacts it sends back (β error and time of each).
 KEPT_IMPACTS = 12
 #: A contact run lasts this factor × the time of the reference's last judged impact, plus
