@@ -175,13 +175,13 @@ def replay_in_viewer(traj, *, speed: float) -> int:
     import mujoco
     import mujoco.viewer
     system = traj.system
-    shots = frames(traj, speed / fps)  # too many frames is bad input, refused before any rendering
+    dt = 1 / 60  # the window's frame interval, s
+    shots = frames(traj, dt * speed)  # too many frames is bad input, refused before the window opens
     model, pose = replay_scene(system)
     data = mujoco.MjData(model)
-    dt = 1 / 60
     with mujoco.viewer.launch_passive(model, data) as viewer:
         start = time.perf_counter()
-        for t, u, theta in frames(traj, dt * speed):
+        for t, u, theta in shots:
             if not viewer.is_running():
                 break
             data.qpos[:] = pose(u, theta)
