@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 from isorock.analytic.errors import InputError
 from isorock.validate.core.tolerances import limit
+from isorock.validate.io.progress import bar_of
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD
 
 #: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's:
@@ -269,7 +270,8 @@ def distinct(labels: list[str]) -> tuple[list[str], dict, dict]:
 def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget: float = RUN_BUDGET,
           progress=None, overrides: dict | None = None) -> dict:
     """Run every engine label on every cell; the atlas as a dict (rows, summaries, verdict).
-    `overrides`: settings applied to every run that has them (a test's way to break one)."""
+    `overrides`: settings applied to every run that has them (a test's way to break one);
+    `progress`: a factory total → bar (io.progress.bar_of), updated as each run ends."""
     from isorock.validate.core.runner import Task, default_workers
     labels, aliases, skipped = distinct(engines)
     cells = grid.cells()
@@ -280,16 +282,11 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
     tasks = [Task(key=(label, c.key), engine=label, system=refs[c.key]["system"], motion=None,
                   duration=refs[c.key]["duration"], theta0=refs[c.key]["theta0"], overrides=dict(overrides or {}))
              for c in cells for label in labels]
-    done = []
-
-    def on_result(key):
-        done.append(key)
-        if progress:
-            progress(len(done), len(tasks), key[0])
+    bar = bar_of(progress, len(tasks))
     from isorock.validate.core.executor import Pool
     with Pool(default_workers() if workers is None else workers) as pool:
         outcomes = pool.map(run_cell, [(t,) for t in tasks], budget=budget, clock="cpu",
-                            on_result=lambda i, _o: on_result(tasks[i].key))
+                            on_result=lambda i, _o: bar.update(1, note=tasks[i].key[0]))
     results = {t.key: (o.value if o.done else _stopped(o, budget),) for t, o in zip(tasks, outcomes)}
     rows = [row(label, c, refs[c.key], results[(label, c.key)][0]) for label in labels for c in cells]
     summaries = [summarize(label, [r for r in rows if r["engine"] == label]) for label in labels]

@@ -33,6 +33,7 @@ from isorock.validate.core.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENC
 from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 from isorock.validate.core.measure import beta_errors
 from isorock.validate.io.naming import describe_motion
+from isorock.validate.io.progress import bar_of
 from isorock.validate.core.engines import resolve, runs_here
 from isorock.validate.core.runner import Task, default_workers, run_tasks
 from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
@@ -340,7 +341,7 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         line = estimate_line(simulated, workers=config.workers or 2)
         if line:
             print(line, file=sys.stderr)
-    bar = progress(total) if progress else _Silent()
+    bar = bar_of(progress, total)
     # one pool for every run: a Dask cluster when a contact engine runs on several
     # processes (its workers start once), nothing when every run is made here
     client = _cluster(config, engines)
@@ -455,13 +456,6 @@ def _with_robustness(ens: Ensemble, sc: HistoryRuns) -> Ensemble:
         return ens
     rocks = (np.nan_to_num(ref_t) > ROCKING) & ~ref_o
     return replace(ens, robust=np.array([bool(r) and _robust(sc, f) for r, f in zip(rocks, ens.scales)]))
-
-
-class _Silent:
-    """No progress to show: update(n, work) does nothing."""
-
-    def update(self, n: int = 1, work: float = 0.0) -> None:
-        pass
 
 
 def _cluster(config: ReportConfig, engines):
