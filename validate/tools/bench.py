@@ -26,7 +26,9 @@ from isorock.analytic.hybrid import simulate as reference_simulate
 from isorock.validate.core.scenarios import KOBE, Scenario, bench_scenarios
 from isorock.validate.core.tolerances import limit
 
-REFERENCE = AnalyticSettings(rtol=1e-12, atol=1e-14)
+#: the reference path's settings the bench measures errors against (tighter than the
+#: engine's defaults); core.engines.REFERENCE is the reference engine's name
+REFERENCE_SETTINGS = AnalyticSettings(rtol=1e-12, atol=1e-14)
 N_BETA = 4  # impacts whose effective β error is reported
 #: Simulated s per wall s asked of an engine at a β error no larger than …
 GOALS = {engine: (limit(f"bench_{engine}_speed"), limit(f"bench_{engine}_beta")) for engine in ("mujoco", "bullet")}
@@ -85,7 +87,7 @@ def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], 
     rows = []
     for sc in bench_scenarios(quick):
         motion = sc.ground_motion()
-        ref = reference_simulate(sc.system, motion, settings=REFERENCE, duration=sc.duration, theta0=sc.theta0)
+        ref = reference_simulate(sc.system, motion, settings=REFERENCE_SETTINGS, duration=sc.duration, theta0=sc.theta0)
         for engine in engines:
             # once outside the timing: a compiled kernel loads (or compiles) on its first call
             get_engine(engine.partition(":")[0]).simulate(sc.system, motion, duration=min(sc.duration, 1.0), theta0=sc.theta0)
