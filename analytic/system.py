@@ -71,6 +71,16 @@ class System:
                    base_mass=mass if base_mass is None else base_mass,
                    fixed_base=True, gravity=gravity)
 
+    def on_fixed_base(self) -> "System":
+        """The same block on a fixed base (its base mass kept for a scene's plate)."""
+        return System.fixed(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
+                            gravity=self.gravity)
+
+    def on_isolator(self, period: float, damping_ratio: float) -> "System":
+        """The same block and base mass on an isolator of period T (s) and damping ratio ξ."""
+        return System.isolated(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
+                               period=period, damping_ratio=damping_ratio, gravity=self.gravity)
+
     # --- geometry ---------------------------------------------------------------
     @property
     def h(self) -> float:

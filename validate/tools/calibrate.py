@@ -103,13 +103,11 @@ def tilts(n: int = DEFAULT_TILTS) -> tuple[tuple[float, ...], tuple[float, ...]]
 def other_base(system):
     """The block on its other base, and how each base is named: a fixed base for an
     isolated system; the paper's isolator (T 1.5 s, ξ 0.2) for a fixed one."""
-    from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, System
+    from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
     if system.fixed_base:
-        other = System.isolated(height=system.height, width=system.width, mass=system.mass,
-                                base_mass=system.base_mass, period=PAPER_PERIOD, damping_ratio=PAPER_DAMPING_RATIO)
-        return other, ("fixed base", f"isolated base (T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g})")
-    other = System.fixed(height=system.height, width=system.width, mass=system.mass, base_mass=system.base_mass)
-    return other, ("isolated base", "fixed base")
+        return (system.on_isolator(PAPER_PERIOD, PAPER_DAMPING_RATIO),
+                ("fixed base", f"isolated base (T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g})"))
+    return system.on_fixed_base(), ("isolated base", "fixed base")
 
 
 def cases(system, n_tilts: int = DEFAULT_TILTS, impacts: int = IMPACTS) -> tuple[list[Case], list[Case]]:

@@ -130,9 +130,7 @@ class ReportConfig:
             return paper_bases()
         if self.system.fixed_base:
             return (("your block on a fixed base", self.system),)
-        fixed = System.fixed(height=self.system.height, width=self.system.width, mass=self.system.mass,
-                             base_mass=self.system.base_mass, gravity=self.system.gravity)
-        return (("your isolated base", self.system), ("the same block on a fixed base", fixed))
+        return (("your isolated base", self.system), ("the same block on a fixed base", self.system.on_fixed_base()))
 
     def overrides_for(self, name: str) -> dict:
         base = name.partition(":")[0]
