@@ -59,7 +59,7 @@ def cmd_calibrate(a) -> int:
     from isorock.validate.core.engines import get_engine
     from isorock.validate.io.output import Outputs, to_json
     from isorock.validate.io.progress import Progress
-    from isorock.validate.core.runner import default_workers
+    from isorock.validate.core.executor import default_workers
     engine = get_engine(a.engine)
     if engine.spec.tuning is None:
         raise InputError(f"engine = {a.engine!r}: has no contact parameters to calibrate")

@@ -272,7 +272,8 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
     """Run every engine label on every cell; the atlas as a dict (rows, summaries, verdict).
     `overrides`: settings applied to every run that has them (a test's way to break one);
     `progress`: a factory total → bar (io.progress.bar_of), updated as each run ends."""
-    from isorock.validate.core.runner import Task, default_workers
+    from isorock.validate.core.executor import default_workers
+    from isorock.validate.core.runner import Task
     labels, aliases, skipped = distinct(engines)
     cells = grid.cells()
     start = time.perf_counter()

@@ -35,7 +35,8 @@ from isorock.validate.core.measure import beta_errors
 from isorock.validate.io.naming import describe_motion
 from isorock.validate.io.progress import bar_of
 from isorock.validate.core.engines import resolve, runs_here
-from isorock.validate.core.runner import Task, default_workers, run_tasks
+from isorock.validate.core.executor import default_workers
+from isorock.validate.core.runner import Task, run_tasks
 from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
 from isorock.validate.core.tolerances import (ROBUST_SPREAD, Check, check, has_tolerance, judged, limit, not_exercised,
@@ -457,7 +458,7 @@ def _with_robustness(ens: Ensemble, sc: HistoryRuns) -> Ensemble:
 
 
 def _cluster(config: ReportConfig, engines):
-    """A LocalCluster of config.workers processes (default: runner.default_workers) when
+    """A LocalCluster of config.workers processes (default: executor.default_workers) when
     a contact engine runs, else None (the analytic model runs here in milliseconds)."""
     workers = default_workers() if config.workers is None else config.workers
     if workers <= 1 or all(runs_here(name) for name in engines):
