@@ -6,7 +6,8 @@ computed from the code (issue 23's closing note).
 ROOT (default: this checkout) and OLD_ROOT are checkouts of the project, e.g. an older
 commit checked out with `git worktree add /tmp/floors-before REV`. Every import is counted:
 module level and inside functions, `import a.b` and `from a import b`, absolute and
-relative; one edge is one import statement naming a module of another folder. The folders
+relative, and a module named in a string (importlib, the registry's ENGINE_MODULES); one
+edge is one import statement (or string) naming a module of another folder. The folders
 are the packages of the checkout's own pyproject.toml ([tool.setuptools.package-dir]).
 
 The floors are the architecture test's table (tests/test_architecture.py: FLOORS, the one
@@ -63,9 +64,16 @@ def files(root: Path) -> dict[Path, str]:
     return out
 
 
+#: a module named in a string, imported by name (importlib, the registry's ENGINE_MODULES)
+BY_NAME = re.compile(r"isorock\.[A-Za-z_][\w.]*(?::\w+)?")
+#: the registry, the one module that names the engine packages (then and now)
+REGISTRY = ("validate/engines.py", "validate/core/engines.py")
+
+
 def statements(path: Path, package: str, folder: Path):
-    """(in_function, imported module) of each import statement of the file, at any depth,
-    relative imports made absolute; `from x import y` names x.y (y may be a module)."""
+    """(in_function, imported modules) of each import statement of the file, at any depth,
+    relative imports made absolute (`from x import y` names x.y: y may be a module), and of
+    each module named in a string (an import by name), as tests/test_architecture.py reads them."""
     here = ["isorock", *package.split("."), *path.relative_to(folder).with_suffix("").parts[:-1]]
     tree = ast.parse(path.read_text(), str(path))
     inside = {id(n) for f in ast.walk(tree) if isinstance(f, (ast.FunctionDef, ast.AsyncFunctionDef))
@@ -78,6 +86,8 @@ def statements(path: Path, package: str, folder: Path):
             if node.level:
                 module = ".".join(here[:len(here) - node.level + 1] + ([node.module] if node.module else []))
             yield id(node) in inside, [f"{module}.{a.name}" for a in node.names]
+        elif isinstance(node, ast.Constant) and isinstance(node.value, str) and BY_NAME.fullmatch(node.value):
+            yield id(node) in inside, [node.value.partition(":")[0]]
 
 
 def graph(root: Path):
@@ -89,6 +99,7 @@ def graph(root: Path):
     lines: Counter = Counter()
     floor_lines: Counter = Counter()
     floor_edges: Counter = Counter()
+    around: Counter = Counter()  # engine packages named above floor 1 outside the registry
     for path, package in files(root).items():
         n = len(path.read_text().splitlines())
         lines[package] += n
@@ -105,7 +116,9 @@ def graph(root: Path):
             for target_floor in {floor_package_of_module(m, pkgs, root) for m in modules} - {None}:
                 if target_floor != own_floor:
                     floor_edges[(own_floor, target_floor)] += 1
-    return edges, lines, floor_lines, floor_edges
+                    if floor(target_floor) == 1 and (floor(own_floor) or 0) >= 2 and rel not in REGISTRY:
+                        around[(own_floor, target_floor)] += 1
+    return edges, lines, floor_lines, floor_edges, around
 
 
 def floor_package(rel: str, package: str) -> str:
@@ -144,7 +157,7 @@ def floor(name: str) -> int | None:
 
 
 def report(root: Path, title: str) -> dict:
-    edges, lines, floor_lines, floor_edges = graph(root)
+    edges, lines, floor_lines, floor_edges, around = graph(root)
     print(f"\n## {title}: {root}\n")
     print("Imports between folders (import statements; of them inside functions):\n")
     print("| from → to | statements | in functions |")
@@ -162,8 +175,7 @@ def report(root: Path, title: str) -> dict:
           f"{down} statements down, {level} across one floor, {sum(up.values())} up")
     for (a, b), n in sorted(up.items()):
         print(f"  up: {a} (floor {floor(a)}) → {b} (floor {floor(b)}): {n}")
-    around = {k: n for k, n in floor_edges.items() if floor(k[1]) == 1 and (floor(k[0]) or 0) >= 2}
-    print(f"Engine packages imported from above the registry's floor (around it): {sum(around.values())}"
+    print(f"Engine packages imported above floor 1 outside the registry (around it): {sum(around.values())}"
           + "".join(f"\n  {a} → {b}: {n}" for (a, b), n in sorted(around.items())))
     into_campaign = {k: n for k, n in floor_edges.items() if k[1] == "campaign" and k[0] != "validate.cli"}
     print(f"campaign imported from elsewhere than the command line: {sum(into_campaign.values())}"
