@@ -175,6 +175,16 @@ def report(root: Path, title: str) -> dict:
           f"{down} statements down, {level} across one floor, {sum(up.values())} up")
     for (a, b), n in sorted(up.items()):
         print(f"  up: {a} (floor {floor(a)}) → {b} (floor {floor(b)}): {n}")
+    matrix = Counter()
+    for (a, b), n in floor_edges.items():
+        if None not in (floor(a), floor(b)) and floor(a) != floor(b):
+            matrix[(floor(a), floor(b))] += n
+    print("\nImport statements from floor (row) to floor (column); above the diagonal goes up:\n")
+    print("| from \\ to | " + " | ".join(f"{f} {FLOOR_NAMES[f]}" for f in FLOOR_NAMES) + " |")
+    print("|---|" + "---:|" * len(FLOOR_NAMES))
+    for f in FLOOR_NAMES:
+        print(f"| {f} {FLOOR_NAMES[f]} | " + " | ".join(str(matrix[(f, g)]) if f != g else "·" for g in FLOOR_NAMES)
+              + " |")
     print(f"Engine packages imported above floor 1 outside the registry (around it): {sum(around.values())}"
           + "".join(f"\n  {a} → {b}: {n}" for (a, b), n in sorted(around.items())))
     into_campaign = {k: n for k, n in floor_edges.items() if k[1] == "campaign" and k[0] != "validate.cli"}
