@@ -46,7 +46,7 @@ Public entry points:
 - `simulate_fast(system, motion, ...) -> Trajectory`, engine "analytic" (formerly
   "analytic-fast", a name that still works);
 - `simulate_batch(systems, motions, ...) -> list[dict]`, summaries over many cases
-  on all cores (threads over the GIL-free kernel; prange and processes on request);
+  on all cores (Python threads over the GIL-free kernel);
 - `compare_on_grid(a, b)`, the largest |Δθ| of two histories on their shared output grid.
 (`isorock bench` times the kernel against the reference: validate/tools/bench.py.)
 
@@ -55,8 +55,7 @@ disk (analytic/kernel_cache.py: stamped with physics.py too, a writable folder f
 a read-only install, a damaged cache rebuilt), so a new process loads it instead of
 compiling again. It is compiled ahead of time (numba.pycc) into an extension module: a
 new process's first run then takes its own run time plus milliseconds, not the ~1 s
-numba's JIT needs to start; the JIT kernel is the fallback where no C compiler is found,
-and what the prange batch backend compiles.
+numba's JIT needs to start; the JIT kernel is the fallback where no C compiler is found.
 """
 from __future__ import annotations
 
@@ -69,8 +68,7 @@ import types
 import numpy as np
 
 try:
-    import numba
-    from numba import njit, prange
+    from numba import njit
     from numba.core import types as _nbtypes
     from numba.core.extending import intrinsic
 except ImportError as e:  # pragma: no cover - numba is a declared dependency
@@ -1105,38 +1103,6 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             u_max, verdict, demand)
 
 
-@cached_jit(parallel=True)
-def _batch(sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys, case_mot, case_brk, T, y_init, rtol,
-           atol, max_step, max_events, impact_frac, rule_alpha, motion_end, out):
-    """Summaries of many runs, one per prange iteration (rows: see _summary_row); a case
-    whose integration raises is status 'failed' in its row, the others go on."""
-    for n in prange(case_sys.size):
-        i, j, kb = case_sys[n], case_mot[n], case_brk[n]
-        try:
-            room = _BATCH_ROOM
-            while True:
-                r = _integrate(sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
-                               brk_all[brk_off[kb]:brk_off[kb + 1]], T[n], y_init[n], rtol, atol, max_step,
-                               max_events, 1.0, False, room, impact_frac, rule_alpha, motion_end[j])
-                if r[0] != _NO_ROOM:
-                    break
-                room *= 4
-            n_imp = r[7]
-            out[n, 0] = r[0]
-            out[n, 1] = r[11]
-            out[n, 2] = r[8][:n_imp, 7].sum()
-            out[n, 3] = n_imp
-            out[n, 4] = r[9]
-            out[n, 5] = r[2]
-            out[n, 6] = r[12]
-            out[n, 7] = r[1]
-            out[n, 8] = r[13]
-            out[n, 9] = r[14]
-        except Exception:  # noqa: BLE001 - numba catches only this way
-            out[n, 0] = _FAILED
-            out[n, 1:] = np.nan
-
-
 # --- Python side: packing, the public wrapper, batches --------------------------------
 
 def _call_integrate(*args):
@@ -1260,12 +1226,6 @@ def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start) -> Tr
 
 # --- many runs ---------------------------------------------------------------------
 
-# "threads": Python threads over the nogil kernel (default: as fast as prange here and
-# no second compilation); "prange": numba's parallel loop (compiles the kernel again
-# for the parallel target on first use, ~20 s, cached); "processes": a process pool.
-BACKENDS = ("threads", "prange", "processes")
-
-
 def _as_list(x, kind, name):
     if isinstance(x, kind):
         return [x]
@@ -1303,15 +1263,17 @@ def _per_case(value, n, name):
 def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
                    impact_threshold: float = DEFAULT_IMPACT_THRESHOLD,
                    settings: AnalyticSettings | None = None, product: bool = False,
-                   workers: int | None = None, backend: str = "threads") -> list[dict]:
+                   workers: int | None = None) -> list[dict]:
     """Summaries of many runs of the hybrid model, on all cores.
 
     systems, motions: a System / GroundMotion or sequences of them. Paired one to one
     (a single item is used for every case), or every combination with product=True
     (systems outer, motions inner). duration (s) and theta0 (rad): a number or one per
-    case (with one system and one motion, their length sets the number of cases). workers: how many threads or processes (default: the cores this process may use); 1 runs serially
-    in this thread. backend: "threads" (Python threads over the GIL-free kernel),
-    "prange" (numba's parallel loop) or "processes".
+    case (with one system and one motion, their length sets the number of cases). workers: how many
+    threads (default: the cores this process may use); 1 runs serially in this thread. The
+    threads run the GIL-free kernel (as fast here as numba's parallel loop, which needed a
+    second compilation, or a process pool: both were dropped, unused; a table's processes
+    are the executor's, validate/core/executor.py).
 
     Returns one dict per case: system, motion (indices), status, theta_max_over_alpha,
     impacts (counted by model.md's rule), impacts_all, uplifts, overturned,
@@ -1339,18 +1301,12 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
         raise InputError(f"theta0 = {th0[k]!r} (case {k}): must be smaller than α = "
                          f"{alphas[case_sys[k]]:.6g} rad in magnitude")
     require(0 <= impact_threshold < 1, "impact_threshold", impact_threshold, "in [0, 1)")
-    require(backend in BACKENDS, "backend", backend, f"one of {', '.join(BACKENDS)}")
     if workers is not None:
         require(isinstance(workers, int) and workers >= 1, "workers", workers, "a positive integer")
-    if backend == "processes" and workers != 1:
-        return _batch_processes(systems, motions, case_sys, case_mot, T, th0, impact_threshold,
-                                settings, workers)
-    return _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold,
-                          settings, workers, backend)
+    return _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers)
 
 
-def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers,
-                   backend="threads"):
+def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers):
     n = case_sys.size
     sps = np.stack([_system_params(s, settings) for s in systems])
     packed = [_motion_params(m) for m in motions]
@@ -1385,18 +1341,8 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
     failures = {}  # case: why the kernel raised
     if n == 1 or (workers == 1 and threading.current_thread() is not threading.main_thread()):
         _run_cases(args, 0, n, failures)
-    elif backend == "threads" or workers == 1:  # the main thread waits, and so hears signals
+    else:  # the main thread waits, and so hears signals
         _batch_pool(args, workers or available_cores(), failures)
-    else:
-        old = numba.get_num_threads()
-        threads = min(workers or numba.config.NUMBA_NUM_THREADS, numba.config.NUMBA_NUM_THREADS)
-        try:
-            numba.set_num_threads(threads)
-            # small chunks: runs differ in cost by orders of magnitude (Zeno tails)
-            with numba.parallel_chunksize(max(1, n // (threads * 16))):
-                call_kernel(_batch, *args)
-        finally:
-            numba.set_num_threads(old)
     alphas = np.array([s.alpha for s in systems])
     rows = []
     for c in range(n):
@@ -1459,22 +1405,6 @@ def _batch_pool(args, workers, failures):
         # not waited for: `with` waited for the whole batch, hours for a long chunk, and a
         # sweep told to stop went on (issue 24, item 10)
         pool.shutdown(wait=False, cancel_futures=True)
-
-
-def _batch_chunk(payload):
-    return _batch_threads(*payload, 1, "threads")
-
-
-def _batch_processes(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers):
-    from concurrent.futures import ProcessPoolExecutor
-    workers = workers or available_cores()
-    n = case_sys.size
-    chunks = np.array_split(np.arange(n), min(n, workers * 4))
-    payloads = [(systems, motions, case_sys[c], case_mot[c], T[c], th0[c], impact_threshold, settings)
-                for c in chunks if c.size]
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        parts = list(pool.map(_batch_chunk, payloads))
-    return [row for part in parts for row in part]
 
 
 # --- measuring ---------------------------------------------------------------------

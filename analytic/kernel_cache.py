@@ -286,6 +286,20 @@ def _load_module(name: str, path: str):
     return module
 
 
+def _pycc():
+    """(CC, numba.pycc.compiler): the one place numba.pycc is imported. numba marked it
+    for deprecation (0.57) with its replacement "being developed"; numba 0.68 still ships
+    it and no supported ahead-of-time compiler for numba code is released (docs/floors.md:
+    the cold start with and without it, measured). A numba without it raises
+    ImportError here, before any build is announced, and the JIT kernel serves."""
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # numba.pycc's pending-deprecation notice
+        from numba.pycc import CC
+        from numba.pycc import compiler as pycc_compiler
+    return CC, pycc_compiler
+
+
 def _build_module(dispatcher, name: str) -> str:
     """Compile dispatcher's Python function with numba.pycc into `name`'s extension module,
     in a temporary folder renamed into the first writable cache folder: whole or absent,
@@ -294,10 +308,7 @@ def _build_module(dispatcher, name: str) -> str:
     import warnings
 
     from numba.core import compiler as numba_compiler
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # numba.pycc's pending-deprecation notice
-        from numba.pycc import CC
-        from numba.pycc import compiler as pycc_compiler
+    CC, pycc_compiler = _pycc()
     folder = writable_cache_dir()
     if folder is None:
         raise OSError("no writable cache folder")
@@ -359,6 +370,8 @@ def _aot_function(dispatcher):
                    " does not load" if damaged else "")
             if damaged and fn is not None:  # one line: a good copy further on serves
                 _say(f"{why}; using another cached copy")
+            if fn is None:
+                _pycc()  # a numba without numba.pycc: said (below) before any build is announced
             if fn is None:  # the reason and the build in one line (and its end in another)
                 _say(f"{why + '; ' if why else ''}compiling the analytic kernel {dispatcher.__name__} ahead of "
                      f"time ({'again' if why else 'first use'}, cached in {writable_cache_dir() or '?'}; "
@@ -368,7 +381,7 @@ def _aot_function(dispatcher):
                 _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")
         except Exception as e:  # noqa: BLE001 - any failure to build leaves the JIT kernel, which always works
             _say(f"cannot compile the analytic kernel ahead of time ({type(e).__name__}: {e}); "
-                 "using numba's JIT kernel (about 1 s to load in each new process)")
+                 "using numba's JIT kernel (its disk cache costs each new process ~0.2-0.4 s more)")
             fn = None
     _aot_loaded[dispatcher] = fn
     return fn

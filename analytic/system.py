@@ -8,6 +8,7 @@ Units are SI throughout (m, kg, s, N/m, N·s/m). Sign conventions follow
 from __future__ import annotations
 
 import math
+from types import MappingProxyType
 from dataclasses import dataclass
 
 from .errors import InputError, require, require_nonnegative_finite, require_positive_finite
@@ -69,6 +70,16 @@ class System:
         return cls(height=height, width=width, mass=mass,
                    base_mass=mass if base_mass is None else base_mass,
                    fixed_base=True, gravity=gravity)
+
+    def on_fixed_base(self) -> "System":
+        """The same block on a fixed base (its base mass kept for a scene's plate)."""
+        return System.fixed(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
+                            gravity=self.gravity)
+
+    def on_isolator(self, period: float, damping_ratio: float) -> "System":
+        """The same block and base mass on an isolator of period T (s) and damping ratio ξ."""
+        return System.isolated(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
+                               period=period, damping_ratio=damping_ratio, gravity=self.gravity)
 
     # --- geometry ---------------------------------------------------------------
     @property
@@ -161,6 +172,11 @@ class System:
 #: The paper's isolator as we read it (model.md): period T (s) and damping ratio ξ. The
 #: paper's digits are unreadable in our copy ("T = ?.5 s", "ξ = ?"); these fit its Figure 5.
 PAPER_PERIOD, PAPER_DAMPING_RATIO = 1.5, 0.2
+#: The paper's Figure 5 block: height and width (m), the block's mass and the base's (kg).
+PAPER_BLOCK = MappingProxyType(dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0))
+#: The paper's system in words, for help texts and reports.
+PAPER_TEXT = (f"H {PAPER_BLOCK['height']:.1f} m, B {PAPER_BLOCK['width']:g} m, m = m_b = {PAPER_BLOCK['mass']:g} kg, "
+              f"T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g}")
 
 
 def paper_system(*, fixed_base: bool = False, period: float = PAPER_PERIOD,
@@ -168,9 +184,9 @@ def paper_system(*, fixed_base: bool = False, period: float = PAPER_PERIOD,
     """The paper's Figure 5 block: H 2.0 m, B 0.7 m, m = m_b = 3800 kg; the period and
     damping that fit the paper's figure are T = 1.5 s, ξ = 0.2 (model.md)."""
     if fixed_base:
-        return System.fixed(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0)
-    return System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0,
-                           period=period, damping_ratio=damping_ratio)
+        return System.fixed(**PAPER_BLOCK)
+    return System.isolated(**PAPER_BLOCK, period=period, damping_ratio=damping_ratio)
 
 
-__all__ = ["System", "InputError", "paper_system", "STANDARD_GRAVITY", "PAPER_PERIOD", "PAPER_DAMPING_RATIO"]
+__all__ = ["System", "InputError", "paper_system", "STANDARD_GRAVITY", "PAPER_PERIOD", "PAPER_DAMPING_RATIO",
+           "PAPER_BLOCK", "PAPER_TEXT"]

@@ -14,7 +14,7 @@ import itertools
 import json
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -295,7 +295,7 @@ def _motions(t, source: Path) -> dict:
 
 
 def _engines(t) -> tuple[EngineSetting, ...]:
-    from isorock.validate.core.engines import ALL_ENGINES, get_engine
+    from isorock.validate.core.engines import ALL_ENGINES, choose
     if not isinstance(t, list) or not t:
         raise InputError("engines: missing (one or more [[engines]] tables with name = ...)")
     out = []
@@ -312,18 +312,14 @@ def _engines(t) -> tuple[EngineSetting, ...]:
             settings = [settings]
         if not isinstance(settings, list) or not settings:
             raise _where(f"{key}.settings", settings, "a list of tables, e.g. [{timestep = 1e-3}]")
-        engine = get_engine(name)
         for j, s in enumerate(settings):
             if not isinstance(s, dict):
                 raise _where(f"{key}.settings[{j}]", s, "a table, e.g. {timestep = 1e-3}")
-            overrides = tuple(sorted((k, tuple(v) if isinstance(v, list) else v) for k, v in s.items()))
-            try:
-                engine.settings(**dict(overrides))
-            except InputError as err:
+            try:  # the registry's one engine choice; its Settings made once to check the values
+                setting = replace(choose(name, s, strict=True), where=f"{key}.settings[{j}]")
+                setting.settings()
+            except (InputError, TypeError, ValueError) as err:
                 raise InputError(f"{key}.settings[{j}]: {err}") from None
-            except (TypeError, ValueError) as err:
-                raise InputError(f"{key}.settings[{j}]: {err}") from None
-            setting = EngineSetting(name, overrides, where=f"{key}.settings[{j}]")
             if setting in out:
                 raise InputError(f"{key}.settings[{j}] = {setting.label!r}: listed twice for {name}")
             out.append(setting)

@@ -27,9 +27,13 @@ from pathlib import Path
 
 import numpy as np
 
+from isorock.validate.core.scenarios import shared_folder
+
 from . import data, processing, scores, specimen
 
-DEFAULT_DATA = Path(__file__).resolve().parent.parent.parent / "shared" / "data" / "vsr"
+#: the shake-table tests (shared/data/vsr, or $ISOROCK_VSR): found as the records are, not
+#: computed from this file's location (which, in a wheel, is site-packages)
+DEFAULT_DATA = shared_folder("vsr", "ISOROCK_VSR")
 ENGINES = ("analytic", "asymmetric", "mujoco")
 #: A run past this θmax/α counts as overturned in the continuous score (an overturned run's
 #: θmax/α is not a measure of how far it was from overturning: it is "beyond").

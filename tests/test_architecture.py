@@ -1,6 +1,7 @@
-"""The floors, guarded: every import in every package (module level, inside functions,
-relative or absolute, `import a.b` or `from a import b`) goes down the building or stays
-on its floor, never up. The floors (README, Layout):
+"""The floors, guarded: every import in every installed package (module level, inside
+functions and classes, relative or absolute, `import a.b` or `from a import b`, and a
+module named in a string for importlib) goes down the building or stays on its floor,
+never up; every installed module stands on a floor. The floors (README, Layout):
 
     0  analytic/                          the model and the vocabulary every engine speaks
     1  mujoco_models/ bullet_models/ drake_models/   the engines (they import the model only)
@@ -11,10 +12,13 @@ on its floor, never up. The floors (README, Layout):
 
 Two rules more than the order: the tools reach an engine through the registry only
 (no tool imports an engine package), and the tools do not import one another across
-packages (validate/tools, campaign and experiments each stand on the floors below)."""
+packages (validate/tools, campaign and experiments each stand on the floors below), so
+`campaign/` imports the lower floors only and only the command line imports it."""
 from __future__ import annotations
 
 import ast
+import re
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -47,13 +51,23 @@ def package_of(module: str) -> str | None:
     return None
 
 
-def imports(path: Path, package: str) -> list[tuple[int, str]]:
-    """(line, absolute module) of every import in the file, at any depth."""
+#: a module named in a string: an import by name (importlib.import_module, __import__, the
+#: registry's ENGINE_MODULES, the command line's EXTRA_COMMANDS): "isorock.pkg.mod[:ATTR]"
+BY_NAME = re.compile(r"isorock\.[A-Za-z_][\w.]*(?::\w+)?")
+#: the one module that may name the engine packages: the registry (validate/core/engines.py)
+REGISTRY = Path("validate/core/engines.py")
+
+
+def imports(path: Path, package: str, text: str | None = None) -> list[tuple[int, str]]:
+    """(line, absolute module) of every import in the file, at any depth (module level,
+    functions, classes, `if`/`try` blocks), relative ones made absolute, and every module
+    named in a string (an import by name). `text`: the file's source, if not read from it."""
     parts = ("isorock." + package).split(".")
     rel = path.relative_to(ROOT / FLOORS[package][1]).with_suffix("").parts
     here = parts + list(rel[:-1])  # the file's own package, for relative imports
     out = []
-    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+    tree = ast.parse(path.read_text() if text is None else text, str(path))
+    for node in ast.walk(tree):
         if isinstance(node, ast.Import):
             out += [(node.lineno, a.name) for a in node.names]
         elif isinstance(node, ast.ImportFrom):
@@ -63,7 +77,16 @@ def imports(path: Path, package: str) -> list[tuple[int, str]]:
                 module = ".".join(base + ([node.module] if node.module else []))
             # `from isorock.validate import cli` names its floor only in the imported name
             out += [(node.lineno, f"{module}.{a.name}") for a in node.names]
+        elif isinstance(node, ast.Constant) and isinstance(node.value, str) and BY_NAME.fullmatch(node.value):
+            out.append((node.lineno, node.value.partition(":")[0]))
     return out
+
+
+def pyproject_packages() -> dict[str, str]:
+    """Import name (without 'isorock.') → folder, as pyproject.toml installs them."""
+    with open(ROOT / "pyproject.toml", "rb") as f:
+        dirs = tomllib.load(f)["tool"]["setuptools"]["package-dir"]
+    return {name.removeprefix("isorock."): folder for name, folder in dirs.items()}
 
 
 def all_imports():
@@ -74,8 +97,21 @@ def all_imports():
 
 
 def test_every_floor_has_its_folder():
-    missing = [folder for _, folder in FLOORS.values() if not (ROOT / folder).is_dir() and folder != "experiments"]
+    missing = [folder for _, folder in FLOORS.values() if not (ROOT / folder).is_dir()]
     assert not missing
+
+
+def test_every_installed_module_stands_on_a_floor():
+    """Every package pyproject.toml installs is a floor, or the `validate` umbrella, whose
+    folder holds the floors and no module of its own (a file there would be on no floor,
+    and no rule would check it)."""
+    installed = pyproject_packages()
+    unfloored = sorted(set(installed) - set(FLOORS) - {"validate"})
+    assert not unfloored, f"packages on no floor: {unfloored} (add them to FLOORS and the README's Layout)"
+    assert {name: installed[name] for name in FLOORS} == {name: folder for name, (_, folder) in FLOORS.items()}
+    umbrella = ROOT / installed["validate"]
+    loose = [p.name for p in umbrella.glob("*.py") if p.name != "__init__.py" or p.read_text().strip()]
+    assert not loose, f"validate/ holds modules on no floor: {loose}"
 
 
 def test_no_floor_imports_one_above_it():
@@ -93,10 +129,23 @@ def test_tools_reach_engines_through_the_registry_and_stand_apart():
         target = package_of(module)
         if target is None or floor[package] < 2:
             continue
-        if target in ENGINES and floor[package] >= 2:
+        if target in ENGINES and path != REGISTRY:
             bad.append(f"{path}:{line} imports the engine package {module} (use the registry)")
         if floor[package] == 4 and floor[target] == 4 and target != package:
             bad.append(f"{path}:{line}: the tool {package} imports the tool {module}")
+    assert not bad, "\n".join(bad)
+
+
+def test_campaign_imports_lower_floors_only_and_only_the_command_line_imports_it():
+    """Issue 23: `campaign/` stands on the core and io floors (and the model); the command
+    line alone runs it."""
+    floor = {name: f for name, (f, _) in FLOORS.items()}
+    bad = [f"{path}:{line} imports {module}" for package, path, line, module in all_imports()
+           if package == "campaign" and package_of(module) not in (None, "campaign")
+           and floor[package_of(module)] >= floor["campaign"]]
+    bad += [f"{path}:{line} imports {module} (only validate/cli runs campaigns)"
+            for package, path, line, module in all_imports()
+            if package_of(module) == "campaign" and package not in ("campaign", "validate.cli")]
     assert not bad, "\n".join(bad)
 
 
@@ -108,19 +157,66 @@ def test_engines_import_only_the_model():
 
 @pytest.mark.parametrize("module,expected", [
     ("isorock.validate.core.engines", "validate.core"), ("isorock.validate.cli", "validate.cli"),
-    ("isorock.analytic.fast", "analytic"), ("numpy", None), ("isorock.validate.tools.atlas", "validate.tools")])
+    ("isorock.analytic.fast", "analytic"), ("numpy", None), ("isorock.validate.tools.atlas", "validate.tools"),
+    ("isorock.campaign", "campaign"), ("isorock.validate", None)])
 def test_package_of_reads_import_names(module, expected):
     """The checker itself: an import name maps to its floor (else the rules check nothing)."""
     assert package_of(module) == expected
 
 
-def test_the_checker_sees_imports_inside_functions_and_relative_ones(tmp_path):
-    """A violation hidden in a function body, or written relatively, is still found."""
-    folder = ROOT / "validate" / "core"
-    probe = folder / "_probe_architecture_tmp.py"
-    probe.write_text("def f():\n    from isorock.validate.cli import main\n    from ..tools import atlas\n")
-    try:
-        found = [m for _, m in imports(probe, "validate.core")]
-    finally:
-        probe.unlink()
-    assert [package_of(m) for m in found] == ["validate.cli", "validate.tools"]
+PROBE = """\
+import isorock.validate.tools.atlas as atlas_alias
+from isorock import campaign
+from typing import TYPE_CHECKING
+if TYPE_CHECKING:
+    from isorock.validate.io import output
+try:
+    from isorock.mujoco_models import scene
+except ImportError:
+    pass
+
+
+class Holder:
+    def method(self):
+        from . import measure
+
+
+def f():
+    from isorock.validate.cli import main
+    from ..tools import bench
+
+    def inner():
+        import importlib
+        return importlib.import_module("isorock.validate.cli.sweep"), __import__("isorock.experiments.study")
+    return inner
+
+
+LAZY = {"view": "isorock.validate.tools.view:ENGINE"}
+"""
+
+
+def test_the_checker_sees_every_import_form():
+    """Each form the rules must see (module level, `import a.b as c`, `from isorock import
+    x`, TYPE_CHECKING and try blocks, methods, functions, nested functions, relative
+    imports, modules named in strings) is found, as a file of validate/core would hold
+    them; the file is parsed from text, nothing is written into the tree."""
+    found = [m for _, m in sorted(imports(ROOT / "validate" / "core" / "probe.py", "validate.core", PROBE))]
+    assert [package_of(m) for m in found if package_of(m)] == [
+        "validate.tools", "campaign", "validate.io", "mujoco_models", "validate.core", "validate.cli",
+        "validate.tools", "experiments", "validate.cli", "validate.tools"]
+    assert "isorock.validate.core.measure" in found  # `from . import measure` in the probe's package
+    assert "isorock.validate.tools.bench" in found  # `from ..tools import bench`
+
+
+def test_the_rules_fail_on_an_upward_import(monkeypatch):
+    """The rules themselves, fed one file of the core that imports the command line from
+    inside a function: the upward-import rule fails and names the file and line."""
+    def one_bad_file():
+        yield "validate.core", Path("validate/core/probe.py"), 2, "isorock.validate.cli.main"
+    monkeypatch.setitem(globals(), "all_imports", one_bad_file)
+    with pytest.raises(AssertionError, match=r"validate/core/probe.py:2 imports isorock.validate.cli.main"):
+        test_no_floor_imports_one_above_it()
+    with pytest.raises(AssertionError, match="campaign"):
+        monkeypatch.setitem(globals(), "all_imports",
+                            lambda: iter([("validate.tools", Path("validate/tools/x.py"), 1, "isorock.campaign.run")]))
+        test_campaign_imports_lower_floors_only_and_only_the_command_line_imports_it()

@@ -4,6 +4,7 @@ stamped with physics.py too. Exercised on a tiny jitted function of its own (the
 kernel takes a minute to compile), in a temporary folder."""
 import importlib.util
 import os
+from pathlib import Path
 import sys
 
 import pytest
@@ -169,6 +170,42 @@ def test_a_failed_ahead_of_time_build_falls_back_to_the_jit_kernel(tmp_path, aot
     assert "cannot compile the analytic kernel ahead of time (OSError: no C compiler)" in err
     assert "JIT" in err and "Traceback" not in err
     assert not list(aot_cache.iterdir())  # nothing half-built left behind
+
+
+def test_a_numba_without_pycc_falls_back_to_the_jit_kernel(tmp_path, aot_cache, monkeypatch, capsys):
+    """numba has marked numba.pycc for deprecation: the day a numba comes without it, the
+    build's import fails and the cached JIT kernel runs instead, with the same result and
+    one line on stderr (no traceback, nothing left in the cache folder)."""
+    import numpy as np
+    halve = tiny_aot(tmp_path, "tiny_aot_no_pycc")
+    monkeypatch.setitem(sys.modules, "numba.pycc", None)  # `from numba.pycc import ...` raises ImportError
+    a = np.zeros(2)
+    assert kernel_cache.call_kernel(halve, 7.0, a) == 3.5 + 2 and a[0] == 3.5
+    err = capsys.readouterr().err
+    assert err.startswith("isorock: cannot compile the analytic kernel ahead of time (") and "numba.pycc" in err, err
+    assert "JIT" in err and "first use, cached in" not in err  # no build was announced
+    assert "Traceback" not in err
+    assert not list(aot_cache.glob("isorock_halve_*")) and not list(aot_cache.glob(".build-*"))
+
+
+def test_numba_pycc_is_used_in_one_function_only():
+    """The deprecated numba.pycc stays behind one function (kernel_cache._pycc), so
+    replacing it is one change: no other module or function of the product imports it."""
+    import ast
+    root = Path(__file__).resolve().parents[1]
+    users = []
+    for folder in ("analytic", "mujoco_models", "bullet_models", "drake_models", "validate", "campaign",
+                   "experiments"):
+        for path in sorted((root / folder).rglob("*.py")):
+            tree = ast.parse(path.read_text())
+            enclosing = {id(n): f.name for f in ast.walk(tree) if isinstance(f, ast.FunctionDef)
+                         for n in ast.walk(f)}  # innermost last: ast.walk visits outer functions first
+            for node in ast.walk(tree):
+                names = ([node.module or ""] if isinstance(node, ast.ImportFrom) else
+                         [a.name for a in node.names] if isinstance(node, ast.Import) else [])
+                if any(n == "numba.pycc" or n.startswith("numba.pycc.") for n in names):
+                    users.append((path.relative_to(root).as_posix(), enclosing.get(id(node), "module level")))
+    assert users and set(users) == {("analytic/kernel_cache.py", "_pycc")}, users
 
 
 def test_a_new_process_runs_the_kernel_without_initialising_numba(tmp_path):

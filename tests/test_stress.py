@@ -13,7 +13,7 @@ def test_quick_edges_and_draws_pass_on_every_grid_engine():
     from isorock.validate.core.engines import ENGINE_NAMES, campaign_engines
     engines = campaign_engines()
     assert "drake" not in engines
-    results = run_stress(quick=True, time_limit=60, progress=False, drawn=4)
+    results = run_stress(quick=True, time_limit=60, drawn=4)
     edges, draws = edge_cases(quick=True), drawn_cases(4)
     assert len(results) == len(edges) * len(engines) + len(draws) * len([e for e in engines if e in ENGINE_NAMES])
     bad = [(r["engine"], r["case"], r["status"], r.get("error"), r.get("energy_residual"))

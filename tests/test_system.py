@@ -54,3 +54,19 @@ def test_bad_input_names_field_value_and_rule(kwargs, field):
 def test_isolated_needs_a_spring():
     with pytest.raises(InputError, match="stiffness"):
         System.from_stiffness(height=2, width=0.7, mass=1, base_mass=1, stiffness=0, damping=0)
+
+
+def test_the_same_block_on_the_other_base():
+    """on_fixed_base / on_isolator keep the block, its base mass and gravity; the isolator
+    is the one asked for (T = 2π√(M/k), ξ = c/(2Mω) read back)."""
+    import math
+    iso = System.isolated(height=1.3, width=0.4, mass=900.0, base_mass=450.0, period=2.0, damping_ratio=0.1,
+                          gravity=9.7)
+    fixed = iso.on_fixed_base()
+    assert fixed.fixed_base and (fixed.height, fixed.width, fixed.mass, fixed.base_mass, fixed.gravity) == (
+        1.3, 0.4, 900.0, 450.0, 9.7)
+    back = fixed.on_isolator(2.0, 0.1)
+    assert back == iso
+    M = iso.mass + iso.base_mass
+    assert 2 * math.pi * math.sqrt(M / back.stiffness) == pytest.approx(2.0, rel=1e-14)
+    assert back.damping / (2 * M * 2 * math.pi / 2.0) == pytest.approx(0.1, rel=1e-14)

@@ -76,3 +76,34 @@ def test_gif_of_free_rocking_where_an_offscreen_renderer_exists(tmp_path):
         im.seek(3)  # t = 0.6 s: past the first impact (0.50 s), tilted the other way
         later = im.convert("RGB")
     assert ImageChops.difference(first, later).getbbox() is not None
+
+
+def test_the_viewer_replays_a_run_in_its_frames(monkeypatch):
+    """replay_in_viewer (a display): one frame per 1/60 s of the window, `speed` times as
+    much of the run, bounded before the window opens. A stand-in viewer (mujoco.viewer
+    needs a display) counts the frames shown and closes after the run's last one; the
+    function once referred to an `fps` it does not have (NameError on every display)."""
+    import contextlib
+    import time
+
+    import mujoco
+    import mujoco.viewer
+    from isorock.analytic import load_motion
+    from isorock.validate.core.engines import get_engine
+    traj = get_engine("analytic").simulate(FIXED, load_motion("sine:amp=0.6,freq=1.3,cycles=2"), duration=1.0)
+    expected = len(view.frames(traj, 2.0 / 60))  # the run at twice real time, 60 frames a second
+    shown = []
+
+    class Viewer:
+        def is_running(self):
+            return len(shown) < expected  # closed by its user after the last frame
+
+        def sync(self):
+            shown.append(1)
+
+    monkeypatch.setattr(mujoco.viewer, "launch_passive", lambda model, data: contextlib.nullcontext(Viewer()))
+    monkeypatch.setattr(time, "sleep", lambda seconds: None)  # no waiting on a clock
+    assert view.replay_in_viewer(traj, speed=2.0) == 0
+    assert len(shown) == expected > 1
+    with pytest.raises(view.InputError, match="frames"):  # bounded before the window opens
+        view.replay_in_viewer(traj, speed=1e-9)

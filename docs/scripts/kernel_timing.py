@@ -13,9 +13,8 @@ import statistics
 import subprocess
 import sys
 import time
-from pathlib import Path
 
-KOBE = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "records" / "RSN1106_KOBE_KJM000.AT2"
+from isorock.validate.core.scenarios import KOBE  # the records folder, found as the commands find it
 PAPER = ["--height", "2.0", "--width", "0.7", "--mass", "3800", "--base-mass", "3800",
          "--period", "1.5", "--damping-ratio", "0.2"]
 

@@ -63,10 +63,9 @@ def cmd_atlas(a) -> int:
     grid = QUICK if a.quick else FULL
     bars = []
 
-    def progress(done, total, label):
-        if not bars:
-            bars.append(Progress(total, "atlas", enabled=False if a.quiet else None))
-        bars[0].update(done - bars[0].done, note=label)
+    def progress(total):
+        bars.append(Progress(total, "atlas", enabled=False if a.quiet else None))
+        return bars[-1]
     atlas = build(engines, grid, workers=a.workers, budget=a.run_budget, progress=progress)
     for bar in bars:
         bar.close()

@@ -3,7 +3,6 @@ from __future__ import annotations
 
 from isorock.analytic.errors import InputError
 from isorock.validate.tools import calibrate as tool
-import math
 import sys
 from isorock.validate.tools.calibrate import DEFAULT_TILTS, TILT_RANGE, preset_worthy, report_lines, result_json, settings_toml
 
@@ -60,7 +59,7 @@ def cmd_calibrate(a) -> int:
     from isorock.validate.core.engines import get_engine
     from isorock.validate.io.output import Outputs, to_json
     from isorock.validate.io.progress import Progress
-    from isorock.validate.core.runner import default_workers
+    from isorock.validate.core.executor import default_workers
     engine = get_engine(a.engine)
     if engine.spec.tuning is None:
         raise InputError(f"engine = {a.engine!r}: has no contact parameters to calibrate")
@@ -79,10 +78,9 @@ def cmd_calibrate(a) -> int:
         report = outputs.file("json", a.json) if a.json is not None else None
         bars = []  # made at the first run, when the search's budget of runs is known
 
-        def progress(done, total, best):
-            if not bars:
-                bars.append(Progress(total, "calibrate", enabled=None if not a.quiet else False))
-            bars[0].update(done - bars[0].done, note=f"best 2σ bound {100 * best:.3f}%" if math.isfinite(best) else "")
+        def progress(total):
+            bars.append(Progress(total, "calibrate", enabled=None if not a.quiet else False))
+            return bars[-1]
         r = tool.calibrate(a.engine, system, settings=settings, n_tilts=a.tilts, max_evals=a.max_evals,
                            workers=workers, progress=progress)
         for bar in bars:

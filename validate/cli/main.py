@@ -25,7 +25,7 @@ import sys
 
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
+from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
 from isorock.validate.cli.options import (OneLineParser, add_engine_options, add_motion_options, add_system_options,
                                           engine_settings_from_args, number, system_from_args)
 
@@ -120,9 +120,9 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     p = sub.add_parser("scene", help="write the model file a contact engine runs (MuJoCo: MJCF, PyBullet and "
                                      "Drake: SDFormat)",
                        description="Write the model file a contact engine runs. Without system options it is "
-                                   "the paper's block (H 2.0 m, B 0.7 m, m = m_b = 3800 kg, T 1.5 s, ξ 0.2).")
+                                   f"the paper's block ({PAPER_TEXT}).")
     p.add_argument("--engine", required=True, help="a contact engine: mujoco, bullet or drake")
-    add_system_options(p, defaults=dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0))
+    add_system_options(p, defaults=PAPER_BLOCK)
     p.add_argument("--out", required=True, metavar="FILE", help="where to write the model file ('-': standard output)")
     add_engine_options(p)
     p.set_defaults(func=cmd_scene)

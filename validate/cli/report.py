@@ -10,6 +10,7 @@ import argparse
 import sys
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.core.engines import ENGINE_NAMES
 
 DEFAULT_OUT = "isorock-report"
@@ -24,7 +25,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     from isorock.validate.core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
     p = subparsers.add_parser(
         "validate", help="the validation report: all engines side by side with the analytic model",
-        description="Run a block on its base (the paper's by default: isolated T 1.5 s ξ 0.2, and on a fixed base; "
+        description=f"Run a block on its base (the paper's by default: isolated T {PAPER_PERIOD:g} s "
+                    f"ξ {PAPER_DAMPING_RATIO:g}, and on a fixed base; "
                     "or yours, given by the system options or --config) under each motion with every engine, "
                     "compare with the analytic model, check against the tolerance table and write DIR/report.md, "
                     "DIR/report.html, the figures and DIR/metrics.json. The last line on stdout is the verdict.")

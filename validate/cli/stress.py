@@ -41,8 +41,9 @@ def cmd_stress(a) -> int:
         raise InputError(f"drawn = {a.drawn!r}: must be a number of cases from 0 to 100000")
     if not 1 <= a.workers <= 64:
         raise InputError(f"workers = {a.workers!r}: must be a number of processes from 1 to 64")
+    from isorock.validate.io.progress import Progress
     results = run_stress(quick=a.quick, engines=a.engines, time_limit=a.time_limit, drawn=a.drawn,
-                         workers=a.workers)
+                         workers=a.workers, progress=lambda total: Progress(total, "stress"))
 
     def fill(tmp: Path):
         (tmp / "stress.md").write_text(markdown(results))

@@ -14,7 +14,7 @@ def add_parser(sub) -> None:
     from isorock.validate.cli.options import add_engine_options, add_motion_options, add_system_options
     p = sub.add_parser("view", help="replay a run in MuJoCo's viewer, or write it as a GIF where there is no display",
                        description=tool.__doc__.split("\n\n")[0] + "\n\nWithout options: the paper's block "
-                       "(T 1.5 s, ξ 0.2) under " + DEFAULT_MOTION + ".")
+                       f"(T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g}) under " + DEFAULT_MOTION + ".")
     p.add_argument("--engine", default="mujoco", metavar="ENGINE[:PRESET]",
                    help="the engine that simulates (default: %(default)s); the replay is drawn in MuJoCo's scene")
     add_system_options(p, defaults=PAPER)

@@ -33,6 +33,12 @@ from .cases import Case, motion_of
 from .engines import EngineChoice
 from .summary import case_inputs, row_of_batch, row_of_failure, row_of_trajectory, rows_to_table, sort_table
 
+def default_workers() -> int:
+    """Processes for a command's contact runs (validate's cluster, atlas's and calibrate's
+    Pool): two, or fewer where this process may use fewer cores (available_cores)."""
+    return max(1, min(2, available_cores()))
+
+
 #: Default cases per chunk: the analytic kernel runs a whole chunk in one call.
 ANALYTIC_CHUNK = 500
 CONTACT_CHUNK = 4

@@ -43,12 +43,6 @@ def run_task(task: Task, threads: int | None = None):
         return task.key, None, f"{type(e).__name__}: {e}"
 
 
-def default_workers() -> int:
-    """Processes for a command's contact runs: two, or the cores this process may use."""
-    from isorock.analytic.limits import available_cores
-    return max(1, min(2, available_cores()))
-
-
 def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, on_result=None,
               work=None) -> dict:
     """Run every task; key → (result or None, error or None). client: a Dask client
@@ -92,4 +86,4 @@ def _light(task: Task) -> bool:
     return runs_here(task.engine)
 
 
-__all__ = ["Task", "run_task", "run_tasks", "default_workers"]
+__all__ = ["Task", "run_task", "run_tasks"]

@@ -21,17 +21,23 @@ from .cases import block_system
 
 
 
-def records_folder() -> Path:
-    """Where the shared real records lie (never copied into the project): the folder
-    named by $ISOROCK_RECORDS; else `shared/data/records` beside the checkout the package
+def shared_folder(kind: str, variable: str) -> Path:
+    """Where a shared data folder (`shared/data/KIND`, never copied into the project) lies:
+    the folder named by $VARIABLE; else `shared/data/KIND` beside the checkout the package
     runs from (an editable install); else beside the working folder (`../shared/...`, a
     wheel installed elsewhere, run from the checkout). The first that exists; the
-    checkout's when none does, so that a message names where it looked."""
-    if os.environ.get("ISOROCK_RECORDS"):
-        return Path(os.environ["ISOROCK_RECORDS"])
-    beside = [Path(__file__).resolve().parents[3] / "shared" / "data" / "records",
-              Path.cwd().resolve().parent / "shared" / "data" / "records"]
+    checkout's when none does, so that a message names where it looked. The one home of
+    this search: the records' ($ISOROCK_RECORDS) and the shake-table tests' ($ISOROCK_VSR)."""
+    if os.environ.get(variable):
+        return Path(os.environ[variable])
+    beside = [Path(__file__).resolve().parents[3] / "shared" / "data" / kind,
+              Path.cwd().resolve().parent / "shared" / "data" / kind]
     return next((p for p in beside if p.is_dir()), beside[0])
+
+
+def records_folder() -> Path:
+    """Where the shared real records lie: shared_folder("records", "ISOROCK_RECORDS")."""
+    return shared_folder("records", "ISOROCK_RECORDS")
 
 
 #: The shared records folder (records_folder()), read when the module loads.

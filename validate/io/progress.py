@@ -70,4 +70,23 @@ class Progress:
         return False
 
 
-__all__ = ["Progress", "ETA_AFTER"]
+class Silent:
+    """The bar of a tool run without one: update and close do nothing."""
+
+    total = done = 0
+
+    def update(self, n: int = 1, work: float = 0.0, note: str = "") -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def bar_of(progress, total: int):
+    """The one way a tool shows progress: it is given `progress`, a factory total → bar
+    (a Progress, made by the command line once the tool knows its count of runs, or
+    anything with update(n, work, note)), or None; this is that bar, or a Silent one."""
+    return Silent() if progress is None else progress(total)
+
+
+__all__ = ["Progress", "Silent", "bar_of", "ETA_AFTER"]

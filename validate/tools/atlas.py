@@ -24,13 +24,13 @@ from __future__ import annotations
 
 import math
 import statistics
-import sys
 import time
 from dataclasses import dataclass
 
 from isorock.analytic.errors import InputError
 from isorock.validate.core.tolerances import limit
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, paper_system
+from isorock.validate.io.progress import bar_of
+from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, paper_system
 
 #: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's
 #: (λ 1.5–10, μ 0 and 0.25–4, H 0.2–5 m) with issue 19's sizes from 0.1 to 10 m.
@@ -42,10 +42,10 @@ FULL_HEIGHTS = (0.1, 0.2, 1.0, 5.0, 10.0)
 QUICK_SLENDERNESS = (2.5, 6.0)
 QUICK_MASS_RATIOS = (0.0, 1.0)
 QUICK_HEIGHTS = (0.5, 2.0)
-#: kg/m³: the paper's block (3800 kg, 2.0 × 0.7 × 0.7 m), so that an engine's absolute
+#: kg/m³: the paper's block's (3800 kg, 2.0 × 0.7 × 0.7 m), so that an engine's absolute
 #: contact parameters (Drake's stiffness in N/m, MuJoCo's impedance width in m) meet the
 #: mass and size a statue of that shape would have.
-DENSITY = 3800.0 / (2.0 * 0.7 * 0.7)
+DENSITY = PAPER_BLOCK["mass"] / (PAPER_BLOCK["height"] * PAPER_BLOCK["width"] * PAPER_BLOCK["width"])
 #: How many of a run's counted impacts it sends back (β error and time of each).
 KEPT_IMPACTS = 12
 #: A contact run lasts this factor × the time of the reference's last judged impact, plus
@@ -296,8 +296,10 @@ def distinct(labels: list[str]) -> tuple[list[str], dict, dict]:
 def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget: float = RUN_BUDGET,
           progress=None, overrides: dict | None = None) -> dict:
     """Run every engine label on every cell; the atlas as a dict (rows, summaries, verdict).
-    `overrides`: settings applied to every run that has them (a test's way to break one)."""
-    from isorock.validate.core.runner import Task, default_workers
+    `overrides`: settings applied to every run that has them (a test's way to break one);
+    `progress`: a factory total → bar (io.progress.bar_of), updated as each run ends."""
+    from isorock.validate.core.executor import default_workers
+    from isorock.validate.core.runner import Task
     labels, aliases, skipped = distinct(engines)
     cells = grid.cells()
     start = time.perf_counter()
@@ -307,16 +309,11 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
     tasks = [Task(key=(label, c.key), engine=label, system=refs[c.key]["system"], motion=None,
                   duration=refs[c.key]["duration"], theta0=refs[c.key]["theta0"], overrides=dict(overrides or {}))
              for c in cells for label in labels]
-    done = []
-
-    def on_result(key):
-        done.append(key)
-        if progress:
-            progress(len(done), len(tasks), key[0])
+    bar = bar_of(progress, len(tasks))
     from isorock.validate.core.executor import Pool
     with Pool(default_workers() if workers is None else workers) as pool:
         outcomes = pool.map(run_cell, [(t,) for t in tasks], budget=budget, clock="cpu",
-                            on_result=lambda i, _o: on_result(tasks[i].key))
+                            on_result=lambda i, _o: bar.update(1, note=tasks[i].key[0]))
     results = {t.key: (o.value if o.done else _stopped(o, budget),) for t, o in zip(tasks, outcomes)}
     rows = [row(label, c, refs[c.key], results[(label, c.key)][0]) for label in labels for c in cells]
     summaries = [summarize(label, [r for r in rows if r["engine"] == label]) for label in labels]

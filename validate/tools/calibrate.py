@@ -38,6 +38,7 @@ import numpy as np
 
 from isorock.analytic.errors import InputError
 from isorock.validate.core.scenarios import Scenario
+from isorock.validate.io.progress import bar_of
 from isorock.validate.core.tolerances import limit
 
 #: Free-rocking tilts, fractions of α: `tilts` fitted tilts spread evenly over this range,
@@ -102,13 +103,11 @@ def tilts(n: int = DEFAULT_TILTS) -> tuple[tuple[float, ...], tuple[float, ...]]
 def other_base(system):
     """The block on its other base, and how each base is named: a fixed base for an
     isolated system; the paper's isolator (T 1.5 s, ξ 0.2) for a fixed one."""
-    from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, System
+    from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
     if system.fixed_base:
-        other = System.isolated(height=system.height, width=system.width, mass=system.mass,
-                                base_mass=system.base_mass, period=PAPER_PERIOD, damping_ratio=PAPER_DAMPING_RATIO)
-        return other, ("fixed base", f"isolated base (T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g})")
-    other = System.fixed(height=system.height, width=system.width, mass=system.mass, base_mass=system.base_mass)
-    return other, ("isolated base", "fixed base")
+        return (system.on_isolator(PAPER_PERIOD, PAPER_DAMPING_RATIO),
+                ("fixed base", f"isolated base (T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g})"))
+    return system.on_fixed_base(), ("isolated base", "fixed base")
 
 
 def cases(system, n_tilts: int = DEFAULT_TILTS, impacts: int = IMPACTS) -> tuple[list[Case], list[Case]]:
@@ -386,7 +385,8 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
     """Fit the engine's tuning to `system`; returns the settings before and after, the
     fitted and held-out scores before and after with the change of their 2σ bound and
     its bootstrap spread. `workers`: processes for the runs (0: this one; Runner).
-    `progress(done, total, best)` after each run."""
+    `progress`: a factory total → bar (io.progress.bar_of), updated after each run with the
+    best 2σ bound so far."""
     from isorock.validate.core.engines import get_engine
     engine = get_engine(engine_name)
     tuning = engine.spec.tuning
@@ -398,13 +398,12 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
     hi = np.array([b[1] for b in tuning.bounds], dtype=float)
     x0 = np.clip(np.asarray(tuning.start(start_settings), dtype=float), lo, hi)
     total = max_evals * len(fitted) + 2 * len(held)
-    done, best = [0], [math.inf]
+    best = [math.inf]
     evaluated = []  # (objective, x, settings, fitted Score)
+    bar = bar_of(progress, total)
 
     def ran():
-        done[0] += 1
-        if progress:
-            progress(done[0], total, best[0])
+        bar.update(1, note=f"best 2σ bound {100 * best[0]:.3f}%" if math.isfinite(best[0]) else "")
 
     t0 = time.perf_counter()
     with Runner(engine_name, workers, on_run=ran) as runner:

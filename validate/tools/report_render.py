@@ -15,6 +15,7 @@ import math
 from dataclasses import fields
 from pathlib import Path
 
+from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.io import figures
 from isorock.validate.core.engines import REFERENCE, describe_settings
 from isorock.validate.io.naming import describe_motion
@@ -227,7 +228,9 @@ def summary_rows(results: Results):
 def describe_system(results: Results) -> str:
     cfg = results.config
     if not cfg.own_system:
-        return ("the paper's block (H 2.0 m, B 0.7 m, m = m_b = 3800 kg), isolated with T 1.5 s, ξ 0.2 (the reading "
+        return (f"the paper's block (H {PAPER_BLOCK['height']:.1f} m, B {PAPER_BLOCK['width']:g} m, "
+                f"m = m_b = {PAPER_BLOCK['mass']:g} kg), isolated with T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g} "
+                "(the reading "
                 "of the paper that fits its figure: the paper's own values are unreadable in our copy), and on a fixed base")
     s = cfg.system
     base = ("a fixed base" if s.fixed_base else

@@ -33,8 +33,10 @@ from isorock.validate.core.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENC
 from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 from isorock.validate.core.measure import beta_errors
 from isorock.validate.io.naming import describe_motion
+from isorock.validate.io.progress import bar_of
 from isorock.validate.core.engines import resolve, runs_here
-from isorock.validate.core.runner import Task, default_workers, run_tasks
+from isorock.validate.core.executor import default_workers
+from isorock.validate.core.runner import Task, run_tasks
 from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
 from isorock.validate.core.tolerances import (ROBUST_SPREAD, Check, check, has_tolerance, judged, limit, not_exercised,
@@ -129,9 +131,7 @@ class ReportConfig:
             return paper_bases()
         if self.system.fixed_base:
             return (("your block on a fixed base", self.system),)
-        fixed = System.fixed(height=self.system.height, width=self.system.width, mass=self.system.mass,
-                             base_mass=self.system.base_mass, gravity=self.system.gravity)
-        return (("your isolated base", self.system), ("the same block on a fixed base", fixed))
+        return (("your isolated base", self.system), ("the same block on a fixed base", self.system.on_fixed_base()))
 
     def overrides_for(self, name: str) -> dict:
         base = name.partition(":")[0]
@@ -340,7 +340,7 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         line = estimate_line(simulated, workers=config.workers or 2)
         if line:
             print(line, file=sys.stderr)
-    bar = progress(total) if progress else _Silent()
+    bar = bar_of(progress, total)
     # one pool for every run: a Dask cluster when a contact engine runs on several
     # processes (its workers start once), nothing when every run is made here
     client = _cluster(config, engines)
@@ -457,15 +457,8 @@ def _with_robustness(ens: Ensemble, sc: HistoryRuns) -> Ensemble:
     return replace(ens, robust=np.array([bool(r) and _robust(sc, f) for r, f in zip(rocks, ens.scales)]))
 
 
-class _Silent:
-    """No progress to show: update(n, work) does nothing."""
-
-    def update(self, n: int = 1, work: float = 0.0) -> None:
-        pass
-
-
 def _cluster(config: ReportConfig, engines):
-    """A LocalCluster of config.workers processes (default: runner.default_workers) when
+    """A LocalCluster of config.workers processes (default: executor.default_workers) when
     a contact engine runs, else None (the analytic model runs here in milliseconds)."""
     workers = default_workers() if config.workers is None else config.workers
     if workers <= 1 or all(runs_here(name) for name in engines):

@@ -268,10 +268,12 @@ def compare_engines(results: list[dict]) -> None:
             r["cross"] = "DISAGREE" if ref.get("robust") else "chaotic"
 
 
-def run_stress(*, quick=False, engines=None, time_limit=None, progress=True, drawn: int | None = None,
+def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, drawn: int | None = None,
                workers: int = 2) -> list[dict]:
+    """Every edge case and drawn case on its engines. `progress`: a factory total → bar
+    (io.progress.bar_of), updated as each run ends; None shows nothing."""
     from isorock.validate.core.engines import ENGINE_NAMES, campaign_engines, get_engine
-    from isorock.validate.io.progress import Progress
+    from isorock.validate.io.progress import bar_of
     engines = list(engines or campaign_engines())
     time_limit = time_limit or (30.0 if quick else 120.0)
     edges = edge_cases(quick)
@@ -281,7 +283,7 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=True, dra
     todo += [(e, c) for c in draws for e in engines if e in ENGINE_NAMES]
     for e in dict.fromkeys(e for e, _ in todo):  # an engine that cannot be loaded is named before the grid
         get_engine(e)
-    bar = Progress(len(todo), "stress", enabled=None if progress else False)
+    bar = bar_of(progress, len(todo))
     results = run_cases(todo, time_limit, workers=workers, on_result=lambda r: bar.update(note=r["case"][:30]))
     bar.close()
     compare_engines(results)

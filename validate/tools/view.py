@@ -21,6 +21,8 @@ import sys
 from pathlib import Path
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.system import PAPER_BLOCK
+from isorock.validate.core.scenarios import ROBUST_SINE
 
 #: Tried in this order when MUJOCO_GL is not set.
 OFFSCREEN_BACKENDS = ("egl", "osmesa")
@@ -29,10 +31,11 @@ _PROBE = ("import mujoco\n"
           "m = mujoco.MjModel.from_xml_string('<mujoco><worldbody><geom size=\"1\"/></worldbody></mujoco>')\n"
           "r = mujoco.Renderer(m, 16, 16); d = mujoco.MjData(m); r.update_scene(d); r.render(); r.close()\n")
 DEFAULT_OUT = "isorock-view.gif"
-#: Paper block for a first look (as `isorock scene`): H 2.0 m, B 0.7 m, m = m_b = 3800 kg, T 1.5 s, ξ 0.2,
-#: under a pulse that makes it rock clearly (θmax ≈ 0.46 α)
-PAPER = dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0)
-DEFAULT_MOTION = "sine:amp=0.6,freq=1.3,cycles=2"
+#: Paper block for a first look (as `isorock scene`, analytic.system.PAPER_BLOCK with the
+#: paper's isolator), under a pulse that makes it rock clearly (θmax ≈ 0.46 α): the report's
+#: robust sine
+PAPER = PAPER_BLOCK
+DEFAULT_MOTION = ROBUST_SINE
 
 
 def has_display() -> bool:
@@ -172,13 +175,13 @@ def replay_in_viewer(traj, *, speed: float) -> int:
     import mujoco
     import mujoco.viewer
     system = traj.system
-    shots = frames(traj, speed / fps)  # too many frames is bad input, refused before any rendering
+    dt = 1 / 60  # the window's frame interval, s
+    shots = frames(traj, dt * speed)  # too many frames is bad input, refused before the window opens
     model, pose = replay_scene(system)
     data = mujoco.MjData(model)
-    dt = 1 / 60
     with mujoco.viewer.launch_passive(model, data) as viewer:
         start = time.perf_counter()
-        for t, u, theta in frames(traj, dt * speed):
+        for t, u, theta in shots:
             if not viewer.is_running():
                 break
             data.qpos[:] = pose(u, theta)

@@ -1,4 +1,4 @@
-"""Campaign throughput, measured (not a test): `python -m isorock.campaign.benchmark WHAT`.
+"""Campaign throughput, measured (not a test): `python docs/scripts/campaign_throughput.py WHAT`.
 
     spectrum   the 4,000-cell one-sine spectrum (fixed base, α = 0.25, ω_p/p 0.5–12 ×
                a_p/(g·tanα) 1–20), analytic, serial path (kernel threads on every core)
@@ -18,13 +18,12 @@ import json
 import os
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
 
 def _spectrum_spec(n_freq=80, n_amp=50, engines=({"name": "analytic"},), base="fixed"):
-    from .spec import parse_spec
+    from isorock.campaign.spec import parse_spec
     return parse_spec({
         "campaign": {"name": "bench spectrum", "analytic_chunk": 500, "contact_chunk": 2},
         "systems": {"alpha": 0.25, "size": 1.0, "mass": 1000.0, "base": base},
@@ -39,7 +38,7 @@ def _emit(**kw):
 
 def bench_spectrum(workers):
     from isorock.validate.core.executor import close_client, local_client
-    from .run import run_campaign
+    from isorock.campaign.run import run_campaign
     spec = _spectrum_spec()
     run_campaign(_spectrum_spec(2, 2), None, workers=0, progress=False)  # load the kernel first
     t = time.perf_counter()
@@ -58,7 +57,7 @@ def bench_spectrum(workers):
 
 def _kobe():
     from isorock.analytic.motion import read_at2
-    path = Path(__file__).resolve().parents[1].parent / "shared" / "data" / "records" / "RSN1106_KOBE_KJM000.AT2"
+    from isorock.validate.core.scenarios import KOBE as path  # the records folder found, not computed from here
     if not path.is_file():
         sys.exit(f"benchmark kobe: {path} not found")
     return read_at2(path)
@@ -88,7 +87,7 @@ def bench_kobe(n, repeats=5):
 def _contact_cases(n):
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.analytic.system import paper_system
-    from .spec import Case
+    from isorock.campaign.spec import Case
     system = paper_system(fixed_base=True)
     # one-sine pulses around uplift (3 s runs): rocking with impacts, some overturning
     return [Case(i, system, GroundMotion.from_pulse(Pulse("sine", amp=a, freq=1.0)), 3.0)
@@ -125,7 +124,7 @@ def bench_contact(n, workers, repeats=5):
     process involved) say what each way costs whatever the load."""
     from isorock.validate.core.engines import get_engine
     from isorock.validate.core.executor import close_client, local_client
-    from .run import run_cases
+    from isorock.campaign.run import run_cases
     cases = _contact_cases(n)
     client = local_client(workers)
     try:
@@ -168,7 +167,7 @@ def bench_contact(n, workers, repeats=5):
 def bench_overhead(n, workers):
     from isorock.analytic.fast import simulate_fast
     from isorock.validate.core.executor import close_client, local_client
-    from .run import run_cases
+    from isorock.campaign.run import run_cases
     cases = _contact_cases(n)
     simulate_fast(cases[0].system, cases[0].motion, duration=1.0)
     run_cases(cases[:1], ["analytic"])  # imports (pyarrow, the registry) out of the timing
@@ -198,7 +197,7 @@ def bench_overhead(n, workers):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog="python -m isorock.campaign.benchmark", description=__doc__,
+    p = argparse.ArgumentParser(prog="python docs/scripts/campaign_throughput.py", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("what", choices=("spectrum", "kobe", "contact", "overhead"))
     p.add_argument("--workers", type=int, default=os.cpu_count() or 1)
