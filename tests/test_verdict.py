@@ -157,3 +157,62 @@ def test_rate_interval_against_the_closed_forms():
     assert rate_interval(40, 40, CONF) == (pytest.approx((a / 2) ** (1 / 40), rel=1e-9), 1.0)
     lo, hi = rate_interval(3, 40, CONF)
     assert lo < 3 / 40 < hi and hi - lo < 0.25
+
+
+RATE = limit("verdict_disagreement_rate")
+
+
+def test_a_count_is_judged_by_its_exact_interval():
+    """rate_verdict against the Clopper–Pearson closed forms: 0 of n agrees once the upper
+    bound 1 − (α/2)^(1/n) is within the limit, so the cases that decide 0 of 40 are the
+    least n with (α/2)^(1/n) ≥ 1 − limit; a rate far above the limit disagrees; one near it
+    is inconclusive at any size that keeps the interval across it."""
+    from isorock.validate.core.verdict import rate_verdict
+    a = 1 - CONF
+    need = math.ceil(math.log(a / 2) / math.log(1 - RATE))
+    zero = rate_verdict(0, 40, limit=RATE, confidence=CONF, min_cases=MIN)
+    assert zero.word == INCONCLUSIVE and zero.n_needed == need
+    assert rate_verdict(0, need, limit=RATE, confidence=CONF, min_cases=MIN).word == AGREES
+    assert rate_verdict(0, need - 1, limit=RATE, confidence=CONF, min_cases=MIN).word == INCONCLUSIVE
+    far = rate_verdict(30, 100, limit=RATE, confidence=CONF, min_cases=MIN)
+    assert far.word == DISAGREES and far.interval[0] > RATE and far.estimate == 0.3
+    near = rate_verdict(1, 20, limit=RATE, confidence=CONF, min_cases=MIN)
+    assert near.word == INCONCLUSIVE and near.n_needed is None  # 1 of 20 sits on the limit
+    assert rate_verdict(0, 3, limit=RATE, confidence=CONF, min_cases=MIN).word == INCONCLUSIVE
+    assert "≤0.05" in zero.describe() and "0 of 40" in zero.describe()
+
+
+@pytest.mark.parametrize("k, n", [(0, 10), (1, 30), (2, 12), (5, 40), (12, 50)])
+def test_more_cases_at_the_same_rate_never_reverse_a_count(k, n):
+    """The count's form of 'quick never contradicts full': the same rate over ×1…×16 the
+    cases decides as the smaller count did, or is the first to decide; and the size said
+    to decide does decide, and is the least that does (at the same rate, k = rate·m)."""
+    from isorock.validate.core.verdict import rate_interval, rate_verdict
+    first = rate_verdict(k, n, limit=RATE, confidence=CONF, min_cases=MIN)
+    for m in (2, 4, 8, 16):
+        later = rate_verdict(k * m, n * m, limit=RATE, confidence=CONF, min_cases=MIN)
+        assert first.word == INCONCLUSIVE or later.word == first.word
+    if first.n_needed:
+        def decides(m):
+            lo, hi = rate_interval(k / n * m, m, CONF)
+            return hi <= RATE if k / n < RATE else lo > RATE
+        assert decides(first.n_needed) and not decides(first.n_needed - 1)
+
+
+def test_a_suite_is_resampled_by_records_not_by_runs():
+    """A record suite at 40 levels: the bootstrap draws records (each with its
+    outcomes at every level), so n is the number of records and a suite whose records
+    all agree agrees; an engine whose capacities are 1.45× lower disagrees. Oracle: a
+    known lognormal capacity per record (β 0.3); the analytic outcome of a record at a
+    level is capacity ≤ level."""
+    rng = np.random.default_rng(3)
+    levels = np.geomspace(0.2, 2.0, 40)  # a step of ln(scale) of 0.06: finer than the limit
+    capacity = 0.7 * np.exp(0.3 * rng.standard_normal(40))
+    x = np.tile(levels, capacity.size)
+    record = np.repeat(np.arange(capacity.size), levels.size)
+    ref = x >= np.repeat(capacity, levels.size)
+    kw = dict(median_limit=MEDIAN, dispersion_limit=SPREAD, confidence=CONF, min_cases=MIN, resamples=R)
+    same = overturn_verdicts(x, ref, ref, groups=record, **kw)
+    assert same[0].n == capacity.size and same[0].word == AGREES
+    weak = overturn_verdicts(x, x >= np.repeat(capacity / 1.45, levels.size), ref, groups=record, **kw)
+    assert weak[0].word == DISAGREES and weak[0].estimate == pytest.approx(-math.log(1.45), abs=0.05)

@@ -174,6 +174,12 @@ LIMITS: dict[str, Tolerance] = {
     "verdict_min_cases": Tolerance(
         5, "cases below which a statistical verdict is inconclusive whatever its interval: a bootstrap over "
            "one case has zero width, over a handful too few distinct resamples for a 95% interval", kind="min"),
+    "verdict_disagreement_rate": Tolerance(
+        0.05, "the share of cases in which an engine may part from the model before a count of them says it "
+              "disagrees (core.verdict.rate_verdict on the count's exact interval): stress's robust comparisons "
+              "of overturning (the model's outcome holds under ±3% of the motion, so chaos does not part them), "
+              "the atlas's cells at each β level, a campaign's agreement map; 1 in 20, the confidence's own "
+              "error rate: a sound engine parts only where the outcome sits on a threshold", kind="max"),
     "stress_energy_residual": Tolerance(
         1e-6, "the analytic energy balance residual over the input energy, as for the report "
               "(analytic energy_residual): DOP853 at rtol 1e-10, room for long records"),
