@@ -62,6 +62,12 @@ class Verdict:
                   if not (math.isfinite(lo) and math.isfinite(hi)) else " (the estimate sits on the limit)")
         return s + (f"; {self.note}" if self.note else "")
 
+    def cell(self) -> str:
+        """The verdict as one table cell: 'estimate [lo, hi] / ±limit: word'."""
+        lo, hi = self.interval
+        return f"{self.estimate:+.3g} [{lo:+.3g}, {hi:+.3g}] / {self.bound}{self.limit:g}: {self.word}" + (
+            f" ({self.n_needed} would decide)" if self.n_needed else "")
+
     def as_dict(self) -> dict:
         return asdict(self)
 
