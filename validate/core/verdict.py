@@ -169,10 +169,21 @@ def overturn_verdicts(intensity, engine, reference, *, median_limit: float, disp
                [np.flatnonzero(np.asarray(groups) == g) for g in dict.fromkeys(np.asarray(groups).tolist())])
     n = len(members)
     rng = np.random.default_rng(seed)
-    samples = np.array([_differences(_fit(x[i], e[i]), _fit(x[i], r[i]))
+    fits: dict = {}
+
+    def fit(xs, ks):
+        # the likelihood depends only on the multiset of (intensity, outcome) pairs: resamples
+        # repeat them (and an engine that overturns as the model does repeats the model's), so
+        # each distinct one is fitted once: the same numbers, several times faster
+        key = tuple(sorted(zip(xs.tolist(), ks.tolist())))
+        if key not in fits:
+            fits[key] = _fit(xs, ks)
+        return fits[key]
+
+    samples = np.array([_differences(fit(x[i], e[i]), fit(x[i], r[i]))
                         for i in (np.concatenate([members[j] for j in rng.integers(0, n, n)])
                                   for _ in range(resamples))], dtype=float)
-    dm, db = _differences(_fit(x, e), _fit(x, r))
+    dm, db = _differences(fit(x, e), fit(x, r))
     levels = np.unique(x[x > 0])
     step = float(np.max(np.diff(np.log(levels)))) if levels.size > 1 else math.inf
     return (_judge("ln(median ratio)", dm, samples[:, 0], median_limit, confidence, n, min_cases, widen=step,
