@@ -353,7 +353,7 @@ def test_the_verdict_line_names_what_the_ensembles_decided_and_with_what_confide
     assert "ensembles judged at 95% confidence" in line
     assert "MuJoCo overturning median 1 agrees, 1 inconclusive" in line
     assert "PyBullet overturning median 1 DISAGREES, median θmax/α 1 inconclusive" in line
-    assert "about 12–40 cases would decide the inconclusive; this run had 6" in line
+    assert "about 12–40 cases would decide the inconclusive; this run judged 6" in line
     words = engine_verdicts(results)
     assert words["mujoco"][0] == "agrees with caveats" and words["bullet"][0] == "disagrees"
     _, rows = scorecard(results)

@@ -6,9 +6,9 @@ the model's own, and the recorded outcomes the tests judge quick against full on
     python docs/scripts/verdict_evidence.py tables  QUICK_DIR FULL_DIR [QUICK_DIR FULL_DIR ...]
     python docs/scripts/verdict_evidence.py record  tests/data/ensemble_outcomes.json QUICK_DIR FULL_DIR ...
 
-`tables` prints Markdown: one row per ensemble (motion × base), engine and judged quantity
-with the quick and the full run's word, interval and cases, and whether quick contradicts
-full (it never may); then the horizons of every history of the full runs. `record` keeps
+`tables` prints Markdown: one row per ensemble (motion × base) and engine, per judged
+quantity the quick run's word, interval and cases (and the cases that would decide) → the
+full run's, and whether quick contradicts full (it never may); then the horizons of every history of the full runs. `record` keeps
 each ensemble's per-case outcomes (scales, θmax/α, overturned, robustness) of every engine
 and the report's own statuses, for tests/test_verdict.py.
 """
@@ -33,22 +33,18 @@ def statistical(m: dict) -> dict:
     return {(c["scenario"], c["engine"], c["metric"]): c for c in m["checks"] if c["metric"] in QUANTITIES}
 
 
-def _bound(x) -> str:
-    return "∞" if x is None else f"{x:+.3f}"  # JSON keeps ±inf as null: an open side
-
-
 def cell(c) -> str:
     if c is None:
         return "–"
     word = {"pass": "agrees", "fail": "DISAGREES"}.get(c["status"], c["status"])
     if c["interval"] is None:
         return word
-    lo, hi = c["interval"]
+    lo, hi = c["interval"]  # JSON keeps ±inf as null: an open side
     lo_s = "−∞" if lo is None else f"{lo:+.3f}"
     hi_s = "+∞" if hi is None else f"{hi:+.3f}"
     cases = c.get("cases") or _cases_from_note(c["note"])
     need = c.get("n_needed") or _need_from_note(c["note"])
-    return f"{word} [{lo_s}, {hi_s}], n {cases}" + (f" (~{need} decide)" if need else "")
+    return f"{word} [{lo_s}, {hi_s}] n {cases}" + (f" (~{need})" if need else "")
 
 
 def _cases_from_note(note: str):
@@ -72,16 +68,22 @@ def contradicts(q, f) -> bool:
 
 
 def verdict_table(pairs) -> list[str]:
-    lines = ["| motion | base | engine | quantity | quick | full | quick contradicts full |",
-             "|---|---|---|---|---|---|---|"]
+    """One row per ensemble (motion × base) and engine; per judged quantity the quick run's
+    verdict → the full run's, and whether any quick verdict contradicts the full one."""
+    head = " | ".join(f"{q}: quick → full" for q in QUANTITIES.values())
+    lines = [f"| motion | base | engine | {head} | quick contradicts full |", "|---|---|---|" + "---|" * 4]
     for quick, full in pairs:
         q_checks, f_checks = statistical(quick), statistical(full)
-        for key in sorted(f_checks, key=lambda k: (k[0], k[1], list(QUANTITIES).index(k[2]))):
-            scenario, engine, metric = key
+        rows = dict.fromkeys((s, e) for s, e, _ in f_checks)
+        for scenario, engine in sorted(rows, key=lambda k: (k[0], k[1] != "mujoco")):
             motion, _, base = scenario[len("ensemble "):].rpartition(", ")
-            q, f = q_checks.get(key), f_checks[key]
-            lines.append(f"| {motion} | {base} | {LABELS.get(engine, engine)} | {QUANTITIES[metric]} | {cell(q)} | "
-                         f"{cell(f)} | {'YES' if contradicts(q, f) else 'no'} |")
+            cells, bad = [], False
+            for metric in QUANTITIES:
+                q, f = q_checks.get((scenario, engine, metric)), f_checks.get((scenario, engine, metric))
+                cells.append(f"{cell(q)} → {cell(f)}")
+                bad |= contradicts(q, f)
+            lines.append(f"| {motion} | {base} | {LABELS.get(engine, engine)} | {' | '.join(cells)} | "
+                         f"{'YES' if bad else 'no'} |")
     return lines
 
 

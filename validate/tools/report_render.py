@@ -161,8 +161,10 @@ def _would_decide(open_) -> str:
     if not need:
         return ""
     ran = sorted({c.cases for c in open_ if c.cases})
-    span = f"{need[0]}" if len(need) == 1 else f"{need[0]}–{need[-1]}"
-    return f" (about {span} cases would decide the inconclusive; this run had {'/'.join(map(str, ran))})"
+
+    def span(v):
+        return f"{v[0]}" if len(v) == 1 else f"{v[0]}–{v[-1]}"
+    return f" (about {span(need)} cases would decide the inconclusive; this run judged {span(ran)})"
 
 
 def scorecard(results: Results) -> tuple[list, list]:
