@@ -130,6 +130,12 @@ def test_confidence_and_limits_live_in_the_table():
     for engine in ("mujoco", "bullet"):
         for metric in ("ensemble_overturn_median", "ensemble_overturn_dispersion", "ensemble_theta_max_diff"):
             assert tolerance(engine, metric).reason
+    # the horizon's parting, the robustness and the model's own perturbations too
+    from isorock.validate.core import compare
+    assert (compare.AGREEMENT_FRACTION, compare.SENSITIVITY_SCALE, compare.OWN_HORIZON_SCALE) == tuple(
+        LIMITS[k].limit for k in ("horizon_parting", "robust_perturbation", "own_horizon_perturbation"))
+    assert all(LIMITS[k].reason for k in ("horizon_parting", "robust_perturbation", "own_horizon_perturbation",
+                                          "verdict_disagreement_rate", "verdict_min_cases"))
 
 
 def test_own_horizon_is_the_whole_run_unperturbed_and_shorter_under_a_large_change():

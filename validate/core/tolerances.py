@@ -183,6 +183,18 @@ LIMITS: dict[str, Tolerance] = {
               "of overturning (the model's outcome holds under ±3% of the motion, so chaos does not part them), "
               "the atlas's cells at each β level, a campaign's agreement map; 1 in 20, the confidence's own "
               "error rate: a sound engine parts only where the outcome sits on a threshold", kind="max"),
+    "horizon_parting": Tolerance(
+        0.1, "|Δθ|/α at which two histories have parted (the agreement horizon, core.compare): ten times the "
+             "contact engines' θ error while they agree (a peak within 0.02α, theta_max_diff) and below the "
+             "peak of any rocking half-cycle that matters, so a history past it has gone its own way"),
+    "robust_perturbation": Tolerance(
+        0.01, "relative change of the motion under which a reference history's θmax/α must hold (within "
+              "ROBUST_SPREAD, overturning unflipped) for its single-history checks to apply: model.md shows "
+              "±1% of PGA flipping overturning near the threshold"),
+    "own_horizon_perturbation": Tolerance(
+        0.005, "relative change of the motion under which the analytic model's own horizon is taken "
+               "(core.compare.own_horizon): a 0.5% error of amplitude is well inside a strong-motion "
+               "instrument's calibration, so no engine can be asked to hold longer than the model does then"),
     "stress_energy_residual": Tolerance(
         1e-6, "the analytic energy balance residual over the input energy, as for the report "
               "(analytic energy_residual): DOP853 at rtol 1e-10, room for long records"),
