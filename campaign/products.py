@@ -274,7 +274,10 @@ def _nan(v):
 def agreement(cols, x: str, y: str) -> list[dict]:
     """Per contact (engine, setting): for each (x, y) cell, the fraction of cases whose
     verdict differs from the analytic one, and of those both survive, the fraction
-    whose θmax/α departs by more than the engine's tolerance."""
+    whose θmax/α departs by more than the engine's tolerance; and each engine's whole map
+    judged by core.verdict's rule (`overturn_verdict`, `theta_verdict`)."""
+    from isorock.validate.core.tolerances import limit
+    from isorock.validate.core.verdict import quantile_verdict, rate_verdict
     reference, contacts = _engine_settings(cols)
     if reference is None:
         return []
@@ -301,8 +304,6 @@ def agreement(cols, x: str, y: str) -> list[dict]:
         np.add.at(ns, (iy, ix), both_survive)
         nt = np.zeros(shape)
         np.add.at(nt, (iy, ix), theta)
-        from isorock.validate.core.verdict import quantile_verdict, rate_verdict
-        from isorock.validate.core.tolerances import limit
         # the map's counts judged as every count and ensemble is (core.verdict): overturning
         # as the share of cases that differ, θmax/α as the median difference where both survive
         overturn = rate_verdict(int(verdict.sum()), int(verdict.size), limit=limit("verdict_disagreement_rate"),
