@@ -449,19 +449,19 @@ def test_fragility_comparison_and_agreement_map_are_judged_by_the_verdict_rule()
     = −0.37, far beyond ±0.1: disagrees); the records are the bootstrap's units."""
     from isorock.campaign.products import agreement, fragility_comparisons
     rng = np.random.default_rng(5)
-    cap = 0.7 * np.exp(0.3 * rng.standard_normal(20))
+    cap = 0.7 * np.exp(0.3 * rng.standard_normal(12))
     levels = np.geomspace(0.2, 2.0, 30)  # a step of ln(level) of 0.08: finer than the ±0.1 limit
     cols = _suite_columns({"analytic": cap, "mujoco": cap, "bullet": cap / 1.45}, levels)
     got = {f["engine"]: f for f in fragility_comparisons(cols)}
-    assert got["mujoco"]["records"] == 20 and got["mujoco"]["verdicts"][0].n == 20
+    assert got["mujoco"]["records"] == 12 and got["mujoco"]["verdicts"][0].n == 12
     assert got["mujoco"]["verdicts"][0].word == "agrees"
     assert got["bullet"]["verdicts"][0].word == "disagrees"
     assert got["bullet"]["verdicts"][0].estimate == pytest.approx(-math.log(1.45), abs=0.05)
-    # the map over record × level: MuJoCo never differs (0 of 600: agrees), PyBullet's
+    # the map over record × level: MuJoCo never differs (0 of 360: agrees), PyBullet's
     # overturning differs wherever a level falls between its capacity and the model's
     maps = {m["engine"]: m for m in agreement(_suite_columns({"analytic": cap, "mujoco": cap, "bullet": cap / 1.45},
                                                             levels, theta_shift={"bullet": 0.1}),
                                               "frequency_ratio", "amplitude_ratio")}
     assert maps["mujoco"]["overturn_verdict"].word == "agrees" and maps["mujoco"]["theta_verdict"].word == "agrees"
     assert maps["bullet"]["overturn_verdict"].word == "disagrees"
-    assert maps["bullet"]["overturn_verdict"].estimate == pytest.approx(maps["bullet"]["verdict_differs"] / 600)
+    assert maps["bullet"]["overturn_verdict"].estimate == pytest.approx(maps["bullet"]["verdict_differs"] / 360)
