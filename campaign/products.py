@@ -180,6 +180,48 @@ def fragility_fits(cols) -> list[dict]:
     return out
 
 
+def _limit(engine: str, metric: str, fallback: float) -> float:
+    from isorock.validate.core.tolerances import has_tolerance, tolerance
+    return tolerance(engine, metric).limit if has_tolerance(engine, metric) else fallback
+
+
+def _judging():
+    """The confidence and the fewest cases of every statistical verdict (the tolerance table)."""
+    from isorock.validate.core.tolerances import limit
+    return dict(confidence=limit("verdict_confidence"), min_cases=int(limit("verdict_min_cases")))
+
+
+def fragility_comparisons(cols) -> list[dict]:
+    """Each contact (engine, setting)'s fragility against the analytic model's on the same
+    system and records, judged as validate's ensembles are (core.verdict.overturn_verdicts):
+    ln of the ratio of medians and Δ dispersion β, each with its interval from a paired
+    bootstrap over the records (a record's outcomes at every level drawn together) against
+    the tolerance table's limits: agrees, disagrees or inconclusive with the records that
+    would decide. A record at a level one engine lacks is left out of both."""
+    from isorock.validate.core.verdict import overturn_verdicts
+    reference, contacts = _engine_settings(cols)
+    if reference is None:
+        return []
+    out = []
+    for idx in _groups(cols, SYSTEM_KEYS):
+        g = _select(cols, idx)
+        ref = {(m, x): bool(o) for m, x, o in zip(*(_select(g, _is(g, reference))[k]
+                                                    for k in ("motion", "intensity", "overturned")))}
+        for pair in contacts:
+            c = _select(g, _is(g, pair))
+            rows = [(m, x, bool(o), ref[(m, x)]) for m, x, o in zip(c["motion"], c["intensity"], c["overturned"])
+                    if (m, x) in ref]
+            if not rows:
+                continue
+            motion, x, e, r = (np.array(v) for v in zip(*rows))
+            v = overturn_verdicts(x.astype(float), e, r, groups=motion, **_judging(),
+                                  median_limit=_limit(pair[0], "ensemble_overturn_median", math.nan),
+                                  dispersion_limit=_limit(pair[0], "ensemble_overturn_dispersion", math.nan))
+            out.append({"system": _system_label(g, 0), "engine": pair[0], "setting": pair[1],
+                        "records": len(set(motion.tolist())), "verdicts": v})
+    return out
+
+
 def fragility_figure(fits, path: Path) -> None:
     import matplotlib
     matplotlib.use("Agg")
@@ -232,7 +274,10 @@ def _nan(v):
 def agreement(cols, x: str, y: str) -> list[dict]:
     """Per contact (engine, setting): for each (x, y) cell, the fraction of cases whose
     verdict differs from the analytic one, and of those both survive, the fraction
-    whose θmax/α departs by more than the engine's tolerance."""
+    whose θmax/α departs by more than the engine's tolerance; and each engine's whole map
+    judged by core.verdict's rule (`overturn_verdict`, `theta_verdict`)."""
+    from isorock.validate.core.tolerances import limit
+    from isorock.validate.core.verdict import quantile_verdict, rate_verdict
     reference, contacts = _engine_settings(cols)
     if reference is None:
         return []
@@ -259,8 +304,16 @@ def agreement(cols, x: str, y: str) -> list[dict]:
         np.add.at(ns, (iy, ix), both_survive)
         nt = np.zeros(shape)
         np.add.at(nt, (iy, ix), theta)
+        # the map's counts judged as every count and ensemble is (core.verdict): overturning
+        # as the share of cases that differ, θmax/α as the median difference where both survive
+        overturn = rate_verdict(int(verdict.sum()), int(verdict.size), limit=limit("verdict_disagreement_rate"),
+                                quantity="share of cases whose overturning differs", **_judging())
+        d_theta = quantile_verdict(c["theta_max_over_alpha"][both_survive], r["theta_max_over_alpha"][both_survive],
+                                   limit=_limit(pair[0], "ensemble_theta_max_diff", tol),
+                                   quantity="Δ median θmax/α (both survive)", **_judging())
         with np.errstate(invalid="ignore", divide="ignore"):
             out.append({"engine": pair[0], "setting": pair[1], "x": x, "y": y, "xs": xs, "ys": ys,
+                        "overturn_verdict": overturn, "theta_verdict": d_theta,
                         "verdict": np.where(n > 0, nv / n, np.nan), "theta": np.where(ns > 0, nt / ns, np.nan),
                         "tolerance": tol, "cases": int(c["case"].size), "verdict_differs": int(verdict.sum()),
                         "both_survive": int(both_survive.sum()), "theta_departs": int(theta.sum())})
@@ -346,6 +399,19 @@ def write_products(table, out: Path, spec=None) -> list[Path]:
                              "records": f["records"], "median θ": f["fit"].median,
                              "θ 5%": f["fit"].median_band[0], "θ 95%": f["fit"].median_band[1],
                              "dispersion β": f["fit"].dispersion, "note": f["fit"].note} for f in fits]) + [""]
+        compared = fragility_comparisons(_select(cols, record_rows))
+        if compared:
+            lines += [f"Each contact engine against the analytic model, judged as `isorock validate` judges its "
+                      f"ensembles (core/verdict.py): the difference's {_judging()['confidence']:.0%} interval from a "
+                      "paired bootstrap over the records, against the tolerance table's limit: agrees when wholly "
+                      "within, disagrees when wholly beyond, else inconclusive (with the records that would "
+                      "decide). The median's interval is widened by the largest step of ln(intensity) between "
+                      "levels.", ""]
+            lines += _md_table([{"system": f["system"], "engine": f["engine"], "setting": f["setting"],
+                                 "records": f["records"],
+                                 **({"ln(median ratio)": f["verdicts"][0].cell(), "Δ dispersion β": f["verdicts"][1].cell()}
+                                    if f["verdicts"] else {"ln(median ratio)": "neither overturns, or both always",
+                                                           "Δ dispersion β": "–"})} for f in compared]) + [""]
     axes = None
     if spec is not None and "agreement" in spec.products:
         a = spec.products["agreement"]
@@ -359,8 +425,15 @@ def write_products(table, out: Path, spec=None) -> list[Path]:
             lines += ["## Agreement with the analytic model", "", "![agreement](agreement.png)", "",
                       "θmax/α tolerance: the tolerance table's `theta_max_diff` for the engine "
                       f"(else {DEFAULT_THETA_TOLERANCE}).", ""]
-            lines += _md_table([{k: m[k] for k in ("engine", "setting", "cases", "verdict_differs",
-                                                   "both_survive", "theta_departs", "tolerance")}
+            lines += _md_table([{**{k: m[k] for k in ("engine", "setting", "cases", "verdict_differs",
+                                                      "both_survive", "theta_departs", "tolerance")},
+                                 "overturning differs (share)": m["overturn_verdict"].cell(),
+                                 "Δ median θmax/α": m["theta_verdict"].cell()}
                                 for m in maps]) + [""]
+            lines += [f"Judged as every count and ensemble is (core/verdict.py), at "
+                      f"{_judging()['confidence']:.0%} confidence: the share of cases whose overturning differs "
+                      "by its exact interval against the tolerance table's verdict_disagreement_rate, the median "
+                      "θmax/α difference where both survive by its bootstrap interval against the engine's "
+                      "ensemble_theta_max_diff.", ""]
     write_text(out / "summary.md", "\n".join(lines) + "\n")
     return [out / "summary.md", *made]

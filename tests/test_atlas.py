@@ -148,5 +148,17 @@ def test_quick_outputs_exist_and_the_verdict_is_the_csvs(tmp_path, capsys):
             if best:
                 assert got["sim_per_wall"] == pytest.approx(speed[best][0] / speed[best][1], rel=1e-9)
                 assert f"{best} (" in line
+    # each preset's count of cells beyond a level, recomputed from the CSV, with scipy's own
+    # exact (Clopper–Pearson) interval: the count stress judges by (issue 20)
+    from scipy import stats
+    for s in data["presets"]:
+        mine = [r for r in rows if r["engine"] == s["engine"]]
+        for level in LEVELS:
+            beyond = sum(r["status"] != "ok" or abs(float(r["beta_error"])) > level for r in mine)
+            got = s["counts"][f"{level:g}"]
+            ci = stats.binomtest(beyond, len(mine)).proportion_ci(confidence_level=0.95, method="exact")
+            assert got["note"] == f"{beyond} of {len(mine)}" and got["n"] == len(mine)
+            assert got["interval"] == [pytest.approx(ci.low, abs=1e-9), pytest.approx(ci.high, abs=1e-9)]
+    assert "Cells beyond each level" in md
     stdout = capsys.readouterr().out
     assert "| engine | cheapest at ≤ 0.5% worst β error" in stdout and "| mujoco |" in stdout

@@ -424,3 +424,44 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     clock[0] += 3.0
     bar.update(len(batch.cases), ex.expected_cost(batch))
     assert "ETA     ? s" in out.getvalue()
+
+
+def _suite_columns(capacities: dict, levels, *, theta_shift: dict | None = None) -> dict:
+    """A campaign table's columns (those the products read) for a record suite: each engine
+    overturns a record at a level when the level reaches the record's capacity; θmax/α is
+    level / capacity (below 1), shifted per engine by theta_shift."""
+    rows = []
+    for engine, cap in capacities.items():
+        for j, c in enumerate(cap):
+            for k, x in enumerate(levels):
+                rows.append(dict(case=j * len(levels) + k, engine=engine, setting="default", base="fixed",
+                                 height=2.0, width=0.7, mass_ratio=math.nan, period=math.nan,
+                                 damping_ratio=math.nan, motion=f"record{j}", intensity=float(x),
+                                 amplitude_ratio=float(k), frequency_ratio=float(j), overturned=bool(x >= c),
+                                 theta_max_over_alpha=min(x / c, 0.99) + (theta_shift or {}).get(engine, 0.0)))
+    return {key: np.array([r[key] for r in rows]) for key in rows[0]}
+
+
+def test_fragility_comparison_and_agreement_map_are_judged_by_the_verdict_rule():
+    """Issue 20: a campaign's fragility comparison and agreement map are judged as validate's
+    ensembles are. Oracle: known lognormal capacities per record (θ 0.7 g, β 0.3); MuJoCo's
+    are the analytic model's (agrees), PyBullet's 1.45× lower (its median ratio ln 1/1.45
+    = −0.37, far beyond ±0.1: disagrees); the records are the bootstrap's units."""
+    from isorock.campaign.products import agreement, fragility_comparisons
+    rng = np.random.default_rng(5)
+    cap = 0.7 * np.exp(0.3 * rng.standard_normal(12))
+    levels = np.geomspace(0.2, 2.0, 30)  # a step of ln(level) of 0.08: finer than the ±0.1 limit
+    cols = _suite_columns({"analytic": cap, "mujoco": cap, "bullet": cap / 1.45}, levels)
+    got = {f["engine"]: f for f in fragility_comparisons(cols)}
+    assert got["mujoco"]["records"] == 12 and got["mujoco"]["verdicts"][0].n == 12
+    assert got["mujoco"]["verdicts"][0].word == "agrees"
+    assert got["bullet"]["verdicts"][0].word == "disagrees"
+    assert got["bullet"]["verdicts"][0].estimate == pytest.approx(-math.log(1.45), abs=0.05)
+    # the map over record × level: MuJoCo never differs (0 of 360: agrees), PyBullet's
+    # overturning differs wherever a level falls between its capacity and the model's
+    maps = {m["engine"]: m for m in agreement(_suite_columns({"analytic": cap, "mujoco": cap, "bullet": cap / 1.45},
+                                                            levels, theta_shift={"bullet": 0.1}),
+                                              "frequency_ratio", "amplitude_ratio")}
+    assert maps["mujoco"]["overturn_verdict"].word == "agrees" and maps["mujoco"]["theta_verdict"].word == "agrees"
+    assert maps["bullet"]["overturn_verdict"].word == "disagrees"
+    assert maps["bullet"]["overturn_verdict"].estimate == pytest.approx(maps["bullet"]["verdict_differs"] / 360)

@@ -1,10 +1,12 @@
 """The stress grid's quick subset: every case finite, in time, and (analytic) with
 its energy balance closed to 1e-6 of the input energy."""
 
+import pytest
+
 from isorock.analytic import System
 from isorock.validate.core.scenarios import Scenario
 from isorock.validate.tools.stress import (ENERGY_TOLERANCE, StressCase, compare_engines, drawn_cases, edge_cases,
-                                    run_case, run_stress, verdict)
+                                    run_case, run_stress, stress_verdict, verdict)
 
 
 def test_quick_edges_and_draws_pass_on_every_grid_engine():
@@ -70,3 +72,27 @@ def test_engines_are_compared_on_robust_overturning():
                dict(base, engine="bullet", case="d", overturned=False, status="slid")]
     compare_engines(results)
     assert [r["cross"] for r in results] == ["", "DISAGREE", "agree", "", "chaotic", "slid"]
+
+
+def test_each_engines_agreement_count_is_judged_as_the_ensembles_are():
+    """Issue 20: the count of robust comparisons is judged by core.verdict's rule on its
+    exact interval, per engine. 0 of 30: the upper bound 1 − 0.025^(1/30) = 11.6% is above
+    the 5% limit, inconclusive until 72 (0.025^(1/72) ≥ 0.95); 5 of 15 disagrees (the lower
+    bound 11.8% is above it); chaotic and slid cases are not counted."""
+    from isorock.validate.tools.stress import engine_agreement
+    from isorock.validate.core.verdict import AGREES, DISAGREES, INCONCLUSIVE
+    base = dict(verdict="pass", status="completed")
+    results = ([dict(base, engine="mujoco", case=f"m{i}", cross="agree") for i in range(30)]
+               + [dict(base, engine="mujoco", case="c", cross="chaotic"), dict(base, engine="mujoco", case="s", cross="slid")]
+               + [dict(base, engine="bullet", case=f"b{i}", cross="agree" if i >= 5 else "DISAGREE") for i in range(15)]
+)
+    counts = engine_agreement(results)
+    m, b = counts["mujoco"], counts["bullet"]
+    assert m.word == INCONCLUSIVE and m.n == 30 and m.n_needed == 72
+    assert m.interval[1] == pytest.approx(1 - 0.025 ** (1 / 30), rel=1e-9)
+    assert b.word == DISAGREES and b.n == 15 and b.interval[0] > 0.05
+    line = stress_verdict(results)
+    assert "mujoco 0 of 30" in line and "inconclusive (72 comparisons would decide)" in line
+    assert "bullet 5 of 15" in line and "disagrees" in line
+    assert engine_agreement([dict(base, engine="mujoco", case=f"m{i}", cross="agree") for i in range(80)])[
+        "mujoco"].word == AGREES

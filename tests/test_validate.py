@@ -328,3 +328,36 @@ def test_validate_scales_its_motions_to_a_target_pga():
         assert [round(m.pga_g, 12) for m, _ in motions] == [target, target]
     with pytest.raises(InputError, match="pga/pgv"):
         ReportConfig(pga=0.3, pgv=0.2)
+
+
+def test_the_verdict_line_names_what_the_ensembles_decided_and_with_what_confidence():
+    """Issue 20: the report's line says, per engine, which quantity agreed, disagreed or
+    stayed open, at the table's confidence, and the ensemble size the open ones need; the
+    scorecard shows the interval against the limit (never a margin on a fraction)."""
+    from isorock.validate.core.tolerances import judged, limit
+    from isorock.validate.core.verdict import AGREES, DISAGREES, INCONCLUSIVE, Verdict
+    from isorock.validate.tools.report_render import engine_verdicts, scorecard, verdict
+    from isorock.validate.tools.report_run import QUICK, ReportConfig, Results
+
+    def v(word, lo, hi, need=None):
+        return Verdict("q", (lo + hi) / 2, (lo, hi), 0.1, limit("verdict_confidence"), 6, word, need)
+
+    checks = [judged("mujoco", "ensemble_overturn_median", "ensemble a", v(AGREES, -0.05, 0.05)),
+              judged("mujoco", "ensemble_overturn_median", "ensemble b", v(INCONCLUSIVE, -0.2, 0.2, 12)),
+              judged("bullet", "ensemble_overturn_median", "ensemble a", v(DISAGREES, 0.3, 0.5)),
+              judged("bullet", "ensemble_theta_max_diff", "ensemble a", v(INCONCLUSIVE, -0.05, 0.05, 40))]
+    results = Results(config=ReportConfig(quick=True), engines={"analytic": None, "mujoco": None, "bullet": None},
+                      skipped={}, free=[], scenarios=[], ensembles=[], checks=checks, versions={}, started="")
+    line = verdict(results)
+    assert line.startswith("Result: FAILED — 1 of 4 checks failed (bullet ensemble_overturn_median)")
+    assert "ensembles judged at 95% confidence" in line
+    assert "MuJoCo overturning median 1 agrees, 1 inconclusive" in line
+    assert "PyBullet overturning median 1 DISAGREES, median θmax/α 1 inconclusive" in line
+    assert "about 12–40 cases would decide the inconclusive; this run judged 6" in line
+    words = engine_verdicts(results)
+    assert words["mujoco"][0] == "agrees with caveats" and words["bullet"][0] == "disagrees"
+    _, rows = scorecard(results)
+    cells = {r[0]: r for r in rows}["ensemble overturning (fragility)"]
+    assert "[-0.05, +0.05] within ±0.1 at 95%" in cells[2] and "inconclusive [-0.2, +0.2] against ±0.1" in cells[2]
+    assert "[+0.3, +0.5] beyond ±0.1" in cells[3]
+    assert all("margin" not in c for c in cells[1:])

@@ -18,13 +18,14 @@ from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import Trajectory
 from isorock.validate.core.measure import REST_FRACTION, beta_errors
+from isorock.validate.core.tolerances import limit
 
-#: Histories have parted once |Δθ| exceeds this fraction of α.
-AGREEMENT_FRACTION = 0.1
+#: Histories have parted once |Δθ| exceeds this fraction of α (the tolerance table's, with its reason).
+AGREEMENT_FRACTION = limit("horizon_parting")
 #: Common grid (s) both histories are resampled onto before differencing.
 COMPARE_DT = 1e-3
-#: Relative PGA perturbation used to tell whether a reference history is robust.
-SENSITIVITY_SCALE = 0.01
+#: Relative PGA perturbation used to tell whether a reference history is robust (the table's).
+SENSITIVITY_SCALE = limit("robust_perturbation")
 
 
 @dataclass(frozen=True)
@@ -175,9 +176,8 @@ def reference_sensitivity(system: System, motion: GroundMotion, *, duration: flo
 
 
 #: The analytic model's own horizon (issue 20): the motion scaled by 1 ± this, a
-#: record's accuracy (a 0.5% error of amplitude is well inside a strong-motion
-#: instrument's calibration).
-OWN_HORIZON_SCALE = 0.005
+#: record's accuracy (the tolerance table's, with its reason).
+OWN_HORIZON_SCALE = limit("own_horizon_perturbation")
 
 
 def horizon_units(horizon: float, ref: Trajectory, system: System) -> dict:

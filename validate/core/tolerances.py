@@ -151,6 +151,9 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
         0.004, f"{_MODEL}: Hunt–Crossley k 1e10, accuracy 1e-3 gives β within 0.07% fixed / 0.23% "
                "isolated over θ0 = 0.3–0.8α; measured ≤ 0.14% on the first 4 impacts from 0.5α "
                "(against the sphere geometry's own β fixed, the box's isolated: they differ by 0.02%)"),
+    # the ensemble's overturning fragility: limits of the physics, not of one engine (a campaign's
+    # fragility comparison judges Drake by them too)
+    **{("drake", m): t for m, t in _ENSEMBLE_OVERTURN.items()},
     ("drake", "first_impact_time_rel_error"): Tolerance(
         0.002, "against the corner-sphere geometry's exact t₁ (0.04% later than the box's); the "
                "integrator's accuracy 1e-3 and the 1 ms samples place it to ~0.3 ms; measured +0.056%"),
@@ -174,6 +177,24 @@ LIMITS: dict[str, Tolerance] = {
     "verdict_min_cases": Tolerance(
         5, "cases below which a statistical verdict is inconclusive whatever its interval: a bootstrap over "
            "one case has zero width, over a handful too few distinct resamples for a 95% interval", kind="min"),
+    "verdict_disagreement_rate": Tolerance(
+        0.05, "the share of cases in which an engine may part from the model before a count of them says it "
+              "disagrees (core.verdict.rate_verdict on the count's exact interval): stress's robust comparisons "
+              "of overturning (the model's outcome holds under ±3% of the motion, so chaos does not part them), "
+              "the atlas's cells at each β level, a campaign's agreement map; 1 in 20, the confidence's own "
+              "error rate: a sound engine parts only where the outcome sits on a threshold", kind="max"),
+    "horizon_parting": Tolerance(
+        0.1, "|Δθ|/α at which two histories have parted (the agreement horizon, core.compare): ten times the "
+             "contact engines' θ error while they agree (a peak within 0.02α, theta_max_diff) and below the "
+             "peak of any rocking half-cycle that matters, so a history past it has gone its own way"),
+    "robust_perturbation": Tolerance(
+        0.01, "relative change of the motion under which a reference history's θmax/α must hold (within "
+              "ROBUST_SPREAD, overturning unflipped) for its single-history checks to apply: model.md shows "
+              "±1% of PGA flipping overturning near the threshold"),
+    "own_horizon_perturbation": Tolerance(
+        0.005, "relative change of the motion under which the analytic model's own horizon is taken "
+               "(core.compare.own_horizon): a 0.5% error of amplitude is well inside a strong-motion "
+               "instrument's calibration, so no engine can be asked to hold longer than the model does then"),
     "stress_energy_residual": Tolerance(
         1e-6, "the analytic energy balance residual over the input energy, as for the report "
               "(analytic energy_residual): DOP853 at rtol 1e-10, room for long records"),
@@ -260,6 +281,9 @@ class Check:
     note: str = ""
     #: a statistical verdict's interval of the value (core.verdict), else None
     interval: tuple | None = None
+    #: a statistical verdict's cases (its ensemble size) and, when inconclusive, the size that would decide
+    cases: int | None = None
+    n_needed: int | None = None
 
     @property
     def passed(self) -> bool:
@@ -302,7 +326,8 @@ def judged(engine: str, metric: str, scenario: str, v, *, note: str = "") -> Che
     tol = tolerance(engine, metric)
     status = "pass" if v.word == AGREES else "fail" if v.word == DISAGREES else "inconclusive"
     return Check(engine, metric, scenario, v.estimate, v.limit, "within", tol.reason, status,
-                 "; ".join(filter(None, [v.describe(), note])), interval=tuple(v.interval))
+                 "; ".join(filter(None, [v.describe(), note])), interval=tuple(v.interval), cases=v.n,
+                 n_needed=v.n_needed)
 
 
 def skipped(engine: str, metric: str, scenario: str, note: str) -> Check:

@@ -48,16 +48,25 @@ class Verdict:
     word: str
     n_needed: int | None = None  # the ensemble size that would decide (inconclusive only)
     note: str = ""
+    #: how the interval is held against the limit: "±" (a difference, either sign) or "≤" (a
+    #: rate, never negative)
+    bound: str = "±"
 
     def describe(self) -> str:
         lo, hi = self.interval
         s = (f"{self.quantity} {self.estimate:+.3g}, {self.confidence:.0%} interval [{lo:+.3g}, {hi:+.3g}] "
-             f"against ±{self.limit:g} over {self.n} cases: {self.word}")
+             f"against {self.bound}{self.limit:g} over {self.n} cases: {self.word}")
         if self.word == INCONCLUSIVE:
             s += (f" (about {self.n_needed} cases would decide)" if self.n_needed
                   else " (the interval is open: a median beyond the intensities tried; a wider range would decide)"
                   if not (math.isfinite(lo) and math.isfinite(hi)) else " (the estimate sits on the limit)")
         return s + (f"; {self.note}" if self.note else "")
+
+    def cell(self) -> str:
+        """The verdict as one table cell: 'estimate [lo, hi] / ±limit: word'."""
+        lo, hi = self.interval
+        return f"{self.estimate:+.3g} [{lo:+.3g}, {hi:+.3g}] / {self.bound}{self.limit:g}: {self.word}" + (
+            f" ({self.n_needed} would decide)" if self.n_needed else "")
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -135,12 +144,18 @@ def _differences(a: tuple, b: tuple) -> tuple[float, float]:
 
 
 def overturn_verdicts(intensity, engine, reference, *, median_limit: float, dispersion_limit: float,
-                      confidence: float, min_cases: int, resamples: int = BOOTSTRAP, seed: int = 0) -> tuple[Verdict, Verdict] | None:
+                      confidence: float, min_cases: int, resamples: int = BOOTSTRAP, seed: int = 0,
+                      groups=None) -> tuple[Verdict, Verdict] | None:
     """The engine's lognormal fragility P(overturn | intensity) against the reference's:
     (ln of the ratio of medians, difference of dispersions β), each judged by `decide`
     on a paired bootstrap over the cases (one fit per side per resample). None where
     neither overturns in any case or both in every case (the ensemble says nothing
     about overturning).
+
+    `groups` (one label per case; None: every case its own): the units the bootstrap
+    resamples, and the n of the verdict. A record suite scaled to several intensities is
+    a sample of records, not of runs: a record's outcomes at every level are drawn
+    together (as core.fragility's band), so n is the number of records.
 
     The median's interval is widened on each side by the largest step of ln(intensity)
     between the cases: outcomes at discrete intensities place each median only within the
@@ -148,13 +163,27 @@ def overturn_verdicts(intensity, engine, reference, *, median_limit: float, disp
     still differ by up to a step; the bootstrap, resampling those same steps, cannot see it."""
     x = np.asarray(intensity, dtype=float)
     e, r = np.asarray(engine, dtype=bool), np.asarray(reference, dtype=bool)
-    n = x.size
     if (not e.any() and not r.any()) or (e.all() and r.all()):
         return None
+    members = ([np.array([i]) for i in range(x.size)] if groups is None else
+               [np.flatnonzero(np.asarray(groups) == g) for g in dict.fromkeys(np.asarray(groups).tolist())])
+    n = len(members)
     rng = np.random.default_rng(seed)
-    samples = np.array([_differences(_fit(x[i], e[i]), _fit(x[i], r[i]))
-                        for i in (rng.integers(0, n, n) for _ in range(resamples))], dtype=float)
-    dm, db = _differences(_fit(x, e), _fit(x, r))
+    fits: dict = {}
+
+    def fit(xs, ks):
+        # the likelihood depends only on the multiset of (intensity, outcome) pairs: resamples
+        # repeat them (and an engine that overturns as the model does repeats the model's), so
+        # each distinct one is fitted once: the same numbers, several times faster
+        key = tuple(sorted(zip(xs.tolist(), ks.tolist())))
+        if key not in fits:
+            fits[key] = _fit(xs, ks)
+        return fits[key]
+
+    samples = np.array([_differences(fit(x[i], e[i]), fit(x[i], r[i]))
+                        for i in (np.concatenate([members[j] for j in rng.integers(0, n, n)])
+                                  for _ in range(resamples))], dtype=float)
+    dm, db = _differences(fit(x, e), fit(x, r))
     levels = np.unique(x[x > 0])
     step = float(np.max(np.diff(np.log(levels)))) if levels.size > 1 else math.inf
     return (_judge("ln(median ratio)", dm, samples[:, 0], median_limit, confidence, n, min_cases, widen=step,
@@ -180,13 +209,56 @@ def quantile_verdict(engine, reference, *, limit: float, confidence: float, min_
                   limit, confidence, n, min_cases)
 
 
-def rate_interval(k: int, n: int, confidence: float) -> tuple[float, float]:
+def rate_interval(k: float, n: int, confidence: float) -> tuple[float, float]:
     """The exact (Clopper–Pearson) interval of a rate from k of n: what a count of
-    disagreements over a grid of cases says about the engine's rate, not only the count."""
+    disagreements over a grid of cases says about the engine's rate, not only the count.
+    k may lie between whole numbers (the beta quantiles take any k): `rate_verdict` asks
+    what a larger ensemble at the same rate would say."""
     from scipy import stats
     if n <= 0:
         return math.nan, math.nan
     a = 1 - confidence
-    lo = 0.0 if k == 0 else float(stats.beta.ppf(a / 2, k, n - k + 1))
-    hi = 1.0 if k == n else float(stats.beta.ppf(1 - a / 2, k + 1, n - k))
+    lo = 0.0 if k <= 0 else float(stats.beta.ppf(a / 2, k, n - k + 1))
+    hi = 1.0 if k >= n else float(stats.beta.ppf(1 - a / 2, k + 1, n - k))
     return lo, hi
+
+
+def rate_verdict(k: int, n: int, *, limit: float, confidence: float, min_cases: int,
+                 quantity: str = "disagreement rate") -> Verdict:
+    """A count judged by the same rule: k of n cases in which an engine parts from the
+    model (stress's robust comparisons, the atlas's cells, a campaign's map), the rate's
+    exact interval (`rate_interval`) against `limit`: disagrees when even its lower bound
+    exceeds the limit, agrees when its upper bound is within it, else inconclusive, with
+    the number of cases at the same rate whose exact interval would decide (the bound of
+    0 of n falls as 1/n, not 1/√n: found by search, not by the bootstrap's scaling)."""
+    if n <= 0:
+        return Verdict(quantity, math.nan, (math.nan, math.nan), limit, confidence, 0, INCONCLUSIVE, None, "no case",
+                       bound="≤")
+    rate = k / n
+    lo, hi = rate_interval(k, n, confidence)
+    if n < min_cases:
+        return Verdict(quantity, rate, (lo, hi), limit, confidence, n, INCONCLUSIVE, int(min_cases),
+                       f"{k} of {n}; fewer than {min_cases} cases: no interval", bound="≤")
+    word, _ = decide(rate, lo, hi, limit, n)
+    need = None
+    if word == INCONCLUSIVE and rate != limit:
+        need = _cases_to_decide(rate, n, limit, confidence)
+    return Verdict(quantity, rate, (lo, hi), limit, confidence, n, word, need, f"{k} of {n}", bound="≤")
+
+
+def _cases_to_decide(rate: float, n: int, limit: float, confidence: float, most: int = 10 ** 7) -> int | None:
+    """The least m > n whose exact interval at `rate` (k = rate·m) clears `limit` on the
+    rate's side; None beyond `most`."""
+    def decides(m):
+        lo, hi = rate_interval(rate * m, m, confidence)
+        return hi <= limit if rate < limit else lo > limit
+    lo_m, hi_m = n, n + 1
+    while not decides(hi_m):
+        lo_m, hi_m = hi_m, 2 * hi_m
+        if hi_m > most:
+            return None
+    while hi_m - lo_m > 1:
+        mid = (lo_m + hi_m) // 2
+        lo_m, hi_m = (lo_m, mid) if decides(mid) else (mid, hi_m)
+    return hi_m
+

@@ -363,6 +363,7 @@ def summarize(label: str, rows: list[dict]) -> dict:
         # perfectly inelastic impact of model.md), which is where the largest β errors come from
         "largest_hop": max(hops) if hops else None,
         "sim_s": sim, "loop_s": loop, "wall_s": wall, "cpu_s": cpu,
+        "counts": {f"{level:g}": cell_count(rows, level).as_dict() for level in LEVELS},
     }
 
 
@@ -381,6 +382,20 @@ def similarity(judged: list[dict]) -> dict:
     spread_t1 = [max(v) - min(v) for v in t1 if len(v) > 1]
     return {"similarity_beta_spread": max(spread_beta, default=None),
             "similarity_t1_spread": max(spread_t1, default=None)}
+
+
+def cell_count(rows: list[dict], level: float):
+    """The preset's cells beyond `level` (β error above it, or not judged: failed, slid,
+    overturned, missed an impact, too slow) of all its cells, judged as every agreement
+    count is (core.verdict.rate_verdict, as stress's): the exact interval of the rate at
+    which systems of the grid's range part from the closed form by more than the level.
+    The atlas's verdict stays the worst case over the grid (`qualifies`); the count says
+    how far one bad cell generalises."""
+    from isorock.validate.core.verdict import rate_verdict
+    beyond = sum(r["status"] != OK or abs(r["beta_error"]) > level for r in rows)
+    return rate_verdict(beyond, len(rows), limit=limit("verdict_disagreement_rate"),
+                        confidence=limit("verdict_confidence"), min_cases=int(limit("verdict_min_cases")),
+                        quantity=f"share of cells beyond {100 * level:g}%")
 
 
 def qualifies(summary: dict, level: float) -> bool:
@@ -435,6 +450,12 @@ HOP_FLOOR = 1e-5
 
 def _hop(x) -> str:
     return "—" if x is None else "none" if x <= HOP_FLOOR else f"{1000 * x:.2g} mm"
+
+
+def _count_cell(c: dict) -> str:
+    lo, hi = c["interval"]
+    need = f" ({c['n_needed']} cells would decide)" if c["n_needed"] else ""
+    return f"{c['note']}: [{_pct(lo)}, {_pct(hi)}] {c['word']}{need}"
 
 
 def _failures_text(failures: dict) -> str:
@@ -505,6 +526,15 @@ def markdown(atlas: dict, *, quick: bool) -> str:
             f"{_pct(s['worst_beta_error_by_height'].get(h))} / {_pct(s['worst_t1_error_by_height'].get(h))}"
             for h in grid.heights) + " |")
     lines += by_height
+    lines += ["", f"Cells beyond each level, judged as every agreement count is (core.verdict.rate_verdict, as "
+                  f"`isorock stress`): the exact {limit('verdict_confidence'):.0%} interval of the share of the "
+                  f"grid's systems that part from the closed form by more than the level (or are not judged), "
+                  f"against ≤ {100 * limit('verdict_disagreement_rate'):g}%. The verdict above stays the worst "
+                  "case; this says how far one bad cell generalises.", "",
+              "| preset | " + " | ".join(f"beyond {100 * lv:g}%" for lv in LEVELS) + " |",
+              "|---|" + "---|" * len(LEVELS)]
+    for s in atlas["presets"]:
+        lines.append(f"| {s['engine']} | " + " | ".join(_count_cell(s["counts"][f"{lv:g}"]) for lv in LEVELS) + " |")
     for alias, label in atlas["aliases"].items():
         lines.append(f"\n{alias}: the same settings as {label}, not run again.")
     for label, why in atlas["skipped"].items():

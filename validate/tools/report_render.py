@@ -97,9 +97,8 @@ def engine_verdicts(results: Results) -> dict:
         if idle:
             reasons.append(f"{len(idle)} not exercised (no engine lifted the block there)")
         if open_:
-            need = [c.note for c in open_]
-            reasons.append(f"{len(open_)} inconclusive (an ensemble's interval straddles its limit: "
-                           f"{'; '.join(need)})")
+            reasons.append(f"{len(open_)} inconclusive at {_confidence():.0%} (an ensemble's interval straddles "
+                           f"its limit: {_tally(open_, words=False)}{_would_decide(open_)})")
         reasons += odd
         word = (DISAGREES if fails else UNTESTED if not passes else
                 CAVEATS if (skips or idle or odd or open_) else AGREES)
@@ -119,10 +118,12 @@ def verdict(results: Results) -> str:
                         if n != REFERENCE)
     skipped_engines = f" Engines skipped: {', '.join(results.skipped)}." if results.skipped else ""
     tail = f"({n_skip} skipped, {n_idle} not exercised)"
-    if stats:  # what the ensembles decided, and with what confidence
-        words = [("agree", "pass"), ("disagree", "fail"), ("inconclusive", INCONCLUSIVE)]
-        tail += (f"; ensembles judged at {_confidence():.0%} confidence: "
-                 + ", ".join(f"{sum(c_.status == st for c_ in stats)} {w}" for w, st in words))
+    if stats:  # what the ensembles decided, per engine and quantity, and with what confidence
+        per_engine = "; ".join(f"{_label(n)} {_tally([c for c in stats if c.engine == n])}"
+                               for n in dict.fromkeys(c.engine for c in stats))
+        open_ = [c for c in stats if c.status == INCONCLUSIVE]
+        tail += (f"; ensembles judged at {_confidence():.0%} confidence, the interval against the limit: "
+                 f"{per_engine}{_would_decide(open_)}")
     if failed:
         worst = ", ".join(sorted({f"{c.engine} {c.metric}" for c in failed}))
         head = f"Result: FAILED — {len(failed)} of {len(checks)} checks failed ({worst}) {tail}"
@@ -131,6 +132,40 @@ def verdict(results: Results) -> str:
     else:
         head = f"Result: all {n_pass} checks passed {tail}"
     return f"{head}. {engines}.{skipped_engines}" if engines else f"{head}.{skipped_engines}"
+
+
+#: What each statistical check decides, in the verdict line's words.
+DECIDES = {"ensemble_overturn_median": "overturning median", "ensemble_overturn_dispersion": "overturning dispersion",
+           "ensemble_theta_max_diff": "median θmax/α"}
+_WORDS = {"pass": "agrees", "fail": "DISAGREES", INCONCLUSIVE: "inconclusive"}
+
+
+def _tally(checks, words: bool = True) -> str:
+    """Statistical checks counted per quantity and outcome: 'overturning median 2 agrees,
+    median θmax/α 1 inconclusive' (words=False: the quantities only, with their counts)."""
+    out = []
+    for metric in dict.fromkeys(c.metric for c in checks):
+        mine = [c for c in checks if c.metric == metric]
+        name = DECIDES.get(metric, metric)
+        if not words:
+            out.append(f"{name} ×{len(mine)}" if len(mine) > 1 else name)
+            continue
+        counts = {w: sum(_WORDS.get(c.status, c.status) == w for c in mine) for w in dict.fromkeys(
+            _WORDS.get(c.status, c.status) for c in mine)}
+        out.append(f"{name} " + ", ".join(f"{k} {w}" for w, k in counts.items()))
+    return ", ".join(out)
+
+
+def _would_decide(open_) -> str:
+    """The ensemble sizes the inconclusive checks name, as a range against the cases run."""
+    need = sorted({c.n_needed for c in open_ if c.n_needed})
+    if not need:
+        return ""
+    ran = sorted({c.cases for c in open_ if c.cases})
+
+    def span(v):
+        return f"{v[0]}" if len(v) == 1 else f"{v[0]}–{v[-1]}"
+    return f" (about {span(need)} cases would decide the inconclusive; this run judged {span(ran)})"
 
 
 def scorecard(results: Results) -> tuple[list, list]:
@@ -160,7 +195,8 @@ def _score(checks) -> str:
             worst = min(with_margin, key=lambda x: x[0])[1]
             if worst.interval is not None:
                 lo, hi = worst.interval
-                parts.append(f"worst [{lo:+.3g}, {hi:+.3g}] within ±{worst.limit:g} at {_confidence():.0%}")
+                where = "within" if worst.status == "pass" else "beyond"
+                parts.append(f"worst [{lo:+.3g}, {hi:+.3g}] {where} ±{worst.limit:g} at {_confidence():.0%}")
             else:
                 sign = {"max": "≤", "min": "≥", "equal": "="}[worst.kind]
                 parts.append(f"worst {_f(worst.value, '.3g')} {sign} {worst.limit:g} ({_margin_text(worst)})")

@@ -35,7 +35,7 @@ from isorock.analytic.kinematics import LYING
 from isorock.validate.core.engines import REFERENCE
 from isorock.validate.core.scenarios import Scenario, block
 from isorock.validate.core.tolerances import limit
-from isorock.validate.core.verdict import rate_interval
+from isorock.validate.core.verdict import rate_verdict
 
 #: The stress grid's limits, with their reasons, are in the one tolerance table.
 ENERGY_TOLERANCE = limit("stress_energy_residual")
@@ -311,6 +311,26 @@ def summary(results) -> dict:
             "slid": cross.count("slid"), "chaotic": cross.count("chaotic")}
 
 
+def engine_agreement(results) -> dict:
+    """Per contact engine, its robust overturning comparisons judged as a count by the
+    rule every ensemble is judged by (core.verdict.rate_verdict): the exact interval of its
+    disagreement rate against the table's verdict_disagreement_rate, at the table's confidence."""
+    out = {}
+    for engine in dict.fromkeys(r["engine"] for r in results if r.get("cross") in ("agree", "DISAGREE")):
+        cross = [r["cross"] for r in results if r["engine"] == engine]
+        out[engine] = rate_verdict(cross.count("DISAGREE"), cross.count("agree") + cross.count("DISAGREE"),
+                                   limit=limit("verdict_disagreement_rate"), confidence=limit("verdict_confidence"),
+                                   min_cases=int(limit("verdict_min_cases")), quantity=f"{engine} disagreement rate")
+    return out
+
+
+def _count_text(v) -> str:
+    """One engine's count as the verdict line says it."""
+    lo, hi = v.interval
+    s = f"{v.note}, rate {100 * lo:.1f}–{100 * hi:.1f}% against ≤ {100 * v.limit:g}%: {v.word}"
+    return s + (f" ({v.n_needed} comparisons would decide)" if v.n_needed else "")
+
+
 def failures(results) -> list[dict]:
     """Runs that broke (their verdict) or disagree with a robust reference."""
     return [r for r in results if r["verdict"] != "pass" or r.get("cross") == "DISAGREE"]
@@ -320,10 +340,10 @@ def stress_verdict(results) -> str:
     s = summary(results)
     compared = s["agree"] + s["disagree"]
     rate = f"{100 * s['agree'] / compared:.1f}%" if compared else "–"
-    if compared:  # what the count says about the engines' rate, at the table's confidence (core.verdict)
-        conf = limit("verdict_confidence")
-        lo, hi = rate_interval(s["disagree"], compared, conf)
-        rate += f"; disagreement rate {100 * lo:.1f}–{100 * hi:.1f}% at {conf:.0%} confidence"
+    counts = engine_agreement(results)
+    if counts:  # what each engine's count says about its rate, judged as every ensemble is (core.verdict)
+        rate += (f"; disagreements per engine at {limit('verdict_confidence'):.0%} confidence: "
+                 + "; ".join(f"{e} {_count_text(v)}" for e, v in counts.items()))
     head = "stress: PASS" if not failures(results) else "stress: FAIL"
     return (f"{head} — {s['runs']} runs of {s['cases']} cases: {s['fail']} broke; contact engines agree with the "
             f"analytic model on overturning in {s['agree']} of {compared} robust comparisons ({rate}), "
