@@ -87,7 +87,7 @@ from .limits import available_cores
 from .overturning import describe, theta_max_over_alpha
 from .settings import AnalyticSettings
 from .motion import GroundMotion
-from .engine_protocol import run_inputs
+from .engine_protocol import check_isolator_kind, run_inputs
 from .status import Status
 from .system import LINEAR, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
@@ -1177,9 +1177,8 @@ def _check_settings(settings: AnalyticSettings | None) -> AnalyticSettings:
 
 def _check_isolator(system) -> None:
     """The kernel carries the linear isolator only: any other is refused, never run as linear."""
-    if isinstance(system, System) and system.isolator_kind != LINEAR:
-        raise InputError(f"isolator = {system.isolator_kind}: the compiled kernel (engine 'analytic') carries "
-                         "the linear isolator only; use engine 'analytic-reference'")
+    if isinstance(system, System):
+        check_isolator_kind(system, (LINEAR,), "the compiled kernel (engine 'analytic')")
 
 
 def _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0, impact_threshold):

@@ -24,7 +24,7 @@ from .engine_protocol import run_inputs
 from .errors import require
 from .settings import AnalyticSettings
 from .status import Status
-from .system import System
+from .system import ISOLATOR_KINDS, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
 # state vector: u, u̇, θ, θ̇, ground work W, dashpot loss D
@@ -73,7 +73,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: An
     """
     settings = settings or AnalyticSettings()
     motion, duration = run_inputs(system, motion, duration, theta0, impact_threshold,
-                                  theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0)
+                                  theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS)
     integrator = _Integrator if system.fixed_base or system.isolator is None else _IsolatorIntegrator
     return integrator(system, motion, settings, duration, progress, impact_threshold).run(
         theta0, theta_dot0, u0, u_dot0)

@@ -273,7 +273,7 @@ def isolator_params(system, rest_velocity: float):
         ip[I_KEL] = (1.0 - iso.post_yield_ratio) * iso.stiffness
         ip[I_FSLIP] = ip[I_KEL] * iso.yield_displacement
     else:  # the pendulum's normal force is M·g in both modes (docs/isolators.md)
-        ip[I_FSLIP] = iso.friction * system.total_mass * system.gravity
+        ip[I_FSLIP] = iso.friction_coefficient * system.total_mass * system.gravity
     return sp, ip
 
 

@@ -80,25 +80,26 @@ MAX_FRICTION_COEFFICIENT = 1.0
 @dataclass(frozen=True)
 class FrictionPendulum:
     """A single concave friction pendulum: the base slides on a spherical surface of
-    `radius` R_fp (m) with Coulomb friction `friction` μ_f (dimensionless). Its restoring
-    force is (M·g/R_fp)·u and its friction μ_f·M·g (docs/isolators.md: the normal force
-    is taken as M·g in both modes, and why). A double concave slider (and μ_f(v)) is not
-    modelled yet."""
+    `radius` R_fp (m) with Coulomb friction coefficient `friction_coefficient` μ_f. Its
+    restoring force is (M·g/R_fp)·u and its friction μ_f·M·g (docs/isolators.md: the
+    normal force is taken as M·g in both modes, and why). A double concave slider (and
+    μ_f(v)) is not modelled yet."""
 
     radius: float
-    friction: float
+    friction_coefficient: float
     kind = FRICTION_PENDULUM
 
     def __post_init__(self):
         object.__setattr__(self, "radius", require_positive_finite("radius", self.radius))
-        mu = require_nonnegative_finite("friction", self.friction)
-        require(mu <= MAX_FRICTION_COEFFICIENT, "friction", self.friction,
+        mu = require_nonnegative_finite("friction_coefficient", self.friction_coefficient)
+        require(mu <= MAX_FRICTION_COEFFICIENT, "friction_coefficient", self.friction_coefficient,
                 f"a friction coefficient in [0, {MAX_FRICTION_COEFFICIENT:g}]")
-        object.__setattr__(self, "friction", mu)
+        object.__setattr__(self, "friction_coefficient", mu)
 
     def describe(self, total_mass: float, gravity: float) -> dict:
-        return {"isolator": FRICTION_PENDULUM, "radius": self.radius, "friction": self.friction,
-                "friction_force": self.friction * total_mass * gravity}
+        return {"isolator": FRICTION_PENDULUM, "radius": self.radius,
+                "friction_coefficient": self.friction_coefficient,
+                "friction_force": self.friction_coefficient * total_mass * gravity}
 
 
 
