@@ -204,7 +204,7 @@ class _Integrator:
                 verdict = 3  # past α and falling, nothing left to pull it back
                 break
             if mode == 0:
-                fun, evs = self.rhs_translation, self.uplift_events()
+                fun, evs = self.rhs_translation, self.translation_events(t, y)
             else:
                 fun, evs = self.rhs_rocking(mode), self.rocking_events(mode, t, y)
             if not sys.fixed_base:
@@ -300,6 +300,9 @@ class _Integrator:
             return self.lift(t, new), y
         self.graze = True
         return 0, y
+
+    def translation_events(self, t0, y0):
+        return self.uplift_events()
 
     def after_impact(self, t, y, mode):
         """An impact changed u̇ (a non-linear isolator's slider may stick or slip anew)."""
@@ -403,6 +406,10 @@ class _IsolatorIntegrator(_Integrator):
         self.phase, self.u_p = 0, 0.0
         self.out_phase, self.out_up = [], []
         self.isolator_log = []  # (t, phase after, u) at every change of the slider's phase
+        # u̇ ≡ 0 while the pendulum's base is pinned: its extremes are the pinned states
+        # themselves, and an event function that is zero throughout fires at every step
+        self.base_peak = _event(lambda t, y: 1.0 if self.friction and self.phase == 0 else y[UD], "base-peak", 0)
+        self.base_peak.terminal = False
 
     # the slider's state --------------------------------------------------------------
     def initial_state(self, u0, u_dot0, theta0, theta_dot0):
@@ -420,8 +427,7 @@ class _IsolatorIntegrator(_Integrator):
     def stick_or_slip(self, t, y, mode):
         """A pendulum's phase at rest (u̇ = 0): 0 if its demand is within F_s, else its sign."""
         demand = physics.stick_demand(self.sp, mode, y[TH], y[THD], y[U], self.xg(t))
-        f_s = self.ip[physics.I_FSLIP]
-        return 0 if abs(demand) <= f_s else (1 if demand > 0 else -1)
+        return 0 if abs(demand) <= physics.stick_limit(self.sp, self.ip) else (1 if demand > 0 else -1)
 
     def set_phase(self, t, y, phase):
         if phase == self.phase:
@@ -499,15 +505,20 @@ class _IsolatorIntegrator(_Integrator):
         return f
 
     # events ----------------------------------------------------------------------------
-    def slider_events(self, mode):
+    def slider_events(self, mode, t0, y0, fun):
         """The slider's phase changes: a slipping one stops (u̇ crosses 0, side 0); a stuck
         one slips (side ±1) when the pendulum's demand, or the bearing's elastic force,
-        reaches F_s that way."""
+        reaches F_s that way. A slip that starts from u̇ = 0 (the pendulum's, from rest or
+        reversing) is watched as σ·u̇/(t − t0), which starts at σ·ü(t0) > 0 (STICK_BAND),
+        so that the start itself is never taken for its end."""
         ph = self.phase
         if ph != 0:
-            return [_event(lambda t, y: ph * y[UD], "isolator", -1, side=0)]
+            if y0[UD] != 0.0:
+                return [_event(lambda t, y: ph * y[UD], "isolator", -1, side=0)]
+            start = ph * fun(t0, y0)[1]
+            return [_event(lambda t, y: ph * y[UD] / (t - t0) if t > t0 else start, "isolator", -1, side=0)]
         if self.friction:
-            sp, f_s = self.sp, self.ip[physics.I_FSLIP]
+            sp, f_s = self.sp, physics.stick_limit(self.sp, self.ip)
 
             def demand(t, y):
                 return physics.stick_demand(sp, mode, y[TH], y[THD], y[U], self.xg(t))
@@ -524,10 +535,13 @@ class _IsolatorIntegrator(_Integrator):
         def a(t, y):
             return physics.isolator_base_acceleration(sp, ip, ph, y[U], y[UD], up, self.xg(t))
         return [_event(lambda t, y: -a(t, y) - thr, "uplift", +1, side=1),
-                _event(lambda t, y: a(t, y) - thr, "uplift", +1, side=-1)] + self.slider_events(0)
+                _event(lambda t, y: a(t, y) - thr, "uplift", +1, side=-1)]
+
+    def translation_events(self, t0, y0):
+        return self.uplift_events() + self.slider_events(0, t0, y0, self.rhs_translation)
 
     def rocking_events(self, s, t0, y0):
-        return super().rocking_events(s, t0, y0) + self.slider_events(s)
+        return super().rocking_events(s, t0, y0) + self.slider_events(s, t0, y0, self.rhs_rocking(s))
 
     # result ------------------------------------------------------------------------------
     def store(self, sol, t0, t1, mode):

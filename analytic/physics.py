@@ -339,6 +339,17 @@ def stick_demand(sp, mode, theta, theta_dot, u, xg):
     return f
 
 
+#: A pinned pendulum slips once its demand exceeds F_s by STICK_BAND·M·g: far below physics
+#: (a delay of 1e-12·g/|dD/dt·1/M| s), far above rounding, so that a slip always starts with
+#: an acceleration of its own sign and never flips back at once (a zero-length phase).
+STICK_BAND = 1e-12
+
+
+def stick_limit(sp, ip):
+    """The demand (N) up to which a pinned pendulum's slider holds: F_s + STICK_BAND·M·g."""
+    return ip[I_FSLIP] + STICK_BAND * sp[M_TOTAL] * sp[G]
+
+
 def slip_power(ip, phase, u_dot):
     """F_s·|u̇| while slipping (q·u̇_p, ≥ 0), the rate of the hysteretic or friction loss (W)."""
     return phase * ip[I_FSLIP] * u_dot if phase != 0 else 0.0
