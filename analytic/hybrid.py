@@ -354,6 +354,12 @@ class _Integrator:
     def function_order(self, s, t0, y0):
         return physics.impact_function_order(self.sp, s, y0[U], y0[UD], y0[THD], self.xg(t0))
 
+    def friction_demand(self, t, y, mode):
+        """The largest |F_x/F_z| at the block's pivot over the stored states (physics.pivot_force_ratio)."""
+        sp = self.sp
+        return max((physics.pivot_force_ratio(sp, int(mode[i]), y[TH, i], y[THD, i], y[U, i], y[UD, i],
+                                              self.xg(t[i])) for i in range(t.size)), default=0.0)
+
     @staticmethod
     def first_terminal(sol, evs):
         best = None
@@ -371,8 +377,7 @@ class _Integrator:
         s = np.where(mode == 0, 1.0, mode)
         kin = physics.kinetic_energy(sp, s, y[UD], y[TH], y[THD])
         pot = physics.potential_energy(sp, s, y[U], y[TH])
-        demand = max((physics.pivot_force_ratio(sp, int(mode[i]), y[TH, i], y[THD, i], y[U, i], y[UD, i],
-                                                self.xg(t[i])) for i in range(t.size)), default=0.0)
+        demand = self.friction_demand(t, y, mode)
         cum = cumulative_impact_loss(t, [i.t for i in self.impacts], self.losses)
         log = EnergyLog(kinetic=kin, potential=pot, ground_work=y[W], dashpot_loss=y[D], impact_loss=cum,
                         per_impact=tuple(self.losses))
@@ -455,6 +460,10 @@ class _IsolatorIntegrator(_Integrator):
         if ev.side == 0:  # a slipping slider's u̇ crossed 0: located to rounding, made exact
             y[UD] = 0.0
             new = self.stick_or_slip(t, y, mode) if self.friction else 0
+            if new == self.phase:
+                # u̇ fell through 0, so σ·demand ≤ F_s: slipping on the same way is rounding
+                # (it would start and end at once, without end); the slider holds
+                new = 0
         else:
             new = ev.side
         self.set_phase(t, y, new)
@@ -564,14 +573,17 @@ class _IsolatorIntegrator(_Integrator):
                         ground_work=e.ground_work, dashpot_loss=e.dashpot_loss, impact_loss=e.impact_loss,
                         per_impact=e.per_impact, isolator_loss=y[S_LOSS])
         extras = dict(tr.extras)
-        extras["friction_demand"] = float(max((self.pivot_ratio(int(tr.mode[i]), int(phase[i]), y[:, i], u_p[i],
-                                                                float(tr.t[i])) for i in range(tr.t.size)),
-                                              default=0.0))
         extras["isolator"] = self.sys.isolator_kind
         extras["isolator_phase"] = phase
         extras["isolator_slider"] = u_p
         extras["isolator_events"] = tuple(self.isolator_log)
         return replace(tr, energy=log, extras=extras)
+
+    def friction_demand(self, t, y, mode):
+        phase = np.concatenate(self.out_phase) if self.out_phase else np.zeros(1, np.int8)
+        u_p = np.concatenate(self.out_up) if self.out_up else np.zeros(1)
+        return max((self.pivot_ratio(int(mode[i]), int(phase[i]), y[:, i], u_p[i], float(t[i]))
+                    for i in range(t.size)), default=0.0)
 
     def pivot_ratio(self, mode, phase, y, u_p, t):
         """physics.pivot_force_ratio on the isolator: the friction the block needs on the base."""
