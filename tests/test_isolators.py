@@ -275,6 +275,9 @@ def test_registry_refuses_what_an_engine_does_not_carry(engine):
     assert f"'{engine}'" in str(err.value) and "friction-pendulum" in str(err.value)
     with pytest.raises(InputError):
         e.simulate_many([(bearing(), None, 1.0, 0.0)])
+    if e.has_scene:  # nor is its model file written with a linear spring in the device's place
+        with pytest.raises(InputError, match="isolator = bilinear"):
+            e.scene_text(bearing())
 
 
 def test_shared_engine_checks_refuse_by_default():
