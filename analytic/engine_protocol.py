@@ -47,13 +47,17 @@ class Capabilities:
     here); past_alpha: it simulates beyond |θ| = α (model.md, "Past α"); batch: it runs
     many cases in one call (`simulate_batch`); exact_impacts: its impacts are located as
     events of the rigid model, not measured from a contact history; campaigns: it is fast
-    enough for grids of thousands of runs (bench and stress run it unless told otherwise)."""
+    enough for grids of thousands of runs (bench and stress run it unless told otherwise);
+    isolators: the isolator kinds it carries (System.isolator_kind; every engine the
+    linear one, the SciPy reference path every kind: docs/isolators.md). Any other is
+    refused with one line, never run as linear."""
 
     isolated_base: bool = True
     past_alpha: bool = True
     batch: bool = False
     exact_impacts: bool = False
     campaigns: bool = True
+    isolators: tuple[str, ...] = ("linear",)
 
 
 @dataclass(frozen=True)
@@ -121,19 +125,23 @@ FREE_DURATION = 10.0
 
 def run_inputs(system: "System", motion: "GroundMotion | None", duration: float | None, theta0: float,
                impact_threshold: float, *, theta_dot0: float = 0.0, u0: float = 0.0,
-               u_dot0: float = 0.0, settings=None) -> tuple[GroundMotion, float]:
+               u_dot0: float = 0.0, settings=None,
+               isolators: tuple[str, ...] = ("linear",)) -> tuple[GroundMotion, float]:
     """What every engine's `simulate` takes, checked in one place so that all engines
     accept and refuse the same inputs with the same messages: (motion, duration) after the
     shared checks: `none` motion is zero ground
     acceleration; the default duration is the motion's end + 5 s, or 10 s without motion;
     θ0 (rad) must be a finite tilt below α; the counting threshold in [0, 1). The work
     bounds of analytic.limits: the duration, the isolator periods it spans and, when the
-    engine's `settings` are given, the steps they imply."""
+    engine's `settings` are given, the steps they imply. `isolators`: the isolator kinds the
+    calling engine carries (Capabilities.isolators): a System on another is refused, so
+    that no engine runs a friction pendulum or a bilinear bearing as a linear spring."""
     from .errors import InputError, require, require_positive_finite
     from .limits import check_duration, check_isolator, check_settings
     from .motion import GroundMotion
     from .system import System
     require(isinstance(system, System), "system", system, "a System")
+    check_isolator_kind(system, isolators)
     motion = motion or GroundMotion.zero()
     given = duration is not None
     if not given:
@@ -158,4 +166,13 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     return motion, duration
 
 
-__all__ = ["DEFAULT_IMPACT_THRESHOLD", "EngineSpec", "Capabilities", "Simulate", "Tuning", "run_inputs", "TAIL_AFTER_MOTION", "FREE_DURATION"]
+def check_isolator_kind(system: "System", isolators: tuple[str, ...], engine: str = "this engine") -> None:
+    """One line refusing a System whose isolator `engine` does not carry (Capabilities.isolators)."""
+    from .errors import InputError
+    kind = system.isolator_kind
+    if kind not in isolators:
+        raise InputError(f"isolator = {kind}: {engine} carries the {', '.join(isolators)} isolator only, not a "
+                         f"{kind} one (engine 'analytic-reference' carries it; docs/isolators.md)")
+
+
+__all__ = ["check_isolator_kind", "DEFAULT_IMPACT_THRESHOLD", "EngineSpec", "Capabilities", "Simulate", "Tuning", "run_inputs", "TAIL_AFTER_MOTION", "FREE_DURATION"]

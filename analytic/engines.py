@@ -3,6 +3,7 @@ presets: "analytic", the compiled kernel (analytic.fast), and "analytic-referenc
 same model on SciPy's DOP853 (analytic.hybrid), which the kernel is tested against."""
 from .engine_protocol import Capabilities, EngineSpec
 from .settings import AnalyticSettings as Settings
+from .system import ISOLATOR_KINDS
 
 PRESETS = {"default": Settings, "conservative": lambda: Settings(overturn="alpha")}
 
@@ -35,7 +36,7 @@ REFERENCE_ENGINE = EngineSpec(
     simulate=simulate_reference,
     # a run takes a second where the compiled engine takes milliseconds: no grid engine
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=True,
-                              campaigns=False),
+                              campaigns=False, isolators=ISOLATOR_KINDS),
     presets=PRESETS, ladder=ladder)
 
 __all__ = ["ENGINE", "REFERENCE_ENGINE", "Settings", "simulate", "simulate_reference", "ladder"]

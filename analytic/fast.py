@@ -85,9 +85,9 @@ from .limits import available_cores
 from .overturning import describe, theta_max_over_alpha
 from .settings import AnalyticSettings
 from .motion import GroundMotion
-from .engine_protocol import run_inputs
+from .engine_protocol import check_isolator_kind, run_inputs
 from .status import Status
-from .system import System
+from .system import LINEAR, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
 ENGINE = "analytic"
@@ -190,12 +190,12 @@ def _compile_physics():
     numba compiles them into the kernel (inlined where small) when the kernel compiles."""
     table = dict(vars(physics))
     inline = ("ground_acceleration", "piece_acceleration", "pulse_acceleration", "translation_acceleration",
-              "rocking_accelerations", "base_acceleration", "oscillator_constants",
+              "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "oscillator_constants",
               "free_vibration_change", "rocking_pivot_force_ratio", "_times_a")
     for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
-                 "rocking_accelerations", "base_acceleration", "uplift_direction", "relift",
-                 "impact_function_order", "impact_continues", "impact_map", "kinetic_energy",
+                 "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
+                 "relift", "lifts_clearly", "impact_function_order", "lift_order", "impact_continues", "impact_map", "kinetic_energy",
                  "impact_energy_loss", "pivot_force_ratio", "rocking_pivot_force_ratio", "overturn_code", "_bisect_ricker",
                  "_pulse_crossings", "first_uplift", "oscillator_constants", "free_vibration_change",
                  "free_vibration", "translation_start", "translation_state", "_energy_norm", "_times_a",
@@ -1141,8 +1141,15 @@ def _check_settings(settings: AnalyticSettings | None) -> AnalyticSettings:
     return settings
 
 
+def _check_isolator(system) -> None:
+    """The kernel carries the linear isolator only: any other is refused, never run as linear."""
+    if isinstance(system, System):
+        check_isolator_kind(system, (LINEAR,), "the compiled kernel (engine 'analytic')")
+
+
 def _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0, impact_threshold):
     """The input checks every engine shares (analytic.protocol)."""
+    _check_isolator(system)
     return run_inputs(system, motion, duration, theta0, impact_threshold,
                       theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0)
 
@@ -1284,6 +1291,8 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
     """
     settings = _check_settings(settings)
     systems = _as_list(systems, System, "systems")
+    for system in systems:
+        _check_isolator(system)
     motions = _as_list(motions if motions is not None else GroundMotion.zero(), GroundMotion, "motions")
     case_sys, case_mot = _cases(systems, motions, product)
     n = case_sys.size

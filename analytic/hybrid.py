@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -20,9 +21,10 @@ from . import physics
 from .motion import GroundMotion
 from .overturning import describe
 from .engine_protocol import run_inputs
+from .errors import require
 from .settings import AnalyticSettings
 from .status import Status
-from .system import System
+from .system import ISOLATOR_KINDS, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
 # state vector: u, u̇, θ, θ̇, ground work W, dashpot loss D
@@ -71,8 +73,9 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: An
     """
     settings = settings or AnalyticSettings()
     motion, duration = run_inputs(system, motion, duration, theta0, impact_threshold,
-                                  theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0)
-    return _Integrator(system, motion, settings, duration, progress, impact_threshold).run(
+                                  theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS)
+    integrator = _Integrator if system.fixed_base or system.isolator is None else _IsolatorIntegrator
+    return integrator(system, motion, settings, duration, progress, impact_threshold).run(
         theta0, theta_dot0, u0, u_dot0)
 
 
@@ -163,7 +166,7 @@ class _Integrator:
         sys, cfg = self.sys, self.cfg
         start = time.perf_counter()
         t = 0.0
-        y = np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0])
+        y = self.initial_state(u0, u_dot0, theta0, theta_dot0)
         if theta0 != 0:
             mode = 1 if theta0 > 0 else -1
         elif theta_dot0 != 0:
@@ -201,7 +204,7 @@ class _Integrator:
                 verdict = 3  # past α and falling, nothing left to pull it back
                 break
             if mode == 0:
-                fun, evs = self.rhs_translation, self.uplift_events()
+                fun, evs = self.rhs_translation, self.translation_events(t, y)
             else:
                 fun, evs = self.rhs_rocking(mode), self.rocking_events(mode, t, y)
             if not sys.fixed_base:
@@ -240,6 +243,8 @@ class _Integrator:
                 break
             if kind == "impact":
                 mode, y = self.impact(t, y, mode)
+            elif kind == "isolator":  # a non-linear isolator's slider sticks or slips
+                mode, y = self.isolator_event(t, y, mode, evs[k])
             else:  # uplift
                 mode = self.lift(t, evs[k].side)
             if self.progress and time.perf_counter() - last_report > 1.0:
@@ -252,6 +257,9 @@ class _Integrator:
             status, overturn_time = Status.OVERTURNED, self.last_past_alpha
             message = describe(verdict, t, overturn_time, float(y[TH]) / sys.alpha)
         return self.trajectory(status, message, overturn_time, time.perf_counter() - start)
+
+    def initial_state(self, u0, u_dot0, theta0, theta_dot0):
+        return np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0])
 
     def lift(self, t, side):
         self.uplifts.append(t)
@@ -281,15 +289,26 @@ class _Integrator:
         self.peak = 0.0
         y[THD], y[UD] = thd_post, ud_post
         if continued:
+            self.after_impact(t, y, -mode)
             return -mode, y
         y[THD] = 0.0
+        self.after_impact(t, y, 0)
         # a base still accelerating past g·tanα re-lifts at once, if it lifts clearly;
         # a grazing one stays down (no rocking phases of zero length)
-        new = physics.relift(sp, y[U], y[UD], self.xg(t))
+        new = self.relift(t, y)
         if new:
             return self.lift(t, new), y
         self.graze = True
         return 0, y
+
+    def translation_events(self, t0, y0):
+        return self.uplift_events()
+
+    def after_impact(self, t, y, mode):
+        """An impact changed u̇ (a non-linear isolator's slider may stick or slip anew)."""
+
+    def relift(self, t, y):
+        return physics.relift(self.sp, y[U], y[UD], self.xg(t))
 
     # events ---------------------------------------------------------------------------
     def uplift_events(self):
@@ -325,12 +344,21 @@ class _Integrator:
         at its positive limit and vanishes only when the block really lands."""
         if y0[TH] != 0:
             return lambda t, y: s * y[TH]
-        kpow, limit = physics.impact_function_order(self.sp, s, y0[U], y0[UD], y0[THD], self.xg(t0))
+        kpow, limit = self.function_order(s, t0, y0)
 
         def g(t, y):
             dt = t - t0
             return s * y[TH] / dt**kpow if dt > 0 else limit
         return g
+
+    def function_order(self, s, t0, y0):
+        return physics.impact_function_order(self.sp, s, y0[U], y0[UD], y0[THD], self.xg(t0))
+
+    def friction_demand(self, t, y, mode):
+        """The largest |F_x/F_z| at the block's pivot over the stored states (physics.pivot_force_ratio)."""
+        sp = self.sp
+        return max((physics.pivot_force_ratio(sp, int(mode[i]), y[TH, i], y[THD, i], y[U, i], y[UD, i],
+                                              self.xg(t[i])) for i in range(t.size)), default=0.0)
 
     @staticmethod
     def first_terminal(sol, evs):
@@ -349,8 +377,7 @@ class _Integrator:
         s = np.where(mode == 0, 1.0, mode)
         kin = physics.kinetic_energy(sp, s, y[UD], y[TH], y[THD])
         pot = physics.potential_energy(sp, s, y[U], y[TH])
-        demand = max((physics.pivot_force_ratio(sp, int(mode[i]), y[TH, i], y[THD, i], y[U, i], y[UD, i],
-                                                self.xg(t[i])) for i in range(t.size)), default=0.0)
+        demand = self.friction_demand(t, y, mode)
         cum = cumulative_impact_loss(t, [i.t for i in self.impacts], self.losses)
         log = EnergyLog(kinetic=kin, potential=pot, ground_work=y[W], dashpot_loss=y[D], impact_loss=cum,
                         per_impact=tuple(self.losses))
@@ -361,6 +388,211 @@ class _Integrator:
             impact_threshold=self.impact_threshold, runtime_s=runtime, status=status,
             message=message, energy=log,
             extras={"overturn_rule": self.cfg.overturn, "friction_demand": float(demand)})
+
+
+# state vector of a non-linear isolator's run: the linear's and the slider's loss S
+S_LOSS = 6
+
+
+class _IsolatorIntegrator(_Integrator):
+    """The hybrid model on a bilinear bearing or a friction pendulum (docs/isolators.md):
+    the linear path's modes, events and impacts, with the isolator's element force q in
+    the base's equation and its slider's phase (stuck 0, slipping ±1) changed at events
+    located like the others: stick when u̇ crosses 0 with the demand within F_s, slip when
+    the demand (the pendulum's) or the elastic force (the bearing's) reaches F_s. The state
+    carries the slip loss S (hysteretic or friction work) beside the dashpot's D."""
+
+    def __init__(self, system, motion, settings, duration, progress, impact_threshold):
+        super().__init__(system, motion, settings, duration, progress, impact_threshold)
+        sp, ip = physics.isolator_params(system, settings.rest_velocity)
+        self.sp, self.ip = tuple(sp.tolist()), tuple(ip.tolist())
+        self.friction = ip[physics.I_KIND] == physics.ISO_FRICTION
+        self.u_y = 0.0 if self.friction else float(system.isolator.yield_displacement)
+        self.phase, self.u_p = 0, 0.0
+        self.out_phase, self.out_up = [], []
+        self.isolator_log = []  # (t, phase after, u) at every change of the slider's phase
+        # u̇ ≡ 0 while the pendulum's base is pinned: its extremes are the pinned states
+        # themselves, and an event function that is zero throughout fires at every step
+        self.base_peak = _event(lambda t, y: 1.0 if self.friction and self.phase == 0 else y[UD], "base-peak", 0)
+        self.base_peak.terminal = False
+
+    # the slider's state --------------------------------------------------------------
+    def initial_state(self, u0, u_dot0, theta0, theta_dot0):
+        """A bilinear bearing displaced to u0 was pushed there from its virgin state, so
+        its slider sits at u0 − clip(u0, ±u_y); a pendulum moving slips its way, at rest
+        it sticks unless its demand exceeds F_s."""
+        y = np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0, 0.0])
+        if self.friction:
+            mode = 0 if theta0 == 0 else (1 if theta0 > 0 else -1)
+            self.phase = int(np.sign(u_dot0)) if u_dot0 != 0 else self.stick_or_slip(0.0, y, mode)
+        else:
+            self.u_p = u0 - min(max(u0, -self.u_y), self.u_y)
+        return y
+
+    def stick_or_slip(self, t, y, mode):
+        """A pendulum's phase at rest (u̇ = 0): 0 if its demand is within F_s, else its sign."""
+        demand = physics.stick_demand(self.sp, mode, y[TH], y[THD], y[U], self.xg(t))
+        return 0 if abs(demand) <= physics.stick_limit(self.sp, self.ip) else (1 if demand > 0 else -1)
+
+    def set_phase(self, t, y, phase):
+        if phase == self.phase:
+            return
+        if self.phase != 0 and not self.friction:  # the bearing's slider stops where it is
+            self.u_p = float(y[U]) - self.phase * self.u_y
+        if phase == 0 and self.friction:
+            y[UD] = 0.0  # the base rests on the ground exactly
+        self.phase = phase
+        self.isolator_log.append((float(t), phase, float(y[U])))
+
+    def slider_after_velocity(self, t, y, mode):
+        """The phase that a new base velocity u̇ (after an impact) leaves the slider in."""
+        ud = y[UD]
+        if self.friction:
+            return (1 if ud > 0 else -1) if ud != 0 else self.stick_or_slip(t, y, mode)
+        if self.phase != 0 and self.phase * ud <= 0:
+            return 0  # the bearing unloads elastically
+        return self.phase
+
+    def after_impact(self, t, y, mode):
+        self.set_phase(t, y, self.slider_after_velocity(t, y, mode))
+
+    def isolator_event(self, t, y, mode, ev):
+        if ev.side == 0:  # a slipping slider's u̇ crossed 0: located to rounding, made exact
+            y[UD] = 0.0
+            new = self.stick_or_slip(t, y, mode) if self.friction else 0
+            if new == self.phase:
+                # u̇ fell through 0, so σ·demand ≤ F_s: slipping on the same way is rounding
+                # (it would start and end at once, without end); the slider holds
+                new = 0
+        else:
+            new = ev.side
+        self.set_phase(t, y, new)
+        if mode == 0:  # the base's acceleration may have jumped (the pendulum sticking)
+            side = self.relift(t, y)
+            if side:
+                return self.lift(t, side), y
+        return mode, y
+
+    # the physics ---------------------------------------------------------------------
+    def relift(self, t, y):
+        sp, xg = self.sp, self.xg(t)
+        side = physics.uplift_direction(sp, physics.isolator_base_acceleration(
+            sp, self.ip, self.phase, y[U], y[UD], self.u_p, xg))
+        if side == 0:
+            return 0
+        thdd = physics.isolator_rocking_accelerations(sp, self.ip, self.phase, float(side), 0.0, 0.0, y[U], y[UD],
+                                                      self.u_p, xg)[1]
+        return side if physics.lifts_clearly(sp, side, thdd) else 0
+
+    def uplift_mode(self, t, y):
+        return physics.uplift_direction(self.sp, physics.isolator_base_acceleration(
+            self.sp, self.ip, self.phase, y[U], y[UD], self.u_p, self.xg(t)))
+
+    def function_order(self, s, t0, y0):
+        if y0[THD] != 0.0:
+            return 1, s * y0[THD]
+        thdd = physics.isolator_rocking_accelerations(self.sp, self.ip, self.phase, s, 0.0, 0.0, y0[U], y0[UD],
+                                                      self.u_p, self.xg(t0))[1]
+        return physics.lift_order(self.sp, s, thdd)
+
+    def rhs_translation(self, t, y):
+        sp, ip, ph, up = self.sp, self.ip, self.phase, self.u_p
+        xg = self.xg(t)
+        udd = physics.isolator_translation_acceleration(sp, ip, ph, y[U], y[UD], up, xg)
+        return (y[UD], udd, 0.0, 0.0, -xg * sp[physics.M_TOTAL] * y[UD], sp[physics.C_DAMP] * y[UD] ** 2,
+                physics.slip_power(ip, ph, y[UD]))
+
+    def rhs_rocking(self, s):
+        sp, ip, ph, up = self.sp, self.ip, self.phase, self.u_p
+        m, M, c = sp[physics.M_BLOCK], sp[physics.M_TOTAL], sp[physics.C_DAMP]
+
+        def f(t, y):
+            xg = self.xg(t)
+            udd, thdd, L1 = physics.isolator_rocking_accelerations(sp, ip, ph, s, y[TH], y[THD], y[U], y[UD], up, xg)
+            return (y[UD], udd, y[THD], thdd, -xg * (M * y[UD] + m * L1 * y[THD]), c * y[UD] ** 2,
+                    physics.slip_power(ip, ph, y[UD]))
+        return f
+
+    # events ----------------------------------------------------------------------------
+    def slider_events(self, mode, t0, y0, fun):
+        """The slider's phase changes: a slipping one stops (u̇ crosses 0, side 0); a stuck
+        one slips (side ±1) when the pendulum's demand, or the bearing's elastic force,
+        reaches F_s that way. A slip that starts from u̇ = 0 (the pendulum's, from rest or
+        reversing) is watched as σ·u̇/(t − t0), which starts at σ·ü(t0) > 0 (STICK_BAND),
+        so that the start itself is never taken for its end."""
+        ph = self.phase
+        if ph != 0:
+            if y0[UD] != 0.0:
+                return [_event(lambda t, y: ph * y[UD], "isolator", -1, side=0)]
+            start = ph * fun(t0, y0)[1]
+            return [_event(lambda t, y: ph * y[UD] / (t - t0) if t > t0 else start, "isolator", -1, side=0)]
+        if self.friction:
+            sp, f_s = self.sp, physics.stick_limit(self.sp, self.ip)
+
+            def demand(t, y):
+                return physics.stick_demand(sp, mode, y[TH], y[THD], y[U], self.xg(t))
+            return [_event(lambda t, y: demand(t, y) - f_s, "isolator", +1, side=1),
+                    _event(lambda t, y: -demand(t, y) - f_s, "isolator", +1, side=-1)]
+        up, uy = self.u_p, self.u_y
+        return [_event(lambda t, y: y[U] - up - uy, "isolator", +1, side=1),
+                _event(lambda t, y: up - y[U] - uy, "isolator", +1, side=-1)]
+
+    def uplift_events(self):
+        sp, ip, ph, up = self.sp, self.ip, self.phase, self.u_p
+        thr = sp[physics.THR] * (1.0 + (physics.GRAZE_MARGIN if self.graze else 0.0))
+
+        def a(t, y):
+            return physics.isolator_base_acceleration(sp, ip, ph, y[U], y[UD], up, self.xg(t))
+        return [_event(lambda t, y: -a(t, y) - thr, "uplift", +1, side=1),
+                _event(lambda t, y: a(t, y) - thr, "uplift", +1, side=-1)]
+
+    def translation_events(self, t0, y0):
+        return self.uplift_events() + self.slider_events(0, t0, y0, self.rhs_translation)
+
+    def rocking_events(self, s, t0, y0):
+        return super().rocking_events(s, t0, y0) + self.slider_events(s, t0, y0, self.rhs_rocking(s))
+
+    # result ------------------------------------------------------------------------------
+    def store(self, sol, t0, t1, mode):
+        super().store(sol, t0, t1, mode)
+        ts, ys = self.out_t[-1], self.out_y[-1]
+        self.out_phase.append(np.full(ts.size, self.phase, dtype=np.int8))
+        if self.phase != 0 and not self.friction:
+            self.out_up.append(ys[U] - self.phase * self.u_y)  # the slider moves with the base
+        else:
+            self.out_up.append(np.full(ts.size, self.u_p))
+
+    def trajectory(self, status, message, overturn_time, runtime):
+        tr = super().trajectory(status, message, overturn_time, runtime)
+        sp, ip = self.sp, self.ip
+        y = np.concatenate(self.out_y, axis=1) if self.out_y else np.zeros((7, 1))
+        phase = np.concatenate(self.out_phase) if self.out_phase else np.zeros(1, np.int8)
+        u_p = np.concatenate(self.out_up) if self.out_up else np.zeros(1)
+        e = tr.energy
+        log = EnergyLog(kinetic=e.kinetic, potential=e.potential + physics.element_energy(ip, y[U], u_p),
+                        ground_work=e.ground_work, dashpot_loss=e.dashpot_loss, impact_loss=e.impact_loss,
+                        per_impact=e.per_impact, isolator_loss=y[S_LOSS])
+        extras = dict(tr.extras)
+        extras["isolator"] = self.sys.isolator_kind
+        extras["isolator_phase"] = phase
+        extras["isolator_slider"] = u_p
+        extras["isolator_events"] = tuple(self.isolator_log)
+        return replace(tr, energy=log, extras=extras)
+
+    def friction_demand(self, t, y, mode):
+        phase = np.concatenate(self.out_phase) if self.out_phase else np.zeros(1, np.int8)
+        u_p = np.concatenate(self.out_up) if self.out_up else np.zeros(1)
+        return max((self.pivot_ratio(int(mode[i]), int(phase[i]), y[:, i], u_p[i], float(t[i]))
+                    for i in range(t.size)), default=0.0)
+
+    def pivot_ratio(self, mode, phase, y, u_p, t):
+        """physics.pivot_force_ratio on the isolator: the friction the block needs on the base."""
+        sp, xg = self.sp, self.xg(t)
+        if mode == 0:
+            return abs(physics.isolator_base_acceleration(sp, self.ip, phase, y[U], y[UD], u_p, xg)) / sp[physics.G]
+        udd, thdd, _ = physics.isolator_rocking_accelerations(sp, self.ip, phase, float(mode), y[TH], y[THD], y[U],
+                                                              y[UD], u_p, xg)
+        return physics.rocking_pivot_force_ratio(sp, float(mode), y[TH], y[THD], udd, thdd, xg)
 
 
 class _Failed:
@@ -385,6 +617,8 @@ def map_to_impact(system: System, motion: GroundMotion, t: float, state, *, back
     (`backward=True`) to the last lift-off from θ = 0. Returns (t0, θ̇, u̇) at θ = 0,
     or None when θ = 0 is not reached within `horizon` seconds. This is how a contact
     engine's states outside the contact transient become θ̇⁻ and θ̇⁺ (model.md)."""
+    require(system.fixed_base or system.isolator is None, "isolator", system.isolator_kind,
+            "linear to map a contact engine's states to θ = 0 (no contact engine carries another yet)")
     u, ud, th, thd = (float(x) for x in state)
     if th == 0:
         return t, thd, ud

@@ -161,6 +161,13 @@ def translation_acceleration(sp, u, u_dot, xg):
 def rocking_accelerations(sp, s, theta, theta_dot, u, u_dot, xg):
     """(ü, θ̈, L1) in rocking about corner s = ±1 (model.md's 2-DOF equations),
     L1 = h cosθ + s b sinθ; fixed base: ü = 0 and θ̈ = −p²[sin(sα − θ) + (ẍg/g) cos(sα − θ)]."""
+    return rocking_accelerations_with(sp, s, theta, theta_dot, u, u_dot, 0.0, xg)
+
+
+def rocking_accelerations_with(sp, s, theta, theta_dot, u, u_dot, q, xg):
+    """rocking_accelerations with a non-linear isolator's element force q (N) on the base
+    besides the spring k·u and dashpot c·u̇ of sp (isolator_element_force: docs/isolators.md);
+    q = 0 is the linear isolator, to the last bit (x − 0.0 is x)."""
     h, b, m, g = sp[H], sp[B_HALF], sp[M_BLOCK], sp[G]
     st, ct = math.sin(theta), math.cos(theta)
     L1 = h * ct + s * b * st
@@ -168,7 +175,7 @@ def rocking_accelerations(sp, s, theta, theta_dot, u, u_dot, xg):
     if sp[FIXED] != 0.0:
         return 0.0, (-m * L1 * xg - m * g * L2) * sp[INV_J], L1
     M, Jt = sp[M_TOTAL], sp[J]
-    f_u = -M * xg - m * L2 * theta_dot * theta_dot - sp[C_DAMP] * u_dot - sp[K] * u
+    f_u = -M * xg - m * L2 * theta_dot * theta_dot - sp[C_DAMP] * u_dot - sp[K] * u - q
     f_t = -m * L1 * xg - m * g * L2
     inv = 1.0 / (M * Jt - (m * L1) ** 2)
     return (Jt * f_u - m * L1 * f_t) * inv, (M * f_t - m * L1 * f_u) * inv, L1
@@ -208,7 +215,12 @@ def relift(sp, u, u_dot, xg):
     if s == 0:
         return 0
     thdd = rocking_accelerations(sp, float(s), 0.0, 0.0, u, u_dot, xg)[1]
-    return s if s * thdd > 1e-10 * sp[THR] / sp[H] else 0
+    return s if lifts_clearly(sp, s, thdd) else 0
+
+
+def lifts_clearly(sp, s, thdd):
+    """Whether θ̈ at θ = 0 points clearly away from the base about corner s (relift's rule)."""
+    return s * thdd > 1e-10 * sp[THR] / sp[H]
 
 
 def impact_function_order(sp, s, u, u_dot, theta_dot, xg):
@@ -217,10 +229,135 @@ def impact_function_order(sp, s, u, u_dot, theta_dot, xg):
     (t − t0)^k so that the trivial root at the piece's start is never found."""
     if theta_dot != 0.0:
         return 1, s * theta_dot
-    thdd = rocking_accelerations(sp, s, 0.0, 0.0, u, u_dot, xg)[1]
+    return lift_order(sp, s, rocking_accelerations(sp, s, 0.0, 0.0, u, u_dot, xg)[1])
+
+
+def lift_order(sp, s, thdd):
+    """impact_function_order of a piece starting at θ = 0 with θ̇ = 0, from θ̈ there."""
     if s * thdd > 1e-9 * sp[THR]:
         return 2, 0.5 * s * thdd
     return 3, 1e-300  # at an uplift found as an event θ̈ is ~0 and θ grows as (t − t0)³
+
+
+# --- non-linear isolators (docs/isolators.md) ---------------------------------------------
+#
+# Every isolator is a spring k·u and a dashpot c·u̇ (sp's K and C_DAMP) in parallel with an
+# element of force q: none for the linear isolator (q = 0); for the bilinear bearing an
+# elastic–perfectly-plastic spring, a spring k_e in series with a slider of slip force F_s
+# (q = k_e·(u − u_p), u_p the slider's position, |q| ≤ F_s = k_e·u_y); for the friction
+# pendulum a rigid slider (k_e = ∞): the base itself sticks, or slips with q = ±μ_f·M·g.
+# `phase` is 0 while the slider sticks (the bilinear bearing elastic, the pendulum's base
+# at rest on the ground) and ±1 while it slips that way (u̇_p = u̇, q = ±F_s); the slip work
+# q·u̇_p = F_s·|u̇| is the hysteretic or friction loss. Phases change at events: a stuck
+# slider slips when |q| (its demand, for the pendulum) reaches F_s; a slipping one sticks
+# when u̇ crosses 0, and the pendulum's slips on the other way at once if its demand there
+# exceeds F_s.
+
+(I_KIND, I_KEL, I_FSLIP, N_IP) = range(4)
+ISO_LINEAR, ISO_BILINEAR, ISO_FRICTION = 0, 1, 2
+ISO_KIND = {"linear": ISO_LINEAR, "bilinear": ISO_BILINEAR, "friction-pendulum": ISO_FRICTION}
+
+
+def isolator_params(system, rest_velocity: float):
+    """(sp, ip): system_params with K the isolator's parallel spring (the bilinear bearing's
+    post-yield r·k0, the pendulum's M·g/R_fp) and the element's parameters ip
+    (I_KIND, I_KEL: k_e in N/m, I_FSLIP: F_s in N)."""
+    sp = system_params(system, rest_velocity)
+    ip = np.zeros(N_IP)
+    iso = None if system.fixed_base else system.isolator
+    if iso is None:
+        return sp, ip
+    ip[I_KIND] = ISO_KIND[iso.kind]
+    if ip[I_KIND] == ISO_BILINEAR:
+        sp[K] = iso.post_yield_ratio * iso.stiffness
+        ip[I_KEL] = (1.0 - iso.post_yield_ratio) * iso.stiffness
+        ip[I_FSLIP] = ip[I_KEL] * iso.yield_displacement
+    else:  # the pendulum's normal force is M·g in both modes (docs/isolators.md)
+        ip[I_FSLIP] = iso.friction_coefficient * system.total_mass * system.gravity
+    return sp, ip
+
+
+def base_pinned(ip, phase):
+    """Whether the base is stuck to the ground: a friction pendulum whose slider sticks."""
+    return ip[I_KIND] == ISO_FRICTION and phase == 0
+
+
+def isolator_element_force(ip, phase, u, u_p):
+    """q (N): the element's force on the base in a slipping or elastic phase (0 for the
+    linear isolator; a stuck pendulum's is a constraint force, stick_demand)."""
+    if phase != 0:
+        return phase * ip[I_FSLIP]
+    if ip[I_KIND] == ISO_BILINEAR:
+        return ip[I_KEL] * (u - u_p)
+    return 0.0
+
+
+def isolator_translation_acceleration(sp, ip, phase, u, u_dot, u_p, xg):
+    """ü in pure translation, M ü + c u̇ + k u + q = −M ẍg (0 while the base is pinned)."""
+    if base_pinned(ip, phase):
+        return 0.0
+    return -xg - (sp[C_DAMP] * u_dot + sp[K] * u + isolator_element_force(ip, phase, u, u_p)) * sp[INV_M]
+
+
+def isolator_rocking_accelerations(sp, ip, phase, s, theta, theta_dot, u, u_dot, u_p, xg):
+    """(ü, θ̈, L1) rocking about corner s on the isolator: the 2-DOF equations with q, or,
+    while the base is pinned, the block rocking on the moving ground (ü = 0)."""
+    if base_pinned(ip, phase):
+        return pinned_rocking_accelerations(sp, s, theta, xg)
+    return rocking_accelerations_with(sp, s, theta, theta_dot, u, u_dot,
+                                      isolator_element_force(ip, phase, u, u_p), xg)
+
+
+def pinned_rocking_accelerations(sp, s, theta, xg):
+    """(0, θ̈, L1) of a block rocking about corner s on a base that moves with the ground."""
+    h, b, m = sp[H], sp[B_HALF], sp[M_BLOCK]
+    st, ct = math.sin(theta), math.cos(theta)
+    L1 = h * ct + s * b * st
+    L2 = s * b * ct - h * st
+    return 0.0, (-m * L1 * xg - m * sp[G] * L2) * sp[INV_J], L1
+
+
+def isolator_base_acceleration(sp, ip, phase, u, u_dot, u_p, xg):
+    """Absolute base acceleration in pure translation, a = ü + ẍg = −(c u̇ + k u + q)/M
+    (ẍg while the base is pinned), m/s²: the uplift condition reads it."""
+    if base_pinned(ip, phase):
+        return xg
+    return -(sp[C_DAMP] * u_dot + sp[K] * u + isolator_element_force(ip, phase, u, u_p)) * sp[INV_M]
+
+
+def stick_demand(sp, mode, theta, theta_dot, u, xg):
+    """The force (N) a pinned pendulum's slider must exert on the base to hold it (u̇ = ü = 0):
+    translation −M ẍg − k u; rocking about corner `mode` also −m L1 θ̈ − m L2 θ̇², θ̈ that of
+    the block on the moving ground. It sticks while |demand| ≤ F_s; past it, it slips its way."""
+    f = -sp[M_TOTAL] * xg - sp[K] * u
+    if mode != 0:
+        s = float(mode)
+        thdd = pinned_rocking_accelerations(sp, s, theta, xg)[1]
+        L2 = s * sp[B_HALF] * math.cos(theta) - sp[H] * math.sin(theta)
+        L1 = sp[H] * math.cos(theta) + s * sp[B_HALF] * math.sin(theta)
+        f = f - sp[M_BLOCK] * (L1 * thdd + L2 * theta_dot * theta_dot)
+    return f
+
+
+#: A pinned pendulum slips once its demand exceeds F_s by STICK_BAND·M·g: far below physics
+#: (a delay of 1e-12·g/|dD/dt·1/M| s), far above rounding, so that a slip always starts with
+#: an acceleration of its own sign and never flips back at once (a zero-length phase).
+STICK_BAND = 1e-12
+
+
+def stick_limit(sp, ip):
+    """The demand (N) up to which a pinned pendulum's slider holds: F_s + STICK_BAND·M·g."""
+    return ip[I_FSLIP] + STICK_BAND * sp[M_TOTAL] * sp[G]
+
+
+def slip_power(ip, phase, u_dot):
+    """F_s·|u̇| while slipping (q·u̇_p, ≥ 0), the rate of the hysteretic or friction loss (W)."""
+    return phase * ip[I_FSLIP] * u_dot if phase != 0 else 0.0
+
+
+def element_energy(ip, u, u_p):
+    """Energy held in the element's spring, ½ k_e (u − u_p)² (J; 0 for the pendulum)."""
+    return 0.5 * ip[I_KEL] * (u - u_p) ** 2
 
 
 # --- impact at θ = 0 ----------------------------------------------------------------------

@@ -1,5 +1,6 @@
 """The physical system: a rigid block (statue) on a base plate tied to the ground
-by a linear spring and dashpot (the isolator), or on a fixed base.
+by an isolator (by default a linear spring and dashpot; or a bilinear hysteretic bearing,
+or a friction pendulum: docs/isolators.md), or on a fixed base.
 
 Units are SI throughout (m, kg, s, N/m, N·s/m). Sign conventions follow
 `shared/docs/model.md`: u is the base displacement relative to the ground,
@@ -15,6 +16,93 @@ from .errors import InputError, require, require_nonnegative_finite, require_pos
 
 STANDARD_GRAVITY = 9.81  # m/s², the value the paper's β and thresholds are quoted with
 
+#: isolator kinds, as a System's `isolator_kind`, the CLI's --isolator and the engines'
+#: Capabilities.isolators name them
+LINEAR, BILINEAR, FRICTION_PENDULUM = "linear", "bilinear", "friction-pendulum"
+ISOLATOR_KINDS = (LINEAR, BILINEAR, FRICTION_PENDULUM)
+
+
+@dataclass(frozen=True)
+class LinearIsolator:
+    """The seed paper's isolator: a linear spring `stiffness` k (N/m) and dashpot `damping`
+    c (N·s/m). A System holds it as its own `stiffness` and `damping` (its default)."""
+
+    stiffness: float
+    damping: float = 0.0
+    kind = LINEAR
+
+    def __post_init__(self):
+        object.__setattr__(self, "stiffness", require_positive_finite("stiffness", self.stiffness))
+        object.__setattr__(self, "damping", require_nonnegative_finite("damping", self.damping))
+
+    def describe(self, total_mass: float, gravity: float) -> dict:
+        return {"isolator": LINEAR}
+
+
+@dataclass(frozen=True)
+class BilinearIsolator:
+    """A hysteretic bearing (Roussis & Odysseos 2017): an elastic–perfectly-plastic spring of
+    stiffness (1 − r)·k0 yielding at `yield_displacement` u_y, in parallel with the
+    post-yield spring r·k0 and a dashpot `damping` c. `stiffness`: the initial stiffness
+    k0 (N/m); `post_yield_ratio`: r in [0, 1) (0: elastic–perfectly-plastic). The yield
+    force is k0·u_y (`yield_force`)."""
+
+    stiffness: float
+    post_yield_ratio: float
+    yield_displacement: float
+    damping: float = 0.0
+    kind = BILINEAR
+
+    def __post_init__(self):
+        object.__setattr__(self, "stiffness", require_positive_finite("stiffness", self.stiffness))
+        r = require_nonnegative_finite("post_yield_ratio", self.post_yield_ratio)
+        require(r < 1, "post_yield_ratio", self.post_yield_ratio,
+                "in [0, 1) (post-yield over initial stiffness; 1 is the linear isolator)")
+        object.__setattr__(self, "post_yield_ratio", r)
+        object.__setattr__(self, "yield_displacement",
+                           require_positive_finite("yield_displacement", self.yield_displacement))
+        object.__setattr__(self, "damping", require_nonnegative_finite("damping", self.damping))
+
+    @property
+    def yield_force(self) -> float:
+        """k0·u_y (N): the force at which the bearing first yields."""
+        return self.stiffness * self.yield_displacement
+
+    def describe(self, total_mass: float, gravity: float) -> dict:
+        return {"isolator": BILINEAR, "post_yield_ratio": self.post_yield_ratio,
+                "yield_displacement": self.yield_displacement, "yield_force": self.yield_force}
+
+
+#: largest friction coefficient a friction pendulum may be given: measured sliders lie far
+#: below it (0.01–0.2); above it a "friction" pendulum is a fixed base with extra steps
+MAX_FRICTION_COEFFICIENT = 1.0
+
+
+@dataclass(frozen=True)
+class FrictionPendulum:
+    """A single concave friction pendulum: the base slides on a spherical surface of
+    `radius` R_fp (m) with Coulomb friction coefficient `friction_coefficient` μ_f. Its
+    restoring force is (M·g/R_fp)·u and its friction μ_f·M·g (docs/isolators.md: the
+    normal force is taken as M·g in both modes, and why). A double concave slider (and
+    μ_f(v)) is not modelled yet."""
+
+    radius: float
+    friction_coefficient: float
+    kind = FRICTION_PENDULUM
+
+    def __post_init__(self):
+        object.__setattr__(self, "radius", require_positive_finite("radius", self.radius))
+        mu = require_nonnegative_finite("friction_coefficient", self.friction_coefficient)
+        require(mu <= MAX_FRICTION_COEFFICIENT, "friction_coefficient", self.friction_coefficient,
+                f"a friction coefficient in [0, {MAX_FRICTION_COEFFICIENT:g}]")
+        object.__setattr__(self, "friction_coefficient", mu)
+
+    def describe(self, total_mass: float, gravity: float) -> dict:
+        return {"isolator": FRICTION_PENDULUM, "radius": self.radius,
+                "friction_coefficient": self.friction_coefficient,
+                "friction_force": self.friction_coefficient * total_mass * gravity}
+
+
 
 @dataclass(frozen=True)
 class System:
@@ -22,8 +110,15 @@ class System:
     mass `base_mass` with isolator stiffness `stiffness` (N/m) and dashpot `damping`
     (N·s/m). `fixed_base=True` means the base is welded to the ground (μ = 0).
 
+    `isolator`: None (the default) is the linear spring–dashpot of `stiffness` and
+    `damping`; a BilinearIsolator or a FrictionPendulum replaces it, and then `stiffness`
+    and `damping` are derived from it (its initial stiffness k0 and dashpot; the
+    pendulum's M·g/R_fp and 0), so that the period and every reader of them stay
+    meaningful. A LinearIsolator given here is stored as `stiffness` and `damping`.
+
     Build it with `System.isolated(...)` (period and damping ratio),
-    `System.from_stiffness(...)` or `System.fixed(...)`; the constructor validates.
+    `System.from_stiffness(...)`, `System.with_isolator(...)` or `System.fixed(...)`;
+    the constructor validates.
     """
 
     height: float
@@ -34,10 +129,26 @@ class System:
     damping: float = 0.0
     fixed_base: bool = False
     gravity: float = STANDARD_GRAVITY
+    isolator: LinearIsolator | BilinearIsolator | FrictionPendulum | None = None
 
     def __post_init__(self):
         for name in ("height", "width", "mass", "base_mass", "gravity"):
             object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
+        iso = self.isolator
+        if iso is not None:
+            require(isinstance(iso, (LinearIsolator, BilinearIsolator, FrictionPendulum)), "isolator", iso,
+                    "a LinearIsolator, BilinearIsolator or FrictionPendulum")
+            require(not self.fixed_base, "isolator", iso.kind, "absent on a fixed base")
+            if isinstance(iso, LinearIsolator):  # the default, held as stiffness and damping
+                object.__setattr__(self, "stiffness", iso.stiffness)
+                object.__setattr__(self, "damping", iso.damping)
+                object.__setattr__(self, "isolator", None)
+            elif isinstance(iso, BilinearIsolator):
+                object.__setattr__(self, "stiffness", iso.stiffness)
+                object.__setattr__(self, "damping", iso.damping)
+            else:  # the pendulum's restoring stiffness M·g/R_fp, no dashpot
+                object.__setattr__(self, "stiffness", (self.mass + self.base_mass) * self.gravity / iso.radius)
+                object.__setattr__(self, "damping", 0.0)
         for name in ("stiffness", "damping"):
             object.__setattr__(self, name, require_nonnegative_finite(name, getattr(self, name)))
         if not self.fixed_base:
@@ -62,6 +173,13 @@ class System:
                        gravity=STANDARD_GRAVITY) -> "System":
         return cls(height=height, width=width, mass=mass, base_mass=base_mass,
                    stiffness=stiffness, damping=damping, gravity=gravity)
+
+    @classmethod
+    def with_isolator(cls, *, height, width, mass, base_mass, isolator,
+                      gravity=STANDARD_GRAVITY) -> "System":
+        """Isolated base on `isolator` (a LinearIsolator, BilinearIsolator or FrictionPendulum)."""
+        return cls(height=height, width=width, mass=mass, base_mass=base_mass, isolator=isolator,
+                   gravity=gravity)
 
     @classmethod
     def fixed(cls, *, height, width, mass, base_mass=None, gravity=STANDARD_GRAVITY) -> "System":
@@ -153,6 +271,19 @@ class System:
         return self.p / math.sqrt(1 - 0.75 * math.cos(self.alpha) ** 2 * share)
 
     @property
+    def isolator_kind(self) -> str:
+        """"linear", "bilinear" or "friction-pendulum" ("linear" on a fixed base too: no
+        isolator to refuse)."""
+        return LINEAR if self.isolator is None else self.isolator.kind
+
+    @property
+    def isolator_model(self):
+        """The isolator as its own type (a LinearIsolator for the default), None on a fixed base."""
+        if self.fixed_base:
+            return None
+        return self.isolator if self.isolator is not None else LinearIsolator(self.stiffness, self.damping)
+
+    @property
     def uplift_acceleration(self) -> float:
         """|a| above which rocking starts: g·tanα = g b/h (m/s²)."""
         return self.gravity * self.b / self.h
@@ -166,6 +297,7 @@ class System:
             "period": self.period, "damping_ratio": self.damping_ratio,
             "alpha": self.alpha, "slenderness": self.slenderness, "mass_ratio": self.mu,
             "R": self.R, "p": self.p, "gravity": self.gravity,
+            **({} if self.isolator is None else self.isolator.describe(self.total_mass, self.gravity)),
         }
 
 
@@ -188,5 +320,6 @@ def paper_system(*, fixed_base: bool = False, period: float = PAPER_PERIOD,
     return System.isolated(**PAPER_BLOCK, period=period, damping_ratio=damping_ratio)
 
 
-__all__ = ["System", "InputError", "paper_system", "STANDARD_GRAVITY", "PAPER_PERIOD", "PAPER_DAMPING_RATIO",
-           "PAPER_BLOCK", "PAPER_TEXT"]
+__all__ = ["System", "InputError", "LinearIsolator", "BilinearIsolator", "FrictionPendulum", "ISOLATOR_KINDS",
+           "LINEAR", "BILINEAR", "FRICTION_PENDULUM", "paper_system", "STANDARD_GRAVITY", "PAPER_PERIOD",
+           "PAPER_DAMPING_RATIO", "PAPER_BLOCK", "PAPER_TEXT"]

@@ -44,9 +44,10 @@ class Impact:
 @dataclass(frozen=True, eq=False)
 class EnergyLog:
     """Energy bookkeeping (J), sampled like the trajectory. With E = kinetic + potential
-    (velocities relative to the ground, gravity and spring in `potential`):
-    E(t) − E(0) = ground_work − dashpot_loss − impact_loss, and `residual` is what is
-    left of that balance."""
+    (velocities relative to the ground, gravity and the isolator's springs in `potential`):
+    E(t) − E(0) = ground_work − dashpot_loss − impact_loss − isolator_loss, and `residual`
+    is what is left of that balance. `isolator_loss`: the hysteretic or friction work of a
+    non-linear isolator (None for the linear one)."""
 
     kinetic: np.ndarray
     potential: np.ndarray
@@ -54,6 +55,7 @@ class EnergyLog:
     dashpot_loss: np.ndarray
     impact_loss: np.ndarray  # cumulative
     per_impact: tuple[float, ...] = ()  # energy lost in each impact, in the order of Trajectory.impacts
+    isolator_loss: np.ndarray | None = None  # cumulative slip work of a non-linear isolator
 
     @property
     def total(self) -> np.ndarray:
@@ -61,13 +63,16 @@ class EnergyLog:
 
     @property
     def residual(self) -> np.ndarray:
-        return self.total - self.total[0] - self.ground_work + self.dashpot_loss + self.impact_loss
+        r = self.total - self.total[0] - self.ground_work + self.dashpot_loss + self.impact_loss
+        return r if self.isolator_loss is None else r + self.isolator_loss
 
     @property
     def input_energy(self) -> float:
         """A scale for the residual: the largest energy that entered or was held."""
         return float(max(np.max(np.abs(self.ground_work)), np.max(np.abs(self.total)),
-                         np.max(self.impact_loss) if self.impact_loss.size else 0.0))
+                         np.max(self.impact_loss) if self.impact_loss.size else 0.0,
+                         np.max(self.isolator_loss) if self.isolator_loss is not None and self.isolator_loss.size
+                         else 0.0))
 
     @property
     def relative_residual(self) -> float:
@@ -191,6 +196,8 @@ class Trajectory:
             out["energy_lost_in_impacts"] = float(sum(self.energy.per_impact))
             out["energy_lost_in_dashpot"] = float(self.energy.dashpot_loss[-1])
             out["ground_work"] = float(self.energy.ground_work[-1])
+            if self.energy.isolator_loss is not None:
+                out["energy_lost_in_isolator"] = float(self.energy.isolator_loss[-1])
         for key, value in self.extras.items():
             if np.isscalar(value):
                 out[key] = value

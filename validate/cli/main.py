@@ -26,8 +26,8 @@ import sys
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
-from isorock.validate.cli.options import (OneLineParser, add_engine_options, add_motion_options, add_system_options,
-                                          engine_settings_from_args, number, system_from_args)
+from isorock.validate.cli.options import (OneLineParser, add_engine_options, add_isolator_options, add_motion_options,
+                                          add_system_options, engine_settings_from_args, number, system_from_args)
 
 #: Subcommands that live in their own modules (each has add_parser(subparsers)), with
 #: their one-line help. Only the module of the command being run is imported, so a
@@ -90,11 +90,13 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
 
     p = sub.add_parser("run", help="simulate one system with one engine",
                        description="Simulate one block on its base with one engine and print its metrics.")
-    p.add_argument("--engine", default="analytic", metavar="ENGINE[:PRESET][,…]",
+    p.add_argument("--engine", default=None, metavar="ENGINE[:PRESET][,…]",
                    help=f"one of {', '.join(_registered())}, optionally ENGINE:PRESET (e.g. mujoco:fast); "
                         "several, comma-separated, run on the same system and motion and are compared with "
-                        "the first (default: %(default)s)")
+                        "the first (default: analytic; analytic-reference with a non-linear --isolator, which "
+                        "only it carries)")
     add_system_options(p)
+    add_isolator_options(p)
     add_motion_options(p)
     p.add_argument("--duration", type=number,
                    help="end time from t = 0, s (default: motion end + 5 s, or 10 s without motion)")

@@ -76,11 +76,70 @@ def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=No
     g.add_argument("--fixed-base", action="store_true", help="fixed (non-isolated) base: μ = 0")
 
 
+#: the options of a non-linear isolator (add_isolator_options), argparse dests
+ISOLATOR_KEYS = ("radius", "friction_coefficient", "post_yield_ratio", "yield_displacement")
+
+
+def add_isolator_options(p: argparse.ArgumentParser) -> None:
+    """--isolator and its parameters (docs/isolators.md): the linear isolator is the
+    default and takes the system options as before; a bilinear bearing takes its initial
+    stiffness and dashpot from them (--stiffness/--dashpot or --period/--damping-ratio)."""
+    from isorock.analytic.system import ISOLATOR_KINDS, LINEAR
+    g = p.add_argument_group("isolator (docs/isolators.md)")
+    g.add_argument("--isolator", choices=ISOLATOR_KINDS, default=LINEAR,
+                   help="the isolator under the base (default: %(default)s; bilinear: --stiffness/--period set its "
+                        "initial stiffness; the compiled engine carries the linear one only)")
+    g.add_argument("--radius", type=number, help="friction-pendulum: radius of curvature R_fp, m")
+    g.add_argument("--friction-coefficient", type=number,
+                   help="friction-pendulum: the slider's friction coefficient μ_f (not --friction, the block–base "
+                        "contact's)")
+    g.add_argument("--post-yield-ratio", type=number, help="bilinear: post-yield over initial stiffness, in [0, 1)")
+    g.add_argument("--yield-displacement", type=number, help="bilinear: yield displacement u_y, m")
+
+
+def _isolator_from_args(a, common):
+    """The System of a non-linear --isolator, or None for the linear one (every option of
+    another isolator refused with one line naming it)."""
+    from isorock.analytic.system import BILINEAR, FRICTION_PENDULUM, BilinearIsolator, FrictionPendulum, System
+    kind = getattr(a, "isolator", None) or "linear"
+    wants = {"linear": (), FRICTION_PENDULUM: ("radius", "friction_coefficient"),
+             BILINEAR: ("post_yield_ratio", "yield_displacement")}[kind]
+    for key in ISOLATOR_KEYS:
+        given = getattr(a, key, None) is not None
+        if given and key not in wants:
+            raise InputError(f"--{key.replace('_', '-')}: not an option of --isolator {kind}"
+                             + ("" if kind != "linear" else " (give --isolator friction-pendulum or bilinear)"))
+        if not given and key in wants:
+            raise InputError(f"--{key.replace('_', '-')}: needed by --isolator {kind}")
+    if kind == "linear":
+        return None
+    if a.fixed_base:
+        raise InputError(f"--fixed-base: cannot be combined with --isolator {kind}")
+    if kind == FRICTION_PENDULUM:
+        given = [k for k in ("period", "damping_ratio", "stiffness", "dashpot") if getattr(a, k) is not None]
+        if given:
+            raise InputError(f"--{given[0].replace('_', '-')}: not an option of --isolator {kind} (its period is "
+                             "2π√(R_fp/g), set by --radius)")
+        return System.with_isolator(**common, isolator=FrictionPendulum(
+            radius=a.radius, friction_coefficient=a.friction_coefficient))
+    linear = _linear_from_args(a, common)  # the bearing's initial stiffness and dashpot
+    return System.with_isolator(**common, isolator=BilinearIsolator(
+        stiffness=linear.stiffness, damping=linear.damping, post_yield_ratio=a.post_yield_ratio,
+        yield_displacement=a.yield_displacement))
+
+
 def system_from_args(a, *, default_isolator=None):
     """The System the options describe; `default_isolator` (period, damping ratio)
     is used when no isolator option is given (the scene command's paper defaults)."""
-    from isorock.analytic.system import System
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
+    nonlinear = _isolator_from_args(a, common)
+    if nonlinear is not None:
+        return nonlinear
+    return _linear_from_args(a, common, default_isolator=default_isolator)
+
+
+def _linear_from_args(a, common, *, default_isolator=None):
+    from isorock.analytic.system import System
     isolation = [x is not None for x in (a.period, a.damping_ratio, a.stiffness, a.dashpot)]
     if a.fixed_base:
         if any(isolation):

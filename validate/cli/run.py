@@ -134,6 +134,8 @@ def cmd_run(a) -> int:
     from isorock.validate.cli.options import motion_from_args, system_from_args
     from isorock.validate.core.compare import compare
     from isorock.validate.io.output import Outputs, to_json
+    if a.engine is None:  # the compiled kernel carries the linear isolator only (docs/isolators.md)
+        a.engine = "analytic" if getattr(a, "isolator", "linear") == "linear" else "analytic-reference"
     specs = parse_engines(a.engine)
     several = len(specs) > 1
     with Outputs() as outputs:
@@ -154,8 +156,10 @@ def cmd_run(a) -> int:
             raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
         theta0 = a.theta0_over_alpha * system.alpha
         # the work bounds (duration, isolator, every engine's steps) before any work
-        for _, _, settings in loaded:
-            motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold, settings=settings)
+        for _, engine, settings in loaded:
+            engine.check_isolator(system)
+            motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold, settings=settings,
+                                          isolators=engine.capabilities.isolators)
         if a.csv_dt is not None:
             if not (a.csv_dt > 0 and a.csv_dt < float("inf")):
                 raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")

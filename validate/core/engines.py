@@ -86,7 +86,14 @@ class Engine:
         return self.spec.scene_text is not None
 
     def scene_text(self, system, settings=None) -> str:
+        self.check_isolator(system)
         return self.spec.scene_text(system, settings)
+
+    def check_isolator(self, system) -> None:
+        """One line refusing a System on an isolator this engine does not carry (no contact
+        engine carries a non-linear one yet: docs/isolators.md), before any work."""
+        from isorock.analytic.engine_protocol import check_isolator_kind
+        check_isolator_kind(system, self.capabilities.isolators, f"engine {self.name!r}")
 
     def simulate(self, system, motion=None, *, settings=None, duration=None, theta0=0.0,
                  impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule=None,
@@ -104,6 +111,7 @@ class Engine:
         from isorock.analytic.overturning import PAST_ALPHA
         from isorock.analytic.trajectory import RawHistory
         from isorock.validate.core import measure
+        self.check_isolator(system)
         if settings is None:
             settings = self.settings()
         if budget_s is not None:  # a wall-clock budget (analytic/limits.py): the run stops past it
@@ -132,6 +140,8 @@ class Engine:
         from isorock.analytic.overturning import PAST_ALPHA
         from isorock.validate.core import measure
         runs = list(runs)
+        for system, *_ in runs:
+            self.check_isolator(system)
         if self.spec.simulate_many is None or self.capabilities.exact_impacts:
             out = []
             for system, motion, duration, theta0 in runs:
