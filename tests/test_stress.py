@@ -96,3 +96,38 @@ def test_each_engines_agreement_count_is_judged_as_the_ensembles_are():
     assert "bullet 5 of 15" in line and "disagrees" in line
     assert engine_agreement([dict(base, engine="mujoco", case=f"m{i}", cross="agree") for i in range(80)])[
         "mujoco"].word == AGREES
+
+
+def test_a_disagreement_is_robust_only_if_the_engines_outcome_is_too():
+    """drawn-0008 of the quick grid (H 2 m, λ 7.77, fixed base, record-like noise at
+    2.87·g·tanα): the exact model overturns at 0.97, 1.00 and 1.03 × the motion; MuJoCo's
+    default survives at exactly 1.00 after leaning to ~1.25α and overturns at 0.97 and 1.03
+    (measured, docs/mujoco.md). Run for real: the engine's own ±3% runs decide that its
+    survival is a knife edge, not a robust disagreement."""
+    pytest.importorskip("mujoco")
+    from isorock.validate.tools.stress import recheck_disagreements, run_cases
+    case = next(c for c in drawn_cases(12) if c.name.startswith("drawn-0008"))
+    ref, mine = run_cases([("analytic", case), ("mujoco", case)], 60.0)
+    assert ref["overturned"]
+    if mine["overturned"]:  # the knife edge fell the other way on this machine: nothing to recheck
+        pytest.skip("MuJoCo overturns at 1.00 here too: no disagreement to recheck")
+    ref["robust"] = True
+    results = [ref, mine]
+    compare_engines(results)
+    assert mine["cross"] == "DISAGREE"
+    recheck_disagreements(results, {case.name: case}, 60.0)
+    assert mine["cross"] == "chaotic" and mine["engine_robust"] is False and "0.97" in mine["note"]
+
+
+def test_a_disagreement_the_engine_holds_under_scaling_stays_a_disagreement(monkeypatch):
+    """The rule's other side, with the reruns' outcomes given: an engine that keeps its
+    outcome at 0.97 and 1.03 × the motion disagrees robustly."""
+    from isorock.validate.tools import stress
+    case = StressCase(Scenario("c", System.fixed(height=2, width=0.5, mass=1), "none", 1.0), "rule")
+    ref = dict(engine="analytic", case="c", verdict="pass", overturned=True, robust=True, status="overturned")
+    mine = dict(engine="mujoco", case="c", verdict="pass", overturned=False, status="completed")
+    results = [ref, mine]
+    compare_engines(results)
+    monkeypatch.setattr(stress, "run_cases", lambda todo, *a, **k: [dict(verdict="pass", overturned=False)] * len(todo))
+    stress.recheck_disagreements(results, {"c": case}, 10.0)
+    assert mine["cross"] == "DISAGREE" and mine["engine_robust"] is True
