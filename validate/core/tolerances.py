@@ -214,19 +214,17 @@ LIMITS: dict[str, Tolerance] = {
         0.01, "s: a fixed-step engine ends on its last whole step, up to one step (≤ 10 ms) short of the "
               "duration"),
     "stress_robust_scale": Tolerance(
-        0.03, "the reference's overturning must hold under the motion scaled by 1 ± this for a contact "
-              "engine's other outcome to count as a disagreement, not chaos (model.md)"),
+        0.03, "the reference's overturning must hold under the motion scaled by 1 ± this, and so must a "
+              "contact engine's other outcome, for it to count as a disagreement, not chaos (model.md)"),
     "bench_mujoco_speed": Tolerance(
         1000.0, "simulated s per wall s asked of MuJoCo over a batch of 16 runs of Kobe 40 s on 2 cores "
-                "(issue 19), at β error ≤ bench_mujoco_beta", kind="min"),
-    "bench_mujoco_beta": Tolerance(0.005, "the atlas's 0.5% level, where the speed goal is judged"),
+                "(issue 19), at the accuracy the atlas holds (atlas_level_coarse)", kind="min"),
     "bench_mujoco_speed_alone": Tolerance(
         300.0, "simulated s per wall s asked of one MuJoCo run alone on Kobe 40 s, the paper's block (issue 19)",
         kind="min"),
     "bench_bullet_speed": Tolerance(
         200.0, "simulated s per wall s asked of one PyBullet run alone on Kobe 40 s, the paper's block "
-               "(issue 19), at β error ≤ bench_bullet_beta", kind="min"),
-    "bench_bullet_beta": Tolerance(0.01, "PyBullet's β tolerance of the report"),
+               "(issue 19), at the accuracy the atlas holds (atlas_level_coarse)", kind="min"),
     "atlas_level_coarse": Tolerance(0.005, "worst β error of a preset over the atlas grid, first verdict level"),
     "atlas_level_fine": Tolerance(0.001, "worst β error of a preset over the atlas grid, second verdict level"),
     "atlas_t1_level": Tolerance(
