@@ -39,8 +39,18 @@ REFERENCE = "analytic"
 #: The engines every report and comparison loops over: the reference and the contact engines.
 ENGINE_NAMES = ("analytic", "mujoco", "bullet")
 CONTACT_ENGINES = tuple(n for n in ENGINE_NAMES if n != REFERENCE)
-#: Every engine that can be asked for by name (bench and stress run them all).
+#: Every engine that can be asked for by name, former names included.
 ALL_ENGINES = tuple(ENGINE_MODULES)
+#: Former names: each runs the engine it names, so no tool runs it as an engine of its own.
+ALIASES = {"analytic-fast": "analytic"}
+#: Every engine once (bench and stress run them all; `isorock presets` lists them).
+DISTINCT_ENGINES = tuple(n for n in ENGINE_MODULES if n not in ALIASES)
+
+
+def canonical(label: str) -> str:
+    """ENGINE[:PRESET] with a former engine name replaced by the engine's own."""
+    name, sep, preset = str(label).partition(":")
+    return ALIASES.get(name, name) + sep + preset
 
 
 @dataclass(frozen=True)
@@ -247,7 +257,7 @@ def campaign_engines() -> tuple[str, ...]:
     """The registered engines fast enough for grids of thousands of runs that can be
     imported here: what bench and stress run unless told otherwise."""
     out = []
-    for name in ALL_ENGINES:
+    for name in DISTINCT_ENGINES:
         try:
             if get_engine(name).capabilities.campaigns:
                 out.append(name)
