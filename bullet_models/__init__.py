@@ -4,7 +4,7 @@ Measurements behind every default: docs/bullet.md."""
 import math
 from dataclasses import replace
 
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Tuning
+from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
 
 from .scene import SCENE_FORMAT, build, connect, scene_text
 from .settings import Settings, settings_for, settings_for_timestep
@@ -34,23 +34,31 @@ ENGINE = EngineSpec(
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
     presets={
-        "default": Settings,
-        # 1 ms physics steps: β within ~1% on the paper's block at three times the speed (docs/bullet.md)
-        "fast": lambda: settings_for_timestep(1e-3),
-        # 0.1 ms physics steps: β within ~0.1% on the paper's block
-        "fine": lambda: settings_for_timestep(1e-4),
-        # contact ERP a quarter of Bullet's 0.08: a sunk corner is pushed out more slowly, with less kick
-        "erp-low": lambda: Settings(contact_erp=0.02),
-        # contact ERP 0.2, the value most engines default to: faster correction, and a bounce (0.8 bounces)
-        "erp-high": lambda: Settings(contact_erp=0.2),
-        # 10 solver iterations instead of 50: a cheaper solve, unconverged at impacts (docs/bullet.md)
-        "iterations-10": lambda: Settings(solver_iterations=10),
-        # 200 solver iterations: whether the default's 50 leaves the impact unconverged
-        "iterations-200": lambda: Settings(solver_iterations=200),
-        # the isolator force and ground motion updated every 3 physics steps (1 ms), not 12 (4 ms)
-        "substeps-3": lambda: Settings(substeps=3),
-        # every 30 physics steps (10 ms): fewer Python steps, the force held longer
-        "substeps-30": lambda: Settings(substeps=30),
+        "default": Preset("the measured default (docs/bullet.md)", Settings),
+        "fast": Preset(
+            "1 ms physics steps: β within ~1% on the paper's block at three times the speed (docs/bullet.md)",
+            lambda: settings_for_timestep(1e-3)),
+        "fine": Preset(
+            "0.1 ms physics steps: β within ~0.1% on the paper's block",
+            lambda: settings_for_timestep(1e-4)),
+        "erp-low": Preset(
+            "contact ERP a quarter of Bullet's 0.08: a sunk corner is pushed out more slowly, with less kick",
+            lambda: Settings(contact_erp=0.02)),
+        "erp-high": Preset(
+            "contact ERP 0.2, the value most engines default to: faster correction, and a bounce (0.8 bounces)",
+            lambda: Settings(contact_erp=0.2)),
+        "iterations-10": Preset(
+            "10 solver iterations instead of 50: a cheaper solve, unconverged at impacts (docs/bullet.md)",
+            lambda: Settings(solver_iterations=10)),
+        "iterations-200": Preset(
+            "200 solver iterations: whether the default's 50 leaves the impact unconverged",
+            lambda: Settings(solver_iterations=200)),
+        "substeps-3": Preset(
+            "the isolator force and ground motion updated every 3 physics steps (1 ms), not 12 (4 ms)",
+            lambda: Settings(substeps=3)),
+        "substeps-30": Preset(
+            "every 30 physics steps (10 ms): fewer Python steps, the force held longer",
+            lambda: Settings(substeps=30)),
     },
     ladder=ladder, tuning=TUNING)
 

@@ -253,6 +253,25 @@ def runs_here(label: str) -> bool:
     except ImportError:
         return True
 
+def presets_of(name: str) -> dict:
+    """Every preset of engine `name`: preset → {"reason": its one line, "settings": every
+    setting's value, "differs": the names of those that differ from the engine's default}.
+    An engine whose package cannot be imported here (an optional extra not installed) is an
+    InputError saying what to install."""
+    from dataclasses import asdict
+    try:
+        engine = get_engine(name)
+    except ImportError as e:
+        raise InputError(f"engine = {name!r}: cannot be loaded here ({e})") from None
+    default = asdict(engine.settings())
+    out = {}
+    for preset, make in engine.spec.presets.items():
+        values = asdict(make())
+        out[preset] = {"reason": getattr(make, "reason", ""), "settings": values,
+                       "differs": [k for k, v in values.items() if default.get(k) != v]}
+    return out
+
+
 def campaign_engines() -> tuple[str, ...]:
     """The registered engines fast enough for grids of thousands of runs that can be
     imported here: what bench and stress run unless told otherwise."""
