@@ -30,8 +30,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                     "DIR/report.html, the figures and DIR/metrics.json. The last line on stdout is the verdict.")
     p.add_argument("--config", metavar="FILE.toml",
                    help="a TOML file with [system] (the system options, underscored), engines = [...], "
-                        "motions = [...], and [settings.ENGINE] tables of engine settings; options given on "
-                        "the command line win")
+                        "motions = [...], pga or pgv, and [settings.ENGINE] tables of engine settings; options "
+                        "given on the command line win (a commented example: examples/statue.toml)")
     p.add_argument("--motion", action="append", metavar="SPEC",
                    help="a record file or a pulse 'sine:amp=A,freq=F,cycles=N', 'cosine:…', "
                         "'ricker:amp=A,freq=F' (A in g, F in Hz); repeat for several "
@@ -114,7 +114,9 @@ def run(args) -> int:
                           scales=_scales(args.scales), format=args.format or config.get("format"),
                           units=args.units or config.get("units"), system=system_from_options(args, config.get("system")),
                           overrides=overrides, workers=args.workers, overturn_rule=args.overturn,
-                          pga=args.pga, pgv=args.pgv)
+                          # a target on the command line wins over the file's, whichever it names
+                          **({"pga": args.pga, "pgv": args.pgv} if args.pga is not None or args.pgv is not None
+                             else {"pga": config.get("pga"), "pgv": config.get("pgv")}))
     from isorock.validate.cli.config_file import check_damping_ratio
     check_damping_ratio(report.system)
     from isorock.validate.core.engines import resolve
