@@ -51,6 +51,13 @@ class CampaignResult:
     def tasks_skipped(self) -> int:
         return self.tasks_total - self.tasks_run
 
+    def to_dataframe(self):
+        """The results table as a pandas DataFrame (one row per case, engine and setting;
+        columns as docs/campaigns.md lists them). Needs pandas (`isorock[notebook]`)."""
+        from isorock.analytic.errors import import_extra
+        import_extra("pandas", "notebook", "CampaignResult.to_dataframe")
+        return self.table.to_pandas()
+
 
 def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: str | None = None,
                  progress: bool = True, products: bool = True) -> CampaignResult:

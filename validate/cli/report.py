@@ -92,14 +92,12 @@ def _read_config(path) -> dict:
     return read_config(path)
 
 
-def run(args) -> int:
+def report_config(args):
+    """The validate options `args` (the parser's namespace) and the --config file they name,
+    checked and merged into the report's ReportConfig, before any run."""
     from isorock.validate.cli.options import ENGINE_OPTIONS, system_from_options
-    from isorock.validate.io.output import check_folder
-    from isorock.validate.io.progress import Progress
-    from isorock.validate.tools.report_render import verdict, write_report
-    from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig, build
+    from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig
     from isorock.validate.cli.run import engine_labels
-    check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
     overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
@@ -125,6 +123,16 @@ def run(args) -> int:
             resolve(name, report.overrides_for(name))
         except ImportError:
             pass  # reported as a skipped engine
+    return report
+
+
+def run(args) -> int:
+    from isorock.validate.io.output import check_folder
+    from isorock.validate.io.progress import Progress
+    from isorock.validate.tools.report_render import verdict, write_report
+    from isorock.validate.tools.report_run import build
+    check_folder(args.out)  # a folder we may not write is refused before the runs, not after
+    report = report_config(args)
     bars = []  # made by the report once it knows how many runs it makes
 
     def progress(total):
