@@ -208,9 +208,13 @@ class EngineChoice:
         try:
             return replace(preset, **self.settings_kwargs)
         except InputError as e:
+            given = ", ".join(f"{k} = {v!r}" for k, v in self.settings_kwargs.items())
+            try:  # the user's value alone, on the engine's defaults: is it theirs that is out of range?
+                engine.settings(**self.settings_kwargs)
+            except InputError as own:
+                raise InputError(f"{own} (given on preset {self.engine}:{self.preset})") from None
             # a setting the user did not give (the preset's solref, made for its own step)
             # must not be blamed alone: say which of theirs made it unfit
-            given = ", ".join(f"{k} = {v!r}" for k, v in self.settings_kwargs.items())
             raise InputError(f"{given} on preset {self.engine}:{self.preset}: the preset's other settings do not fit "
                              f"it ({e}); give them too, or leave out the preset") from None
 
