@@ -180,14 +180,34 @@ def fragility_fits(cols) -> list[dict]:
     return out
 
 
-def fragility_figure(fits, path: Path) -> None:
+#: Fragility panels per row: 16 systems in one row made a 10,816 × 546 px strip (issue 25)
+FRAGILITY_COLUMNS = 4
+
+
+def _wrap(text: str, width: int) -> str:
+    import textwrap
+    return "\n".join(textwrap.wrap(text, width)) or text
+
+
+def fragility_plot(fits):
+    """The fragility figure: one panel per system, FRAGILITY_COLUMNS to a row (so that
+    any number of systems reads at the same size), each curve labelled in its panel's
+    legend; titles wrapped to the panel's width."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     systems = list(dict.fromkeys(f["system"] for f in fits))
-    fig, axes = plt.subplots(1, len(systems), figsize=(5.2 * len(systems), 4.2), squeeze=False, sharey=True)
     pairs = list(dict.fromkeys((f["engine"], f["setting"]) for f in fits))
-    for ax, system in zip(axes[0], systems):
+    ncols = min(FRAGILITY_COLUMNS, len(systems))
+    nrows = math.ceil(len(systems) / ncols)
+    # room under each panel for its legend, one line per engine and setting
+    legend_h = 0.2 * len(pairs) + 0.3
+    fig, axes = plt.subplots(nrows, ncols, figsize=(5.2 * ncols, (3.6 + legend_h) * nrows), squeeze=False,
+                             sharey=True, layout="constrained")
+    unit = "g" if fits[0]["scale_by"] == "pga" else "m/s"
+    for ax in axes.flat[len(systems):]:
+        ax.set_visible(False)
+    for ax, system in zip(axes.flat, systems):
         for f in (f for f in fits if f["system"] == system):
             j = pairs.index((f["engine"], f["setting"]))
             color = "k" if runs_as_batch(f["engine"]) else f"C{j}"
@@ -198,21 +218,28 @@ def fragility_figure(fits, path: Path) -> None:
             x = f["levels"]
             ax.plot(x, f["fraction"], "o", color=color, ms=max(6 - j, 2), mfc="none" if j else color)
             fit = f["fit"]
+            name = _wrap(f"{f['engine']} {f['setting']}", 40)
             if math.isfinite(fit.median):
                 xx = np.geomspace(x[0], x[-1], 200)
                 lo, hi = fit.band(xx)
                 ax.fill_between(xx, lo, hi, color=color, alpha=0.10, lw=0)
                 ax.plot(xx, fit.probability(xx), style, color=color, lw=width,
-                        label=f"{f['engine']} {f['setting']}: θ = {fit.median:.3g}, β = {fit.dispersion:.2f}")
+                        label=f"{name}: θ = {fit.median:.3g}, β = {fit.dispersion:.2f}")
             else:
-                ax.plot([], [], "o", color=color, label=f"{f['engine']} {f['setting']}: {fit.note}")
-        unit = "g" if fits[0]["scale_by"] == "pga" else "m/s"
+                ax.plot([], [], "o", color=color, label=f"{name}: {_wrap(fit.note, 50)}")
         ax.set_xlabel(f"{fits[0]['scale_by'].upper()} ({unit})")
-        ax.set_title(system, fontsize=9)
+        ax.set_title(_wrap(system, 55), fontsize=9)
         ax.set_ylim(-0.02, 1.02)
-        ax.legend(fontsize=7, loc="upper left")
-    axes[0][0].set_ylabel("P(overturn)")
-    fig.tight_layout()
+        # under the panel, not over its curves
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)
+    for row in axes:
+        row[0].set_ylabel("P(overturn)")
+    return fig
+
+
+def fragility_figure(fits, path: Path) -> None:
+    import matplotlib.pyplot as plt
+    fig = fragility_plot(fits)
     fig.savefig(path, dpi=130)
     plt.close(fig)
 

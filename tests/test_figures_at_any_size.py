@@ -1,0 +1,57 @@
+"""Figures that read at any size (issue 25): each figure drawn with many panels and long
+names; its size stays within a screen's reach in both directions and no two of its texts
+overlap (tests/figure_checks.py measures the rendered text boxes)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from figure_checks import overlapping_texts, size_px, texts_outside
+
+matplotlib = pytest.importorskip("matplotlib")
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+#: the largest side a figure may have at its dpi (a 4K screen's width, and a bit)
+MAX_SIDE_PX = 4200
+
+
+def _check(fig, dpi):
+    w, h = size_px(fig, dpi)
+    try:
+        assert max(w, h) <= MAX_SIDE_PX and max(w, h) / min(w, h) <= 5, (w, h)  # one row of 16 was 20:1
+        assert not overlapping_texts(fig), overlapping_texts(fig)[:5]
+        assert not texts_outside(fig), texts_outside(fig)[:5]
+    finally:
+        plt.close(fig)
+    return w, h
+
+
+def _fits(n_systems: int, pairs: list[tuple[str, str]]):
+    from isorock.validate.core.fragility import fit_fragility
+    rng = np.random.default_rng(1)
+    levels = np.linspace(0.1, 1.5, 15)
+    out = []
+    for i in range(n_systems):
+        system = (f"isolated T {1 + 0.1 * i:g} s, ξ 0.2, μ {0.25 * (i + 1):g}, H {2 + i:g} m, B 0.7 m"
+                  if i % 2 else f"fixed base, H {2 + i:g} m, B 0.7 m")
+        for engine, setting in pairs:
+            o = (rng.random((44, levels.size)) < 1 / (1 + np.exp(-(levels - 0.6) * 8))).astype(float)
+            out.append({"system": system, "engine": engine, "setting": setting, "scale_by": "pga",
+                        "levels": levels, "fraction": o.mean(axis=0), "records": 44,
+                        "fit": fit_fragility(levels, o, bootstrap=0)})
+    return out
+
+
+@pytest.mark.parametrize("n_systems", [1, 3, 16])
+def test_fragility_lays_out_many_systems_as_a_grid(n_systems):
+    from isorock.campaign.products import FRAGILITY_COLUMNS, fragility_plot
+    pairs = [("analytic", "default"), ("mujoco", "preset=fast,timestep=0.002"), ("bullet", "default")]
+    fig = fragility_plot(_fits(n_systems, pairs))
+    visible = [ax for ax in fig.axes if ax.get_visible()]
+    assert len(visible) == n_systems
+    rows = {round(ax.get_position().y0, 3) for ax in visible}
+    assert len(rows) == -(-n_systems // FRAGILITY_COLUMNS)  # ⌈n / columns⌉ rows
+    w, h = _check(fig, 130)
+    if n_systems == 16:
+        assert w < 3000 and h < 3000  # it was 10,816 × 546 px in one row
