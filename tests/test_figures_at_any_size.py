@@ -55,3 +55,51 @@ def test_fragility_lays_out_many_systems_as_a_grid(n_systems):
     w, h = _check(fig, 130)
     if n_systems == 16:
         assert w < 3000 and h < 3000  # it was 10,816 × 546 px in one row
+
+
+# --- isorock run --plot ----------------------------------------------------------------------
+
+PAPER = dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.5, damping_ratio=0.2)
+
+
+def _theta_axis(fig):
+    return next(ax for ax in fig.axes if ax.get_ylabel() == "θ/α")
+
+
+def test_run_plot_theta_axis_follows_small_rocking_and_a_fixed_base_has_no_u_panel():
+    """Free rocking from 0.1α (the oracle: the initial tilt is the peak, energy only being
+    lost): the θ/α axis spans about ±0.1, not ±1; on a fixed base no panel of u ≡ 0."""
+    import isorock
+    from isorock.validate.io.run_plot import runs_figure
+    from isorock.analytic.motion import GroundMotion
+    tr = isorock.run(engine="analytic", fixed_base=True, height=2.0, width=0.7, mass=3800.0, base_mass=3800.0,
+                     theta0_over_alpha=0.1, duration=3.0)
+    fig = runs_figure({"analytic": tr}, GroundMotion.zero())
+    lo, hi = _theta_axis(fig).get_ylim()
+    assert 0.1 <= hi < 0.2 and -0.2 < lo < -0.05, (lo, hi)  # after an impact the swing is β times smaller
+    assert "base u (cm)" not in [ax.get_ylabel() for ax in fig.axes]
+    _check(fig, 100)
+
+
+def test_run_plot_draws_alpha_where_the_block_comes_near_it():
+    import isorock
+    from isorock.validate.io.run_plot import runs_figure
+    from isorock.analytic.motion import GroundMotion
+    tr = isorock.run(engine="analytic", theta0_over_alpha=0.8, duration=2.0, **PAPER)
+    fig = runs_figure({"analytic": tr}, GroundMotion.zero())
+    lo, hi = _theta_axis(fig).get_ylim()
+    assert hi >= 1 and lo <= -1
+    assert "base u (cm)" in [ax.get_ylabel() for ax in fig.axes]
+    plt.close(fig)
+
+
+def test_run_plot_with_many_engines_and_long_names_keeps_its_texts_apart():
+    import isorock
+    from isorock.analytic.motion import load_motion
+    from isorock.validate.io.run_plot import runs_figure
+    motion = "sine:amp=0.6,freq=1.3,cycles=2"
+    runs = isorock.run(engine="analytic,analytic:conservative,analytic-reference,mujoco:fast,bullet:fast",
+                       motion=motion, duration=4.0, **PAPER)
+    fig = runs_figure(runs, load_motion(motion))
+    assert len(fig.axes) == 6
+    _check(fig, 100)
