@@ -103,3 +103,30 @@ def test_run_plot_with_many_engines_and_long_names_keeps_its_texts_apart():
     fig = runs_figure(runs, load_motion(motion))
     assert len(fig.axes) == 6
     _check(fig, 100)
+
+
+# --- the validation report's ensembles ---------------------------------------------------------
+
+def _ensemble(motion: str, fixed: bool):
+    from types import SimpleNamespace
+    scales = np.linspace(0.4, 1.6, 21)
+    rng = np.random.default_rng(2)
+    ref = np.clip(scales - 0.3, 0, None)
+    theta = {"analytic": ref, "mujoco": ref + rng.normal(0, 0.01, ref.size), "bullet": ref + rng.normal(0, 0.01, ref.size)}
+    system = SimpleNamespace(fixed_base=fixed)
+    return SimpleNamespace(system=system, motion=motion, pga_g=0.28, scales=scales, theta_max=theta,
+                           overturned={k: v > 1 for k, v in theta.items()},
+                           rocking_count=lambda: int(np.sum(ref > 0.01)))
+
+
+def test_the_ensemble_figure_keeps_long_record_names_apart_and_says_what_the_scale_is():
+    from isorock.validate.io.figures import ensemble_figure, scale_axis_label
+    names = ["RSN1106_KOBE_KJM000.AT2 (Kobe 1995, KJMA, first 40 s)",
+             "RSN6_IMPVALL.I_I-ELC180_with_a_very_long_processing_suffix.AT2",
+             "RSN766_LOMAP_G02000.AT2 scaled to 0.5 g", "KOBE_NS"]
+    ensembles = [_ensemble(n, fixed) for n in names for fixed in (False, True)]
+    fig = ensemble_figure(ensembles, bands={"mujoco": 0.05, "bullet": 0.05})
+    label = scale_axis_label(0.28)
+    assert "× PGA" not in label and "0.28 g" in label and "scale factor" in label
+    assert label in [ax.get_xlabel() for ax in fig.axes]
+    _check(fig, 130)

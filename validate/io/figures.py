@@ -202,10 +202,24 @@ def ensemble(ensembles, path, *, bands: dict | None = None, reference: str = REF
     """Per Ensemble a column: θmax/α against the scale factor, one curve per engine
     (overturned drawn at 1 with a cross), and below it each engine − the reference, with
     `bands` (engine → tolerance of the median difference) as ± lines."""
+    _save(ensemble_figure(ensembles, bands=bands, reference=reference), path)
+
+
+def scale_axis_label(pga_g: float) -> str:
+    """The ensembles' x axis: the factor multiplies the whole motion, whose own PGA is
+    given at factor 1 (a label that put the factor beside the PGA read as a PGA in g)."""
+    return f"scale factor of the motion (its PGA at 1: {pga_g:.2f} g)"
+
+
+def ensemble_figure(ensembles, *, bands: dict | None = None, reference: str = REFERENCE) -> Figure:
+    """The figure `ensemble` writes; titles wrapped to their panel's width (long record
+    names ran into the neighbouring panel's title)."""
+    import textwrap
     n = max(1, len(ensembles))
     cols = min(n, 2)  # isolated and fixed side by side, one pair of rows per motion
     rows = -(-n // cols)
-    fig = Figure(figsize=(5.8 * cols, 6.2 * rows))
+    # constrained: room for the figure's title above the wrapped panel titles (tight_layout leaves none)
+    fig = Figure(figsize=(5.8 * cols, 6.2 * rows), layout="constrained")
     axes = np.atleast_2d(fig.subplots(2 * rows, cols, squeeze=False, gridspec_kw={"height_ratios": [2, 1] * rows}))
     for k in range(rows * cols):
         top, bottom = axes[2 * (k // cols), k % cols], axes[2 * (k // cols) + 1, k % cols]
@@ -231,14 +245,14 @@ def ensemble(ensembles, path, *, bands: dict | None = None, reference: str = REF
         top.axhline(1, color="k", lw=0.5)
         bottom.axhline(0, color="k", lw=0.5)
         base = "fixed base" if ens.system.fixed_base else "isolated base"
-        top.set(ylabel="θmax/α (× = overturned)", ylim=(0, 1.1),
-                title=f"{ens.motion}, {base}: {ens.rocking_count()} of {ens.scales.size} cases rock")
-        bottom.set(xlabel=f"scale factor × PGA ({ens.pga_g:.2f} g)",
-                   ylabel=f"Δ θmax/α (vs {style(reference)['label']})")
+        top.set(ylabel="θmax/α (× = overturned)", ylim=(0, 1.1))
+        top.set_title(textwrap.fill(f"{ens.motion}, {base}: {ens.rocking_count()} of {ens.scales.size} cases rock",
+                                    60, break_long_words=True), fontsize=10)
+        bottom.set(xlabel=scale_axis_label(ens.pga_g), ylabel=f"Δ θmax/α (vs {style(reference)['label']})")
         for ax in (top, bottom):
             ax.grid(alpha=0.3)
         top.legend(fontsize=8)
     fig.suptitle("Peak rotation over the motion scaled in amplitude: where engines part from the analytic model",
                  fontsize=10)
-    fig.tight_layout()
-    _save(fig, path)
+    FigureCanvasAgg(fig)
+    return fig
