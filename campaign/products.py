@@ -185,8 +185,15 @@ FRAGILITY_COLUMNS = 4
 
 
 def _wrap(text: str, width: int) -> str:
-    import textwrap
-    return "\n".join(textwrap.wrap(text, width)) or text
+    """`text` in lines of at most `width` characters, broken after a space or a comma (a
+    setting's label "preset=fast,timestep=0.002" has no spaces), never inside a word."""
+    import re
+    lines = [""]
+    for token in re.split(r"(?<=[,\s])", text):
+        if lines[-1] and len(lines[-1] + token.rstrip()) > width:
+            lines.append("")
+        lines[-1] += token
+    return "\n".join(line.rstrip() for line in lines)
 
 
 def fragility_plot(fits):
@@ -294,21 +301,39 @@ def agreement(cols, x: str, y: str) -> list[dict]:
     return out
 
 
-def agreement_figure(maps, path: Path) -> None:
+#: An agreement map's cells where nothing is judged (no case there, or for θmax/α none in
+#: which both survive): hatched grey, never the colour of 0 (which is judged and agrees)
+NOT_APPLICABLE = {"facecolor": "#bdbdbd", "hatch": "///", "edgecolor": "#737373"}
+
+
+def agreement_plot(maps):
+    """The agreement maps: per contact engine and setting a column, the fraction of cases
+    whose overturning verdict differs (top) and whose θmax/α departs (bottom); cells with
+    nothing to judge hatched grey (NOT_APPLICABLE), apart from 0."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, len(maps), figsize=(4.6 * len(maps), 7.4), squeeze=False, layout="constrained")
+    from matplotlib.patches import Patch, Rectangle
+    fig, axes = plt.subplots(2, len(maps), figsize=(4.6 * len(maps), 8.0), squeeze=False, layout="constrained")
     for j, m in enumerate(maps):
         for i, (key, title) in enumerate((("verdict", "overturned or not differs"),
                                            ("theta", f"|Δ θmax/α| > {m['tolerance']:g} (both survive)"))):
             ax = axes[i][j]
-            im = ax.pcolormesh(_edges(m["xs"]), _edges(m["ys"]), np.ma.masked_invalid(m[key]),
-                               cmap="Reds", vmin=0, vmax=1)
-            ax.set_title(f"{m['engine']} {m['setting']}\n{title}", fontsize=8)
+            xe, ye = _edges(m["xs"]), _edges(m["ys"])
+            ax.add_patch(Rectangle((xe[0], ye[0]), xe[-1] - xe[0], ye[-1] - ye[0], lw=0, zorder=0, **NOT_APPLICABLE))
+            im = ax.pcolormesh(xe, ye, np.ma.masked_invalid(m[key]), cmap="Reds", vmin=0, vmax=1, zorder=1)
+            ax.set_title(_wrap(f"{m['engine']} {m['setting']}", 36) + f"\n{title}", fontsize=8)
             ax.set_xlabel(m["x"])
             ax.set_ylabel(m["y"])
         fig.colorbar(im, ax=axes[:, j].tolist(), shrink=0.6, label="fraction of cases")
+    fig.legend(handles=[Patch(label="not applicable: no case to judge", **NOT_APPLICABLE)], loc="outside lower center",
+               fontsize=8, frameon=False)
+    return fig
+
+
+def agreement_figure(maps, path: Path) -> None:
+    import matplotlib.pyplot as plt
+    fig = agreement_plot(maps)
     fig.savefig(path, dpi=130)
     plt.close(fig)
 

@@ -130,3 +130,34 @@ def test_the_ensemble_figure_keeps_long_record_names_apart_and_says_what_the_sca
     assert "× PGA" not in label and "0.28 g" in label and "scale factor" in label
     assert label in [ax.get_xlabel() for ax in fig.axes]
     _check(fig, 130)
+
+
+# --- campaign agreement maps ---------------------------------------------------------------------
+
+def _map(engine: str, setting: str):
+    xs, ys = np.array([1.0, 2.0, 3.0, 4.0]), np.array([0.5, 1.0, 2.0])
+    verdict = np.array([[0.0, 0.0, 0.2, np.nan], [0.0, 0.5, np.nan, 1.0], [0.0, 0.1, 0.3, 0.0]])
+    return {"engine": engine, "setting": setting, "x": "frequency_ratio", "y": "amplitude_ratio", "xs": xs, "ys": ys,
+            "verdict": verdict, "theta": verdict[::-1].copy(), "tolerance": 0.02}
+
+
+def _cell_rgb(fig, ax, x, y):
+    """The rendered colour at data point (x, y) of the axes (the oracle: pixels)."""
+    fig.canvas.draw()
+    image = np.asarray(fig.canvas.buffer_rgba())[..., :3].astype(float)
+    px, py = ax.transData.transform((x, y))
+    h = image.shape[0]
+    return image[int(round(h - py)), int(round(px))]
+
+
+def test_an_agreement_maps_zero_and_not_applicable_look_apart_and_many_maps_keep_their_texts_apart():
+    from isorock.campaign.products import agreement_plot
+    maps = [_map("mujoco", "default"), _map("mujoco", "preset=event-resolved,timestep=0.0005,friction=0.8"),
+            _map("bullet", "preset=substeps-30"), _map("drake", "preset=hydroelastic")]
+    fig = agreement_plot(maps)
+    ax = fig.axes[0]  # mujoco default, verdict: (x 1, y 0.5) is 0, (x 4, y 0.5) not applicable
+    zero, na = _cell_rgb(fig, ax, 1.0, 0.5), _cell_rgb(fig, ax, 4.0, 0.5)
+    assert np.abs(zero - na).max() > 40, (zero, na)  # 0 is near white; n/a is grey (or its hatch)
+    texts = [t.get_text() for t in fig.findobj(matplotlib.text.Text)]
+    assert any("not applicable" in t for t in texts)
+    _check(fig, 130)
