@@ -19,7 +19,7 @@ def rendered_texts(fig):
     def recording(self, renderer):
         result = original(self, renderer)
         if self.get_text().strip():
-            box = self.get_window_extent(renderer)
+            box = Text.get_window_extent(self, renderer)  # an annotation's text, without its arrow
             if box.width > 0 and box.height > 0:
                 drawn.append((self.get_text(), box))
         return result

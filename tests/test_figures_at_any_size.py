@@ -161,3 +161,33 @@ def test_an_agreement_maps_zero_and_not_applicable_look_apart_and_many_maps_keep
     texts = [t.get_text() for t in fig.findobj(matplotlib.text.Text)]
     assert any("not applicable" in t for t in texts)
     _check(fig, 130)
+
+
+# --- the atlas's Pareto plot ---------------------------------------------------------------------
+
+def _summaries():
+    """Presets as the atlas finds them: several at the same cost and error (a preset named
+    for the default's own setting), others close by, some not judged on every cell."""
+    out = []
+    mujoco = {"default": (110, 0.004), "newton": (110, 0.004), "elliptic": (110, 0.004), "full": (95, 0.004),
+              "cg": (120, 0.0041), "pyramidal": (130, 0.006), "fast": (400, 0.009), "fine": (12, 0.0009),
+              "model-md": (105, 0.005), "event-resolved": (300, 0.02), "corners": (140, 0.0045)}
+    bullet = {"default": (50, 0.0038), "fast": (150, 0.009), "fine": (6, 0.0011), "erp-low": (50, 0.0039),
+              "erp-high": (52, 0.05), "iterations-10": (70, 0.0045), "iterations-200": (30, 0.0038),
+              "substeps-3": (45, 0.0038), "substeps-30": (60, 0.0052)}
+    for engine, presets in (("mujoco", mujoco), ("bullet", bullet)):
+        for preset, (speed, error) in presets.items():
+            out.append({"engine_name": engine, "preset": f"{engine}:{preset}", "complete": True,
+                        "worst_beta_error": error, "sim_per_wall": speed, "failures": {}})
+    for preset, speed in (("drake:hydroelastic", 0.5), ("drake:tamsi", 2.0), ("drake:sap", 1.0)):
+        out.append({"engine_name": "drake", "preset": preset, "complete": False, "worst_beta_error": 0.2,
+                    "sim_per_wall": speed, "failures": {"too slow": 12, "missing impacts": 3}})
+    return out
+
+
+def test_the_pareto_plots_labels_do_not_overlap():
+    from isorock.validate.tools.atlas_figures import pareto_figure
+    fig = pareto_figure(_summaries(), (0.005, 0.001))
+    labels = [t.get_text() for t in fig.axes[0].texts]
+    assert all(s["preset"] in " ".join(labels) for s in _summaries())
+    _check(fig, 100)
