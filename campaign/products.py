@@ -180,6 +180,22 @@ def fragility_fits(cols) -> list[dict]:
     return out
 
 
+def fragility_caveats(f) -> list[str]:
+    """What a fragility fit does not know, said beside it: a median outside the levels
+    tried is an extrapolation of the lognormal, and a bootstrap band over fewer records
+    than a statistical verdict needs (tolerances: verdict_min_cases) means little."""
+    from isorock.validate.core.tolerances import limit
+    fit, levels, out = f["fit"], np.asarray(f["levels"], dtype=float), []
+    if math.isfinite(fit.median) and fit.median > levels.max():
+        out.append(f"median beyond the highest level tried ({levels.max():g}): an extrapolation")
+    elif math.isfinite(fit.median) and fit.median < levels.min():
+        out.append(f"median below the lowest level tried ({levels.min():g}): an extrapolation")
+    least = limit("verdict_min_cases")
+    if math.isfinite(fit.median) and f["records"] < least:
+        out.append(f"band over {f['records']} records: too few to mean much (fewer than {least:g})")
+    return out
+
+
 #: Fragility panels per row: 16 systems in one row made a 10,816 × 546 px strip (issue 25)
 FRAGILITY_COLUMNS = 4
 
@@ -230,8 +246,9 @@ def fragility_plot(fits):
                 xx = np.geomspace(x[0], x[-1], 200)
                 lo, hi = fit.band(xx)
                 ax.fill_between(xx, lo, hi, color=color, alpha=0.10, lw=0)
+                beyond = " (extrapolated)" if any("extrapolation" in c for c in fragility_caveats(f)) else ""
                 ax.plot(xx, fit.probability(xx), style, color=color, lw=width,
-                        label=f"{name}: θ = {fit.median:.3g}, β = {fit.dispersion:.2f}")
+                        label=f"{name}: θ = {fit.median:.3g}{beyond}, β = {fit.dispersion:.2f}")
             else:
                 ax.plot([], [], "o", color=color, label=f"{name}: {_wrap(fit.note, 50)}")
         ax.set_xlabel(f"{fits[0]['scale_by'].upper()} ({unit})")
@@ -397,7 +414,9 @@ def write_products(table, out: Path, spec=None) -> list[Path]:
         lines += _md_table([{"system": f["system"], "engine": f["engine"], "setting": f["setting"],
                              "records": f["records"], "median θ": f["fit"].median,
                              "θ 5%": f["fit"].median_band[0], "θ 95%": f["fit"].median_band[1],
-                             "dispersion β": f["fit"].dispersion, "note": f["fit"].note} for f in fits]) + [""]
+                             "dispersion β": f["fit"].dispersion,
+                             "note": "; ".join(filter(None, [f["fit"].note, *fragility_caveats(f)]))}
+                            for f in fits]) + [""]
     axes = None
     if spec is not None and "agreement" in spec.products:
         a = spec.products["agreement"]

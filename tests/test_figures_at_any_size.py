@@ -191,3 +191,26 @@ def test_the_pareto_plots_labels_do_not_overlap():
     labels = [t.get_text() for t in fig.axes[0].texts]
     assert all(s["preset"] in " ".join(labels) for s in _summaries())
     _check(fig, 100)
+
+
+def test_a_fragility_fit_says_what_it_does_not_know():
+    """A median beyond the levels tried is an extrapolation; a band over 2 records means
+    little (issue 25): said in the table's note and in the figure's legend."""
+    from isorock.campaign.products import fragility_caveats, fragility_plot
+    from isorock.validate.core.fragility import fit_fragility
+    levels = np.array([0.1, 0.2, 0.3])
+    few = np.array([[0, 0, 1], [0, 0, 0]], dtype=float)  # 2 records, 1 of 6 runs overturned, at the top level
+    fit = fit_fragility(levels, few, bootstrap=0)
+    assert fit.median > levels.max()  # the oracle: fewer than half overturn at the highest level
+    f = {"system": "fixed base, H 2 m, B 0.7 m", "engine": "analytic", "setting": "default", "scale_by": "pga",
+         "levels": levels, "fraction": few.mean(axis=0), "records": 2, "fit": fit}
+    caveats = fragility_caveats(f)
+    assert any("extrapolation" in c for c in caveats) and any("2 records" in c for c in caveats)
+    fig = fragility_plot([f])
+    legend = " ".join(t.get_text() for t in fig.axes[0].get_legend().get_texts())
+    assert "(extrapolated)" in legend
+    plt.close(fig)
+    many = np.tile([[0, 1, 1], [0, 0, 1], [0, 1, 1], [1, 1, 1], [0, 0, 1], [0, 1, 1]], (2, 1)).astype(float)
+    inside = fit_fragility(levels, many, bootstrap=0)
+    assert levels.min() <= inside.median <= levels.max()
+    assert fragility_caveats(dict(f, fit=inside, records=12)) == []
