@@ -131,8 +131,19 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     made = []
     if products:
         from .products import write_products
+        # drawing takes its own while after the bar reached 100%: a line of its own, so that
+        # a finished bar and a silent terminal do not read as a hang
+        if progress:
+            import sys
+            import time
+            start = time.perf_counter()
+            print(f"isorock sweep: drawing the figures and summary of {table.num_rows} rows…", file=sys.stderr,
+                  flush=True)
         try:
             made = write_products(table, out, spec)
+            if progress:
+                print(f"isorock sweep: drew {len(made)} products in {time.perf_counter() - start:.0f} s",
+                      file=sys.stderr, flush=True)
         except OSError as e:  # a full disk while drawing: the table is whole, the figures are not
             raise InputError(f"--out = {str(out)!r}: the figures and summary could not be written "
                              f"({e.strerror or e}); {RESULTS} is complete: rerun with room to write them") from None

@@ -426,3 +426,14 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     clock[0] += 3.0
     bar.update(len(batch.cases), ex.expected_cost(batch))
     assert "ETA     ? s" in out.getvalue()
+
+
+def test_drawing_the_products_has_its_own_progress_line(tmp_path, capsys):
+    """After the bar reaches 100% the figures take their own while: a line says so before,
+    and one after with what was drawn (issue 25), never a silent finished bar."""
+    spec = write_spec(tmp_path, more="")
+    result = run_campaign(spec, tmp_path / "out", workers=0, progress=True)
+    err = capsys.readouterr().err
+    assert "drawing the figures and summary of 18 rows" in err
+    assert f"drew {len(result.products)} products" in err and len(result.products) > 0
+    assert err.index("100%") < err.index("drawing the figures")
