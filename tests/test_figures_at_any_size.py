@@ -214,3 +214,23 @@ def test_a_fragility_fit_says_what_it_does_not_know():
     inside = fit_fragility(levels, many, bootstrap=0)
     assert levels.min() <= inside.median <= levels.max()
     assert fragility_caveats(dict(f, fit=inside, records=12)) == []
+
+
+def test_the_beta_figure_judges_free_rocking_and_says_why_forced_impacts_are_not():
+    from isorock.validate.io.figures import beta_per_impact_figure
+    from isorock.validate.tools.report_render import FORCED_BETA_NOTE
+    rng = np.random.default_rng(3)
+    free = [(label, engine, list(rng.normal(0, 0.002, 4))) for label in ("isolated", "fixed")
+            for engine in ("mujoco", "bullet", "mujoco:fast")]
+    forced = [(name, engine, list(rng.normal(0, 0.03, 12)))
+              for name in ("RSN1106_KOBE_KJM000.AT2 isolated", "RSN1106_KOBE_KJM000.AT2 fixed base", "KOBE_NS")
+              for engine in ("mujoco", "bullet")]
+    fig = beta_per_impact_figure([("free rocking from 0.5α", free), ("forced histories", forced, FORCED_BETA_NOTE)],
+                                 bands={"mujoco": 0.005, "bullet": 0.005, "mujoco:fast": 0.01})
+    free_ax, forced_ax = fig.axes[:2]
+
+    def dashed(ax):
+        return [line for line in ax.get_lines() if line.get_linestyle() == "--"]
+    assert dashed(free_ax) and not dashed(forced_ax)  # a tolerance only where the points are judged
+    assert "not judged" in forced_ax.get_title()
+    _check(fig, 100)

@@ -163,15 +163,23 @@ def history(motion, runs: dict, path, *, title: str, reference: str = REFERENCE)
 
 
 def beta_per_impact(panels, path, *, bands: dict | None = None) -> None:
-    """`panels`: (title, series) with series = (label, engine, list of β_eff/β − 1), one
-    marker colour per engine and one fill per label; points are spread a little along x
-    so that engines at the same impact index stay visible. `bands`: engine → its
-    tolerance (a fraction), drawn as ± lines in the engine's colour."""
-    panels = list(panels) or [("", [])]
+    """beta_per_impact_figure, written to `path`."""
+    _save(beta_per_impact_figure(panels, bands=bands), path)
+
+
+def beta_per_impact_figure(panels, *, bands: dict | None = None) -> Figure:
+    """`panels`: (title, series) or (title, series, note) with series = (label, engine,
+    list of β_eff/β − 1), one marker colour per engine and one fill per label; points are
+    spread a little along x so that engines at the same impact index stay visible.
+    `bands`: engine → its tolerance (a fraction), drawn as ± lines in the engine's colour
+    on the panels that are judged; a panel with a `note` is not judged (the note says why,
+    under its title, and no tolerance is drawn there: a point beyond one would read as a
+    failure)."""
+    panels = [p if len(p) == 3 else (*p, "") for p in panels] or [("", [], "")]
     fig = Figure(figsize=(6 * len(panels), 6))
     axes = np.atleast_1d(fig.subplots(1, len(panels)))
     fills = ["full", "none", "left", "bottom", "right", "top"]
-    for ax, (title, series) in zip(axes, panels):
+    for ax, (title, series, note) in zip(axes, panels):
         labels = sorted({label for label, _, _ in series})
         engines = sorted({engine for _, engine, _ in series})
         for label, engine, errors in series:
@@ -181,21 +189,24 @@ def beta_per_impact(panels, path, *, bands: dict | None = None) -> None:
             ax.plot(x, e, marker=st["marker"], color=st["color"], ls="none",
                     fillstyle=fills[labels.index(label) % len(fills)], label=f"{st['label']}, {label}")
         ax.axhline(0, color="k", lw=0.5)
-        for engine, limit in (bands or {}).items():
+        for engine, limit in ({} if note else bands or {}).items():
             if any(e == engine for _, e, _ in series):
                 st = style(engine)
                 for sign in (-1, 1):
                     ax.axhline(sign * limit * 100, color=st["color"], lw=1, ls="--", alpha=0.7,
                                label=f"{st['label']} tolerance ±{limit * 100:g}%" if sign > 0 else None)
-        ax.set(xlabel="counted impact", ylabel="β_eff / β − 1 (%)", title=title)
+        import textwrap
+        ax.set(xlabel="counted impact", ylabel="β_eff / β − 1 (%)")
+        ax.set_title(title + (f"\n{textwrap.fill(note, 70)}" if note else ""), fontsize=10 if not note else 9)
         ax.xaxis.get_major_locator().set_params(integer=True)
         ax.grid(alpha=0.3)
         if series:  # below the axes: the points fill the whole panel
             ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=1)
     fig.suptitle("Effective β of every counted impact against the closed form, with each engine's tolerance",
                  fontsize=10)
+    FigureCanvasAgg(fig)
     fig.tight_layout()
-    _save(fig, path)
+    return fig
 
 
 def ensemble(ensembles, path, *, bands: dict | None = None, reference: str = REFERENCE) -> None:
