@@ -106,6 +106,19 @@ def engine_verdicts(results: Results) -> dict:
     return out
 
 
+def _how_many_not_judged(results: Results, name: str) -> str:
+    """" (12 of 30 checks not exercised, 2 skipped)": how much of an engine's 'agrees with
+    caveats' was not judged, in the verdict line itself (issue 25)."""
+    mine = [c for c in results.checks if c.engine == name]
+    said = [f"{n} {word}" for n, word in
+            ((sum(c.status == st for c in mine), word) for st, word in
+             ((NOT_EXERCISED, "not exercised"), ("skip", "skipped"), (INCONCLUSIVE, "inconclusive"))) if n]
+    if not said:
+        return ""
+    count, word = said[0].split(" ", 1)
+    return f" ({count} of {len(mine)} checks {word}{''.join(', ' + x for x in said[1:])})"
+
+
 def verdict(results: Results) -> str:
     """The one-line verdict: the report's first line, the terminal's last, metrics.json's `verdict`."""
     checks = results.checks
@@ -114,8 +127,8 @@ def verdict(results: Results) -> str:
     n_idle = sum(c.status == NOT_EXERCISED for c in checks)
     stats = [c for c in checks if c.interval is not None]
     failed = results.failed
-    engines = "; ".join(f"{_label(n)} {word}" for n, (word, _) in engine_verdicts(results).items()
-                        if n != REFERENCE)
+    engines = "; ".join(f"{_label(n)} {word}{_how_many_not_judged(results, n) if word == CAVEATS else ''}"
+                        for n, (word, _) in engine_verdicts(results).items() if n != REFERENCE)
     skipped_engines = f" Engines skipped: {', '.join(results.skipped)}." if results.skipped else ""
     tail = f"({n_skip} skipped, {n_idle} not exercised)"
     if stats:  # what the ensembles decided, and with what confidence
@@ -127,6 +140,8 @@ def verdict(results: Results) -> str:
         head = f"Result: FAILED — {len(failed)} of {len(checks)} checks failed ({worst}) {tail}"
     elif n_pass == 0:
         head = f"Result: nothing was tested — no check could be made {tail}"
+    elif n_pass < len(checks):  # the checks not made are as many as the line says, not hidden by "all"
+        head = f"Result: all {n_pass} checks made passed, {len(checks) - n_pass} of {len(checks)} not made {tail}"
     else:
         head = f"Result: all {n_pass} checks passed {tail}"
     return f"{head}. {engines}.{skipped_engines}" if engines else f"{head}.{skipped_engines}"
