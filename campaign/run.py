@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import sys
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -134,8 +135,6 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         # drawing takes its own while after the bar reached 100%: a line of its own, so that
         # a finished bar and a silent terminal do not read as a hang
         if progress:
-            import sys
-            import time
             start = time.perf_counter()
             print(f"isorock sweep: drawing the figures and summary of {table.num_rows} rows…", file=sys.stderr,
                   flush=True)
