@@ -74,13 +74,27 @@ class Tuning:
 
 
 @dataclass(frozen=True)
+class Preset:
+    """A named family of an engine's settings (ENGINE:PRESET) and why it is there, in one
+    line: `reason` is what `isorock presets` shows beside the settings, so it is data, not
+    a comment. Called, it returns the Settings (`make()`), as a plain factory would."""
+
+    reason: str
+    make: Callable[[], Any]
+
+    def __call__(self):
+        return self.make()
+
+
+@dataclass(frozen=True)
 class EngineSpec:
     """One engine. `settings_type` is its frozen Settings dataclass (validated on
     construction); `settings_for(**overrides)` builds one where some settings follow
     others (default: the dataclass with the overrides); `scene_text(system, settings)`
     is the model file a user can open, `scene_format` its format and suffix (None: no
     file); `label` is the name figures and reports show; `presets` maps a name a user
-    can ask for as ENGINE:PRESET to a zero-argument callable returning Settings;
+    can ask for as ENGINE:PRESET to a `Preset` (its one-line reason, and a zero-argument
+    callable returning Settings);
     `ladder(quick)` lists (label, Settings) from cheapest to most accurate, for
     work-precision benchmarks; `tuning` is what `isorock calibrate` may move;
     `simulate_many(runs, *, settings, threads, budget_s)` (optional) runs many (system,

@@ -1,11 +1,15 @@
 """The analytic model's two engines, declared in one place with the same settings and
 presets: "analytic", the compiled kernel (analytic.fast), and "analytic-reference", the
 same model on SciPy's DOP853 (analytic.hybrid), which the kernel is tested against."""
-from .engine_protocol import Capabilities, EngineSpec
+from .engine_protocol import Capabilities, EngineSpec, Preset
 from .settings import AnalyticSettings as Settings
 from .system import ISOLATOR_KINDS
 
-PRESETS = {"default": Settings, "conservative": lambda: Settings(overturn="alpha")}
+PRESETS = {
+    "default": Preset("the exact model at rtol 1e-10: the reference every engine is compared with", Settings),
+    "conservative": Preset("overturned once |θ| reaches α (model.md's conservative rule), not only past it",
+                           lambda: Settings(overturn="alpha")),
+}
 
 
 def ladder(quick: bool):

@@ -27,3 +27,18 @@ def require_nonnegative_finite(field: str, value) -> float:
         raise InputError(f"{field} = {value!r}: must be a non-negative finite number") from None
     require(x >= 0 and x < float("inf"), field, value, "a non-negative finite number")
     return x
+
+
+def import_extra(module: str, extra: str, needed_for: str):
+    """`module`, imported; where it is not installed, an InputError (exit 2, one line)
+    naming the optional extra that brings it: the light install (`pip install -e .`)
+    leaves out what only one command needs, and that command says so instead of a
+    traceback."""
+    import importlib
+    try:
+        return importlib.import_module(module)
+    except ModuleNotFoundError as e:
+        if e.name is None or module.split(".")[0] != e.name.split(".")[0]:
+            raise  # a module the package itself imports is missing: not a missing extra
+        raise InputError(f"{needed_for} needs the package {e.name!r}, not installed: "
+                         f"pip install 'isorock[{extra}]' (or, in a checkout, pip install -e '.[{extra}]')") from None

@@ -228,12 +228,31 @@ class Trajectory:
                 k: v for k, v in self.extras.items() if np.isscalar(v)},
         )
 
-    def to_csv(self, path) -> None:
-        """The history as CSV, one row per time. An impact is stored twice at its time
-        (the states just before and just after it); the CSV keeps the post-impact row,
-        the one the history continues from, so that t increases strictly."""
+    def _one_row_per_time(self) -> np.ndarray:
+        """The rows the tables keep: an impact is stored twice at its time (the states just
+        before and just after it); the post-impact row, the one the history continues
+        from, is kept, so that t increases strictly."""
         keep = np.ones(self.t.size, dtype=bool)
         keep[:-1] = self.t[1:] != self.t[:-1]  # drop a row whose time the next row repeats
+        return keep
+
+    def to_dataframe(self):
+        """The history as a pandas DataFrame, one row per time (the rows of to_csv): t (s),
+        u (m), u_dot (m/s), theta (rad), theta_dot (rad/s), theta_over_alpha and mode (0
+        translation, ±1 rocking); `.attrs` holds the engine and the summary() metrics.
+        Needs pandas (`pip install 'isorock[notebook]'`)."""
+        from .errors import import_extra
+        pd = import_extra("pandas", "notebook", "Trajectory.to_dataframe")
+        keep = self._one_row_per_time()
+        frame = pd.DataFrame({"t": self.t[keep], "u": self.u[keep], "u_dot": self.u_dot[keep],
+                              "theta": self.theta[keep], "theta_dot": self.theta_dot[keep],
+                              "theta_over_alpha": self.theta[keep] / self.alpha, "mode": self.mode[keep]})
+        frame.attrs.update(engine=self.engine, summary=self.summary())
+        return frame
+
+    def to_csv(self, path) -> None:
+        """The history as CSV, one row per time (_one_row_per_time)."""
+        keep = self._one_row_per_time()
         rows = np.column_stack([self.t, self.u, self.u_dot, self.theta, self.theta_dot])[keep]
         np.savetxt(path, rows,
                    delimiter=",", header="t,u,u_dot,theta,theta_dot", comments="", fmt="%.10g")

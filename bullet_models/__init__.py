@@ -4,7 +4,7 @@ Measurements behind every default: docs/bullet.md."""
 import math
 from dataclasses import replace
 
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Tuning
+from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
 
 from .scene import SCENE_FORMAT, build, connect, scene_text
 from .settings import Settings, settings_for, settings_for_timestep
@@ -34,26 +34,37 @@ ENGINE = EngineSpec(
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
     presets={
-        "default": Settings,
-        # the former default: physics step 1/3000 s and ERP 0.08 at every size, right on the paper's
-        # 2 m block, 1.6% off in β on small and squat ones (docs/bullet.md): kept to compare against
-        "absolute": lambda: Settings(follow_system=False, contact_erp=0.08),
-        # 1 ms physics steps: β within ~1% on the paper's block at three times the speed (docs/bullet.md)
-        "fast": lambda: settings_for_timestep(1e-3, follow_system=True),
-        # 0.1 ms physics steps: β within ~0.1% on the paper's block
-        "fine": lambda: settings_for_timestep(1e-4, follow_system=True),
-        # contact ERP a quarter of Bullet's 0.08: a sunk corner is pushed out more slowly, with less kick
-        "erp-low": lambda: Settings(contact_erp=0.02),
-        # contact ERP 0.2, the value most engines default to: faster correction, and a bounce (0.8 bounces)
-        "erp-high": lambda: Settings(contact_erp=0.2),
-        # 10 solver iterations instead of 50: a cheaper solve, unconverged at impacts (docs/bullet.md)
-        "iterations-10": lambda: Settings(solver_iterations=10),
-        # 200 solver iterations: whether the default's 50 leaves the impact unconverged
-        "iterations-200": lambda: Settings(solver_iterations=200),
-        # the isolator force and ground motion updated every 3 physics steps (1 ms), not 12 (4 ms)
-        "substeps-3": lambda: Settings(substeps=3),
-        # every 30 physics steps (10 ms): fewer Python steps, the force held longer
-        "substeps-30": lambda: Settings(substeps=30),
+        "default": Preset("the measured default, its step following the block (docs/bullet.md, \"Settings that follow "
+                          "the block's size\")", Settings),
+        "absolute": Preset(
+            "the former default: physics step 1/3000 s and ERP 0.08 at every size, right on the paper's 2 m block, "
+            "4% off in β on small ones (docs/atlas.md): kept to compare against",
+            lambda: Settings(follow_system=False, contact_erp=0.08)),
+        "fast": Preset(
+            "1 ms physics steps on the paper's block (scaled with the block): β within ~1% there at three times "
+            "the former default's speed (docs/bullet.md)",
+            lambda: settings_for_timestep(1e-3, follow_system=True)),
+        "fine": Preset(
+            "0.1 ms physics steps on the paper's block (scaled with the block): β within ~0.1% there",
+            lambda: settings_for_timestep(1e-4, follow_system=True)),
+        "erp-low": Preset(
+            "contact ERP 0.02, half the default's 0.04: a sunk corner is pushed out more slowly, with less kick",
+            lambda: Settings(contact_erp=0.02)),
+        "erp-high": Preset(
+            "contact ERP 0.2, the value most engines default to: faster correction, and a bounce (0.8 bounces)",
+            lambda: Settings(contact_erp=0.2)),
+        "iterations-10": Preset(
+            "10 solver iterations instead of 50: a cheaper solve, unconverged at impacts (docs/bullet.md)",
+            lambda: Settings(solver_iterations=10)),
+        "iterations-200": Preset(
+            "200 solver iterations: whether the default's 50 leaves the impact unconverged",
+            lambda: Settings(solver_iterations=200)),
+        "substeps-3": Preset(
+            "the isolator force and ground motion updated every 3 physics steps, not 12",
+            lambda: Settings(substeps=3)),
+        "substeps-30": Preset(
+            "every 30 physics steps: fewer Python steps, the force held longer",
+            lambda: Settings(substeps=30)),
     },
     ladder=ladder, tuning=TUNING, step_cost=step_cost)
 

@@ -222,14 +222,57 @@ def fragility_comparisons(cols) -> list[dict]:
     return out
 
 
-def fragility_figure(fits, path: Path) -> None:
+def fragility_caveats(f) -> list[str]:
+    """What a fragility fit does not know, said beside it: a median outside the levels
+    tried is an extrapolation of the lognormal, and a bootstrap band over fewer records
+    than a statistical verdict needs (tolerances: verdict_min_cases) means little."""
+    from isorock.validate.core.tolerances import limit
+    fit, levels, out = f["fit"], np.asarray(f["levels"], dtype=float), []
+    if math.isfinite(fit.median) and fit.median > levels.max():
+        out.append(f"median beyond the highest level tried ({levels.max():g}): an extrapolation")
+    elif math.isfinite(fit.median) and fit.median < levels.min():
+        out.append(f"median below the lowest level tried ({levels.min():g}): an extrapolation")
+    least = limit("verdict_min_cases")
+    if math.isfinite(fit.median) and f["records"] < least:
+        out.append(f"band over {f['records']} records: too few to mean much (fewer than {least:g})")
+    return out
+
+
+#: Fragility panels per row: 16 systems in one row made a 10,816 × 546 px strip (issue 25)
+FRAGILITY_COLUMNS = 4
+
+
+def _wrap(text: str, width: int) -> str:
+    """`text` in lines of at most `width` characters, broken after a space or a comma (a
+    setting's label "preset=fast,timestep=0.002" has no spaces), never inside a word."""
+    import re
+    lines = [""]
+    for token in re.split(r"(?<=[,\s])", text):
+        if lines[-1] and len(lines[-1] + token.rstrip()) > width:
+            lines.append("")
+        lines[-1] += token
+    return "\n".join(line.rstrip() for line in lines)
+
+
+def fragility_plot(fits):
+    """The fragility figure: one panel per system, FRAGILITY_COLUMNS to a row (so that
+    any number of systems reads at the same size), each curve labelled in its panel's
+    legend; titles wrapped to the panel's width."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     systems = list(dict.fromkeys(f["system"] for f in fits))
-    fig, axes = plt.subplots(1, len(systems), figsize=(5.2 * len(systems), 4.2), squeeze=False, sharey=True)
     pairs = list(dict.fromkeys((f["engine"], f["setting"]) for f in fits))
-    for ax, system in zip(axes[0], systems):
+    ncols = min(FRAGILITY_COLUMNS, len(systems))
+    nrows = math.ceil(len(systems) / ncols)
+    # room under each panel for its legend, one line per engine and setting
+    legend_h = 0.2 * len(pairs) + 0.3
+    fig, axes = plt.subplots(nrows, ncols, figsize=(5.2 * ncols, (3.6 + legend_h) * nrows), squeeze=False,
+                             sharey=True, layout="constrained")
+    unit = "g" if fits[0]["scale_by"] == "pga" else "m/s"
+    for ax in axes.flat[len(systems):]:
+        ax.set_visible(False)
+    for ax, system in zip(axes.flat, systems):
         for f in (f for f in fits if f["system"] == system):
             j = pairs.index((f["engine"], f["setting"]))
             color = "k" if runs_as_batch(f["engine"]) else f"C{j}"
@@ -240,21 +283,29 @@ def fragility_figure(fits, path: Path) -> None:
             x = f["levels"]
             ax.plot(x, f["fraction"], "o", color=color, ms=max(6 - j, 2), mfc="none" if j else color)
             fit = f["fit"]
+            name = _wrap(f"{f['engine']} {f['setting']}", 40)
             if math.isfinite(fit.median):
                 xx = np.geomspace(x[0], x[-1], 200)
                 lo, hi = fit.band(xx)
                 ax.fill_between(xx, lo, hi, color=color, alpha=0.10, lw=0)
+                beyond = " (extrapolated)" if any("extrapolation" in c for c in fragility_caveats(f)) else ""
                 ax.plot(xx, fit.probability(xx), style, color=color, lw=width,
-                        label=f"{f['engine']} {f['setting']}: θ = {fit.median:.3g}, β = {fit.dispersion:.2f}")
+                        label=f"{name}: θ = {fit.median:.3g}{beyond}, β = {fit.dispersion:.2f}")
             else:
-                ax.plot([], [], "o", color=color, label=f"{f['engine']} {f['setting']}: {fit.note}")
-        unit = "g" if fits[0]["scale_by"] == "pga" else "m/s"
+                ax.plot([], [], "o", color=color, label=f"{name}: {_wrap(fit.note, 50)}")
         ax.set_xlabel(f"{fits[0]['scale_by'].upper()} ({unit})")
-        ax.set_title(system, fontsize=9)
+        ax.set_title(_wrap(system, 55), fontsize=9)
         ax.set_ylim(-0.02, 1.02)
-        ax.legend(fontsize=7, loc="upper left")
-    axes[0][0].set_ylabel("P(overturn)")
-    fig.tight_layout()
+        # under the panel, not over its curves
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)
+    for row in axes:
+        row[0].set_ylabel("P(overturn)")
+    return fig
+
+
+def fragility_figure(fits, path: Path) -> None:
+    import matplotlib.pyplot as plt
+    fig = fragility_plot(fits)
     fig.savefig(path, dpi=130)
     plt.close(fig)
 
@@ -320,21 +371,39 @@ def agreement(cols, x: str, y: str) -> list[dict]:
     return out
 
 
-def agreement_figure(maps, path: Path) -> None:
+#: An agreement map's cells where nothing is judged (no case there, or for θmax/α none in
+#: which both survive): hatched grey, never the colour of 0 (which is judged and agrees)
+NOT_APPLICABLE = {"facecolor": "#bdbdbd", "hatch": "///", "edgecolor": "#737373"}
+
+
+def agreement_plot(maps):
+    """The agreement maps: per contact engine and setting a column, the fraction of cases
+    whose overturning verdict differs (top) and whose θmax/α departs (bottom); cells with
+    nothing to judge hatched grey (NOT_APPLICABLE), apart from 0."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, len(maps), figsize=(4.6 * len(maps), 7.4), squeeze=False, layout="constrained")
+    from matplotlib.patches import Patch, Rectangle
+    fig, axes = plt.subplots(2, len(maps), figsize=(4.6 * len(maps), 8.0), squeeze=False, layout="constrained")
     for j, m in enumerate(maps):
         for i, (key, title) in enumerate((("verdict", "overturned or not differs"),
                                            ("theta", f"|Δ θmax/α| > {m['tolerance']:g} (both survive)"))):
             ax = axes[i][j]
-            im = ax.pcolormesh(_edges(m["xs"]), _edges(m["ys"]), np.ma.masked_invalid(m[key]),
-                               cmap="Reds", vmin=0, vmax=1)
-            ax.set_title(f"{m['engine']} {m['setting']}\n{title}", fontsize=8)
+            xe, ye = _edges(m["xs"]), _edges(m["ys"])
+            ax.add_patch(Rectangle((xe[0], ye[0]), xe[-1] - xe[0], ye[-1] - ye[0], lw=0, zorder=0, **NOT_APPLICABLE))
+            im = ax.pcolormesh(xe, ye, np.ma.masked_invalid(m[key]), cmap="Reds", vmin=0, vmax=1, zorder=1)
+            ax.set_title(_wrap(f"{m['engine']} {m['setting']}", 36) + f"\n{title}", fontsize=8)
             ax.set_xlabel(m["x"])
             ax.set_ylabel(m["y"])
         fig.colorbar(im, ax=axes[:, j].tolist(), shrink=0.6, label="fraction of cases")
+    fig.legend(handles=[Patch(label="not applicable: no case to judge", **NOT_APPLICABLE)], loc="outside lower center",
+               fontsize=8, frameon=False)
+    return fig
+
+
+def agreement_figure(maps, path: Path) -> None:
+    import matplotlib.pyplot as plt
+    fig = agreement_plot(maps)
     fig.savefig(path, dpi=130)
     plt.close(fig)
 
@@ -398,7 +467,9 @@ def write_products(table, out: Path, spec=None) -> list[Path]:
         lines += _md_table([{"system": f["system"], "engine": f["engine"], "setting": f["setting"],
                              "records": f["records"], "median θ": f["fit"].median,
                              "θ 5%": f["fit"].median_band[0], "θ 95%": f["fit"].median_band[1],
-                             "dispersion β": f["fit"].dispersion, "note": f["fit"].note} for f in fits]) + [""]
+                             "dispersion β": f["fit"].dispersion,
+                             "note": "; ".join(filter(None, [f["fit"].note, *fragility_caveats(f)]))}
+                            for f in fits]) + [""]
         compared = fragility_comparisons(_select(cols, record_rows))
         if compared:
             lines += [f"Each contact engine against the analytic model, judged as `isorock validate` judges its "

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import sys
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -50,6 +51,13 @@ class CampaignResult:
     @property
     def tasks_skipped(self) -> int:
         return self.tasks_total - self.tasks_run
+
+    def to_dataframe(self):
+        """The results table as a pandas DataFrame (one row per case, engine and setting;
+        columns as docs/campaigns.md lists them). Needs pandas (`isorock[notebook]`)."""
+        from isorock.analytic.errors import import_extra
+        import_extra("pandas", "notebook", "CampaignResult.to_dataframe")
+        return self.table.to_pandas()
 
 
 def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: str | None = None,
@@ -124,8 +132,17 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     made = []
     if products:
         from .products import write_products
+        # drawing takes its own while after the bar reached 100%: a line of its own, so that
+        # a finished bar and a silent terminal do not read as a hang
+        if progress:
+            start = time.perf_counter()
+            print(f"isorock sweep: drawing the figures and summary of {table.num_rows} rows…", file=sys.stderr,
+                  flush=True)
         try:
             made = write_products(table, out, spec)
+            if progress:
+                print(f"isorock sweep: drew {len(made)} products in {time.perf_counter() - start:.0f} s",
+                      file=sys.stderr, flush=True)
         except OSError as e:  # a full disk while drawing: the table is whole, the figures are not
             raise InputError(f"--out = {str(out)!r}: the figures and summary could not be written "
                              f"({e.strerror or e}); {RESULTS} is complete: rerun with room to write them") from None

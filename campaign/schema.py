@@ -97,7 +97,7 @@ class Head(_Strict):
     contact_chunk: StrictInt | None = Field(None, ge=1, le=100_000)
 
 
-ISOLATOR_KEYS = ("mass_ratio", "period", "damping_ratio")
+ISOLATOR_KEYS = ("mass_ratio", "base_mass", "period", "damping_ratio")
 
 
 class Systems(_Strict):
@@ -109,6 +109,8 @@ class Systems(_Strict):
     mass: Grid = None
     base: Annotated[Any, _words(("fixed", "isolated"))] = None
     mass_ratio: Grid = None
+    #: the base's mass, kg: instead of mass_ratio, for one who knows the plinth (μ = mass/base_mass)
+    base_mass: Grid = None
     period: Grid = None
     damping_ratio: GridZero = None
 
@@ -118,6 +120,9 @@ class Systems(_Strict):
         if given and self.base is None:  # the default base is fixed: the isolator would be dropped unsaid
             raise ValueError(f"base: missing, and {given[0]} describes an isolator: give base = \"isolated\" "
                              "(or [\"fixed\", \"isolated\"], or \"fixed\" to run without it)")
+        if self.mass_ratio is not None and self.base_mass is not None:
+            raise ValueError("mass_ratio and base_mass: give one of them, not both (base_mass in kg, or "
+                             "mass_ratio = mass/base_mass)")
         if self.mass_ratio is not None:
             values = (self.mass_ratio if isinstance(self.mass_ratio, list)
                       else [self.mass_ratio.get("from"), self.mass_ratio.get("to")] if isinstance(self.mass_ratio, dict)

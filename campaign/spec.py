@@ -151,6 +151,10 @@ class CampaignSpec:
                 if base == "fixed":
                     out.append({**geo, "mass": mass, "base": "fixed", "mass_ratio": 0.0,
                                 "period": math.nan, "damping_ratio": math.nan})
+                elif "base_mass" in s:
+                    for mb, T, xi in itertools.product(s["base_mass"], s["period"], s["damping_ratio"]):
+                        out.append({**geo, "mass": mass, "base": "isolated", "mass_ratio": mass / mb,
+                                    "base_mass": mb, "period": T, "damping_ratio": xi})
                 else:
                     for mu, T, xi in itertools.product(s["mass_ratio"], s["period"], s["damping_ratio"]):
                         out.append({**geo, "mass": mass, "base": "isolated", "mass_ratio": mu,
@@ -170,7 +174,8 @@ class CampaignSpec:
         geometry = (len(s["height"]) * len(s["width"]) if "height" in s
                     else len(s["slenderness"]) * len(s["size"]))
         per_geometry = ("fixed" in s["base"]) + ("isolated" in s["base"]) * (
-            len(s.get("mass_ratio", ())) * len(s.get("period", ())) * len(s.get("damping_ratio", ())))
+            len(s.get("mass_ratio", s.get("base_mass", ()))) * len(s.get("period", ()))
+            * len(s.get("damping_ratio", ())))
         return geometry * len(s["mass"]) * per_geometry
 
     @property
@@ -206,7 +211,7 @@ class CampaignSpec:
 
 
 def _systems(t) -> dict:
-    allowed = {"slenderness", "alpha", "size", "height", "width", "mass", "base", "mass_ratio",
+    allowed = {"slenderness", "alpha", "size", "height", "width", "mass", "base", "mass_ratio", "base_mass",
                "period", "damping_ratio"}
     _check_keys("systems", t, allowed)
     out = {}
@@ -232,10 +237,23 @@ def _systems(t) -> dict:
     out["mass"] = _grid("systems.mass", t.get("mass", 1000.0))
     out["base"] = _strings("systems.base", t.get("base", "fixed"), BASES)
     if "isolated" in out["base"]:
-        for k in ("mass_ratio", "period", "damping_ratio"):
+        if "mass_ratio" not in t and "base_mass" not in t:
+            raise InputError("systems.mass_ratio: missing (needed for base = 'isolated'; or base_mass, kg)")
+        for k in ("period", "damping_ratio"):
             if k not in t:
                 raise InputError(f"systems.{k}: missing (needed for base = 'isolated')")
-        out["mass_ratio"] = _grid("systems.mass_ratio", t["mass_ratio"])
+        if "base_mass" in t:
+            # the base's mass as given (kg); each system's μ = mass/base_mass, within the range
+            # a mass ratio may take (schema.MASS_RATIO_RANGE)
+            from .schema import MASS_RATIO_RANGE
+            out["base_mass"] = _grid("systems.base_mass", t["base_mass"])
+            lo, hi = MASS_RATIO_RANGE
+            for m, mb in itertools.product(out["mass"], out["base_mass"]):
+                if not lo <= m / mb <= hi:
+                    raise _where("systems.base_mass", mb, f"such that mass/base_mass is from {lo:g} to {hi:g} "
+                                 f"(with mass = {m:g} kg it is {m / mb:g})")
+        else:
+            out["mass_ratio"] = _grid("systems.mass_ratio", t["mass_ratio"])
         out["period"] = _grid("systems.period", t["period"])
         out["damping_ratio"] = _grid("systems.damping_ratio", t["damping_ratio"], allow_zero=True)
         for z in out["damping_ratio"]:

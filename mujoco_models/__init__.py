@@ -6,7 +6,7 @@ Measurements behind every default: docs/mujoco.md."""
 import math
 from dataclasses import replace
 
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Tuning
+from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
 
 from .scene import SCENE_FORMAT, build_model, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep
@@ -69,31 +69,45 @@ ENGINE = EngineSpec(
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, replay_scene=_replay_scene,
     simulate_body=_simulate_body,
     presets={
-        "default": Settings,
-        # the contact scene stepped throughout, also while the block rests on its base (phases.py)
-        "full": lambda: Settings(phased=False),
-        # the former default: step 0.5 ms and contact time constant 2 ms at every size, right on the
-        # paper's 2 m block, 20% off in β on a 0.2 m one (docs/mujoco.md): kept to compare against
-        "absolute": lambda: Settings(follow_system=False),
-        # Newton, MuJoCo's own solver and the default's: named so that it reads beside cg
-        "newton": lambda: Settings(solver="Newton"),
-        # conjugate gradient, MuJoCo's other solver for soft contacts: cheaper iterations, more of them
-        "cg": lambda: Settings(solver="CG"),
-        # the elliptic cone, the default's: named so that it reads beside pyramidal
-        "elliptic": lambda: Settings(cone="elliptic"),
-        # the pyramidal cone: cheaper per step, lets the pivot creep 2.3× as far (docs/mujoco.md)
-        "pyramidal": lambda: Settings(cone="pyramidal"),
-        # the cheapest step whose β stays within ~1% on the paper's block (docs/mujoco.md, bench ladder)
-        "fast": lambda: settings_for_timestep(2e-3),
-        # soft contact tied to the step, time constant 4·dt, at 1e-4 s: the ladder's most accurate rung
-        "fine": lambda: settings_for_timestep(1e-4, follow_system=True),
-        # model.md's feasibility recipe: time constant at MuJoCo's floor 2·dt, impedance dmin 0.99
-        # (the pivot contact flickers at it, docs/mujoco.md; kept to measure it over the atlas)
-        "model-md": lambda: Settings(solref=(2 * Settings.timestep, 2.0), solimp=(0.99, 0.999, 0.001)),
-        # coarse steps in flight, fine ones around each impact: long records, not free rocking
-        "event-resolved": event_resolved_settings,
-        # a small sphere in each bottom corner instead of box–box: cheaper collision, no better per cost
-        "corners": lambda: Settings(contact="corners"),
+        "default": Preset(
+            "the measured default: step, contact time constant and impedance width follow the block (docs/mujoco.md, "
+            "\"Every size\")", Settings),
+        "absolute": Preset(
+            "the former default: step 0.5 ms, contact time constant 2 ms and width 1 mm at every size, right on the "
+            "paper's 2 m block, 80% off in β on a 0.2 m one (docs/atlas.md): kept to compare against",
+            lambda: Settings(follow_system=False)),
+        "full": Preset(
+            "the contact scene stepped throughout, also while the block rests on its base (phases.py)",
+            lambda: Settings(phased=False)),
+        "newton": Preset(
+            "Newton, MuJoCo's own solver and the default's: named so that it reads beside cg",
+            lambda: Settings(solver="Newton")),
+        "cg": Preset(
+            "conjugate gradient, MuJoCo's other solver for soft contacts: cheaper iterations, more of them",
+            lambda: Settings(solver="CG")),
+        "elliptic": Preset(
+            "the elliptic cone, the default's: named so that it reads beside pyramidal",
+            lambda: Settings(cone="elliptic")),
+        "pyramidal": Preset(
+            "the pyramidal cone: cheaper per step, lets the pivot creep 2.3× as far (docs/mujoco.md)",
+            lambda: Settings(cone="pyramidal")),
+        "fast": Preset(
+            "the cheapest step whose β stays within ~1% on the paper's block (docs/mujoco.md, bench ladder)",
+            lambda: settings_for_timestep(2e-3)),
+        "fine": Preset(
+            "a step 5× finer than the default's at every size (1e-4 s, time constant 4e-4 s on the paper's "
+            "block, scaled with the block)",
+            lambda: settings_for_timestep(1e-4, follow_system=True)),
+        "model-md": Preset(
+            "model.md's feasibility recipe as written, in seconds: time constant at MuJoCo's floor 2·dt, impedance "
+            "dmin 0.99 (the pivot contact flickers at it, docs/mujoco.md; kept to measure it over the atlas)",
+            lambda: Settings(solref=(2 * Settings.timestep, 2.0), solimp=(0.99, 0.999, 0.001), follow_system=False)),
+        "event-resolved": Preset(
+            "coarse steps in flight, fine ones around each impact: long records, not free rocking",
+            event_resolved_settings),
+        "corners": Preset(
+            "a small sphere in each bottom corner instead of box–box: cheaper collision, no better per cost",
+            lambda: Settings(contact="corners")),
     },
     ladder=ladder, tuning=TUNING, simulate_many=simulate_many, step_cost=step_cost)
 

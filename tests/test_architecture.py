@@ -37,6 +37,8 @@ FLOORS = {
     "campaign": (4, "campaign"),
     "experiments": (4, "experiments"),
     "validate.cli": (5, "validate/cli"),
+    # the top package `isorock` (api/): the notebook API's entry points, over the command line
+    "isorock": (6, "api"),
 }
 ENGINES = ("mujoco_models", "bullet_models", "drake_models")
 
@@ -220,3 +222,25 @@ def test_the_rules_fail_on_an_upward_import(monkeypatch):
         monkeypatch.setitem(globals(), "all_imports",
                             lambda: iter([("validate.tools", Path("validate/tools/x.py"), 1, "isorock.campaign.run")]))
         test_campaign_imports_lower_floors_only_and_only_the_command_line_imports_it()
+
+
+def test_the_top_package_is_the_api_and_nothing_below_imports_it():
+    """`isorock` itself (api/, the notebook API's entry points) stands on the command
+    line's floor: it imports the command line's api module only, and no floor imports
+    the top package's names (isorock.run, isorock.report, isorock.sweep)."""
+    top = ROOT / "api" / "__init__.py"
+    mine = [m for _, m in imports_of_top(top)]
+    assert mine and all(package_of(m) == "validate.cli" or not m.startswith("isorock") for m in mine), mine
+    bad = [f"{path}:{line} imports {module}" for package, path, line, module in all_imports()
+           if module == "isorock" or module in ("isorock.run", "isorock.report", "isorock.sweep")]
+    assert not bad, "\n".join(bad)
+
+
+def imports_of_top(path: Path) -> list[tuple[int, str]]:
+    out = []
+    for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        if isinstance(node, ast.Import):
+            out += [(node.lineno, a.name) for a in node.names]
+        elif isinstance(node, ast.ImportFrom) and not node.level:
+            out += [(node.lineno, f"{node.module}.{a.name}") for a in node.names]
+    return out

@@ -162,3 +162,50 @@ def test_quick_outputs_exist_and_the_verdict_is_the_csvs(tmp_path, capsys):
     assert "Cells beyond each level" in md
     stdout = capsys.readouterr().out
     assert "| engine | cheapest at ≤ 0.5% worst β error" in stdout and "| mujoco |" in stdout
+
+
+def test_the_users_grid_is_the_grid_run(tmp_path):
+    """--heights 0.3,3 (issue 25) with one slenderness and the fixed base: two cells, each
+    judged against its own closed-form β (the oracle: analytic.coefficients.beta)."""
+    out = tmp_path / "a"
+    assert main(["atlas", "--workers", "1", "--quiet", "--engines", "analytic:default", "--slenderness", "4",
+                 "--mass-ratios", "0", "--heights", "3,0.3", "--out", str(out)]) == 0
+    data = json.loads((out / "atlas.json").read_text())
+    assert data["grid"] == {"slenderness": [4.0], "mass_ratios": [0.0], "heights_m": [0.3, 3.0]}
+    rows = list(csv.DictReader((out / "atlas.csv").open()))
+    assert sorted(float(r["height"]) for r in rows) == [0.3, 3.0]
+    for r in rows:
+        assert float(r["beta_closed"]) == pytest.approx(beta(4.0, 0.0), rel=1e-12)
+    # similarity: on a fixed base, times scale with √H (the same θ0/α, the same λ)
+    t1 = {float(r["height"]): float(r["first_impact_time"]) for r in rows}
+    assert t1[3.0] / t1[0.3] == pytest.approx(math.sqrt(10.0), rel=1e-6)
+
+
+def test_an_axis_replaces_that_axis_only():
+    grid = atlas.user_grid(QUICK, heights="0.3,3")
+    assert grid == Grid(QUICK.slenderness, QUICK.mass_ratios, (0.3, 3.0))
+    assert atlas.user_grid(FULL) == FULL
+
+
+@pytest.mark.parametrize("option,value,named", [
+    ("--heights", "0.3,x", "'x' is not a number"),
+    ("--heights", "", "is not a number"),
+    ("--heights", "0.3,0.3", "lists 0.3 twice"),
+    ("--heights", "nan", "out of range"),
+    ("--heights", "0", "out of range"),
+    ("--slenderness", "0.5", "out of range"),
+    ("--mass-ratios", "-1", "out of range"),
+    ("--mass-ratios", "0.001", "out of range"),
+    ("--heights", ",".join(str(0.1 * i) for i in range(1, 22)), "must be at most 20"),
+    ("--heights", ",".join(str(i) for i in range(1, 21)), "cells: must be at most 240"),
+])
+def test_a_bad_grid_is_one_line_and_exit_2_before_any_run(tmp_path, capsys, option, value, named):
+    assert main(["atlas", option, value, "--engines", "analytic", "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and named in err[0] and option in err[0], err
+    assert not (tmp_path / "x").exists()
+
+
+def test_atlas_help_names_no_issue(capsys):
+    assert main(["atlas", "--help"]) == 0
+    assert "issue" not in capsys.readouterr().out.lower()

@@ -51,3 +51,16 @@ def test_an_unknown_engine_or_preset_is_one_line_and_exit_2(tmp_path, capsys, en
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and named in err and ("its presets: default" in err or "must be one of" in err)
     assert not (tmp_path / "x").exists()
+
+
+def test_an_engine_and_its_former_name_are_one_series():
+    """`analytic-fast` is the former name of `analytic` (the same spec in the registry):
+    bench runs it once, by default and when both are named."""
+    from isorock.validate.core.engines import ALIASES, campaign_engines, get_engine
+    for alias, name in ALIASES.items():
+        assert get_engine(alias).spec is get_engine(name).spec  # the oracle: the registry's own objects
+    assert not set(ALIASES) & set(campaign_engines())
+    default = bench.bench_engines()
+    assert len({get_engine(e.partition(":")[0]).spec.name for e in default}) == len(default)
+    assert bench.bench_engines(["analytic", "analytic-fast", "analytic-fast:conservative"]) == \
+        ["analytic", "analytic:conservative"]

@@ -117,6 +117,8 @@ def test_examples_parse(request):
     for path in sorted(root.glob("*.toml")):
         if "fema" in path.read_text() and not _fema():
             continue
+        if "isorock validate --config" in path.read_text():
+            continue  # a validate --config file (tests/test_statue_example.py), not a campaign
         spec = load_spec(path)
         assert spec.n_runs > 0, path
 
@@ -465,3 +467,14 @@ def test_fragility_comparison_and_agreement_map_are_judged_by_the_verdict_rule()
     assert maps["mujoco"]["overturn_verdict"].word == "agrees" and maps["mujoco"]["theta_verdict"].word == "agrees"
     assert maps["bullet"]["overturn_verdict"].word == "disagrees"
     assert maps["bullet"]["overturn_verdict"].estimate == pytest.approx(maps["bullet"]["verdict_differs"] / 360)
+
+
+def test_drawing_the_products_has_its_own_progress_line(tmp_path, capsys):
+    """After the bar reaches 100% the figures take their own while: a line says so before,
+    and one after with what was drawn (issue 25), never a silent finished bar."""
+    spec = write_spec(tmp_path, more="")
+    result = run_campaign(spec, tmp_path / "out", workers=0, progress=True)
+    err = capsys.readouterr().err
+    assert "drawing the figures and summary of 18 rows" in err
+    assert f"drew {len(result.products)} products" in err and len(result.products) > 0
+    assert err.index("100%") < err.index("drawing the figures")

@@ -147,3 +147,51 @@ def test_a_full_disk_while_drawing_is_one_line_and_the_table_is_whole(tmp_path, 
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert "No space left" in err and "results.parquet is complete" in err, err
     assert pq.read_table(tmp_path / "out" / "results.parquet").num_rows == 18
+
+
+# --- the base's mass instead of the mass ratio (issue 25) -------------------------------
+
+def _with_base_mass(text: str, value: str) -> str:
+    return text.replace("mass_ratio = 1.0", f"base_mass = {value}", 1)
+
+
+def test_base_mass_runs_the_systems_of_the_mass_ratios_it_means(tmp_path):
+    """base_mass = [500, 2000] kg under a 1000 kg block is μ = 2 and 0.5: the same rows as
+    the file that says mass_ratio = [2.0, 0.5], and the base built at the mass given."""
+    from isorock.campaign import load_spec, run_campaign
+    from test_campaign import assert_same_rows
+    by_ratio = write_spec(tmp_path, more="", name="ratio.toml")
+    by_ratio.write_text(by_ratio.read_text().replace("mass_ratio = 1.0", "mass_ratio = [2.0, 0.5]"))
+    by_mass = write_spec(tmp_path, more="", name="mass.toml")
+    by_mass.write_text(_with_base_mass(by_mass.read_text(), "[500.0, 2000.0]"))
+    spec = load_spec(by_mass)
+    assert spec.n_systems() == len(spec.system_grid()) == 3  # fixed, and two isolated
+    isolated = [c.system for c in spec.cases() if not c.system.fixed_base]
+    assert sorted({s.base_mass for s in isolated}) == [500.0, 2000.0]
+    a = run_campaign(by_ratio, tmp_path / "a", workers=0, progress=False).table
+    b = run_campaign(by_mass, tmp_path / "b", workers=0, progress=False).table
+    assert sorted(set(b.column("mass_ratio").to_pylist()) - {0.0}) == [0.5, 2.0]
+    assert_same_rows(a, b)
+
+
+@pytest.mark.parametrize("value, named", [
+    ("-500.0", "systems.base_mass"),
+    ("true", "systems.base_mass"),
+    ("1e-4", "systems.base_mass"),  # μ = 1e7: beyond the mass ratios a campaign may ask for
+])
+def test_a_bad_base_mass_is_one_line_naming_it(tmp_path, capsys, value, named):
+    spec = write_spec(tmp_path, more="")
+    spec.write_text(_with_base_mass(spec.read_text(), value))
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--workers", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and named in err and "Traceback" not in err, err
+    assert not (tmp_path / "out").exists()
+
+
+def test_base_mass_and_mass_ratio_together_are_refused_in_one_line(tmp_path, capsys):
+    spec = write_spec(tmp_path, more="")
+    spec.write_text(spec.read_text().replace("mass_ratio = 1.0", "mass_ratio = 1.0\nbase_mass = 1000.0"))
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--workers", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "mass_ratio" in err and "base_mass" in err and "not both" in err, err
+    assert not (tmp_path / "out").exists()

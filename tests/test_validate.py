@@ -361,3 +361,23 @@ def test_the_verdict_line_names_what_the_ensembles_decided_and_with_what_confide
     assert "[-0.05, +0.05] within ±0.1 at 95%" in cells[2] and "inconclusive [-0.2, +0.2] against ±0.1" in cells[2]
     assert "[+0.3, +0.5] beyond ±0.1" in cells[3]
     assert all("margin" not in c for c in cells[1:])
+
+
+def test_the_verdict_line_says_how_much_was_not_judged():
+    """(issue 25) "agrees with caveats" with checks not exercised says how many, in the
+    line itself, and "all N checks passed" never hides the checks not made."""
+    from types import SimpleNamespace
+
+    from isorock.validate.tools.report_render import NOT_EXERCISED, verdict
+
+    def check(engine, status):
+        return SimpleNamespace(engine=engine, metric="theta_max_diff", status=status, interval=None, note="",
+                               scenario="s")
+    checks = ([check("analytic", "pass")] * 2 + [check("mujoco", "pass")] * 18 + [check("mujoco", NOT_EXERCISED)] * 11
+              + [check("mujoco", "skip")] * 2 + [check("bullet", "pass")] * 20)
+    results = SimpleNamespace(checks=checks, engines=("analytic", "mujoco", "bullet"), scenarios=[], skipped={},
+                              failed=[])
+    line = verdict(results)
+    assert line.startswith("Result: all 40 checks made passed, 13 of 53 not made (2 skipped, 11 not exercised)")
+    assert "MuJoCo agrees with caveats (11 of 31 checks not exercised, 2 skipped)" in line
+    assert "PyBullet agrees." in line or "PyBullet agrees;" in line or line.endswith("PyBullet agrees.")

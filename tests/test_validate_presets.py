@@ -60,3 +60,22 @@ def test_a_metric_without_a_tolerance_is_skipped_with_the_reason_not_an_error_af
     m = json.loads((out / "metrics.json").read_text())
     b2 = [c for c in m["checks"] if c["engine"] == "mujoco" and c["metric"] == "beta2_abs_error"]
     assert b2 and all(c["status"] == "skip" and "no tolerance" in c["note"] for c in b2)
+
+
+@pytest.mark.parametrize("preset, timestep, own", [
+    ("mujoco:fast", "0.03", True),    # beyond every MuJoCo step: the user's value is the fault
+    ("mujoco:fine", "0.01", False),   # a valid step, but fine's own solref (4e-4 s) cannot follow it
+])
+def test_timestep_on_a_preset_names_the_setting_given_and_whose_fault_it_is(capsys, preset, timestep, own):
+    """(issue 25) the line names the setting the user gave; it blames the preset's other
+    settings only where the user's value alone would do (the oracle: the same value on
+    the engine's defaults, `isorock run --engine mujoco --timestep`)."""
+    base = ["--height", "2", "--width", "0.7", "--mass", "3800", "--base-mass", "3800", "--fixed-base",
+            "--theta0", "0.5", "--duration", "0.1", "--quiet"]
+    alone = main(["run", "--engine", "mujoco", "--timestep", timestep, *base])
+    capsys.readouterr()
+    assert (alone == 2) == own
+    assert main(["run", "--engine", preset, "--timestep", timestep, *base]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and f"timestep = {float(timestep)!r}" in err and preset in err, err
+    assert ("the preset's other settings" in err) == (not own), err

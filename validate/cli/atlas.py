@@ -4,7 +4,7 @@ from __future__ import annotations
 from isorock.analytic.errors import InputError
 from isorock.validate.tools import atlas as tool
 import math
-from isorock.validate.tools.atlas import FULL, QUICK, QUICK_HEIGHTS, QUICK_MASS_RATIOS, QUICK_SLENDERNESS, RUN_BUDGET, build, default_engines, verdict_lines, write
+from isorock.validate.tools.atlas import AXES, FULL, QUICK, QUICK_HEIGHTS, QUICK_MASS_RATIOS, QUICK_SLENDERNESS, RUN_BUDGET, build, default_engines, user_grid, verdict_lines, write
 
 
 DEFAULT_OUT = "isorock-atlas"
@@ -21,6 +21,12 @@ def add_parser(sub) -> None:
                    help=f"a small grid ({len(QUICK.cells())} cells: λ {', '.join(map(str, QUICK_SLENDERNESS))}, "
                         f"μ {', '.join(map(str, QUICK_MASS_RATIOS))}, H {', '.join(map(str, QUICK_HEIGHTS))} m) "
                         f"instead of the full {len(FULL.cells())}")
+    for option, (name, (lo, hi), meaning, _) in AXES.items():
+        default = ", ".join(f"{x:g}" for x in getattr(FULL, option))
+        p.add_argument("--" + option.replace("_", "-"), metavar="X,Y,…",
+                       help=f"your grid's {option.replace('_', ' ')}, {meaning}, comma-separated, {lo:g} to {hi:g}"
+                            + (" or 0" if option == "mass_ratios" else "")
+                            + f" (default: {default}, or the quick grid's with --quick)")
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
                    help="folder for atlas.md, atlas.csv, atlas.json and the figures: new, empty or an earlier "
                         "isorock output (default: %(default)s)")
@@ -59,8 +65,9 @@ def cmd_atlas(a) -> int:
         raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
     if not (a.run_budget > 0 and math.isfinite(a.run_budget)):
         raise InputError(f"run-budget = {a.run_budget!r}: must be a positive number of seconds")
+    grid = user_grid(QUICK if a.quick else FULL, slenderness=a.slenderness, mass_ratios=a.mass_ratios,
+                     heights=a.heights)
     check_folder(a.out)  # a folder we may not write is refused before the runs, not after
-    grid = QUICK if a.quick else FULL
     bars = []
 
     def progress(total):

@@ -78,6 +78,15 @@ class ConfigFile(_Strict):
     format: Literal["at2", "jma", "csv"] | None = None
     quick: StrictBool | None = None
     duration: Positive | None = None
+    pga: Positive | None = None   # g: every motion scaled to this peak ground acceleration (as --pga)
+    pgv: Positive | None = None   # m/s: … or to this peak ground velocity (as --pgv)
+
+    @field_validator("pgv")
+    @classmethod
+    def _one_target(cls, v, info):
+        if v is not None and info.data.get("pga") is not None:
+            raise ValueError("give pga or pgv, not both (pga in g, pgv in m/s)")
+        return v
 
     @field_validator("settings")
     @classmethod

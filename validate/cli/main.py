@@ -8,6 +8,7 @@
     isorock stress   the stability stress grid
     isorock view     replay a run in MuJoCo's viewer (or as a GIF without a display)
     isorock calibrate  fit a contact engine's contact parameters to the closed-form β
+    isorock presets  every engine's presets (ENGINE:PRESET), with their reasons and settings
     isorock atlas    the contact-model atlas: every preset's β and t₁ error over λ × μ × size, and its cost
     isorock sweep    campaigns: spectra, fragility curves, agreement maps (Dask)
     isorock experiments  the engines scored against measured shake-table tests of two rocks
@@ -42,6 +43,7 @@ EXTRA_COMMANDS = {
                                         "× mass ratio × size, with its cost"),
     "view": ("isorock.validate.cli.view", "replay a run in MuJoCo's viewer, or write it as a GIF where there is no "
                                       "display"),
+    "presets": ("isorock.validate.cli.presets", "every engine's presets, with their reasons and settings"),
     "sweep": ("isorock.validate.cli.sweep", "run a campaign (TOML): overturning spectra, fragility curves, agreement maps"),
     "experiments": ("isorock.validate.cli.experiments", "score the rigid model and the contact engines against measured "
                                                         "shake-table tests"),

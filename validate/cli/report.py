@@ -32,8 +32,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                     "DIR/report.html, the figures and DIR/metrics.json. The last line on stdout is the verdict.")
     p.add_argument("--config", metavar="FILE.toml",
                    help="a TOML file with [system] (the system options, underscored), engines = [...], "
-                        "motions = [...], and [settings.ENGINE] tables of engine settings; options given on "
-                        "the command line win")
+                        "motions = [...], pga or pgv, and [settings.ENGINE] tables of engine settings; options "
+                        "given on the command line win (a commented example: examples/statue.toml)")
     p.add_argument("--motion", action="append", metavar="SPEC",
                    help="a record file or a pulse 'sine:amp=A,freq=F,cycles=N', 'cosine:…', "
                         "'ricker:amp=A,freq=F' (A in g, F in Hz); repeat for several "
@@ -94,14 +94,12 @@ def _read_config(path) -> dict:
     return read_config(path)
 
 
-def run(args) -> int:
+def report_config(args):
+    """The validate options `args` (the parser's namespace) and the --config file they name,
+    checked and merged into the report's ReportConfig, before any run."""
     from isorock.validate.cli.options import ENGINE_OPTIONS, system_from_options
-    from isorock.validate.io.output import check_folder
-    from isorock.validate.io.progress import Progress
-    from isorock.validate.tools.report_render import verdict, write_report
-    from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig, build
+    from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig
     from isorock.validate.cli.run import engine_labels
-    check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
     overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
@@ -116,7 +114,9 @@ def run(args) -> int:
                           scales=_scales(args.scales), format=args.format or config.get("format"),
                           units=args.units or config.get("units"), system=system_from_options(args, config.get("system")),
                           overrides=overrides, workers=args.workers, overturn_rule=args.overturn,
-                          pga=args.pga, pgv=args.pgv)
+                          # a target on the command line wins over the file's, whichever it names
+                          **({"pga": args.pga, "pgv": args.pgv} if args.pga is not None or args.pgv is not None
+                             else {"pga": config.get("pga"), "pgv": config.get("pgv")}))
     from isorock.validate.cli.config_file import check_damping_ratio
     check_damping_ratio(report.system)
     from isorock.validate.core.engines import resolve
@@ -125,6 +125,16 @@ def run(args) -> int:
             resolve(name, report.overrides_for(name))
         except ImportError:
             pass  # reported as a skipped engine
+    return report
+
+
+def run(args) -> int:
+    from isorock.validate.io.output import check_folder
+    from isorock.validate.io.progress import Progress
+    from isorock.validate.tools.report_render import verdict, write_report
+    from isorock.validate.tools.report_run import build
+    check_folder(args.out)  # a folder we may not write is refused before the runs, not after
+    report = report_config(args)
     bars = []  # made by the report once it knows how many runs it makes
 
     def progress(total):

@@ -15,7 +15,7 @@ output (its JSON fields, its CSV) is unchanged.
 from __future__ import annotations
 
 import sys
-from dataclasses import fields
+from dataclasses import dataclass, fields
 from pathlib import Path
 
 from isorock.analytic.errors import InputError
@@ -127,11 +127,55 @@ def _progress(quiet):
     return report
 
 
+@dataclass(frozen=True)
+class RunPlan:
+    """What `isorock run` (and `isorock.run`) will simulate, every input checked: the
+    engines with their settings, the system, the motion (cut to the work bounds), the
+    duration and the initial tilt θ0 (rad)."""
+
+    loaded: list
+    system: object
+    motion: object
+    duration: float
+    theta0: float
+
+
+def plan_runs(a, specs) -> RunPlan:
+    """The run options `a` (the parser's namespace) checked and resolved, before any work."""
+    from isorock.analytic.engine_protocol import run_inputs
+    from isorock.validate.cli.options import motion_from_args, system_from_args
+    loaded = load_engines(specs, a)
+    system, motion = system_from_args(a), motion_from_args(a)
+    if a.duration is not None and not a.duration > 0:
+        raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
+    if not (abs(a.theta0_over_alpha) < 1):
+        raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
+    theta0 = a.theta0_over_alpha * system.alpha
+    # the work bounds (duration, isolator, every engine's steps) before any work
+    duration = a.duration
+    for _, engine, settings in loaded:
+        engine.check_isolator(system)
+        motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold, settings=settings,
+                                      isolators=engine.capabilities.isolators)
+    return RunPlan(loaded, system, motion, duration, theta0)
+
+
+def simulate_plan(plan: RunPlan, a, *, announce: bool = False) -> tuple[dict, dict]:
+    """(label → Trajectory, label → Settings used), in the order the engines were given."""
+    runs, used = {}, {}
+    for label, engine, settings in plan.loaded:
+        if announce:
+            print(f"\r{label} …", file=sys.stderr)
+        runs[label] = engine.simulate(plan.system, plan.motion, settings=settings, duration=plan.duration,
+                                      theta0=plan.theta0, impact_threshold=a.impact_threshold,
+                                      overturn_rule=a.overturn, progress=_progress(getattr(a, "quiet", True)))
+        used[label] = settings
+    return runs, used
+
+
 def cmd_run(a) -> int:
     """One or several engines on one system and motion; exit 1 when any run failed."""
-    from isorock.analytic.engine_protocol import run_inputs
     from isorock.analytic.limits import check_resample
-    from isorock.validate.cli.options import motion_from_args, system_from_args
     from isorock.validate.core.compare import compare
     from isorock.validate.io.output import Outputs, to_json
     if a.engine is None:  # the compiled kernel carries the linear isolator only (docs/isolators.md)
@@ -148,30 +192,13 @@ def cmd_run(a) -> int:
                 csv_outs[label] = outputs.file("csv", _file_suffix(a.csv, label) if several else a.csv)
         plot_out = outputs.file("plot", a.plot) if a.plot is not None else None
         plot_kind = plot_format(a.plot) if a.plot is not None else None
-        loaded = load_engines(specs, a)
-        system, motion = system_from_args(a), motion_from_args(a)
-        if a.duration is not None and not a.duration > 0:
-            raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
-        if not (abs(a.theta0_over_alpha) < 1):
-            raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
-        theta0 = a.theta0_over_alpha * system.alpha
-        # the work bounds (duration, isolator, every engine's steps) before any work
-        for _, engine, settings in loaded:
-            engine.check_isolator(system)
-            motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold, settings=settings,
-                                          isolators=engine.capabilities.isolators)
+        plan = plan_runs(a, specs)
+        system, motion, duration = plan.system, plan.motion, plan.duration
         if a.csv_dt is not None:
             if not (a.csv_dt > 0 and a.csv_dt < float("inf")):
                 raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")
             check_resample("csv-dt", a.csv_dt, duration)
-        runs, used = {}, {}
-        for label, engine, settings in loaded:
-            if several and not a.quiet and sys.stderr.isatty():
-                print(f"\r{label} …", file=sys.stderr)
-            runs[label] = engine.simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
-                                          impact_threshold=a.impact_threshold, overturn_rule=a.overturn,
-                                          progress=_progress(a.quiet))
-            used[label] = settings
+        runs, used = simulate_plan(plan, a, announce=several and not a.quiet and sys.stderr.isatty())
         ref_label, ref = next(iter(runs.items()))
         comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
         if several:

@@ -45,8 +45,10 @@ def build_system(inputs: dict) -> System:
     geo = dict(height=inputs["height"], width=inputs["width"], mass=inputs["mass"])
     if inputs["base"] == "fixed":
         return System.fixed(**geo)
-    return System.isolated(**geo, base_mass=inputs["mass"] / inputs["mass_ratio"],
-                           period=inputs["period"], damping_ratio=inputs["damping_ratio"])
+    # the base's mass as the user gave it, where they did (a campaign's base_mass), not
+    # recomputed from the ratio (80/(80/150) is not 150 in floating point)
+    base_mass = inputs.get("base_mass") or inputs["mass"] / inputs["mass_ratio"]
+    return System.isolated(**geo, base_mass=base_mass, period=inputs["period"], damping_ratio=inputs["damping_ratio"])
 
 
 def pulse_for(system: System, kind: str, frequency_ratio: float, amplitude_ratio: float,

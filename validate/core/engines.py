@@ -39,8 +39,18 @@ REFERENCE = "analytic"
 #: The engines every report and comparison loops over: the reference and the contact engines.
 ENGINE_NAMES = ("analytic", "mujoco", "bullet")
 CONTACT_ENGINES = tuple(n for n in ENGINE_NAMES if n != REFERENCE)
-#: Every engine that can be asked for by name (bench and stress run them all).
+#: Every engine that can be asked for by name, former names included.
 ALL_ENGINES = tuple(ENGINE_MODULES)
+#: Former names: each runs the engine it names, so no tool runs it as an engine of its own.
+ALIASES = {"analytic-fast": "analytic"}
+#: Every engine once (bench and stress run them all; `isorock presets` lists them).
+DISTINCT_ENGINES = tuple(n for n in ENGINE_MODULES if n not in ALIASES)
+
+
+def canonical(label: str) -> str:
+    """ENGINE[:PRESET] with a former engine name replaced by the engine's own."""
+    name, sep, preset = str(label).partition(":")
+    return ALIASES.get(name, name) + sep + preset
 
 
 @dataclass(frozen=True)
@@ -208,9 +218,13 @@ class EngineChoice:
         try:
             return replace(preset, **self.settings_kwargs)
         except InputError as e:
+            given = ", ".join(f"{k} = {v!r}" for k, v in self.settings_kwargs.items())
+            try:  # the user's value alone, on the engine's defaults: is it theirs that is out of range?
+                engine.settings(**self.settings_kwargs)
+            except InputError as own:
+                raise InputError(f"{own} (given on preset {self.engine}:{self.preset})") from None
             # a setting the user did not give (the preset's solref, made for its own step)
             # must not be blamed alone: say which of theirs made it unfit
-            given = ", ".join(f"{k} = {v!r}" for k, v in self.settings_kwargs.items())
             raise InputError(f"{given} on preset {self.engine}:{self.preset}: the preset's other settings do not fit "
                              f"it ({e}); give them too, or leave out the preset") from None
 
@@ -253,11 +267,30 @@ def runs_here(label: str) -> bool:
     except ImportError:
         return True
 
+def presets_of(name: str) -> dict:
+    """Every preset of engine `name`: preset → {"reason": its one line, "settings": every
+    setting's value, "differs": the names of those that differ from the engine's default}.
+    An engine whose package cannot be imported here (an optional extra not installed) is an
+    InputError saying what to install."""
+    from dataclasses import asdict
+    try:
+        engine = get_engine(name)
+    except ImportError as e:
+        raise InputError(f"engine = {name!r}: cannot be loaded here ({e})") from None
+    default = asdict(engine.settings())
+    out = {}
+    for preset, make in engine.spec.presets.items():
+        values = asdict(make())
+        out[preset] = {"reason": getattr(make, "reason", ""), "settings": values,
+                       "differs": [k for k, v in values.items() if default.get(k) != v]}
+    return out
+
+
 def campaign_engines() -> tuple[str, ...]:
     """The registered engines fast enough for grids of thousands of runs that can be
     imported here: what bench and stress run unless told otherwise."""
     out = []
-    for name in ALL_ENGINES:
+    for name in DISTINCT_ENGINES:
         try:
             if get_engine(name).capabilities.campaigns:
                 out.append(name)

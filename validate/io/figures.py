@@ -163,15 +163,23 @@ def history(motion, runs: dict, path, *, title: str, reference: str = REFERENCE)
 
 
 def beta_per_impact(panels, path, *, bands: dict | None = None) -> None:
-    """`panels`: (title, series) with series = (label, engine, list of β_eff/β − 1), one
-    marker colour per engine and one fill per label; points are spread a little along x
-    so that engines at the same impact index stay visible. `bands`: engine → its
-    tolerance (a fraction), drawn as ± lines in the engine's colour."""
-    panels = list(panels) or [("", [])]
+    """beta_per_impact_figure, written to `path`."""
+    _save(beta_per_impact_figure(panels, bands=bands), path)
+
+
+def beta_per_impact_figure(panels, *, bands: dict | None = None) -> Figure:
+    """`panels`: (title, series) or (title, series, note) with series = (label, engine,
+    list of β_eff/β − 1), one marker colour per engine and one fill per label; points are
+    spread a little along x so that engines at the same impact index stay visible.
+    `bands`: engine → its tolerance (a fraction), drawn as ± lines in the engine's colour
+    on the panels that are judged; a panel with a `note` is not judged (the note says why,
+    under its title, and no tolerance is drawn there: a point beyond one would read as a
+    failure)."""
+    panels = [p if len(p) == 3 else (*p, "") for p in panels] or [("", [], "")]
     fig = Figure(figsize=(6 * len(panels), 6))
     axes = np.atleast_1d(fig.subplots(1, len(panels)))
     fills = ["full", "none", "left", "bottom", "right", "top"]
-    for ax, (title, series) in zip(axes, panels):
+    for ax, (title, series, note) in zip(axes, panels):
         labels = sorted({label for label, _, _ in series})
         engines = sorted({engine for _, engine, _ in series})
         for label, engine, errors in series:
@@ -181,31 +189,48 @@ def beta_per_impact(panels, path, *, bands: dict | None = None) -> None:
             ax.plot(x, e, marker=st["marker"], color=st["color"], ls="none",
                     fillstyle=fills[labels.index(label) % len(fills)], label=f"{st['label']}, {label}")
         ax.axhline(0, color="k", lw=0.5)
-        for engine, limit in (bands or {}).items():
+        for engine, limit in ({} if note else bands or {}).items():
             if any(e == engine for _, e, _ in series):
                 st = style(engine)
                 for sign in (-1, 1):
                     ax.axhline(sign * limit * 100, color=st["color"], lw=1, ls="--", alpha=0.7,
                                label=f"{st['label']} tolerance ±{limit * 100:g}%" if sign > 0 else None)
-        ax.set(xlabel="counted impact", ylabel="β_eff / β − 1 (%)", title=title)
+        import textwrap
+        ax.set(xlabel="counted impact", ylabel="β_eff / β − 1 (%)")
+        ax.set_title(title + (f"\n{textwrap.fill(note, 70)}" if note else ""), fontsize=10 if not note else 9)
         ax.xaxis.get_major_locator().set_params(integer=True)
         ax.grid(alpha=0.3)
         if series:  # below the axes: the points fill the whole panel
             ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.15), ncol=1)
     fig.suptitle("Effective β of every counted impact against the closed form, with each engine's tolerance",
                  fontsize=10)
+    FigureCanvasAgg(fig)
     fig.tight_layout()
-    _save(fig, path)
+    return fig
 
 
 def ensemble(ensembles, path, *, bands: dict | None = None, reference: str = REFERENCE) -> None:
     """Per Ensemble a column: θmax/α against the scale factor, one curve per engine
     (overturned drawn at 1 with a cross), and below it each engine − the reference, with
     `bands` (engine → tolerance of the median difference) as ± lines."""
+    _save(ensemble_figure(ensembles, bands=bands, reference=reference), path)
+
+
+def scale_axis_label(pga_g: float) -> str:
+    """The ensembles' x axis: the factor multiplies the whole motion, whose own PGA is
+    given at factor 1 (a label that put the factor beside the PGA read as a PGA in g)."""
+    return f"scale factor of the motion (its PGA at 1: {pga_g:.2f} g)"
+
+
+def ensemble_figure(ensembles, *, bands: dict | None = None, reference: str = REFERENCE) -> Figure:
+    """The figure `ensemble` writes; titles wrapped to their panel's width (long record
+    names ran into the neighbouring panel's title)."""
+    import textwrap
     n = max(1, len(ensembles))
     cols = min(n, 2)  # isolated and fixed side by side, one pair of rows per motion
     rows = -(-n // cols)
-    fig = Figure(figsize=(5.8 * cols, 6.2 * rows))
+    # constrained: room for the figure's title above the wrapped panel titles (tight_layout leaves none)
+    fig = Figure(figsize=(5.8 * cols, 6.2 * rows), layout="constrained")
     axes = np.atleast_2d(fig.subplots(2 * rows, cols, squeeze=False, gridspec_kw={"height_ratios": [2, 1] * rows}))
     for k in range(rows * cols):
         top, bottom = axes[2 * (k // cols), k % cols], axes[2 * (k // cols) + 1, k % cols]
@@ -231,14 +256,14 @@ def ensemble(ensembles, path, *, bands: dict | None = None, reference: str = REF
         top.axhline(1, color="k", lw=0.5)
         bottom.axhline(0, color="k", lw=0.5)
         base = "fixed base" if ens.system.fixed_base else "isolated base"
-        top.set(ylabel="θmax/α (× = overturned)", ylim=(0, 1.1),
-                title=f"{ens.motion}, {base}: {ens.rocking_count()} of {ens.scales.size} cases rock")
-        bottom.set(xlabel=f"scale factor × PGA ({ens.pga_g:.2f} g)",
-                   ylabel=f"Δ θmax/α (vs {style(reference)['label']})")
+        top.set(ylabel="θmax/α (× = overturned)", ylim=(0, 1.1))
+        top.set_title(textwrap.fill(f"{ens.motion}, {base}: {ens.rocking_count()} of {ens.scales.size} cases rock",
+                                    60, break_long_words=True), fontsize=10)
+        bottom.set(xlabel=scale_axis_label(ens.pga_g), ylabel=f"Δ θmax/α (vs {style(reference)['label']})")
         for ax in (top, bottom):
             ax.grid(alpha=0.3)
         top.legend(fontsize=8)
     fig.suptitle("Peak rotation over the motion scaled in amplitude: where engines part from the analytic model",
                  fontsize=10)
-    fig.tight_layout()
-    _save(fig, path)
+    FigureCanvasAgg(fig)
+    return fig

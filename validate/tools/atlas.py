@@ -1,4 +1,4 @@
-"""`isorock atlas`: the contact-model atlas (issue 12). For each engine and preset, the
+"""`isorock atlas`: the contact-model atlas. For each engine and preset, the
 effective β error and the first-impact time error of free rocking over a grid of
 slenderness λ = H/B × mass ratio μ = m/m_b (0: a fixed base) × size H, with the cost in
 simulated seconds per wall second: which contact formulation reproduces the impact law,
@@ -90,6 +90,57 @@ class Grid:
 
 FULL = Grid(FULL_SLENDERNESS, FULL_MASS_RATIOS, FULL_HEIGHTS)
 QUICK = Grid(QUICK_SLENDERNESS, QUICK_MASS_RATIOS, QUICK_HEIGHTS)
+
+#: A user's grid (--slenderness, --mass-ratios, --heights): each axis's allowed range, with
+#: why. λ from 1 (a square block; a squatter one slides rather than rocks, docs/atlas.md) to
+#: 100; μ 0 (a fixed base) or a base from a hundredth to a hundred times the block's mass
+#: (the paper's isolated statues sit at 0.25–4); H from 1 cm to 100 m (a statue to a tower).
+AXES = {"slenderness": ("slenderness", (1.0, 100.0), "λ = H/B", "3,8"),
+        "mass_ratios": ("mass ratio", (0.01, 100.0), "μ = m/m_b, 0 for a fixed base", "0,0.5"),
+        "heights": ("height", (0.01, 100.0), "H, m", "0.3,3")}
+#: Values per axis and cells in all: four times the full grid's 60 cells, each run by every
+#: preset asked for (minutes per preset on 2 cores for the full grid, docs/atlas.md).
+MAX_AXIS_VALUES, MAX_CELLS = 20, 240
+
+
+def axis_values(option: str, text: str) -> tuple[float, ...]:
+    """One axis of a user's grid from "0.3,3": distinct numbers in the axis's range (AXES),
+    at most MAX_AXIS_VALUES, sorted; anything else is an InputError naming the option,
+    the value and what is allowed."""
+    name, (lo, hi), meaning, example = AXES[option]
+    flag = "--" + option.replace("_", "-")
+    allowed = (f"comma-separated numbers from {lo:g} to {hi:g}" + (" or 0" if option == "mass_ratios" else "")
+               + f" ({meaning}), e.g. {flag} {example}")
+    items = [x.strip() for x in str(text).split(",")]
+    values = []
+    for item in items:
+        try:
+            x = float(item)
+        except ValueError:
+            raise InputError(f"{flag} = {text!r}: {item!r} is not a number; must be {allowed}") from None
+        if not (lo <= x <= hi or (option == "mass_ratios" and x == 0.0)):
+            raise InputError(f"{flag} = {text!r}: {name} {item} is out of range; must be {allowed}")
+        values.append(x)
+    if len(set(values)) != len(values):
+        dup = next(x for x in values if values.count(x) > 1)
+        raise InputError(f"{flag} = {text!r}: lists {dup:g} twice; each value once (a repeat runs its cells twice)")
+    if len(values) > MAX_AXIS_VALUES:
+        raise InputError(f"{flag} = {text!r}: {len(values)} values; must be at most {MAX_AXIS_VALUES}")
+    return tuple(sorted(values))
+
+
+def user_grid(base: Grid, *, slenderness: str | None = None, mass_ratios: str | None = None,
+              heights: str | None = None) -> Grid:
+    """`base` with each axis the user gave replaced by theirs (axis_values), at most
+    MAX_CELLS cells in all."""
+    given = {"slenderness": slenderness, "mass_ratios": mass_ratios, "heights": heights}
+    axes = {k: (axis_values(k, v) if v is not None else getattr(base, k)) for k, v in given.items()}
+    grid = Grid(**axes)
+    n = len(grid.cells())
+    if n > MAX_CELLS:
+        raise InputError(f"--slenderness × --mass-ratios × --heights = {len(grid.slenderness)} × "
+                         f"{len(grid.mass_ratios)} × {len(grid.heights)} = {n} cells: must be at most {MAX_CELLS}")
+    return grid
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,7 @@ import math
 import numpy as np
 from matplotlib.colors import SymLogNorm
 from matplotlib.figure import Figure
+from matplotlib.text import Text
 
 from isorock.validate.io.figures import DPI, _save, style
 
@@ -71,13 +72,54 @@ def pareto(summaries: list[dict], path, levels) -> None:
     """Cost against worst β error; a preset that was not judged on every cell (failed,
     slid, overturned, missed impacts, too slow) is drawn in the band above the plot with
     an ×, never at a small error."""
+    _save(pareto_figure(summaries, levels), path)
+
+
+#: Where a point's label may go, tried in order (offsets in points, horizontal alignment):
+#: beside it, above and below, then further out, so that presets that crowd (two at the
+#: same cost and error: newton is the default) each keep a readable label.
+LABEL_SPOTS = [(dx * r ** 0.5, dy, ha) for r in range(1, 9)
+               for dx, dy, ha in ((4, 8 * r - 6, "left"), (4, -8 * r - 1, "left"), (-4, 8 * r - 6, "right"),
+                                  (-4, -8 * r - 1, "right"), (0, 8 * r + 2, "center"), (0, -8 * r - 9, "center"))]
+
+
+def _place_labels(fig, ax, items, taken) -> None:
+    """Annotate each (text, x, y, colour, fontsize) at the first LABEL_SPOTS offset whose
+    rendered box overlaps no box already taken (labels placed, legend, titles); the last
+    spot where none is free."""
+    renderer = fig.canvas.get_renderer()
+    for text, x, y, color, size in items:
+        for k, (dx, dy, ha) in enumerate(LABEL_SPOTS):
+            # a label beyond the first ring is tied to its point by a thin line
+            leader = dict(arrowprops=dict(arrowstyle="-", lw=0.5, color=color, alpha=0.6)) if k >= 6 else {}
+            note = ax.annotate(text, (x, y), textcoords="offset points", xytext=(dx, dy), ha=ha,
+                               fontsize=size, color=color, **leader)
+            note.update_positions(renderer)
+            box = Text.get_window_extent(note, renderer).expanded(1.04, 1.1)  # the text, not its leader line
+            inside = (ax.bbox.x0 <= box.x0 and box.x1 <= ax.bbox.x1 and ax.bbox.y0 <= box.y0 and box.y1 <= ax.bbox.y1)
+            if inside and not any(box.overlaps(other) for other in taken):
+                break
+            note.remove()
+        else:  # nowhere free: the first spot (a test of the figure would say so)
+            dx, dy, ha = LABEL_SPOTS[0]
+            note = ax.annotate(text, (x, y), textcoords="offset points", xytext=(dx, dy), ha=ha, fontsize=size,
+                               color=color)
+            box = Text.get_window_extent(note, renderer)
+        taken.append(box)
+
+
+def pareto_figure(summaries: list[dict], levels) -> Figure:
+    """The figure `pareto` writes; labels placed where they overlap nothing (_place_labels)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     fig = Figure(figsize=(9.5, 6.0))
+    FigureCanvasAgg(fig)
     ax = fig.subplots()
     judged = [s for s in summaries if s["complete"] and s["worst_beta_error"] is not None and s["sim_per_wall"]]
     errors = [100 * s["worst_beta_error"] for s in judged] + [100 * lv for lv in levels]
     low, high = min(errors) / 2, max(errors) * 2
     ceiling = high * 2  # the band of presets not judged on every cell, above the line at `high`
     costs = [1 / s["sim_per_wall"] for s in summaries if s["sim_per_wall"]] or [1.0]
+    labels = []
     for name in dict.fromkeys(s["engine_name"] for s in summaries):
         st = style(name)
         mine = sorted((s for s in judged if s["engine_name"] == name), key=lambda s: 1 / s["sim_per_wall"])
@@ -92,21 +134,19 @@ def pareto(summaries: list[dict], path, levels) -> None:
         if front:
             fx, fy = zip(*front)
             ax.step(fx, fy, where="post", color=st["color"], lw=1.2, alpha=0.8)
-        for k, (s, x, y) in enumerate(zip(mine, xs, ys)):  # labels alternate above and below: presets crowd
-            ax.annotate(s["preset"], (x, y), textcoords="offset points", xytext=(4, 3 if k % 2 == 0 else -9),
-                        fontsize=7, color=st["color"])
+        labels += [(s["preset"], x, y, st["color"], 7) for s, x, y in zip(mine, xs, ys)]
         failed = sorted((s for s in summaries if s["engine_name"] == name and s not in judged and s["sim_per_wall"]),
                         key=lambda s: s["sim_per_wall"])
         for k, s in enumerate(failed):  # in the band, at staggered heights so that their notes can be read
             x, y = 1 / s["sim_per_wall"], ceiling * 1.45 ** (k % 3)
             ax.scatter([x], [y], color=st["color"], marker="x", s=36, zorder=3)
             why = ", ".join(f"{k} {v}" for k, v in sorted(s["failures"].items()))
-            ax.annotate(f"{s['preset']}: {why}", (x, y), textcoords="offset points", xytext=(4, 2),
-                        fontsize=6, color=st["color"])
+            labels.append((f"{s['preset']}: {why}", x, y, st["color"], 6))
+    level_texts = []
     for level in levels:
         ax.axhline(100 * level, color="0.5", lw=0.8, ls="--")
-        ax.text(1.0, 100 * level, f" {100 * level:g}%", transform=ax.get_yaxis_transform(), va="center",
-                fontsize=8, color="0.4")
+        level_texts.append(ax.text(1.0, 100 * level, f" {100 * level:g}%", transform=ax.get_yaxis_transform(),
+                                   va="center", fontsize=8, color="0.4"))
     ax.axhline(high, color="0.7", lw=0.6)
     ax.set_xscale("log")
     ax.set_yscale("log")
@@ -117,9 +157,13 @@ def pareto(summaries: list[dict], path, levels) -> None:
     ax.set_title("Contact presets: cost against worst effective-β error (× above the line: not judged on every "
                  "cell)", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower left")
+    legend = ax.legend(fontsize=8, loc="lower left")
     fig.tight_layout()
-    _save(fig, path)
+    fig.canvas.draw()  # the layout fixed: the boxes measured now are the ones saved
+    renderer = fig.canvas.get_renderer()
+    _place_labels(fig, ax, labels, [legend.get_window_extent(renderer),
+                                    *(t.get_window_extent(renderer) for t in level_texts)])
+    return fig
 
 
 def _cmap():
@@ -131,4 +175,4 @@ def _speed(x) -> str:
     return "—" if x is None else f"{x:.3g}"
 
 
-__all__ = ["error_map", "pareto"]
+__all__ = ["error_map", "pareto", "pareto_figure"]

@@ -86,9 +86,18 @@ def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
                 overturn_agree=c.overturn_agree)
 
 
+def bench_engines(engines=None) -> list[str]:
+    """The series to bench, each once: those asked for (default: the engines fast enough
+    for grids) that can be imported here, an engine asked for under its former name too
+    (analytic-fast) one series with it."""
+    from isorock.validate.core.engines import campaign_engines, canonical
+    engines = list(dict.fromkeys(canonical(e) for e in (engines or campaign_engines())))
+    return [e for e in engines if _importable(e.partition(":")[0])]
+
+
 def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], dict]:
-    from isorock.validate.core.engines import campaign_engines, get_engine
-    engines = [e for e in (engines or campaign_engines()) if _importable(e.partition(":")[0])]
+    from isorock.validate.core.engines import get_engine
+    engines = bench_engines(engines)
     rows = []
     for sc in bench_scenarios(quick):
         motion = sc.ground_motion()
@@ -229,7 +238,7 @@ def _importable(engine: str) -> bool:
 
 
 def _fast_available() -> bool:
-    return _importable("analytic-fast")
+    return _importable("analytic")
 
 
 def speed_ratio(quick: bool) -> dict | None:

@@ -119,6 +119,8 @@ def drawn_cases(n: int) -> list[StressCase]:
         return []
     import tempfile
 
+    from isorock.analytic.errors import import_extra
+    import_extra("hypothesis", "stress", "the stress grid's property-based draws")
     from hypothesis import HealthCheck, Phase, configuration, given, settings
     from hypothesis import strategies as st
     # Hypothesis keeps caches in ./.hypothesis, the user's working folder: a private

@@ -1,0 +1,31 @@
+"""isorock: cross-validation of multibody simulators on a statue rocking on a base-isolated
+platform. The notebook API (isorock.validate.cli.api), loaded on first use so that
+`import isorock.analytic` stays light:
+
+    import isorock
+    tr = isorock.run(engine="analytic", height=0.6, width=0.2, mass=80, base_mass=150, period=2.0,
+                     damping_ratio=0.15, motion="sine:amp=0.3,freq=2,cycles=2", pga=0.5)
+    tr.to_dataframe()
+    report = isorock.report(quick=True, engines=["analytic", "mujoco"])   # isorock validate's report
+    campaign = isorock.sweep("examples/spectrum.toml").to_dataframe()
+
+The packages: isorock.analytic (the model), isorock.mujoco_models, isorock.bullet_models,
+isorock.drake_models (the engines), isorock.validate (registry, measuring, reports, the
+command line), isorock.campaign (sweeps), isorock.experiments (shake-table tests).
+"""
+from __future__ import annotations
+
+#: the entry points, each the function of the same name in isorock.validate.cli.api; the
+#: command `isorock validate` is `isorock.report(...)` here, since `isorock.validate` is the
+#: subpackage (isorock.validate.core, …) and cannot also be a function
+API = ("run", "report", "sweep")
+
+
+def __getattr__(name: str):
+    if name in API:
+        from isorock.validate.cli import api
+        return getattr(api, name)
+    raise AttributeError(f"module 'isorock' has no attribute {name!r}")
+
+
+__all__ = list(API)

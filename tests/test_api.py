@@ -1,0 +1,146 @@
+"""The notebook API (issue 25): isorock.run / isorock.report / isorock.sweep with keyword
+arguments, the command line's validation and results, DataFrames; a campaign from code
+without a __main__ guard runs (notebook) or says in one line what to do (script)."""
+from __future__ import annotations
+
+import io
+import json
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import isorock
+from isorock.analytic.errors import InputError
+from isorock.validate.cli.main import main
+
+PAPER = dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.5, damping_ratio=0.2)
+SINE = "sine:amp=0.6,freq=1.3,cycles=2"
+
+
+def _cli_args(options: dict) -> list[str]:
+    return [x for k, v in options.items() for x in (f"--{k.replace('_', '-')}", str(v))]
+
+
+def test_the_top_package_names_its_entry_points_and_keeps_its_subpackages():
+    import isorock.validate.core.engines  # noqa: F401 — the subpackage isorock.validate stays one
+    assert callable(isorock.run) and callable(isorock.report) and callable(isorock.sweep)
+    assert isorock.validate.__name__ == "isorock.validate"
+    with pytest.raises(AttributeError):
+        isorock.simulate  # noqa: B018
+
+
+def test_run_is_the_command_line_run(tmp_path):
+    """The same keywords as options: the summary the command writes (--json) is the one
+    the returned Trajectory gives, the motion scaled to pga in both."""
+    options = dict(PAPER, motion=SINE, pga=0.5)
+    tr = isorock.run(engine="analytic", **options)
+    path = tmp_path / "r.json"
+    assert main(["run", "--engine", "analytic", *_cli_args(options), "--json", str(path), "--quiet"]) == 0
+    cli = json.loads(path.read_text())
+    mine = tr.summary()
+    for key in ("theta_max_over_alpha", "impacts", "uplifts", "overturned", "u_max"):
+        assert mine[key] == pytest.approx(cli[key], rel=1e-12), key
+    assert cli["motion"]["pga_g"] == pytest.approx(0.5)
+
+
+def test_several_engines_are_a_dict_in_the_order_given():
+    runs = isorock.run(engine="analytic,analytic:conservative", motion=SINE, **PAPER)
+    assert list(runs) == ["analytic", "analytic:conservative"]
+
+
+@pytest.mark.parametrize("options, cli", [
+    (dict(PAPER, duration=-1.0), ["--duration", "-1.0"]),
+    (dict(PAPER, motion="sine:amp=0.5"), ["--motion", "sine:amp=0.5"]),
+    (dict(PAPER, engine="mujoco:nope"), ["--engine", "mujoco:nope"]),
+    (dict(PAPER, theta0_over_alpha=1.5), ["--theta0-over-alpha", "1.5"]),
+])
+def test_bad_input_is_the_command_lines_one_line(options, cli, capsys):
+    """The same refusal as the command's (its stderr line, options spelt as keywords)."""
+    base = {k: v for k, v in PAPER.items()}
+    assert main(["run", *_cli_args(base), *cli]) == 2
+    line = capsys.readouterr().err.strip().split(": error: ", 1)[1]
+    with pytest.raises(InputError) as e:
+        isorock.run(**options)
+    assert str(e.value) == line.replace("--theta0-over-alpha", "theta0_over_alpha").replace(
+        " (see isorock run --help)", "")
+
+
+def test_an_unknown_keyword_or_an_output_option_is_named():
+    with pytest.raises(InputError, match=r"^heigth: not an option of isorock.run \(its options: .*height"):
+        isorock.run(heigth=2.0)
+    with pytest.raises(InputError, match=r"^json: an output of the command"):
+        isorock.run(json="x.json", **PAPER)
+    with pytest.raises(InputError, match=r"fixed_base = 'yes': must be True or False"):
+        isorock.run(fixed_base="yes", height=2.0, width=0.7, mass=1.0)
+
+
+def test_a_trajectory_as_a_dataframe_is_its_csv(tmp_path):
+    tr = isorock.run(engine="analytic", motion=SINE, **PAPER)
+    frame = tr.to_dataframe()
+    buf = io.StringIO()
+    tr.to_csv(buf)
+    csv = np.loadtxt(io.StringIO(buf.getvalue()), delimiter=",", skiprows=1)
+    assert list(frame.columns[:5]) == ["t", "u", "u_dot", "theta", "theta_dot"]
+    # the CSV's 10 significant digits against the frame's floats
+    np.testing.assert_allclose(frame[["t", "u", "u_dot", "theta", "theta_dot"]].to_numpy(), csv, rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(frame["theta_over_alpha"], frame["theta"] / tr.system.alpha, rtol=1e-15)
+    assert frame["t"].is_monotonic_increasing and frame["t"].is_unique
+    assert frame.attrs["summary"]["theta_max_over_alpha"] == tr.theta_max_over_alpha
+
+
+def test_report_is_validates_report(tmp_path, capsys):
+    options = ["--quick", "--engines", "analytic", "--motion", SINE, "--pga", "0.5"]
+    assert main(["validate", *options, "--quiet", "--out", str(tmp_path / "cli")]) == 0
+    cli_verdict = capsys.readouterr().out.strip().splitlines()[-1]
+    got = isorock.report(quick=True, engines=["analytic"], motion=SINE, pga=0.5, out=str(tmp_path / "api"))
+    assert got.verdict == cli_verdict and got.passed
+    metrics = json.loads((tmp_path / "api" / "metrics.json").read_text())
+    assert metrics["verdict"] == got.verdict
+    checks = got.checks()
+    assert len(checks) == len(metrics["checks"]) and "metric" in checks.columns
+
+
+def test_report_refuses_as_validate_does():
+    with pytest.raises(InputError, match=r"^pga = -0.5"):
+        isorock.report(quick=True, engines=["analytic"], motion=SINE, pga=-0.5)
+
+
+def test_a_campaign_as_a_dataframe(tmp_path):
+    from test_campaign import write_spec
+    from isorock.validate.core.summary import COLUMNS
+    spec = write_spec(tmp_path, more="")
+    result = isorock.sweep(spec, out=tmp_path / "out", products=False)
+    frame = result.to_dataframe()
+    assert list(frame.columns) == list(COLUMNS) and len(frame) == result.table.num_rows == 18
+    assert set(frame["base"]) == {"fixed", "isolated"}
+    with pytest.raises(InputError, match="workers"):
+        isorock.sweep(spec, workers=-1)
+
+
+SCRIPT = """
+import isorock
+r = isorock.sweep({spec!r}, out={out!r}, workers=2, products=False)
+print("rows", r.table.num_rows)
+"""
+
+
+@pytest.mark.slow
+def test_a_script_without_a_main_guard_is_told_what_to_do_and_code_without_a_file_runs(tmp_path):
+    """Dask's worker processes start by "spawn", which runs a script again: without
+    `if __name__ == "__main__":` it says so in one line (one traceback, the script's own),
+    not Dask's wall. Code without a file (a notebook, `python -c`) is not run again: it runs."""
+    from test_campaign import write_spec
+    spec = write_spec(tmp_path, more="")
+    script = tmp_path / "no_guard.py"
+    script.write_text(textwrap.dedent(SCRIPT.format(spec=str(spec), out=str(tmp_path / "a"))))
+    r = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode != 0
+    assert r.stderr.count("Traceback") == 1, r.stderr[-3000:]
+    last = r.stderr.strip().splitlines()[-1]
+    assert 'if __name__ == "__main__":' in last and "workers=0" in last
+    code = SCRIPT.format(spec=str(spec), out=str(tmp_path / "b"))
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode == 0 and "rows 18" in r.stdout, r.stderr[-3000:]

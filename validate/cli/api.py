@@ -1,0 +1,191 @@
+"""The notebook API: `isorock.run(...)`, `isorock.report(...)` (what `isorock validate` makes:
+`isorock.validate` is the subpackage), `isorock.sweep(...)` with
+keyword arguments, the same validation as the command line, results as objects (and
+pandas DataFrames) instead of files and printed tables.
+
+Each keyword is the command's option with dashes as underscores (`base_mass=150`,
+`pga=0.5`, `engine="analytic,mujoco:fast"`, `timestep=2.5e-4`); a flag is True or False
+(`fixed_base=True`, `quick=True`); a list is given as a list (`motion=[...]` for
+validate, `engines=[...]`). The keywords are turned into the command's arguments and read by
+the command's own parser and checks, so a value the command refuses is refused here, as
+an InputError (a ValueError) with the command's one line: the two cannot drift apart.
+
+    import isorock
+    tr = isorock.run(engine="analytic", height=0.6, width=0.2, mass=80, base_mass=150,
+                     period=2.0, damping_ratio=0.15, motion="sine:amp=0.3,freq=2,cycles=2", pga=0.5)
+    tr.theta_max_over_alpha, tr.to_dataframe()
+
+It sits on the command line's floor (it reads the commands' parsers): nothing below
+imports it.
+"""
+from __future__ import annotations
+
+import argparse
+import re
+from dataclasses import dataclass
+
+from isorock.analytic.errors import InputError
+
+
+def _parser(command: str) -> argparse.ArgumentParser:
+    """The command's own parser, raising InputError (the command's one line) instead of
+    printing it and exiting."""
+    from isorock.validate.cli.main import build_parser
+
+    def refuse(status=0, message=None):
+        text = (message or "").strip().split(": error: ", 1)[-1].replace(f" (see isorock {command} --help)", "")
+        # the options as the keywords they are here: --base-mass → base_mass
+        raise InputError(_keywords(text))
+    top = build_parser(command)
+    sub = next(a for a in top._actions if isinstance(a, argparse._SubParsersAction)).choices[command]
+    sub.exit = refuse
+    return sub
+
+
+def _argv(parser: argparse.ArgumentParser, name: str, kwargs: dict, positional: tuple = ()) -> list[str]:
+    """Keyword arguments as the command's arguments: an unknown keyword is named with the
+    keywords there are."""
+    actions = {a.dest: a for a in parser._actions if a.option_strings and a.dest != "help"}
+    argv = [str(p) for p in positional]
+    for key, value in kwargs.items():
+        action = actions.get(key)
+        if action is None:
+            raise InputError(f"{key}: not an option of isorock.{name} (its options: {', '.join(sorted(actions))})")
+        flag = next(o for o in action.option_strings if o.startswith("--"))
+        if value is None:
+            continue
+        if isinstance(action, (argparse._StoreTrueAction, argparse._StoreFalseAction)):
+            if not isinstance(value, bool):
+                raise InputError(f"{key} = {value!r}: must be True or False")
+            if value != action.default:
+                argv.append(flag)
+            continue
+        values = list(value) if isinstance(value, (list, tuple)) else [value]
+        text = [repr(v) if isinstance(v, float) else str(v) for v in values]
+        if isinstance(action, argparse._AppendAction):
+            for t in text:
+                argv += [flag, t]
+        elif action.nargs in ("+", "*"):
+            argv += [flag, *text]
+        else:  # a pair or triple (solref, solimp) is one comma-separated value on the command line
+            argv += [flag, ",".join(text)]
+    return argv
+
+
+def _keywords(text: str) -> str:
+    """A command's line with its options named as this API's keywords: --base-mass → base_mass."""
+    return re.sub(r"--([a-z][a-z0-9-]*)", lambda m: m.group(1).replace("-", "_"), text)
+
+
+def _parse(command: str, kwargs: dict, positional: tuple = ()) -> argparse.Namespace:
+    parser = _parser(command)
+    return parser.parse_args(_argv(parser, command, kwargs, positional))
+
+
+def run(**options):
+    """One simulation, as `isorock run` runs it: the Trajectory (several engines,
+    `engine="analytic,mujoco"`: a dict label → Trajectory, in the order given). Keywords:
+    `isorock run`'s options (engine, height, width, mass, base_mass, period, damping_ratio,
+    fixed_base, motion, units, scale, pga, pgv, duration, theta0_over_alpha, timestep, …),
+    without its output options (json, csv, plot: the Trajectory has to_dataframe() and
+    to_csv())."""
+    from isorock.validate.cli.run import parse_engines, plan_runs, simulate_plan
+    for key in ("json", "csv", "csv_dt", "plot", "quiet"):
+        if key in options:
+            raise InputError(f"{key}: an output of the command; isorock.run returns the Trajectory "
+                             "(its to_dataframe(), to_csv(), summary())")
+    a = _parse("run", options)
+    try:
+        plan = plan_runs(a, parse_engines(a.engine))
+    except InputError as e:
+        raise InputError(_keywords(str(e))) from None
+    runs, _ = simulate_plan(plan, a)
+    return next(iter(runs.values())) if len(runs) == 1 else runs
+
+
+@dataclass(frozen=True)
+class Validation:
+    """A validation report's results: `verdict` (the command's last line), `passed`,
+    `metrics` (what metrics.json holds), `results` (the report's own object) and
+    `checks()` (every check as a DataFrame row)."""
+
+    verdict: str
+    passed: bool
+    metrics: dict
+    results: object
+
+    def checks(self):
+        from isorock.analytic.errors import import_extra
+        pd = import_extra("pandas", "notebook", "Validation.checks")
+        return pd.DataFrame(self.metrics["checks"])
+
+
+def report(*, out: str | None = None, progress: bool = False, **options) -> Validation:
+    """The validation report, as `isorock validate` builds it, returned; written to the
+    folder `out` too where one is given (the command's rules: a new or empty folder, or
+    an earlier report's). Keywords: `isorock validate`'s options (config, motion (a list),
+    engines (a list), quick, duration, pga, pgv, system and engine options)."""
+    from isorock.validate.cli.report import report_config
+    from isorock.validate.io.output import check_folder
+    from isorock.validate.io.progress import Progress
+    from isorock.validate.tools.report_render import metrics, verdict, write_report
+    from isorock.validate.tools.report_run import build
+    if "motion" in options and isinstance(options["motion"], str):
+        options["motion"] = [options["motion"]]
+    a = _parse("validate", options)
+    if out is not None:
+        check_folder(out)
+    try:
+        config = report_config(a)
+    except InputError as e:
+        raise InputError(_keywords(str(e))) from None
+    bars = []
+
+    def bar(total):
+        bars.append(Progress(total, "validate", enabled=None if progress else False))
+        return bars[-1]
+    results = build(config, progress=bar)
+    for b in bars:
+        b.close()
+    if out is not None:
+        write_report(results, out)
+    return Validation(verdict(results), not results.failed, metrics(results), results)
+
+
+def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, products: bool = True,
+          progress: bool = False):
+    """A campaign (a TOML file's path), as `isorock sweep` runs it: the CampaignResult
+    (`.to_dataframe()`, `.table` the pyarrow table, `.out` the folder). workers = 0 runs
+    serially in this process (the default here: a notebook needs nothing more); N > 0
+    starts a local Dask cluster of N processes, which a script must call under
+    `if __name__ == "__main__":` (said in one line where it is not)."""
+    from isorock.campaign.run import run_campaign
+    from isorock.campaign.spec import load_spec
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
+        raise InputError(f"workers = {workers!r}: must be 0 (serial) or a positive number of processes")
+    if workers > 0 or scheduler:
+        _check_not_bootstrapping()
+    try:
+        return run_campaign(load_spec(spec), out, workers=workers, scheduler=scheduler, products=products,
+                            progress=progress)
+    except RuntimeError as e:
+        # the workers could not start: in a script without a __main__ guard each one stopped
+        # at the check above (said in one line there too)
+        if "failed to start" in str(e) and workers > 0:
+            raise InputError(f"isorock.sweep: the {workers} worker processes could not start ({e}); in a "
+                             "script, call it under `if __name__ == \"__main__\":`, or pass workers=0") from None
+        raise
+
+
+def _check_not_bootstrapping() -> None:
+    """A script that starts a cluster at import time (no `__main__` guard) is run again in
+    each worker process as it starts ("spawn"), which would start a cluster in each, and
+    Python and Dask answer with a wall of tracebacks. Here such a worker stops at once,
+    quietly; the cluster then fails to start, and sweep says what to do in one line. (A
+    notebook's code is not run again in a worker: there is nothing to guard.)"""
+    import multiprocessing
+    import os
+    import sys
+    # a process started by "spawn" runs the parent's script again as the module __mp_main__
+    if multiprocessing.current_process().name != "MainProcess" and "__mp_main__" in sys.modules:
+        os._exit(3)
