@@ -89,14 +89,14 @@ def run(**options):
     fixed_base, motion, units, scale, pga, pgv, duration, theta0_over_alpha, timestep, …),
     without its output options (json, csv, plot: the Trajectory has to_dataframe() and
     to_csv())."""
-    from isorock.validate.cli.run import parse_engines, plan_runs, simulate_plan
+    from isorock.validate.cli.run import engine_asked, parse_engines, plan_runs, simulate_plan
     for key in ("json", "csv", "csv_dt", "plot", "quiet"):
         if key in options:
             raise InputError(f"{key}: an output of the command; isorock.run returns the Trajectory "
                              "(its to_dataframe(), to_csv(), summary())")
     a = _parse("run", options)
     try:
-        plan = plan_runs(a, parse_engines(a.engine))
+        plan = plan_runs(a, parse_engines(engine_asked(a)))
     except InputError as e:
         raise InputError(_keywords(str(e))) from None
     runs, _ = simulate_plan(plan, a)

@@ -140,6 +140,14 @@ class RunPlan:
     theta0: float
 
 
+def engine_asked(a) -> str:
+    """--engine as given, or the default: the compiled kernel, which carries the linear
+    isolator only (docs/isolators.md); the reference path for another isolator."""
+    if a.engine is not None:
+        return a.engine
+    return "analytic" if getattr(a, "isolator", "linear") == "linear" else "analytic-reference"
+
+
 def plan_runs(a, specs) -> RunPlan:
     """The run options `a` (the parser's namespace) checked and resolved, before any work."""
     from isorock.analytic.engine_protocol import run_inputs
@@ -178,9 +186,7 @@ def cmd_run(a) -> int:
     from isorock.analytic.limits import check_resample
     from isorock.validate.core.compare import compare
     from isorock.validate.io.output import Outputs, to_json
-    if a.engine is None:  # the compiled kernel carries the linear isolator only (docs/isolators.md)
-        a.engine = "analytic" if getattr(a, "isolator", "linear") == "linear" else "analytic-reference"
-    specs = parse_engines(a.engine)
+    specs = parse_engines(engine_asked(a))
     several = len(specs) > 1
     with Outputs() as outputs:
         # every output path is checked before the runs, so a bad one costs nothing
