@@ -27,7 +27,7 @@ import sys
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
-from isorock.validate.cli.options import (OneLineParser, add_engine_options, add_motion_options, add_system_options,
+from isorock.validate.cli.options import (OneLineParser, add_budget_option, add_engine_options, add_motion_options, add_system_options,
                                           engine_settings_from_args, number, system_from_args)
 
 #: Subcommands that live in their own modules (each has add_parser(subparsers)), with
@@ -115,6 +115,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
                    help="print nothing but errors (the summary, with the motion's PGA, is on standard output "
                         "otherwise, unless --json or --csv is '-')")
     add_engine_options(p)
+    add_budget_option(p)
     from isorock.validate.cli.run import cmd_run
     p.set_defaults(func=cmd_run)
 

@@ -130,8 +130,9 @@ def _progress(quiet):
 def cmd_run(a) -> int:
     """One or several engines on one system and motion; exit 1 when any run failed."""
     from isorock.analytic.engine_protocol import run_inputs
-    from isorock.analytic.limits import check_resample
-    from isorock.validate.cli.options import motion_from_args, system_from_args
+    from isorock.analytic.limits import BudgetExceeded, check_resample
+    from isorock.validate.cli.options import (announce_cost, budget_stopped, motion_from_args, run_budget,
+                                              system_from_args)
     from isorock.validate.core.compare import compare
     from isorock.validate.io.output import Outputs, to_json
     specs = parse_engines(a.engine)
@@ -160,13 +161,19 @@ def cmd_run(a) -> int:
             if not (a.csv_dt > 0 and a.csv_dt < float("inf")):
                 raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")
             check_resample("csv-dt", a.csv_dt, duration)
+        # every run has a budget, and a long command says what it will cost before it starts
+        budget = run_budget(a)
+        announce_cost("run", {label: duration for label, _, _ in loaded}, budget, quiet=a.quiet)
         runs, used = {}, {}
         for label, engine, settings in loaded:
             if several and not a.quiet and sys.stderr.isatty():
                 print(f"\r{label} …", file=sys.stderr)
-            runs[label] = engine.simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
-                                          impact_threshold=a.impact_threshold, overturn_rule=a.overturn,
-                                          progress=_progress(a.quiet))
+            try:
+                runs[label] = engine.simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
+                                              impact_threshold=a.impact_threshold, overturn_rule=a.overturn,
+                                              progress=_progress(a.quiet), budget_s=budget)
+            except BudgetExceeded as e:
+                return budget_stopped("run", label, e)
             used[label] = settings
         ref_label, ref = next(iter(runs.items()))
         comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}

@@ -11,7 +11,8 @@ from isorock.validate.tools.view import DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_B
 
 
 def add_parser(sub) -> None:
-    from isorock.validate.cli.options import add_engine_options, add_motion_options, add_system_options
+    from isorock.validate.cli.options import (add_budget_option, add_engine_options, add_motion_options,
+                                              add_system_options)
     p = sub.add_parser("view", help="replay a run in MuJoCo's viewer, or write it as a GIF where there is no display",
                        description=tool.__doc__.split("\n\n")[0] + "\n\nWithout options: the paper's block "
                        "(T 1.5 s, ξ 0.2) under " + DEFAULT_MOTION + ".")
@@ -31,6 +32,7 @@ def add_parser(sub) -> None:
                    help="simulated seconds per second of playback (default: %(default)s)")
     p.add_argument("--size", default="480x360", metavar="WxH", help="GIF frame size in pixels (default: %(default)s)")
     add_engine_options(p)
+    add_budget_option(p)
     p.set_defaults(func=run)
 
 
@@ -70,9 +72,19 @@ def run(a) -> int:
             return 1
         os.environ["MUJOCO_GL"] = backend  # read when mujoco is first imported, which is below
     label, engine, settings = load_engines(specs, a)[0]
-    traj = engine.simulate(system, motion, settings=settings, duration=a.duration,
-                           overturn_rule=getattr(a, "overturn", None),
-                           theta0=a.theta0_over_alpha * system.alpha)
+    # the run's budget, and its cost said first when it is long (as `run`)
+    from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
+    from isorock.analytic.limits import BudgetExceeded
+    from isorock.validate.cli.options import announce_cost, budget_stopped, run_budget
+    budget = run_budget(a)
+    theta0 = a.theta0_over_alpha * system.alpha
+    _, duration = run_inputs(system, motion, a.duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
+    announce_cost("view", {label: duration}, budget)
+    try:
+        traj = engine.simulate(system, motion, settings=settings, duration=a.duration,
+                               overturn_rule=getattr(a, "overturn", None), theta0=theta0, budget_s=budget)
+    except BudgetExceeded as e:
+        return budget_stopped("view", label, e)
     if interactive:
         return replay_in_viewer(traj, speed=a.speed)
     try:

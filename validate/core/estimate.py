@@ -30,8 +30,12 @@ def estimate_s(simulated: dict[str, float], workers: int = 1) -> float:
     return total
 
 
-def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = "validate") -> str | None:
-    """One line for stderr, or None when the work is short."""
+def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = "validate",
+                  budget_s: float | None = None) -> str | None:
+    """One line for stderr, or None when the work is short; `budget_s`: each run's budget
+    (None: limits.RUN_BUDGET_S)."""
+    from isorock.analytic.limits import RUN_BUDGET_S
+    budget_s = RUN_BUDGET_S if budget_s is None else budget_s
     wall = estimate_s(simulated, workers)
     if wall < ANNOUNCE_AFTER:
         return None
@@ -39,4 +43,4 @@ def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = 
     speed = SPEEDS.get(slowest.partition(":")[0], min(SPEEDS.values()))
     return (f"{command}: about {sum(simulated.values()):.0f} simulated s in all; estimated ≈ {wall / 60:.0f} min "
             f"on {workers} worker{'s' if workers != 1 else ''} (mostly {slowest}, ≈ {speed:g} simulated s per wall s "
-            f"on a rocking block); each run stops at its budget of RUN_BUDGET_S")
+            f"on a rocking block); each run stops at its budget of {budget_s:g} s wall time")
