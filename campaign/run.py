@@ -91,6 +91,14 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         else:
             memory.extend(rows)
 
+    if progress and todo:  # a campaign lasts hours: its cost is said before its first chunk
+        from isorock.validate.core.estimate import estimate_line
+        simulated: dict[str, float] = {}
+        for t in todo:
+            simulated[t.setting.engine] = simulated.get(t.setting.engine, 0.0) + sum(c.duration for c in t.cases)
+        line = estimate_line(simulated, workers=max(1, workers), command="sweep")
+        if line:
+            print(line, file=sys.stderr, flush=True)
     # connect before writing anything: an unreachable scheduler leaves no folder behind
     live, close = client_for(client, workers, scheduler) if todo else (None, False)
     bar = None

@@ -104,3 +104,18 @@ def test_view_stops_at_its_budget_before_drawing(tmp_path, capsys, monkeypatch):
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 1 and "budget of 0.5 s" in err[-1] and err[0].startswith("view: about"), err
     assert not out.exists()
+
+
+def test_sweep_announces_its_cost_before_its_first_chunk(tmp_path, capsys, monkeypatch):
+    """A campaign lasts hours: its estimate (core.estimate, each engine's simulated seconds
+    over the workers) comes before any chunk runs. ANNOUNCE_AFTER at 0 so that a small
+    campaign is announced too: the order on stderr is the check."""
+    from test_campaign import write_spec
+
+    from isorock.validate.cli.main import main
+    from isorock.validate.core import estimate
+    monkeypatch.setattr(estimate, "ANNOUNCE_AFTER", 0.0)
+    spec = write_spec(tmp_path, more="")
+    assert main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--workers", "0", "--no-products"]) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[0].startswith("sweep: about ") and "analytic" in err[0] and "budget of 300 s" in err[0], err
