@@ -47,6 +47,8 @@ def _check(a) -> None:
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     if a.duration is not None and not a.duration > 0:
         raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
+    from isorock.validate.cli.options import run_budget
+    run_budget(a)  # before any display or renderer is looked for
 
 
 def run(a) -> int:
