@@ -68,3 +68,38 @@ def test_an_error_without_a_signal_is_not_taken_for_one(monkeypatch, capsys):
     capsys.readouterr()
     monkeypatch.undo()
     assert cli.main(BETA) == 0
+
+
+CHILD_OUTLIVES = """
+import os, signal, subprocess, sys
+from isorock.validate.cli import main as cli
+
+def command(a):
+    # as glfw's library probe (imported with MuJoCo): a child that answers on a pipe once
+    # its input ends; its stderr is the command's own
+    child = subprocess.Popen([sys.executable, "-c", "import sys; sys.stdin.read(); print('x' * 65536)"],
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+    open(sys.argv[1], "w").write(str(child.pid))
+    os.kill(os.getpid(), signal.SIGTERM)
+    child.communicate()
+    return 0
+
+cli.cmd_beta = command
+sys.argv = ["isorock", "beta", "--slenderness", "3", "--mass-ratio", "1"]
+sys.exit(cli.main())
+"""
+
+
+def test_a_child_of_a_stopped_command_does_not_write_after_it(tmp_path):
+    """Found by signalling `run` at random points: glfw's probe (a child process, started
+    while MuJoCo is imported) wrote its answer after the stopped command had exited, and
+    its BrokenPipeError traceback followed the command's one line. A command a signal
+    ends ends its own children first. The state waited for is the child's end (stderr
+    closes when every process holding it has exited), not a clock."""
+    import subprocess
+    import sys
+    pid_file = tmp_path / "child"
+    p = subprocess.run([sys.executable, "-c", CHILD_OUTLIVES, str(pid_file)], capture_output=True, text=True,
+                       timeout=120)
+    assert p.returncode == 143, p.stderr
+    assert "Traceback" not in p.stderr and len(p.stderr.strip().splitlines()) == 1, p.stderr

@@ -217,8 +217,30 @@ def _stopped(code: int, *, as_process: bool) -> int:
     if as_process:
         sys.stdout.flush()
         sys.stderr.flush()
+        _end_children()
         os._exit(code)
     return code
+
+
+def _end_children() -> None:
+    """SIGTERM to this process's children: a child left running (glfw's library probe,
+    started while MuJoCo is imported; a worker) would write after the stopped command's one
+    line (its BrokenPipeError traceback, on the stderr it shares) or outlive it. Linux's
+    /proc; elsewhere nothing is done."""
+    import signal
+    me = os.getpid()
+    try:
+        entries = [e for e in os.listdir("/proc") if e.isdigit()]
+    except OSError:
+        return
+    for entry in entries:
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                ppid = int(f.read().rsplit(")", 1)[1].split()[1])
+            if ppid == me:
+                os.kill(int(entry), signal.SIGTERM)
+        except (OSError, ValueError, IndexError):
+            continue  # gone meanwhile, or not ours to signal
 
 
 def _signalled(name: str, signum: int, error: BaseException | None) -> str:
