@@ -10,6 +10,7 @@ was decided; anything else is printed.
 """
 import os
 import random
+import shutil
 import signal
 import subprocess
 import sys
@@ -40,6 +41,7 @@ for i in range(n):
     _, err = p.communicate(timeout=120)
     one_line = len(err.strip().splitlines()) == 1 and "Traceback" not in err
     left = os.listdir(d)
+    shutil.rmtree(d)
     if p.returncode == 143 and one_line and not left:
         ends["exit 143, one line, nothing left"] += 1
     elif p.returncode == 2 and one_line and not left:
