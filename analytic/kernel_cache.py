@@ -322,6 +322,11 @@ def _build_module(dispatcher, name: str) -> str:
 
     clear_leftovers(folder)
     tmp = tempfile.mkdtemp(prefix=f".build-{os.getpid()}-", dir=folder)  # the pid: a killed build's is cleared
+    # numba.pycc writes its C and object files into the system's temporary folder (its
+    # compiler check, made when CC() is, a temp.c it never removes; the build's own folder
+    # removed only on success): inside the build's folder they go with it, or with the next
+    old_tmp = tempfile.tempdir
+    tempfile.tempdir = tmp
     try:
         cc = CC(name)
         cc.output_dir = tmp
@@ -343,6 +348,7 @@ def _build_module(dispatcher, name: str) -> str:
         os.replace(os.path.join(tmp, built[0]), target)
         return target
     finally:
+        tempfile.tempdir = old_tmp
         shutil.rmtree(tmp, ignore_errors=True)
 
 

@@ -111,6 +111,15 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
                 raise InputError(f"--out = {str(out)!r}: cannot be written ({e.strerror or e})") from None
             write_text(out / MARKER, json.dumps({"tool": "isorock sweep", "campaign": spec.name,
                                                  "fingerprint": spec.fingerprint()}) + "\n")
+        if progress and todo:  # a campaign lasts hours: its cost is said before its first chunk,
+            # once every input is checked (a refusal is one line, not a line after an estimate)
+            from isorock.validate.core.estimate import estimate_line
+            simulated: dict[str, float] = {}
+            for t in todo:
+                simulated[t.setting.engine] = simulated.get(t.setting.engine, 0.0) + sum(c.duration for c in t.cases)
+            line = estimate_line(simulated, workers=max(1, workers), command="sweep")
+            if line:
+                print(line, file=sys.stderr, flush=True)
         # a campaign lasts hours: its log gets a line every 10 s when not on a terminal
         bar = (Progress(sum(len(t.cases) for t in todo), work=sum(map(expected_cost, todo)), enabled=True)
                if progress and todo else None)

@@ -378,6 +378,7 @@ def parse_spec(data: dict, source: Path = Path("campaign.toml")) -> CampaignSpec
     for k in ("systems", "motions", "engines"):
         if k not in data:
             raise InputError(f"{k}: missing (see docs/campaigns.md)")
+    _check_lengths(data)
     chunks = {}
     for k, default in (("analytic_chunk", ANALYTIC_CHUNK), ("contact_chunk", CONTACT_CHUNK)):
         v = head.get(k, default)
@@ -448,6 +449,38 @@ def longest_pulse(spec: CampaignSpec) -> float:
         H, B = 2 * lam * b, 2 * b
     big = System.fixed(height=H, width=B, mass=1.0)
     return max(pulse_for(big, kind, min(m["frequency_ratio"]), 1.0, m["cycles"]).end_time for kind in m["pulse"])
+
+
+def _length(value) -> int:
+    """How many values a grid entry as written holds (a range: its num), without spacing it;
+    1 where it is not yet known to be well formed (its own check follows)."""
+    if isinstance(value, dict):
+        num = value.get("num")
+        return num if isinstance(num, int) and not isinstance(num, bool) and num > 0 else 1
+    return max(len(value), 1) if isinstance(value, list) else 1
+
+
+def _check_lengths(data: dict) -> None:
+    """The campaign's size from the lengths as written, before any range is spaced: two
+    1e6-point ranges were spaced (2e6 values, 15-30 s on a loaded machine) only to be
+    refused. A lower bound (a record suite's records count as one), so what it refuses
+    _check_size would refuse too."""
+    s, m, engines = data.get("systems"), data.get("motions"), data.get("engines")
+    if not isinstance(s, dict) or not isinstance(m, dict) or not isinstance(engines, list):
+        return
+    geometry = (_length(s.get("height")) * _length(s.get("width")) if "height" in s
+                else _length(s.get("slenderness", s.get("alpha"))) * _length(s.get("size")))
+    bases = s.get("base", "fixed")
+    bases = bases if isinstance(bases, list) else [bases]
+    per_geometry = ("fixed" in bases) + ("isolated" in bases) * (
+        _length(s.get("mass_ratio")) * _length(s.get("period")) * _length(s.get("damping_ratio")))
+    motions = (_length(m.get("pulse")) * _length(m.get("frequency_ratio")) * _length(m.get("amplitude_ratio"))
+               if m.get("type") == "pulse" else _length(m.get("levels")))
+    settings = sum(_length(e.get("settings")) if isinstance(e, dict) else 1 for e in engines)
+    n_runs = geometry * _length(s.get("mass")) * max(per_geometry, 1) * motions * max(settings, 1)
+    if n_runs > MAX_RUNS:
+        raise InputError(f"campaign size = {n_runs} runs or more (the lengths of its grids multiplied): must be "
+                         f"at most {MAX_RUNS}")
 
 
 def _check_size(spec: CampaignSpec) -> None:

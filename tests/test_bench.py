@@ -1,6 +1,7 @@
 """The bench's machinery on a tiny configuration: errors measured against the tight
 reference are small for the analytic engines, and the outputs are written whole."""
 import json
+import math
 
 import pytest
 
@@ -64,3 +65,22 @@ def test_an_engine_and_its_former_name_are_one_series():
     assert len({get_engine(e.partition(":")[0]).spec.name for e in default}) == len(default)
     assert bench.bench_engines(["analytic", "analytic-fast", "analytic-fast:conservative"]) == \
         ["analytic", "analytic:conservative"]
+
+
+def test_a_setting_past_the_run_budget_is_a_row_that_says_so(monkeypatch):
+    """Issue 24 item 13: bench's runs had no budget (a slow rung of a ladder held the
+    command without an end). Past RUN_BUDGET_S the rung is a row saying it was stopped,
+    with no speed or error claimed for it, and the bench goes on."""
+    from isorock.analytic import limits
+    from isorock.analytic.system import paper_system
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.core.scenarios import Scenario
+    from isorock.validate.tools.bench import fastest, markdown, measure
+    monkeypatch.setattr(limits, "RUN_BUDGET_S", 0.5)
+    sc = Scenario("free-rocking", paper_system(fixed_base=True), "none", 600.0, theta0_over_alpha=0.3)
+    ref = get_engine("analytic").simulate(sc.system, None, duration=5.0, theta0=sc.theta0)
+    row = measure("bullet", "default", get_engine("bullet").settings(), sc, ref, 3)
+    assert "budget of 0.5 s" in row["stopped"]
+    assert row["beta_error_max"] is None and math.isnan(row["sim_per_wall"])
+    assert fastest([row], "bullet", 1.0) is None
+    assert "stopped" in markdown([row], {})

@@ -201,3 +201,24 @@ def test_an_existing_output_file_is_never_replaced(tmp_path, capsys):
     out.write_text("user's file\n")
     assert main(["calibrate", "--engine", "mujoco", "--out", str(out)]) == 2
     assert out.read_text() == "user's file\n"
+
+
+def test_the_starting_settings_runs_have_the_run_budget_too(monkeypatch):
+    """Issue 24 item 13: the search bounds its runs from the starting settings' slowest run,
+    but those first runs had no bound at all (a stiff Drake start could hold calibrate for
+    hours). They stop at RUN_BUDGET_S, and no later limit goes past it."""
+    import time
+
+    from isorock.analytic import limits
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.tools.calibrate import Case, Runner
+    monkeypatch.setattr(limits, "RUN_BUDGET_S", 0.5)
+    settings = get_engine("mujoco").settings(timestep=2e-3)
+    endless = Case("long", paper_system(fixed_base=True), "none", 3000.0, 0.3, impacts=4)
+    with Runner("mujoco", workers=0) as runner:
+        assert runner.time_limit == 0.5
+        start = time.perf_counter()
+        assert runner.score(settings, [endless]).failed == 1
+        assert time.perf_counter() - start < 60  # a guard against a hang, not a measurement
+        runner.limit_from_slowest(1e6)
+        assert runner.time_limit == 0.5

@@ -51,3 +51,21 @@ def test_a_huge_grid_is_refused_from_its_lengths_before_it_is_built(tmp_path, ed
             f"try:\n    load_spec({str(spec)!r})\nexcept InputError as e:\n    print(e)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert out.returncode == 0 and "campaign size" in out.stdout and str(MAX_RUNS) in out.stdout, out
+
+
+def test_no_grid_is_built_for_a_campaign_its_lengths_already_refuse(tmp_path, monkeypatch):
+    """The table found two 1e6-point ranges taking 15-30 s to refuse on a loaded machine:
+    each range was built (2e6 values) before the product was checked. The lengths are
+    multiplied first, so no range is spaced at all."""
+    from isorock.campaign import spec as spec_module
+    spec = write_spec(tmp_path, more="")
+    spec.write_text(spec.read_text().replace("size = 1.0", "size = {from = 0.5, to = 2, num = 1000000}")
+                    .replace("mass = 1000.0", "mass = {from = 10, to = 2000, num = 1000000}"))
+
+    def spaced(*a, **k):
+        raise AssertionError("a range was built before the campaign's size was known")
+    monkeypatch.setattr(spec_module.np, "linspace", spaced)
+    monkeypatch.setattr(spec_module.np, "geomspace", spaced)
+    with pytest.raises(InputError) as e:
+        load_spec(spec)
+    assert "campaign size" in str(e.value) and str(MAX_RUNS) in str(e.value)

@@ -225,3 +225,33 @@ def test_a_new_process_runs_the_kernel_without_initialising_numba(tmp_path):
     assert out.returncode == 0, out.stderr
     assert out.stdout.split() == ["True", "True", "False"], (out.stdout, out.stderr)
     assert "compiling" not in out.stderr
+
+
+def test_a_build_leaves_no_temporary_files_outside_its_own_folder(tmp_path, aot_cache, monkeypatch, capsys):
+    """Issue 24 item 16: numba.pycc writes its C and object files into the system's temporary
+    folder (a `pycc-build-*` folder it removes only on success, and a `temp.c` per compiler
+    check that it never removes); every build, and every killed or failed one, left them
+    there. They belong in the build's own `.build-PID-*` folder, which is always cleared."""
+    import tempfile
+
+    import numpy as np
+    from numba.pycc import platform
+    system_tmp = tmp_path / "system-tmp"
+    system_tmp.mkdir()
+    monkeypatch.setattr(tempfile, "tempdir", str(system_tmp))
+    platform.external_compiler_works.cache_clear()  # its compiler check writes temp.c: make it run here
+    halve = tiny_aot(tmp_path, "tiny_aot_tmp")
+    assert kernel_cache.call_kernel(halve, 5.0, np.zeros(3)) == 2.5 + 3
+    assert list(system_tmp.iterdir()) == []
+    # a build that fails half-way (the link step) leaves nothing either
+    monkeypatch.setattr(kernel_cache, "_aot_loaded", {})
+    for built in aot_cache.glob("isorock_halve_*"):
+        built.unlink()
+
+    def no_linker(*a, **k):
+        raise OSError("the linker was killed")
+    monkeypatch.setattr(platform.Toolchain, "link_shared", no_linker)
+    halve = tiny_aot(tmp_path, "tiny_aot_tmp2")
+    assert kernel_cache.call_kernel(halve, 3.0, np.zeros(2)) == 1.5 + 2  # the JIT kernel
+    assert "linker was killed" in capsys.readouterr().err
+    assert list(system_tmp.iterdir()) == [] and not list(aot_cache.glob(".build-*"))

@@ -99,7 +99,8 @@ def run(**options):
         plan = plan_runs(a, parse_engines(engine_asked(a)))
     except InputError as e:
         raise InputError(_keywords(str(e))) from None
-    runs, _ = simulate_plan(plan, a)
+    from isorock.validate.cli.options import run_budget
+    runs, _ = simulate_plan(plan, a, budget=run_budget(a))  # each run within --budget, as the command's
     return next(iter(runs.values())) if len(runs) == 1 else runs
 
 

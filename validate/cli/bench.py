@@ -43,7 +43,7 @@ def cmd_bench(a) -> int:
         (tmp / "bench.md").write_text(markdown(rows, extra))
         (tmp / "bench.json").write_text(to_json({"rows": rows, **extra}) + "\n")
         buf = io.StringIO()
-        w = csv.DictWriter(buf, fieldnames=COLUMNS + ("wall_per_sim", "parted", "overturn_agree"),
+        w = csv.DictWriter(buf, fieldnames=COLUMNS + ("wall_per_sim", "parted", "overturn_agree", "stopped"),
                            extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)

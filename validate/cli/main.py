@@ -15,7 +15,8 @@
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
 Outputs go through validate.io.output: checked before the work, written all or none.
-SIGTERM or SIGHUP end a command cleanly: nothing staged is left, exit 128 + signal.
+SIGTERM, SIGHUP or SIGINT end a command cleanly wherever they arrive: one line, nothing staged
+is left, exit 128 + signal.
 """
 from __future__ import annotations
 
@@ -27,8 +28,9 @@ import sys
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
-from isorock.validate.cli.options import (OneLineParser, add_engine_options, add_isolator_options, add_motion_options,
-                                          add_system_options, engine_settings_from_args, number, system_from_args)
+from isorock.validate.cli.options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,
+                                          add_motion_options, add_system_options, engine_settings_from_args, number,
+                                          system_from_args)
 
 #: Subcommands that live in their own modules (each has add_parser(subparsers)), with
 #: their one-line help. Only the module of the command being run is imported, so a
@@ -118,6 +120,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
                    help="print nothing but errors (the summary, with the motion's PGA, is on standard output "
                         "otherwise, unless --json or --csv is '-')")
     add_engine_options(p)
+    add_budget_option(p)
     from isorock.validate.cli.run import cmd_run
     p.set_defaults(func=cmd_run)
 
@@ -219,38 +222,89 @@ def _stopped(code: int, *, as_process: bool) -> int:
     if as_process:
         sys.stdout.flush()
         sys.stderr.flush()
+        _end_children()
         os._exit(code)
     return code
 
 
+def _end_children() -> None:
+    """SIGTERM to this process's children: a child left running (glfw's library probe,
+    started while MuJoCo is imported; a worker) would write after the stopped command's one
+    line (its BrokenPipeError traceback, on the stderr it shares) or outlive it. Linux's
+    /proc; elsewhere nothing is done."""
+    import signal
+    me = os.getpid()
+    try:
+        entries = [e for e in os.listdir("/proc") if e.isdigit()]
+    except OSError:
+        return
+    for entry in entries:
+        try:
+            with open(f"/proc/{entry}/stat") as f:
+                ppid = int(f.read().rsplit(")", 1)[1].split()[1])
+            if ppid == me:
+                os.kill(int(entry), signal.SIGTERM)
+        except (OSError, ValueError, IndexError):
+            continue  # gone meanwhile, or not ours to signal
+
+
+def _signalled(name: str, signum: int, error: BaseException | None) -> str:
+    """The one line of a command a signal ended, with what it left (an `outcome` a command
+    attached to the exception on its way up, or one it wraps)."""
+    import signal
+    outcome = None
+    while error is not None and outcome is None:
+        outcome = getattr(error, "outcome", None)
+        error = error.__cause__ or error.__context__
+    outcome = outcome or "no output written"
+    if signum == signal.SIGINT:
+        return f"isorock {name}: interrupted; {outcome}"
+    return f"isorock {name}: terminated by {signal.Signals(signum).name}; {outcome}"
+
+
 def main(argv=None) -> int:
-    from isorock.validate.io.output import Terminated, signals_end_cleanly
+    import signal
+
+    from isorock.validate.io.output import Terminated, signal_received, signals_end_cleanly
     argv_given = argv
     argv = sys.argv[1:] if argv is None else list(argv)
     command = next((x for x in argv if not x.startswith("-")), None)
-    parser = build_parser(command)
     name = command or ""
-    with signals_end_cleanly():
+    with signals_end_cleanly() as settle:
+        # a signal may arrive at any point once it is heard, parsing and imports included, and
+        # the exception its handler raised may come back as another (a C import re-wraps it) or
+        # not at all (swallowed): once a signal was received, whatever ends the command is it
+        error, code = None, 0
         try:
             try:
-                args = parser.parse_args(argv)
-            except SystemExit as e:  # argparse: --help (0) or one error line (2)
-                return e.code if isinstance(e.code, int) else 2
-            name = args.command
-            return int(args.func(args) or 0)
-        except InputError as e:
-            print(f"isorock {name}: error: {e}", file=sys.stderr)
+                parser = build_parser(command)  # imports the command's module: heard from here on
+                try:
+                    args = parser.parse_args(argv)
+                except SystemExit as e:  # argparse: --help (0) or one error line (2)
+                    code = e.code if isinstance(e.code, int) else 2
+                else:
+                    name = args.command
+                    code = int(args.func(args) or 0)
+            finally:
+                settle()  # a signal from here on is recorded, never raised past the except below
+        except BaseException as e:  # noqa: BLE001 — sorted below; what is not ours is raised again
+            error = e
+        signum = signal_received()
+        if signum is None and isinstance(error, Terminated):
+            signum = error.signum
+        if signum is None and isinstance(error, KeyboardInterrupt):
+            signum = signal.SIGINT  # raised without our handler (a thread, an embedding caller)
+        if signum is not None:
+            print(_signalled(name, signum, error), file=sys.stderr)
+            return _stopped(128 + signum, as_process=argv_given is None)
+        if isinstance(error, InputError):
+            print(f"isorock {name}: error: {error}", file=sys.stderr)
             return 2
-        # a signal may arrive at any point once it is heard, parsing included: one line
-        except KeyboardInterrupt as e:
-            print(f"isorock {name}: interrupted; {getattr(e, 'outcome', 'no output written')}", file=sys.stderr)
-            return _stopped(130, as_process=argv_given is None)
-        except Terminated as e:
-            print(f"isorock {name}: terminated by {e.name}; {getattr(e, 'outcome', 'no output written')}",
-                  file=sys.stderr)
-            return _stopped(128 + e.signum, as_process=argv_given is None)
-        except BrokenPipeError:
+        if isinstance(error, BrokenPipeError):
             return 141
+        if error is not None:
+            raise error
+        return code
 
 
 if __name__ == "__main__":

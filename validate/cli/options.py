@@ -224,6 +224,40 @@ def motion_from_args(a):
     return m if a.scale == 1.0 else m.scaled(a.scale)
 
 
+def add_budget_option(p: argparse.ArgumentParser) -> None:
+    """--budget: the wall-clock seconds one run may take (analytic/limits.RUN_BUDGET_S by
+    default), for the commands that run one simulation a user asked for (run, view)."""
+    from isorock.analytic.limits import RUN_BUDGET_S
+    p.add_argument("--budget", type=number, default=RUN_BUDGET_S, metavar="S",
+                   help="wall-clock seconds each run may take: past it the run stops, nothing is written and "
+                        "the command exits 1 (default: %(default)g)")
+
+
+def run_budget(a) -> float:
+    """The --budget given, checked: a positive finite number of seconds."""
+    if not (a.budget > 0 and a.budget < float("inf")):
+        raise InputError(f"budget = {a.budget!r}: must be a positive finite number of seconds")
+    return a.budget
+
+
+def announce_cost(command: str, simulated: dict[str, float], budget_s: float, quiet: bool = False) -> None:
+    """The cost estimate of a long command on stderr, before its work (core.estimate)."""
+    import sys
+
+    from isorock.validate.core.estimate import estimate_line
+    line = estimate_line(simulated, command=command, budget_s=budget_s)
+    if line and not quiet:
+        print(line, file=sys.stderr, flush=True)
+
+
+def budget_stopped(command: str, label: str, error) -> int:
+    """A run stopped at its budget: one line saying so and what to do, exit 1."""
+    import sys
+    print(f"isorock {command}: {label}: {error}; nothing written (give --budget S to allow a run longer, or a "
+          "shorter --duration)", file=sys.stderr)
+    return 1
+
+
 def add_engine_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("engine settings (defaults chosen by measurement; see each engine's docs)")
     g.add_argument("--timestep", type=number,

@@ -152,6 +152,7 @@ def plan_runs(a, specs) -> RunPlan:
     """The run options `a` (the parser's namespace) checked and resolved, before any work."""
     from isorock.analytic.engine_protocol import run_inputs
     from isorock.validate.cli.options import motion_from_args, system_from_args
+    from isorock.validate.core.engines import settings_used
     loaded = load_engines(specs, a)
     system, motion = system_from_args(a), motion_from_args(a)
     if a.duration is not None and not a.duration > 0:
@@ -163,27 +164,38 @@ def plan_runs(a, specs) -> RunPlan:
     duration = a.duration
     for _, engine, settings in loaded:
         engine.check_isolator(system)
-        motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold, settings=settings,
+        # the steps the run will take (an engine whose settings follow the system derives them)
+        motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold,
+                                      settings=settings_used(settings, system),
                                       isolators=engine.capabilities.isolators)
     return RunPlan(loaded, system, motion, duration, theta0)
 
 
-def simulate_plan(plan: RunPlan, a, *, announce: bool = False) -> tuple[dict, dict]:
-    """(label → Trajectory, label → Settings used), in the order the engines were given."""
+def simulate_plan(plan: RunPlan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:
+    """(label → Trajectory, label → Settings used), in the order the engines were given;
+    each run within `budget` s (analytic.limits.RunBudget): past it, the BudgetExceeded
+    raised carries the run's `label`."""
+    from isorock.analytic.limits import BudgetExceeded
     runs, used = {}, {}
     for label, engine, settings in plan.loaded:
         if announce:
             print(f"\r{label} …", file=sys.stderr)
-        runs[label] = engine.simulate(plan.system, plan.motion, settings=settings, duration=plan.duration,
-                                      theta0=plan.theta0, impact_threshold=a.impact_threshold,
-                                      overturn_rule=a.overturn, progress=_progress(getattr(a, "quiet", True)))
+        try:
+            runs[label] = engine.simulate(plan.system, plan.motion, settings=settings, duration=plan.duration,
+                                          theta0=plan.theta0, impact_threshold=a.impact_threshold,
+                                          overturn_rule=a.overturn, progress=_progress(getattr(a, "quiet", True)),
+                                          budget_s=budget)
+        except BudgetExceeded as e:
+            e.label = label
+            raise
         used[label] = settings
     return runs, used
 
 
 def cmd_run(a) -> int:
     """One or several engines on one system and motion; exit 1 when any run failed."""
-    from isorock.analytic.limits import check_resample
+    from isorock.analytic.limits import BudgetExceeded, check_resample
+    from isorock.validate.cli.options import announce_cost, budget_stopped, run_budget
     from isorock.validate.core.compare import compare
     from isorock.validate.io.output import Outputs, to_json
     specs = parse_engines(engine_asked(a))
@@ -204,7 +216,13 @@ def cmd_run(a) -> int:
             if not (a.csv_dt > 0 and a.csv_dt < float("inf")):
                 raise InputError(f"csv-dt = {a.csv_dt!r}: must be a positive number of seconds")
             check_resample("csv-dt", a.csv_dt, duration)
-        runs, used = simulate_plan(plan, a, announce=several and not a.quiet and sys.stderr.isatty())
+        # every run has a budget, and a long command says what it will cost before it starts
+        budget = run_budget(a)
+        announce_cost("run", {label: duration for label, _, _ in plan.loaded}, budget, quiet=a.quiet)
+        try:
+            runs, used = simulate_plan(plan, a, announce=several and not a.quiet and sys.stderr.isatty(), budget=budget)
+        except BudgetExceeded as e:
+            return budget_stopped("run", e.label, e)
         ref_label, ref = next(iter(runs.items()))
         comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
         if several:

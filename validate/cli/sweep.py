@@ -35,11 +35,14 @@ def run(a) -> int:
     spec = load_spec(a.spec)
     out = Path(a.out) if a.out else Path(f"sweep-{Path(a.spec).stem}")
     workers = available_cores() if a.workers is None else a.workers
-    from isorock.validate.io.output import Terminated
+    from isorock.validate.io.output import Terminated, signal_received
     try:
         result = run_campaign(spec, out, workers=workers, scheduler=a.scheduler, products=not a.no_products)
-    except (Terminated, KeyboardInterrupt) as e:
-        # what a stopped sweep leaves is its finished chunks, on purpose: say so
+    except BaseException as e:
+        if not (signal_received() or isinstance(e, (Terminated, KeyboardInterrupt))):
+            raise
+        # what a stopped sweep leaves is its finished chunks, on purpose: say so (the signal's
+        # exception may arrive re-wrapped, by an import for one)
         kept = len(list((out / "parts").glob("*.parquet"))) if (out / "parts").is_dir() else 0
         e.outcome = (f"{kept} finished chunks kept in {out / 'parts'}; rerun the same command to resume"
                      if kept else "no output written")

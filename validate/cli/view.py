@@ -11,7 +11,8 @@ from isorock.validate.tools.view import DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_B
 
 
 def add_parser(sub) -> None:
-    from isorock.validate.cli.options import add_engine_options, add_motion_options, add_system_options
+    from isorock.validate.cli.options import (add_budget_option, add_engine_options, add_motion_options,
+                                              add_system_options)
     p = sub.add_parser("view", help="replay a run in MuJoCo's viewer, or write it as a GIF where there is no display",
                        description=tool.__doc__.split("\n\n")[0] + "\n\nWithout options: the paper's block "
                        f"(T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g}) under " + DEFAULT_MOTION + ".")
@@ -31,6 +32,7 @@ def add_parser(sub) -> None:
                    help="simulated seconds per second of playback (default: %(default)s)")
     p.add_argument("--size", default="480x360", metavar="WxH", help="GIF frame size in pixels (default: %(default)s)")
     add_engine_options(p)
+    add_budget_option(p)
     p.set_defaults(func=run)
 
 
@@ -45,6 +47,8 @@ def _check(a) -> None:
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     if a.duration is not None and not a.duration > 0:
         raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
+    from isorock.validate.cli.options import run_budget
+    run_budget(a)  # before any display or renderer is looked for
 
 
 def run(a) -> int:
@@ -70,9 +74,21 @@ def run(a) -> int:
             return 1
         os.environ["MUJOCO_GL"] = backend  # read when mujoco is first imported, which is below
     label, engine, settings = load_engines(specs, a)[0]
-    traj = engine.simulate(system, motion, settings=settings, duration=a.duration,
-                           overturn_rule=getattr(a, "overturn", None),
-                           theta0=a.theta0_over_alpha * system.alpha)
+    # the run's budget, and its cost said first when it is long (as `run`)
+    from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
+    from isorock.analytic.limits import BudgetExceeded
+    from isorock.validate.cli.options import announce_cost, budget_stopped, run_budget
+    budget = run_budget(a)
+    theta0 = a.theta0_over_alpha * system.alpha
+    from isorock.validate.core.engines import settings_used
+    _, duration = run_inputs(system, motion, a.duration, theta0, DEFAULT_IMPACT_THRESHOLD,
+                             settings=settings_used(settings, system))  # the steps the run will take
+    announce_cost("view", {label: duration}, budget)
+    try:
+        traj = engine.simulate(system, motion, settings=settings, duration=a.duration,
+                               overturn_rule=getattr(a, "overturn", None), theta0=theta0, budget_s=budget)
+    except BudgetExceeded as e:
+        return budget_stopped("view", label, e)
     if interactive:
         return replay_in_viewer(traj, speed=a.speed)
     try:

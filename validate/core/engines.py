@@ -299,6 +299,14 @@ def campaign_engines() -> tuple[str, ...]:
     return tuple(out)
 
 
+def settings_used(settings, system, duration: float | None = None):
+    """The settings a run of `system` (and of `duration` s) steps with: an engine whose
+    settings follow the system (`for_system`: MuJoCo's, PyBullet's and Drake's step and
+    contact) derives them; any other uses them as given. Work bounds, estimates and reports
+    read these, not the settings as given."""
+    return settings.for_system(system, duration) if hasattr(settings, "for_system") else settings
+
+
 def describe_settings(settings, system=None, duration: float | None = None) -> dict:
     """Every setting a run used, as plain values, with those derived from them (properties,
     e.g. PyBullet's control step); for an engine whose settings follow the system
@@ -306,8 +314,8 @@ def describe_settings(settings, system=None, duration: float | None = None) -> d
     `system` (and a run of `duration` s: MuJoCo's step divides it), which is what the run
     used."""
     from dataclasses import asdict, is_dataclass
-    if system is not None and hasattr(settings, "for_system"):
-        settings = settings.for_system(system, duration)
+    if system is not None:
+        settings = settings_used(settings, system, duration)
     out = asdict(settings) if is_dataclass(settings) else {}
     for name in dir(type(settings)):
         if isinstance(getattr(type(settings), name, None), property):

@@ -9,11 +9,12 @@ Each engine's speed is its measured simulated seconds per wall second on a rocki
 from __future__ import annotations
 
 #: simulated seconds per wall second of one run on one core, with the block rocking
-#: (impacts are what is slow): `python /tmp/speed.py`-style loops over the paper's block
-#: under Kobe ×2.5 (20 s), both bases, and docs/drake.md's free-rocking table for Drake
+#: (impacts are what is slow), rounded down: `isorock bench`'s speed goals (Kobe 40 s, the
+#: paper's block, both bases, at the defaults that follow the block: MuJoCo 26–38, PyBullet
+#: 4.9–7.2 at load 5–6; README), and docs/drake.md's free-rocking table for Drake
 #: (continuous preset: 0.27). An engine not listed counts as the slowest.
-SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.0, "mujoco": 40.0,
-          "bullet": 20.0, "drake": 0.27}
+SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.0, "mujoco": 25.0,
+          "bullet": 5.0, "drake": 0.27}
 #: wall seconds from which the estimate is announced
 ANNOUNCE_AFTER = 120.0
 
@@ -30,8 +31,12 @@ def estimate_s(simulated: dict[str, float], workers: int = 1) -> float:
     return total
 
 
-def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = "validate") -> str | None:
-    """One line for stderr, or None when the work is short."""
+def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = "validate",
+                  budget_s: float | None = None) -> str | None:
+    """One line for stderr, or None when the work is short; `budget_s`: each run's budget
+    (None: limits.RUN_BUDGET_S)."""
+    from isorock.analytic.limits import RUN_BUDGET_S
+    budget_s = RUN_BUDGET_S if budget_s is None else budget_s
     wall = estimate_s(simulated, workers)
     if wall < ANNOUNCE_AFTER:
         return None
@@ -39,4 +44,4 @@ def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = 
     speed = SPEEDS.get(slowest.partition(":")[0], min(SPEEDS.values()))
     return (f"{command}: about {sum(simulated.values()):.0f} simulated s in all; estimated ≈ {wall / 60:.0f} min "
             f"on {workers} worker{'s' if workers != 1 else ''} (mostly {slowest}, ≈ {speed:g} simulated s per wall s "
-            f"on a rocking block); each run stops at its budget of RUN_BUDGET_S")
+            f"on a rocking block); each run stops at its budget of {budget_s:g} s wall time")

@@ -78,28 +78,65 @@ class Terminated(BaseException):
         return signal.Signals(self.signum).name
 
 
+#: the signal this command received while signals_end_cleanly was active, if any: the
+#: record outlives the exception its handler raised, which code on the way up may re-wrap
+#: (NumPy's C import turned Terminated into an ImportError) or swallow
+_received: list[int] = []
+
+
+def signal_received() -> int | None:
+    """The signal that is ending this command, or None: any exception raised after it,
+    whatever its type, is that signal's doing, and no output may be committed."""
+    return _received[0] if _received else None
+
+
+def raise_for_signal(signum: int):
+    """The exception a received signal raises: KeyboardInterrupt for SIGINT, Terminated
+    for the others."""
+    if signum == signal.SIGINT:
+        raise KeyboardInterrupt
+    raise Terminated(signum)
+
+
 @contextmanager
 def signals_end_cleanly():
-    """While active, SIGTERM and SIGHUP raise Terminated in this process (so every
-    `finally` and staging cleanup runs). A process forked from it (stress runs cases in
-    children) dies of the signal as usual instead of unwinding its parent's stack."""
+    """While active, SIGTERM and SIGHUP raise Terminated and SIGINT KeyboardInterrupt in
+    this process (so every `finally` and staging cleanup runs), and each is recorded
+    (signal_received) so that it still ends the command if the exception is lost on the
+    way. A process forked from it (stress runs cases in children) dies of the signal as
+    usual (SIGINT: KeyboardInterrupt, as Python's default) instead of unwinding its
+    parent's stack. It yields `settle`: called, signals are recorded and no longer raise."""
     owner = os.getpid()
 
     def handler(signum, frame):
         if os.getpid() != owner:
+            if signum == signal.SIGINT:
+                signal.default_int_handler(signum, frame)
             signal.signal(signum, signal.SIG_DFL)
             os.kill(os.getpid(), signum)
             return
-        raise Terminated(signum)
+        if not _received:
+            _received.append(signum)
+        if not settled:
+            raise_for_signal(signum)
 
+    settled = False
+
+    def settle():
+        """From here on a signal is only recorded: the command's end is being decided,
+        and an exception raised there would escape as a traceback."""
+        nonlocal settled
+        settled = True
+
+    _received.clear()  # a record belongs to one command
     previous = {}
     try:
-        for s in TERMINATING_SIGNALS:
+        for s in (*TERMINATING_SIGNALS, signal.SIGINT):
             previous[s] = signal.signal(s, handler)
     except ValueError:  # not the main thread: signals cannot be caught here
         pass
     try:
-        yield
+        yield settle
     finally:
         for s, h in previous.items():
             signal.signal(s, h)
@@ -480,16 +517,27 @@ class Outputs:
         return target
 
     def commit(self) -> None:
-        # streams first: a full device or a closed pipe fails before any file is replaced
-        with _signals_held():
-            try:
-                # exclusive files next: the one commit that may be refused, before anything is replaced
-                for t in sorted(self.targets, key=lambda t: (getattr(t, "kind", None) not in ("stdout", "stream"),
-                                                             not getattr(t, "exclusive", False))):
-                    t.commit()
-            except BaseException:
-                self.discard()
-                raise
+        committed = False
+        try:
+            with _signals_held():
+                try:
+                    signum = signal_received()
+                    if signum is not None:  # its exception was swallowed on the way: still nothing lands
+                        raise_for_signal(signum)
+                    # streams first: a full device or a closed pipe fails before any file is replaced;
+                    # exclusive files next: the one commit that may be refused, before anything is replaced
+                    for t in sorted(self.targets, key=lambda t: (getattr(t, "kind", None) not in ("stdout", "stream"),
+                                                                 not getattr(t, "exclusive", False))):
+                        t.commit()
+                    committed = True
+                except BaseException:
+                    self.discard()
+                    raise
+        except (Terminated, KeyboardInterrupt) as e:
+            if committed:  # a signal held during the commit lands once it is done: say what was written
+                e.outcome = "its outputs were written before it stopped: " + ", ".join(
+                    str(t.given) for t in self.targets)
+            raise
 
     def discard(self) -> None:
         for t in self.targets:

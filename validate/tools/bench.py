@@ -58,14 +58,18 @@ def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
     """One (engine or ENGINE:PRESET, setting) on one scenario; the row's engine is the label."""
     from isorock.validate.core.compare import compare
     from isorock.validate.core.engines import get_engine
+    from isorock.analytic import limits
     run = get_engine(engine.partition(":")[0]).simulate
     motion = sc.ground_motion()
-    kwargs = dict(settings=settings, duration=sc.duration, theta0=sc.theta0)
+    kwargs = dict(settings=settings, duration=sc.duration, theta0=sc.theta0, budget_s=limits.RUN_BUDGET_S)
     walls, loops, traj = [], [], None
     k = 0
     while k < repeats or (k < FAST_REPEATS and statistics.median(walls) < FAST_RUN):
         start = time.perf_counter()
-        traj = run(sc.system, motion, **kwargs)
+        try:
+            traj = run(sc.system, motion, **kwargs)
+        except limits.BudgetExceeded as e:  # a rung too slow to finish: a row that says so, no figures
+            return _stopped_row(engine, label, sc, str(e))
         walls.append(time.perf_counter() - start)
         loops.append(traj.runtime_s)
         k += 1
@@ -95,6 +99,15 @@ def bench_engines(engines=None) -> list[str]:
     return [e for e in engines if _importable(e.partition(":")[0])]
 
 
+def _stopped_row(engine, label, sc: Scenario, why: str) -> dict:
+    """A setting stopped at its run budget: neither its speed nor its errors are known."""
+    nan = math.nan
+    return dict(engine=engine, setting=label, scenario=sc.name, wall_s=nan, loop_s=nan, sim_per_wall=nan,
+                sim_per_loop=nan, wall_per_sim=nan, beta_error_max=None, beta_error_median=None,
+                theta_max_error=nan, history_rms=nan, horizon=nan, parted=None, impacts=None, impacts_ref=None,
+                overturn_agree=None, stopped=why)
+
+
 def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], dict]:
     from isorock.validate.core.engines import get_engine
     engines = bench_engines(engines)
@@ -108,7 +121,9 @@ def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], 
             for label, settings in ladder(engine, quick):
                 row = measure(engine, label, settings, sc, ref, 1 if quick else 3)
                 rows.append(row)
-                if progress:
+                if progress and row.get("stopped"):
+                    print(f"  {sc.name:13s} {engine:22s} {label:14s} {row['stopped']}", file=sys.stderr, flush=True)
+                elif progress:
                     print(f"  {sc.name:13s} {engine:22s} {label:14s} {row['sim_per_wall']:10.3g} sim s/wall s "
                           f"({row['sim_per_loop']:.3g} in the loop)  "
                           f"β err {_pct(row['beta_error_max']):>8s}  θmax err {row['theta_max_error']:.2e}",
@@ -128,7 +143,7 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True) -> list[dict]:
     one physics step of the scene in C, the block at rest) as the limit each speed is a
     fraction of. Rows: one per (label, base), the batch on the isolated row."""
     from isorock.analytic import paper_system
-    from isorock.validate.core.engines import get_engine, resolve
+    from isorock.validate.core.engines import get_engine, resolve, settings_used
     from isorock.validate.core.scenarios import KOBE
     from isorock.validate.core.tolerances import tolerance
     from isorock.analytic.motion import load_motion
@@ -164,7 +179,7 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True) -> list[dict]:
                     traj = engine.simulate(system, motion, settings=settings, duration=40.0)
                     walls.append(time.perf_counter() - w)
                     cpus.append(time.process_time() - c)
-                used = settings.for_system(system, 40.0) if hasattr(settings, "for_system") else settings
+                used = settings_used(settings, system, 40.0)
                 cost = engine.spec.step_cost(system, settings) if engine.spec.step_cost else None
                 limit_cpu = used.timestep / cost if cost else None
                 simulated = float(traj.t[-1])  # a run that overturned and lies on its side stops early
@@ -314,6 +329,9 @@ def markdown(rows, extra) -> str:
              "| engine | setting | scenario | sim s / wall s | in the loop | β err (max) | θmax/α err | history RMS | horizon s | impacts (ref) |",
              "|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
+        if r.get("stopped"):
+            lines.append(f"| {r['engine']} | {r['setting']} | {r['scenario']} | stopped: {r['stopped']} | | | | | | |")
+            continue
         lines.append(f"| {r['engine']} | {r['setting']} | {r['scenario']} | {r['sim_per_wall']:.1f} | {r['sim_per_loop']:.1f} | "
                      f"{_pct(r['beta_error_max'])} | {r['theta_max_error']:.2e} | {r['history_rms']:.2e} | "
                      f"{r['horizon']:.2f} | {r['impacts']} ({r['impacts_ref']}) |")

@@ -274,8 +274,10 @@ class Runner:
 
     def __init__(self, engine_name: str, workers: int = 0, on_run=None):
         from isorock.validate.core.executor import Pool
+        from isorock.analytic import limits
         self.engine_name, self.on_run = engine_name, on_run
-        self.time_limit, self.slowest = None, 0.0
+        # the starting settings' runs, before any is timed, have every run's budget
+        self.time_limit, self.slowest = limits.RUN_BUDGET_S, 0.0
         self.pool = Pool(workers) if workers else None
 
     def score(self, settings, case_list, *, until_failure: bool = False) -> Score:
@@ -302,6 +304,12 @@ class Runner:
         outcomes = self.pool.map(run_case, tasks, budget=self.time_limit, on_result=lambda i, o: self._ran(),
                                  stop=(lambda o: result(o)[0] is None) if until_failure else None)
         return [None if o is None else result(o) for o in outcomes]
+
+    def limit_from_slowest(self, slowest: float) -> None:
+        """The search's runs may take TIME_FACTOR × the starting settings' slowest (at least
+        MIN_TIME_LIMIT), never more than every run's budget (RUN_BUDGET_S)."""
+        from isorock.analytic import limits
+        self.time_limit = min(max(TIME_FACTOR * slowest, MIN_TIME_LIMIT), limits.RUN_BUDGET_S)
 
     def _ran(self):
         if self.on_run:
@@ -422,7 +430,7 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
 
         # the start itself, exactly (its coordinates may not give back the very same settings)
         before_fit = runner.score(start_settings, fitted)
-        runner.time_limit = max(TIME_FACTOR * runner.slowest, MIN_TIME_LIMIT)
+        runner.limit_from_slowest(runner.slowest)
         evaluated.append((before_fit.bound, x0, start_settings, before_fit))
         best[0] = before_fit.bound
         span = np.where(hi > lo, hi - lo, 1.0)

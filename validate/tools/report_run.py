@@ -331,8 +331,9 @@ def build(config: ReportConfig, *, progress=None) -> Results:
                   for i, sc in enumerate(histories)]
     total = len(tasks) + len(engines) * sum(len(s) for s in scales)
     from isorock.analytic.limits import check_settings
-    for t in tasks:  # the work bounds before any run: in a worker they were a logged traceback
-        check_settings(settings[t.engine], t.duration)
+    from isorock.validate.core.engines import settings_used
+    for t in tasks:  # the work bounds before any run (the steps each run will take): in a worker they were a traceback
+        check_settings(settings_used(settings[t.engine], t.system, t.duration), t.duration)
     if progress is not None:  # a long report says so before it starts (core.estimate)
         from isorock.validate.core.estimate import estimate_line
         simulated = {name: sum(t.duration for t in tasks if t.engine == name)
