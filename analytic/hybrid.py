@@ -564,7 +564,7 @@ class _IsolatorIntegrator(_Integrator):
 
     def trajectory(self, status, message, overturn_time, runtime):
         tr = super().trajectory(status, message, overturn_time, runtime)
-        sp, ip = self.sp, self.ip
+        ip = self.ip
         y = np.concatenate(self.out_y, axis=1) if self.out_y else np.zeros((7, 1))
         phase = np.concatenate(self.out_phase) if self.out_phase else np.zeros(1, np.int8)
         u_p = np.concatenate(self.out_up) if self.out_up else np.zeros(1)

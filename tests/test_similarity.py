@@ -123,7 +123,6 @@ def test_run_json_lists_the_step_derived_for_the_block(engine, share, tmp_path):
     steps at share/p_eff, p_eff the rocking rate with the base's recoil written out here
     from the closed form (p = √(3g/4R), the pivot inertia (4/3)mR² less m h²·μ/(1+μ))."""
     import json
-    import math
     from isorock.validate.cli.main import main
     pytest.importorskip({"mujoco": "mujoco", "bullet": "pybullet"}[engine])
     h, b, mu = 0.1, 0.025, 4.0
