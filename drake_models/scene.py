@@ -521,6 +521,18 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     checked = 0
     last = None  # where the history ends, when a stop rule ends it early
     throttle = kinematics.Throttle(progress, duration)
+    heard = []  # what the progress callback raised inside an advance (a run budget), re-raised after it
+
+    def monitor(ctx):
+        # progress (and a run budget through it) at every integrator step, not only between
+        # chunks: one stiff chunk can take minutes (Throttle keeps the calls to ~1 a second)
+        try:
+            throttle(ctx.get_time())
+        except Exception as exc:  # noqa: BLE001 — ends the advance, raised again below
+            heard.append(exc)
+            return pd.EventStatus.ReachedTermination(None, "stopped by its progress callback")
+        return pd.EventStatus.Succeeded()
+    simulator.set_monitor(monitor)
     t = 0.0
     simulator.Initialize()
     while t < duration - 1e-12:
@@ -530,6 +542,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         except RuntimeError as exc:  # Drake's integrator or solver gave up
             status, message = Status.FAILED, f"Drake stopped near t = {context.get_time():.6g} s: {exc}"
             break
+        if heard:
+            raise heard[0]
         log = built.logger.FindLog(context)
         new, new_t = log.data()[:, checked:], log.sample_times()[checked:]
         k, reason = kinematics.first_stop(new_t, new[built.thq], new[built.nq + built.thv],

@@ -240,3 +240,19 @@ def test_cli_writes_the_scene(tmp_path):
     assert main(["scene", "--engine", "drake", "--out", str(out)]) == 0
     assert out.read_text() == scene.scene_text(System.isolated(height=H, width=B, mass=M, base_mass=M, period=1.5,
                                                                 damping_ratio=0.2))
+
+
+def test_a_run_past_its_budget_stops_even_inside_one_long_advance(monkeypatch):
+    """Issue 24 item 13, found again: Drake reported progress (and so heard its budget) only
+    between AdvanceTo chunks, so one chunk that took minutes (a stiff stretch) ran on past
+    any budget (validate --quick --engines drake held one worker for 20 CPU-min). The
+    budget is now heard at every integrator step: with the whole run in one chunk, a 0.5 s
+    budget stops a run that takes several seconds."""
+    from isorock.analytic.limits import BudgetExceeded, RunBudget
+    monkeypatch.setattr(scene, "CHUNK", 1e9)  # one AdvanceTo for the whole run
+    system = System.fixed(height=2.0, width=0.7, mass=3800.0)
+    with pytest.raises(BudgetExceeded) as stopped:
+        scene.simulate(system, None, duration=20.0, theta0=0.5 * system.alpha, progress=RunBudget(0.5))
+    # stopped inside the one advance, not after it (Drake runs ~1–3 simulated s per CPU s here)
+    reached = float(str(stopped.value).split(" at t = ")[1].split(" s of ")[0])
+    assert reached < 20.0, str(stopped.value)
