@@ -73,13 +73,14 @@ def test_an_error_without_a_signal_is_not_taken_for_one(monkeypatch, capsys):
 CHILD_OUTLIVES = """
 import os, signal, subprocess, sys
 from isorock.validate.cli import main as cli
+PID_FILE = sys.argv[1]  # read before sys.argv becomes the command's (it wrote a file named 'beta' here)
 
 def command(a):
     # as glfw's library probe (imported with MuJoCo): a child that answers on a pipe once
     # its input ends; its stderr is the command's own
     child = subprocess.Popen([sys.executable, "-c", "import sys; sys.stdin.read(); print('x' * 65536)"],
                              stdin=subprocess.PIPE, stdout=subprocess.PIPE)
-    open(sys.argv[1], "w").write(str(child.pid))
+    open(PID_FILE, "w").write(str(child.pid))
     os.kill(os.getpid(), signal.SIGTERM)
     child.communicate()
     return 0
@@ -100,6 +101,7 @@ def test_a_child_of_a_stopped_command_does_not_write_after_it(tmp_path):
     import sys
     pid_file = tmp_path / "child"
     p = subprocess.run([sys.executable, "-c", CHILD_OUTLIVES, str(pid_file)], capture_output=True, text=True,
-                       timeout=120)
+                       timeout=120, cwd=tmp_path)  # and nothing written outside its own folder
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["child"]
     assert p.returncode == 143, p.stderr
     assert "Traceback" not in p.stderr and len(p.stderr.strip().splitlines()) == 1, p.stderr

@@ -381,3 +381,27 @@ def test_the_verdict_line_says_how_much_was_not_judged():
     assert line.startswith("Result: all 40 checks made passed, 13 of 53 not made (2 skipped, 11 not exercised)")
     assert "MuJoCo agrees with caveats (11 of 31 checks not exercised, 2 skipped)" in line
     assert "PyBullet agrees." in line or "PyBullet agrees;" in line or line.endswith("PyBullet agrees.")
+
+
+def test_an_engine_without_an_ensemble_limit_is_skipped_with_its_reason_not_a_late_exit():
+    """The README's Drake example (`validate --quick --engines analytic drake`) ran 7 minutes
+    and then exited 2: "tolerance ('drake', 'ensemble_theta_max_diff'): not in the table".
+    An ensemble metric without a limit for the engine is a skipped check saying so, as a
+    single history's metric without one is. Oracle: the table itself (has_tolerance)."""
+    import numpy as np
+
+    from isorock.analytic import paper_system
+    from isorock.validate.core.tolerances import has_tolerance
+    from isorock.validate.tools.ensemble import Ensemble
+    from isorock.validate.tools.report_run import _ensemble_checks
+    assert not has_tolerance("drake", "ensemble_theta_max_diff")  # the case this test is about
+    scales = np.linspace(1.0, 2.0, 6)
+    theta = np.array([0.3, 0.5, 0.7, 0.9, 5.0, 5.0])
+    ens = Ensemble(system=paper_system(), motion="m", pga_g=0.3, duration=5.0, scales=scales,
+                   theta_max={"analytic": theta, "drake": theta * 1.01},
+                   overturned={"analytic": theta > 1, "drake": theta > 1})
+    checks = _ensemble_checks(ens, "x", ["analytic", "drake"])
+    by_metric = {c.metric: c for c in checks if c.engine == "drake"}
+    assert by_metric["ensemble_theta_max_diff"].status == "skip"
+    assert "no tolerance for drake" in by_metric["ensemble_theta_max_diff"].note
+    assert by_metric["ensemble_overturn_median"].status != "skip"  # Drake has this limit: judged

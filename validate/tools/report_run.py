@@ -493,11 +493,18 @@ def _ensemble_checks(ens: Ensemble, label: str, engines) -> list[Check]:
                 checks.append(not_exercised(name, metric, scenario, why))
             continue
         ok = np.isfinite(ens.theta_max[name]) & np.isfinite(ens.theta_max[REFERENCE])
-        fits = overturn_verdicts(ens.scales[ok], ens.overturned[name][ok], ens.overturned[REFERENCE][ok],
-                                 median_limit=tolerance(name, "ensemble_overturn_median").limit,
-                                 dispersion_limit=tolerance(name, "ensemble_overturn_dispersion").limit,
-                                 confidence=confidence, min_cases=min_cases)
-        if fits is None:
+        limits = ("ensemble_overturn_median", "ensemble_overturn_dispersion")
+        if not all(has_tolerance(name, m) for m in limits):
+            checks += [skipped(name, m, scenario, f"no limit for {name} in the tolerance table") for m in limits]
+            fits = False
+        else:
+            fits = overturn_verdicts(ens.scales[ok], ens.overturned[name][ok], ens.overturned[REFERENCE][ok],
+                                     median_limit=tolerance(name, "ensemble_overturn_median").limit,
+                                     dispersion_limit=tolerance(name, "ensemble_overturn_dispersion").limit,
+                                     confidence=confidence, min_cases=min_cases)
+        if fits is False:
+            pass  # skipped above
+        elif fits is None:
             why = ("neither overturns in any case" if not ens.overturned[REFERENCE][ok].any()
                    else "both overturn in every case")
             for metric in ("ensemble_overturn_median", "ensemble_overturn_dispersion"):
@@ -506,7 +513,10 @@ def _ensemble_checks(ens: Ensemble, label: str, engines) -> list[Check]:
             checks.append(judged(name, "ensemble_overturn_median", scenario, fits[0], note=note))
             checks.append(judged(name, "ensemble_overturn_dispersion", scenario, fits[1], note=note))
         a = ens.agreement(name)
-        if a["rocking_cases"]:
+        if not has_tolerance(name, "ensemble_theta_max_diff"):  # no limit for this engine: skipped, saying why
+            checks.append(skipped(name, "ensemble_theta_max_diff", scenario,
+                                  f"no limit for {name} in the tolerance table"))
+        elif a["rocking_cases"]:
             rocking = ens.rocking_mask(name)
             v = quantile_verdict(ens.theta_max[name][rocking], ens.theta_max[REFERENCE][rocking],
                                  limit=tolerance(name, "ensemble_theta_max_diff").limit, confidence=confidence,
