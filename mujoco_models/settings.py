@@ -68,8 +68,8 @@ class Settings:
         time constant scaled by contact_scale(system, 2 ms, CONTACT_SHARE) and the step by
         contact_scale(system, 0.5 ms, STEP_SHARE), so that τ·p_eff = CONTACT_SHARE and
         dt·p_eff = STEP_SHARE at every size (a preset twice as fine as the default stays
-        twice as fine), and the
-        impedance width (solimp's third value, m) scaled with R, since a contact that acts
+        twice as fine), and the impedance width (solimp's third value, m) scaled with R,
+        since a contact that acts
         over a time ∝ 1/p sinks by a depth ∝ R. The direct solref form and event-resolved
         stepping keep their step and time constant. With `duration` (s), the derived step is
         shortened (by less than a step in the run) to a whole divisor of it, so that the
@@ -129,7 +129,7 @@ class Settings:
 
 #: The contact time constant in units of the block's rocking time: follow_system makes
 #: τ·p_eff = CONTACT_SHARE (p_eff = System.rocking_rate). Measured over the atlas's
-#: λ 1.5–10 × μ 0–4 × H 0.1–10 m (docs/mujoco.md, "A rule that follows the system"): the
+#: λ 1.5–10 × μ 0–4 × H 0.1–10 m (docs/mujoco.md, "Every size"): the
 #: squat λ 1.5 block on a light base needs 0.002 (0.003 left it 0.9% off at 10 m). On the
 #: paper's block it gives τ 0.62 ms isolated, 0.76 ms fixed (the former default: 2 ms).
 CONTACT_SHARE = 0.002

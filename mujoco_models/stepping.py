@@ -50,10 +50,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     or 10 s without motion) from rest, tilted by `theta0` (rad) about its corner.
     progress: optional callable(t, duration), called between rollout chunks about
     once a second."""
-    given = settings or Settings()
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
-                                  settings=given.for_system(system))
-    settings = given.for_system(system, duration)  # the step that ends the run on its duration
+    motion, duration, settings = _inputs(settings or Settings(), system, motion, duration, theta0)
     model = build_model(system, settings)
     return run_model(model, system, motion, settings=settings, duration=duration, theta0=theta0,
                      progress=progress)
@@ -115,6 +112,15 @@ def step_cost(system: System, settings: Settings | None = None, *, steps: int = 
     return (time.process_time() - start) / steps
 
 
+def _inputs(given: Settings, system: System, motion, duration, theta0):
+    """(motion, duration, settings) of one run: the shared checks (run_inputs) with the steps
+    the run will take, then the settings derived for the system and that duration (the
+    step a whole divisor of it, so the run ends on it)."""
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
+                                  settings=given.for_system(system))
+    return motion, duration, given.for_system(system, duration)
+
+
 def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, budget_s: float | None = None) -> list:
     """Many runs, each exactly as `simulate` makes it: `runs` is a sequence of (system,
     motion, duration, theta0), as `simulate` takes them; returns, per run, its RawHistory
@@ -134,9 +140,7 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
 
     def prepare(run):
         system, motion, duration, theta0 = run
-        motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
-                                      settings=settings.for_system(system))
-        derived = settings.for_system(system, duration)  # the step and contact follow each system
+        motion, duration, derived = _inputs(settings, system, motion, duration, theta0)  # per system
         if (system, derived) not in models:
             models[system, derived] = build_model(system, derived)
         model = models[system, derived]
