@@ -20,7 +20,9 @@ Runs that start tilted (free rocking) are stepped in full throughout.
 """
 from __future__ import annotations
 
+import copy
 import functools
+import math
 
 import mujoco
 import numpy as np
@@ -105,23 +107,25 @@ class Phases:
         return np.abs(self.system.stiffness * u + self.system.damping * u_dot) / self.system.total_mass
 
     def rest_finder(self):
-        """until(chunk, done) for a full phase: the index of the row
+        """until(chunk, steps) for a full phase (`steps`: each row's step index): the index of the row
         ending SETTLE_TIME of rest with |a| < F_LOW·threshold, or None."""
-        lay, streak = self.lay, [0]
+        lay, broken = self.lay, [None]  # step index of the last row not at rest, carried across calls
 
-        def until(chunk, done):
+        def until(chunk, steps):
             h = lay.histories(self.system, chunk)
             vel = chunk[:, self.v]
             rest = ((np.abs(h["theta"]) < self.tilt) & (np.abs(h["theta_dot"]) < self.rate)
                     & (np.abs(vel[:, lay.x_v] - h["u_dot"]) < self.speed) & (np.abs(vel[:, self.z_v]) < self.speed))
-            steps = done + np.arange(1, chunk.shape[0] + 1)
             quiet = self.absolute_acceleration(h["u"], h["u_dot"], steps) < F_LOW * self.threshold
-            # length of the run of rest rows ending at each row, carried across chunks
+            if broken[0] is None:
+                broken[0] = int(steps[0]) - 1
+            # steps since the last row not at rest (rows may be coarse: counted in steps)
             i = np.arange(chunk.shape[0])
             last_break = np.maximum.accumulate(np.where(rest, -1, i))
-            run = np.where(last_break >= 0, i - last_break, streak[0] + i + 1)
-            streak[0] = int(run[-1])
-            found = np.nonzero((run >= self.settle) & quiet)[0]
+            since = steps - np.where(last_break >= 0, steps[np.maximum(last_break, 0)], broken[0])
+            if not rest.all():
+                broken[0] = int(steps[np.nonzero(~rest)[0][-1]])
+            found = np.nonzero((since >= self.settle) & quiet)[0]
             if found.size:
                 return int(found[0])
             return None
@@ -210,3 +214,88 @@ def reduced_steps(mass, stiffness, damping, dt, integrator, u0, v0, f) -> tuple[
     out, _ = rollout.rollout(model, mujoco.MjData(model), state, np.asarray(f, dtype=float)[None, :, None],
                              control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED)
     return out[0][:, 1].copy(), out[0][:, 2].copy()
+
+
+#: Fine steps start when the block would reach θ = 0 within IMPACT_ZONE coarse steps at its
+#: present rate (and |θ̇| > MIN_RATE·α·p: a block at rest stays coarse) ...
+IMPACT_ZONE = 2.0
+MIN_RATE = 1e-3
+#: ... and go on until SETTLE_TAUS contact time constants after the last sign change of θ
+#: (the impact's transient, critically damped or slower, is over within a few τ).
+SETTLE_TAUS = 20
+#: Coarse steps per rollout call at most (a call runs about as far as the next impact zone).
+COARSE_CHUNK = 512
+
+
+def coarse_multiple(settings) -> int:
+    """The whole multiple of the timestep taken away from impacts: `settings.coarse`
+    (settings.COARSE_STEPS by default: why there), at most
+    the contact time constant over two steps (so the coarse step stays within MuJoCo's
+    τ ≥ 2·step and the contact is the same), and 1 for the direct solref form (its
+    stiffness and damping are tied to the step) and event-resolved stepping."""
+    if settings.solref[0] <= 0 or settings.impact_timestep is not None:
+        return 1
+    fit = int(math.floor(settings.solref[0] / (2 * settings.timestep) + 1e-9))
+    return max(1, min(settings.coarse, fit))
+
+
+class Flight:
+    """Where a contact phase steps coarse and where fine: fine from IMPACT_ZONE coarse steps
+    before θ crosses 0 (an impact) until SETTLE_TAUS·τ after it, coarse elsewhere. The rows
+    of a coarse step sit every `multiple` timesteps: the history is not uniform in time
+    (RawHistory.t says when each row is)."""
+
+    def __init__(self, model, lay, system: System, settings, dt: float):
+        self.lay, self.system, self.dt = lay, system, dt
+        self.multiple = coarse_multiple(settings)
+        # the same scene with the coarse step (everything else, the contact included, equal)
+        self.model = copy.copy(model)
+        self.model.opt.timestep = dt * self.multiple
+        self.data = mujoco.MjData(self.model)
+        self.rate = MIN_RATE * system.alpha * system.p
+        self.reach = IMPACT_ZONE * self.multiple * dt  # s: the zone, as a time to θ = 0
+        self.settle = max(1, int(math.ceil(SETTLE_TAUS * settings.solref[0] / dt)))
+        self.last_cross = -(10 ** 12)  # step index of the last sign change of θ
+        self.refine = False  # a coarse call was cut where θ changed sign: step fine from there
+
+    def _theta(self, rows):
+        h = self.lay.histories(self.system, rows)
+        return h["theta"], h["theta_dot"]
+
+    def in_zone(self, theta, theta_dot):
+        return (np.abs(theta_dot) > self.rate) & (np.abs(theta) < self.reach * np.abs(theta_dot))
+
+    def plan(self, row: np.ndarray, k: int, nstep: int) -> tuple[int, int]:
+        """(multiple, steps) of the next rollout call from step k, the state `row`: fine
+        (multiple 1) within an impact's zone or its settling, else coarse, about as far as
+        the next zone (the call is cut there afterwards)."""
+        th, thd = (float(x[0]) for x in self._theta(row[None, :]))
+        coarse = (nstep - k) // self.multiple
+        if (self.multiple == 1 or self.refine or k - self.last_cross < self.settle or self.in_zone(th, thd)
+                or coarse < 2):
+            self.refine = False
+            return 1, min(max(self.settle, 16), nstep - k)
+        if abs(thd) > self.rate and th * thd < 0:  # heading for θ = 0
+            ahead = int(abs(th / thd) / (self.multiple * self.dt))
+            return self.multiple, max(2, min(ahead, COARSE_CHUNK, coarse))
+        return self.multiple, min(COARSE_CHUNK, coarse)
+
+    def keep(self, chunk: np.ndarray, prev: np.ndarray, steps: np.ndarray, multiple: int) -> int:
+        """How many rows of a call to keep, noting sign changes of θ: all of a fine call; a
+        coarse call up to its first row inside an impact zone, or up to the row before θ
+        changed sign outside one (stepped again fine from there)."""
+        th, thd = self._theta(chunk)
+        before = np.concatenate(([self._theta(prev[None, :])[0][0]], th))
+        crossed = np.sign(before[1:]) * np.sign(before[:-1]) < 0
+        if multiple == 1:
+            if crossed.any():
+                self.last_cross = int(steps[np.nonzero(crossed)[0][-1]])
+            return chunk.shape[0]
+        stop = np.nonzero(self.in_zone(th, thd) | crossed)[0]
+        if stop.size == 0:
+            return chunk.shape[0]
+        i = int(stop[0])
+        if crossed[i]:  # the impact fell within a coarse step: the rows before it stand
+            self.refine = True
+            return i
+        return i + 1

@@ -102,7 +102,7 @@ def warnings_as_status():
 def warning_failure(messages: list[str], data: mujoco.MjData) -> tuple[str, float] | None:
     """(message, time) of the first MuJoCo warning of a run, or None: any warning means the
     history after it is not the physics (MuJoCo's auto-reset is off, so the bad state stays)."""
-    if not messages and not any(w.number for w in data.warning):
+    if not messages and not data.warning.number.any():
         return None
     text = messages[0] if messages else "MuJoCo raised a warning"
     found = re.search(r"Time = ([0-9]+(?:\.[0-9]+)?(?:[eE][+-]?[0-9]+)?)", text)
@@ -117,9 +117,11 @@ def stop_in(lay: Layout, system: System, chunk: np.ndarray, t: np.ndarray, motio
                                  motion_end=motion.end_time)
 
 
-def raw_history(lay, system, states, dt, runtime, status, message, stop_reason) -> RawHistory:
+def raw_history(lay, system, states, dt, runtime, status, message, stop_reason, t=None) -> RawHistory:
+    """The history of state rows: at times `t`, or every `dt` from 0 (MuJoCo's own time
+    sums dt and drifts by round-off)."""
     hist = lay.histories(system, states)
-    t = np.arange(hist["t"].size) * dt  # MuJoCo's time sums dt and drifts by round-off
+    t = np.arange(hist["t"].size) * dt if t is None else np.array(t, dtype=float)
     counted = counted_sign_changes(hist["theta"], system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(
         system, x_centroid=hist["x"], z_centroid=hist["z"], theta=hist["theta"], u=hist["u"],

@@ -89,7 +89,8 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
         rows, status, message, stop_reason, _, _ = _roll(model, data, lay, system, motion, forces, state0, warm,
                                                          rows, nstep, chunk_steps, dt, throttle, warnings)
     runtime = time.perf_counter() - start
-    raw = raw_history(lay, system, np.concatenate(rows), dt, runtime, status, message, stop_reason)
+    states = np.concatenate(rows)
+    raw = raw_history(lay, system, states, dt, runtime, status, message, stop_reason, t=states[:, 0])
     # the numbers this run used (Settings.for_system may have made them finer than asked)
     raw.extras.update(timestep=float(dt), solref_0=float(settings.solref[0]), solref_1=float(settings.solref[1]))
     return raw
@@ -182,11 +183,12 @@ def _phased(model, data, lay, system, motion, settings, xg, forces, state0, rows
     the block has settled, rest phases (no contact scene) until the base's acceleration
     nears the uplift threshold."""
     ph = phases.Phases(model, lay, system, settings, xg, dt)
+    flight = phases.Flight(model, lay, system, settings, dt)
     k, state, warm = 0, state0, np.zeros(lay.nv)
     while True:
         rows, status, message, stop_reason, k, _ = _roll(model, data, lay, system, motion, forces, state, warm,
                                                          rows, nstep, phases.FULL_CHUNK, dt, throttle, warnings,
-                                                         start=k, until=ph.rest_finder())
+                                                         start=k, until=ph.rest_finder(), flight=flight)
         if status is not Status.COMPLETED or stop_reason is not None or k >= nstep:
             return rows, status, message, stop_reason
         rest, k, warm = ph.rest(rows[-1][-1], k, nstep)
@@ -201,45 +203,62 @@ def _phased(model, data, lay, system, motion, settings, xg, forces, state0, rows
 
 
 def _roll(model, data, lay, system, motion, forces, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings,
-          start=0, until=None):
-    """Full-scene rollout from step `start` to `nstep`, or, with `until(chunk, done)`, to the
-    row it names (the phased run's rest). Returns (rows, status, message, stop_reason,
-    steps done, warm start)."""
+          start=0, until=None, flight=None):
+    """Contact-scene rollout from step `start` to `nstep`, or, with `until(chunk, steps)`, to
+    the row it names (the phased run's rest); with `flight` (phases.Flight), coarse steps
+    away from impacts. Each row's column 0 is its time, step index × dt (MuJoCo's own
+    time sums the step and drifts). Returns (rows, status, message, stop_reason, steps
+    done, warm start)."""
     status, message, stop_reason = Status.COMPLETED, "reached the end time", None
     done = start
     while done < nstep:
-        n = min(chunk_steps, nstep - done)
-        state, _ = rollout.rollout(model, data, state0, forces[done:done + n][None],
+        if flight is None:
+            multiple, n = 1, min(chunk_steps, nstep - done)
+        else:
+            multiple, n = flight.plan(state0, done, nstep)
+        if multiple == 1:
+            step_model, step_data, f = model, data, forces[done:done + n]
+        else:
+            step_model, step_data = flight.model, flight.data
+            f = lay.forces(system, np.asarray(motion((done + multiple * (np.arange(n) + 0.5)) * dt), dtype=float))
+        state, _ = rollout.rollout(step_model, step_data, state0, f[None],
                                    control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED,
                                    initial_warmstart=warm)
         chunk = state[0]
-        t0 = done * dt
-        done += n
-        failure = warning_failure(warnings, data)
+        steps = done + multiple * np.arange(1, n + 1)
+        chunk[:, 0] = steps * dt
+        failure = warning_failure(warnings, step_data)
         if failure is not None:
             text, at = failure
-            keep = int(np.searchsorted(t0 + dt * np.arange(1, n + 1), at)) if math.isfinite(at) else 0
+            keep = int(np.searchsorted(chunk[:, 0], at)) if math.isfinite(at) else 0
             rows.append(chunk[:keep])
             status, message = Status.FAILED, f"MuJoCo: {text} (try a smaller timestep)"
             break
-        k, reason = stop_in(lay, system, chunk, t0 + dt * np.arange(1, n + 1), motion)
+        if flight is not None:
+            kept = flight.keep(chunk, state0, steps, multiple)
+            chunk, steps = chunk[:kept], steps[:kept]
+            if kept == 0:
+                continue
+        t = chunk[:, 0]
+        k, reason = stop_in(lay, system, chunk, t, motion)
         if reason == "non-finite":
             rows.append(chunk[:k])
             status = Status.FAILED
-            message = (f"the state stopped being finite at t = {t0 + (k + 1) * dt:.6g} s; "
+            message = (f"the state stopped being finite at t = {t[k]:.6g} s; "
                        "try a smaller timestep or a longer solref timeconst")
             break
         if reason is not None:
             rows.append(chunk[:k + 1])
             stop_reason = reason
             break
-        settled = until(chunk, done - n) if until is not None else None
+        settled = until(chunk, steps) if until is not None else None
         if settled is not None:
             rows.append(chunk[:settled + 1])
-            done += settled + 1 - n
+            done = int(steps[settled])
             break
         rows.append(chunk)
+        done = int(steps[-1])
         state0 = chunk[-1]
-        warm = data.qacc_warmstart.copy()
+        warm = step_data.qacc_warmstart.copy()
         throttle(done * dt)
     return rows, status, message, stop_reason, done, warm
