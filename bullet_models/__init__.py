@@ -1,5 +1,6 @@
 """The rocking block as a PyBullet scene: `scene.py` (the bodies, and the same scene as
-an SDF file), `settings.py` (numerical settings, measured), `stepping.py` (stepping).
+an SDF file), `settings.py` (numerical settings, measured), `stepping.py` (stepping),
+`rest.py` (the rest phases a run skips).
 Measurements behind every default: docs/bullet.md."""
 import math
 from dataclasses import replace
@@ -40,6 +41,9 @@ ENGINE = EngineSpec(
             "the former default: physics step 1/3000 s and ERP 0.08 at every size, right on the paper's 2 m block, "
             "4% off in β on small ones (docs/atlas.md): kept to compare against",
             lambda: Settings(follow_system=False, contact_erp=0.08)),
+        "full": Preset(
+            "Bullet stepped throughout, also while the block rests on its base (rest.py: the default skips it)",
+            lambda: Settings(phased=False)),
         "fast": Preset(
             "1 ms physics steps on the paper's block (scaled with the block): β within ~1% there at three times "
             "the former default's speed (docs/bullet.md)",

@@ -52,7 +52,8 @@ class Settings:
         block rocking by less than ~0.1α then acts as a speculative contact and small
         impacts are off by up to 1.7%). linear_damping, angular_damping: Bullet's velocity
         damping of every body (1/s); model.md's physics has none. output_every: store
-        every n-th control step. follow_system: True: `for_system` divides the physics
+        every n-th control step. phased: while the block rests on its base and the base's
+        acceleration stays below the uplift threshold, Bullet is not stepped (rest.py). follow_system: True: `for_system` divides the physics
         step by contact_scale(system, 1/3000 s, STEP_SHARE), the sub-steps kept, so the
         control step follows (on a block rocking faster than the paper's, the isolator
         force and ground motion held over 4 ms would lag: docs/bullet.md). An
@@ -73,6 +74,8 @@ class Settings:
     angular_damping: float = 0.0
     output_every: int = 1
     follow_system: bool = True
+    #: skip Bullet's steps while the block rests on its base (rest.py, docs/bullet.md)
+    phased: bool = True
 
     def for_system(self, system, duration: float | None = None) -> "Settings":
         """These settings for `system`: with follow_system, the physics step scaled by
@@ -100,6 +103,7 @@ class Settings:
         for name in ("linear_damping", "angular_damping", "contact_processing_threshold"):
             require_nonnegative_finite(name, getattr(self, name))
         require(isinstance(self.follow_system, bool), "follow_system", self.follow_system, "true or false")
+        require(isinstance(self.phased, bool), "phased", self.phased, "true or false")
 
     @property
     def control_step(self) -> float:

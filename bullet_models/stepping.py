@@ -27,6 +27,7 @@ from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
 from .scene import build, connect, p
+from .rest import Rest
 from .settings import Settings
 
 ENGINE = "bullet"
@@ -82,14 +83,19 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         side_prev = 0.0  # sin θ (≈ R₀₂) one step back
         a_set = 0.0  # build() set gravity (0, 0, −g)
         checked = 0  # rows already looked at by the stop rules
+        rest = _rest(system, settings, theta0, xg, dt, lead)
+        rest_end = n_steps - (1 if last else 0)  # the shorter last step is stepped by Bullet
+        resumed = False  # the state of step i came from a rest phase (already in rows)
         start = time.perf_counter()
-        for i in range(n_steps + 1):
-            if not fixed:
+        i = 0
+        while i <= n_steps:
+            if not fixed and not resumed:
                 # one read serves both the isolator force and the output
                 u, ud = joint_state(base, 0)[:2]
-            if i % every == 0 or i == n_steps:
+            if (i % every == 0 or i == n_steps) and not resumed:
                 pos, orn = pose(block)
                 rows.append((times[i], u, ud, *pos, *orn, velocity(block)[1][1]))
+            resumed = False
             if i % check_every == 0 or i == n_steps:  # the stop rules, over the rows since the last look
                 stop, reason = _stop_in(system, rows, checked, motion_end)
                 if reason == "non-finite":
@@ -105,6 +111,26 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                     throttle(times[i])
             if i == n_steps:
                 break
+            if rest is not None and i < rest_end and i % rest.check_every == 0 and rest.may_rest(rows, i):
+                skipped, states = rest.phase(i, rest_end, u, ud, ud_prev)
+                if skipped:
+                    pos, orn = pose(block)
+                    offset = pos[0] - u
+                    for j in range(skipped):
+                        k_row = i + 1 + j
+                        if k_row % every == 0 or k_row == n_steps:
+                            su, sud = states[j, 0], states[j, 1]
+                            rows.append((times[k_row], su, sud, su + offset, pos[1], pos[2], *orn, 0.0))
+                    i += skipped
+                    if not fixed:
+                        u, ud, ud_prev = (float(x) for x in states[-1])
+                        udd = (ud - ud_prev) / dt
+                        c.resetJointState(base, 0, u, ud)
+                    # Bullet's bodies where the rest phase left them: the block on the base, moving with it
+                    c.resetBasePositionAndOrientation(block, [u + offset, pos[1], pos[2]], orn)
+                    c.resetBaseVelocity(block, [ud, 0.0, 0.0], [0.0, 0.0, 0.0])
+                    resumed = True
+                    continue
             if last and i == n_steps - 1:  # the shorter last step, sub-steps no longer than before
                 m = math.ceil(last / settings.timestep - 1e-9)
                 c.setPhysicsEngineParameter(fixedTimeStep=last, numSubSteps=m)
@@ -123,6 +149,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 ud_prev, side_prev = ud, side
                 motor(base, 0, torque, force=-(k * (u + lead * ud) + c_dash * (ud + lead * udd)))
             step()
+            i += 1
         runtime = time.perf_counter() - start
     finally:
         client.disconnect()
@@ -130,6 +157,16 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     # the numbers this run used (Settings.for_system may have made them finer than asked)
     raw.extras.update(timestep=float(settings.timestep), control_step=float(settings.control_step))
     return raw
+
+
+def _rest(system, settings, theta0, xg, dt, lead):
+    """The rest phases' rules for this run (rest.Rest), or None: asked for, starting at
+    rest (free rocking starts tilted and is stepped throughout), a record that moves, and
+    every control step stored (the rest test reads consecutive rows)."""
+    xg = np.asarray(xg, dtype=float)
+    if not (settings.phased and theta0 == 0.0 and settings.output_every == 1 and xg.size and np.any(xg != 0.0)):
+        return None
+    return Rest(system, dt, settings.substeps, lead, xg)
 
 
 def _stop_in(system, rows, checked, motion_end):

@@ -14,9 +14,11 @@ contact happens, so the contact scene is not stepped:
 
 The full scene takes over LEAD_TIME before |a| first reaches F_HIGH·g·tanα (restored
 from the resting block's offsets, recorded when the rest phase began), and the reduced
-one again once the block has rested for SETTLE_TIME with |a| < F_LOW·g·tanα. Every step
-still gives one row in the full scene's state layout, so measuring is unchanged.
-Runs that start tilted (free rocking) are stepped in full throughout.
+one again once the block has rested for SETTLE_TIME with |a| < F_LOW·g·tanα (the rules
+every engine shares: `isorock.analytic.rest_phase`). Every step of a rest phase gives one
+row in the full scene's state layout, so measuring is unchanged. Within the full scene,
+`Flight` steps coarse away from impacts. Runs that start tilted (free rocking) are
+stepped in full throughout.
 """
 from __future__ import annotations
 
@@ -27,31 +29,12 @@ import math
 import mujoco
 import numpy as np
 from mujoco import rollout
-from scipy.signal import lfilter
 
+# the shared rules (thresholds, lead and settle times, "at rest"): one home for every engine
+from isorock.analytic.rest_phase import (F_HIGH, F_LOW, LEAD_TIME, REST_RATE, REST_SPEED, REST_TILT,
+                                         SETTLE_TIME, linear_steps, takeover)
 from isorock.analytic.system import System
 
-#: The full scene takes over LEAD_TIME (s) before the base's absolute acceleration first
-#: reaches F_HIGH of the uplift threshold: the block's compliant rest tilts by a contact
-#: time constant's worth before it lifts, and a record's acceleration can jump within a
-#: step, so the margin is both a fraction of the threshold and a time (0.05 s: 25 contact
-#: time constants, 10 samples of a 0.005 s record). Against full stepping F_HIGH 0.8
-#: moved the fixed-base Ricker's θmax/α by 1.9e-3, 0.7 by ≤ 2.5e-4 on the Rickers and
-#: 1.3e-3 on Kobe (the limit is 0.02; docs/mujoco.md).
-F_HIGH = 0.7
-LEAD_TIME = 0.05
-#: Back to the reduced scene after the block has rested SETTLE_TIME (s) with
-#: |a| < F_LOW·g·tanα at the last of those rows.
-F_LOW = 0.5
-SETTLE_TIME = 0.1
-#: "At rest": |θ| below REST_TILT·α, |θ̇| below REST_RATE·α·p, and the block's sliding
-#: and vertical speeds relative to the base below REST_SPEED·g/p (dimensionless in the
-#: block's own scales, so the rule holds at any size). The speed bound allows the soft
-#: friction contact's elastic creep (2e-5·g/p measured on Kobe after rocking); true
-#: sliding needs |a| > μg, far above F_LOW·g·tanα.
-REST_TILT = 1e-4
-REST_RATE = 1e-4
-REST_SPEED = 1e-4
 #: Steps per full-scene rollout call while looking for rest (the steps of a call past
 #: the row where rest is found are discarded).
 FULL_CHUNK = 256
@@ -139,18 +122,17 @@ class Phases:
         template = row.copy()
         template[self.v] = 0.0
         if self.system.fixed_base:
-            hot = np.nonzero(np.abs(self.xg[k:]) >= F_HIGH * self.threshold)[0]
-            s = nstep if hot.size == 0 else max(k, k + int(hot[0]) - self.lead)
+            end = takeover(self.xg[k:], self.threshold, self.lead)
+            s = nstep if end is None else k + end
             rows = np.repeat(template[None, :], s - k, axis=0)
             rows[:, 0] = (k + 1 + np.arange(s - k)) * dt
             return rows, s, np.zeros(lay.nv)
         u0 = row[1 + lay.base_q]
         dx = row[1 + lay.xq] - u0
         u, v = self._isolator(u0, row[1 + lay.nq + lay.base_v], k, nstep)
-        s = nstep
-        hot = np.nonzero(self.absolute_acceleration(u, v, None) >= F_HIGH * self.threshold)[0]
-        if hot.size:  # u[i] is the state after step k + i
-            s = max(k, k + int(hot[0]) + 1 - self.lead)
+        # u[i] is the state after step k + i: one step later than the record's index
+        end = takeover(self.absolute_acceleration(u, v, None), self.threshold, self.lead - 1)
+        s = nstep if end is None else k + end
         red = np.column_stack((u, v))[:s - k]
         rows = np.repeat(template[None, :], red.shape[0], axis=0)
         rows[:, 0] = (k + 1 + np.arange(red.shape[0])) * dt
@@ -191,19 +173,10 @@ def isolator_steps(mass, stiffness, damping, dt, u0, v0, f) -> tuple[np.ndarray,
     a = np.array([[1 - dt * dt * stiffness / mt, dt * (1 - dt * damping / mt)],
                   [-dt * stiffness / mt, 1 - dt * damping / mt]])
     b = np.array([dt * dt / mt, dt / mt])
-    lam, vec = np.linalg.eig(a)
-    if np.linalg.cond(vec) > 1e6:  # a repeated mode (critical damping): step MuJoCo's scene
+    x = linear_steps(a, b, np.array([u0, v0]), f)
+    if x is None:  # a repeated mode (critical damping): step MuJoCo's scene
         return reduced_steps(mass, stiffness, damping, dt, "implicitfast", u0, v0, f)
-    inv = np.linalg.inv(vec)
-    z0, g = inv @ np.array([u0, v0], dtype=complex), inv @ b
-    f = np.asarray(f, dtype=float)
-    if np.iscomplexobj(lam) and abs(lam[0].imag) > 0:
-        mode = lfilter([g[0]], [1.0, -lam[0]], f.astype(complex), zi=[lam[0] * z0[0]])[0]
-        x = 2 * (vec[:, :1] * mode[None, :]).real  # the conjugate mode adds the conjugate
-    else:
-        x = sum(np.outer(vec[:, i].real, lfilter([g[i].real], [1.0, -lam[i].real], f, zi=[(lam[i] * z0[i]).real])[0])
-                for i in range(2))
-    return x[0].copy(), x[1].copy()
+    return x[:, 0].copy(), x[:, 1].copy()
 
 
 def reduced_steps(mass, stiffness, damping, dt, integrator, u0, v0, f) -> tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,79 @@
+"""The rest phase every contact engine may skip (docs/mujoco.md "Phased stepping",
+docs/bullet.md "Phased stepping"): while the block sits on its base and the base's
+absolute acceleration |a| = |ü + ẍg| stays well below the uplift threshold g·tanα,
+nothing about contact happens. On a fixed base the block rides the ground (its state is
+constant); on an isolated one block and base move as one body, the 1-DOF oscillator
+M ü + c u̇ + k u = −M ẍg (M = m + m_b), which each engine writes out as its own step
+would integrate it (a linear map per step, `linear_steps`).
+
+The rules, shared by the engines so that a phased run means the same everywhere: the
+contact scene takes over LEAD_TIME before |a| first reaches F_HIGH·g·tanα, and hands
+over again once the block has rested SETTLE_TIME with |a| < F_LOW·g·tanα. "At rest" is
+dimensionless in the block's own scales (REST_TILT, REST_RATE, REST_SPEED), so the rule
+holds at any size.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.signal import lfilter
+
+#: The contact scene takes over LEAD_TIME (s) before the base's absolute acceleration first
+#: reaches F_HIGH of the uplift threshold: the block's compliant rest tilts by a contact
+#: time constant's worth before it lifts, and a record's acceleration can jump within a
+#: step, so the margin is both a fraction of the threshold and a time (0.05 s: 25 contact
+#: time constants, 10 samples of a 0.005 s record). Against full stepping F_HIGH 0.8
+#: moved MuJoCo's fixed-base Ricker θmax/α by 1.9e-3, 0.7 by ≤ 2.5e-4 on the Rickers and
+#: 1.3e-3 on Kobe (the limit is 0.02; docs/mujoco.md).
+F_HIGH = 0.7
+LEAD_TIME = 0.05
+#: Back to the rest phase after the block has rested SETTLE_TIME (s) with
+#: |a| < F_LOW·g·tanα at the last of those rows.
+F_LOW = 0.5
+SETTLE_TIME = 0.1
+#: "At rest": |θ| below REST_TILT·α, |θ̇| below REST_RATE·α·p, and the block's sliding
+#: and vertical speeds relative to the base below REST_SPEED·g/p. The speed bound allows
+#: a soft friction contact's elastic creep (2e-5·g/p measured in MuJoCo on Kobe after
+#: rocking); true sliding needs |a| > μg, far above F_LOW·g·tanα.
+REST_TILT = 1e-4
+REST_RATE = 1e-4
+REST_SPEED = 1e-4
+
+
+def takeover(acceleration: np.ndarray, threshold: float, lead: int) -> int | None:
+    """Index into `acceleration` (|a| after each step of a rest phase) of the last step
+    before the contact scene takes over: `lead` steps before |a| first reaches
+    F_HIGH·threshold (at least 0), or None if it never does."""
+    hot = np.nonzero(np.abs(acceleration) >= F_HIGH * threshold)[0]
+    return None if hot.size == 0 else max(0, int(hot[0]) - lead)
+
+
+def linear_steps(a: np.ndarray, b: np.ndarray, x0: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """The states after each step of x' = A x + B f (one row per entry of f), run mode by
+    mode through scipy's lfilter (C speed: a Python loop costs ~2 µs a step, as much as
+    an engine's contact step): with A = V Λ V⁻¹, each mode z = (V⁻¹x)_i is a first-order
+    filter; a complex pair is run once (the conjugate adds the conjugate). Modes, not the
+    direct-form recursion of one state alone, whose poles so near 1 lose ~1e-10 of u over
+    a record (measured). Returns None where V is ill-conditioned (a repeated mode: the
+    caller steps the map itself)."""
+    a, b, x0 = np.asarray(a, dtype=float), np.asarray(b, dtype=float), np.asarray(x0, dtype=float)
+    lam, vec = np.linalg.eig(a)
+    if np.linalg.cond(vec) > 1e6:
+        return None
+    inv = np.linalg.inv(vec)
+    z0, g = inv @ x0.astype(complex), inv @ b
+    f = np.asarray(f, dtype=float)
+    out = np.zeros((a.shape[0], f.size))
+    for i, li in enumerate(lam):
+        if li.imag < 0 and np.any(np.isclose(lam, np.conj(li), rtol=0, atol=1e-14) & (lam.imag > 0)):
+            continue  # the conjugate of a mode already run
+        if li.imag != 0:
+            mode = lfilter([g[i]], [1.0, -li], f.astype(complex), zi=[li * z0[i]])[0]
+            out += 2 * (vec[:, i:i + 1] * mode[None, :]).real
+        else:
+            mode = lfilter([g[i].real], [1.0, -li.real], f, zi=[(li * z0[i]).real])[0]
+            out += np.outer(vec[:, i].real, mode)
+    return out.T
+
+
+__all__ = ["F_HIGH", "LEAD_TIME", "F_LOW", "SETTLE_TIME", "REST_TILT", "REST_RATE", "REST_SPEED", "takeover",
+           "linear_steps"]
