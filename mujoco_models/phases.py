@@ -79,6 +79,8 @@ class Phases:
         scale_v = system.gravity / system.p
         self.tilt, self.rate, self.speed = REST_TILT * system.alpha, REST_RATE * system.alpha * system.p, REST_SPEED * scale_v
         self.integrator = settings.integrator
+        #: a rest phase keeps a row every `store` steps (the contact phases' coarse step)
+        self.store = coarse_multiple(settings)
         v0 = 1 + lay.nq
         self.v = slice(v0, v0 + lay.nv)
 
@@ -116,16 +118,19 @@ class Phases:
 
     def rest(self, row: np.ndarray, k: int, nstep: int):
         """The rest phase from step k (the full scene's row `row`, block at rest): the rows
-        of steps k+1 … s in the full layout, the step s where the full scene takes over
-        (nstep: never), and the warm start to resume it with."""
+        of steps k+1 … s in the full layout, every `store`-th step and step s (the block
+        rests, the base swings slowly: the rows between would add nothing a measure
+        reads), the step s where the full scene takes over (nstep: never), and the warm
+        start to resume it with."""
         lay, dt = self.lay, self.dt
         template = row.copy()
         template[self.v] = 0.0
         if self.system.fixed_base:
             end = takeover(self.xg[k:], self.threshold, self.lead)
             s = nstep if end is None else k + end
-            rows = np.repeat(template[None, :], s - k, axis=0)
-            rows[:, 0] = (k + 1 + np.arange(s - k)) * dt
+            steps = self._stored(k, s)
+            rows = np.repeat(template[None, :], steps.size, axis=0)
+            rows[:, 0] = steps * dt
             return rows, s, np.zeros(lay.nv)
         u0 = row[1 + lay.base_q]
         dx = row[1 + lay.xq] - u0
@@ -133,18 +138,25 @@ class Phases:
         # u[i] is the state after step k + i: one step later than the record's index
         end = takeover(self.absolute_acceleration(u, v, None), self.threshold, self.lead - 1)
         s = nstep if end is None else k + end
-        red = np.column_stack((u, v))[:s - k]
+        steps = self._stored(k, s)
+        red = np.column_stack((u, v))[steps - k - 1]
         rows = np.repeat(template[None, :], red.shape[0], axis=0)
-        rows[:, 0] = (k + 1 + np.arange(red.shape[0])) * dt
+        rows[:, 0] = steps * dt
         rows[:, 1 + lay.base_q] = red[:, 0]
         rows[:, 1 + lay.xq] = red[:, 0] + dx
         rows[:, 1 + lay.nq + lay.base_v] = red[:, 1]
         rows[:, 1 + lay.nq + lay.x_v] = red[:, 1]
         warm = np.zeros(lay.nv)
-        if red.shape[0] >= 2:  # block and base accelerate together: qacc of the last step
-            acc = (red[-1, 1] - red[-2, 1]) / dt
-            warm[lay.base_v] = warm[lay.x_v] = acc
+        if s - k >= 2:  # block and base accelerate together: qacc of the last step
+            warm[lay.base_v] = warm[lay.x_v] = (v[s - k - 1] - v[s - k - 2]) / dt
         return rows, s, warm
+
+    def _stored(self, k: int, s: int) -> np.ndarray:
+        """The steps of k+1 … s a rest phase keeps a row of: every `store`-th and s."""
+        steps = np.arange(k + self.store, s + 1, self.store)
+        if s > k and (steps.size == 0 or steps[-1] != s):
+            steps = np.append(steps, s)
+        return steps
 
     def _isolator(self, u0: float, v0: float, k: int, nstep: int) -> tuple[np.ndarray, np.ndarray]:
         """u and u̇ after steps k … nstep−1 of the 1-DOF oscillator from (u0, v0)."""
@@ -197,7 +209,7 @@ MIN_RATE = 1e-3
 #: (the impact's transient, critically damped or slower, is over within a few τ).
 SETTLE_TAUS = 20
 #: Coarse steps per rollout call at most (a call runs about as far as the next impact zone).
-COARSE_CHUNK = 512
+COARSE_CHUNK = 128
 
 
 def coarse_multiple(settings) -> int:
