@@ -81,3 +81,24 @@ def test_bad_pool_arguments_are_named():
         Pool(0)
     with Pool(1) as pool, pytest.raises(InputError, match="clock = 'gpu'"):
         pool.map(square, [(1,)], clock="gpu")
+
+
+def test_a_pool_readies_the_analytic_kernel_before_its_workers_start(monkeypatch):
+    """Workers load the compiled analytic kernel from its cache; on first use (a fresh
+    install) it is built, 1–2 minutes. Built inside a worker, the build counts against the
+    task's budget, and a budget shorter than it kills every worker mid-build (a fresh
+    install's `isorock stress --quick` timed out on all its analytic cases): the Pool makes
+    it ready in the parent, once, before the first worker starts."""
+    from isorock.validate.core import executor
+    order = []
+    monkeypatch.setattr(executor, "ready_kernel", lambda: order.append("kernel"))
+    real = executor._Worker.__init__
+
+    def worker(self, *args, **kwargs):
+        order.append("worker")
+        real(self, *args, **kwargs)
+
+    monkeypatch.setattr(executor._Worker, "__init__", worker)
+    with executor.Pool(2):
+        pass
+    assert order == ["kernel", "worker", "worker"]

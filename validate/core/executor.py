@@ -419,6 +419,24 @@ class _Worker:
 CPU_POLL = 0.25
 
 
+def ready_kernel() -> None:
+    """Make the compiled analytic kernel ready in this process before a Pool's workers
+    start. A worker loads it from its cache in milliseconds, but on first use (a fresh
+    install, changed sources) it is built, 1–2 minutes: built inside a worker, the build
+    counts against the task's budget, a budget shorter than the build kills the worker
+    mid-build, and the next worker starts it again (a fresh install's `isorock stress
+    --quick` timed out on every analytic case). One tiny run here builds it once, said on
+    stderr; with the cache in place it costs milliseconds."""
+    from isorock.analytic.system import paper_system
+    from isorock.validate.core.engines import get_engine
+    try:
+        engine = get_engine("analytic")
+    except ImportError:  # no compiled kernel here (numba missing): nothing to ready
+        return
+    system = paper_system(fixed_base=True)
+    engine.simulate(system, None, duration=0.05, theta0=0.1 * system.alpha)
+
+
 class Pool:
     """Worker processes that run tasks and can be stopped: each task is a module-level
     function and its arguments, sent to a worker; a task past its budget is stopped by
@@ -433,6 +451,7 @@ class Pool:
         if workers < 1:
             raise InputError(f"workers = {workers!r}: must be a whole number of processes ≥ 1")
         self.context = mp.get_context("spawn")
+        ready_kernel()
         self.workers = [_Worker(self.context) for _ in range(workers)]
 
     def map(self, fn, tasks, *, budget: float | None = None, clock: str = "wall", on_result=None,
