@@ -77,16 +77,15 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     chunk_steps = chunk_steps or CHUNK_STEPS
     data = mujoco.MjData(model)
     xg = np.asarray(motion((np.arange(nstep) + 0.5) * dt), dtype=float)
-    forces = lay.forces(system, xg)
     state0 = lay.initial_state(model, system, theta0)
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
     throttle = kinematics.Throttle(progress, duration)
     if phases.applies(settings, theta0, xg):
-        rows, status, message, stop_reason = _phased(model, data, lay, system, motion, settings, xg, forces,
+        rows, status, message, stop_reason = _phased(model, data, lay, system, motion, settings, xg,
                                                      state0, rows, nstep, dt, throttle, warnings)
     else:
-        rows, status, message, stop_reason, _, _ = _roll(model, data, lay, system, motion, forces, state0, warm,
+        rows, status, message, stop_reason, _, _ = _roll(model, data, lay, system, motion, xg, state0, warm,
                                                          rows, nstep, chunk_steps, dt, throttle, warnings)
     runtime = time.perf_counter() - start
     states = np.concatenate(rows)
@@ -178,7 +177,7 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
     return [alone(item) for item in prepared] if warned else out
 
 
-def _phased(model, data, lay, system, motion, settings, xg, forces, state0, rows, nstep, dt, throttle, warnings):
+def _phased(model, data, lay, system, motion, settings, xg, state0, rows, nstep, dt, throttle, warnings):
     """Full-scene stepping only where contact can happen (phases.py): full phases until
     the block has settled, rest phases (no contact scene) until the base's acceleration
     nears the uplift threshold."""
@@ -186,7 +185,7 @@ def _phased(model, data, lay, system, motion, settings, xg, forces, state0, rows
     flight = phases.Flight(model, lay, system, settings, dt)
     k, state, warm = 0, state0, np.zeros(lay.nv)
     while True:
-        rows, status, message, stop_reason, k, _ = _roll(model, data, lay, system, motion, forces, state, warm,
+        rows, status, message, stop_reason, k, _ = _roll(model, data, lay, system, motion, xg, state, warm,
                                                          rows, nstep, phases.FULL_CHUNK, dt, throttle, warnings,
                                                          start=k, until=ph.rest_finder(), flight=flight)
         if status is not Status.COMPLETED or stop_reason is not None or k >= nstep:
@@ -202,7 +201,7 @@ def _phased(model, data, lay, system, motion, settings, xg, forces, state0, rows
             return rows, status, message, stop_reason
 
 
-def _roll(model, data, lay, system, motion, forces, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings,
+def _roll(model, data, lay, system, motion, xg, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings,
           start=0, until=None, flight=None):
     """Contact-scene rollout from step `start` to `nstep`, or, with `until(chunk, steps)`, to
     the row it names (the phased run's rest); with `flight` (phases.Flight), coarse steps
@@ -217,7 +216,8 @@ def _roll(model, data, lay, system, motion, forces, state0, warm, rows, nstep, c
         else:
             multiple, n = flight.plan(state0, done, nstep)
         if multiple == 1:
-            step_model, step_data, f = model, data, forces[done:done + n]
+            # ẍg at each step's middle (xg), as forces on the block's and the base's x dofs
+            step_model, step_data, f = model, data, lay.forces(system, xg[done:done + n])
         else:
             step_model, step_data = flight.model, flight.data
             f = lay.forces(system, np.asarray(motion((done + multiple * (np.arange(n) + 0.5)) * dt), dtype=float))
