@@ -43,18 +43,51 @@ def takeover(acceleration: np.ndarray, threshold: float, lead: int) -> int | Non
     """Index into `acceleration` (|a| after each step of a rest phase) of the last step
     before the contact scene takes over: `lead` steps before |a| first reaches
     F_HIGH·threshold (at least 0), or None if it never does."""
-    hot = np.nonzero(np.abs(acceleration) >= F_HIGH * threshold)[0]
-    return None if hot.size == 0 else max(0, int(hot[0]) - lead)
+    hot = first_hot(acceleration, threshold)
+    return None if hot is None else max(0, hot - lead)
 
 
-def linear_steps(a: np.ndarray, b: np.ndarray, x0: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """The states after each step of x' = A x + B f (one row per entry of f), run mode by
-    mode through scipy's lfilter (C speed: a Python loop costs ~2 µs a step, as much as
-    an engine's contact step): with A = V Λ V⁻¹, each mode z = (V⁻¹x)_i is a first-order
-    filter; a complex pair is run once (the conjugate adds the conjugate). Modes, not the
-    direct-form recursion of one state alone, whose poles so near 1 lose ~1e-10 of u over
-    a record (measured). Returns None where V is ill-conditioned (a repeated mode: the
-    caller steps the map itself)."""
+def first_hot(acceleration: np.ndarray, threshold: float) -> int | None:
+    """Index of the first |a| at or above F_HIGH·threshold, or None."""
+    hot = np.flatnonzero(np.abs(acceleration) >= F_HIGH * threshold)
+    return None if hot.size == 0 else int(hot[0])
+
+
+#: Steps a rest phase's states are computed in at a time: a rest phase usually ends long
+#: before the record does, and each block is cheap (a few ms), so the states past the end
+#: of the phase are not computed for the whole record.
+BLOCK = 1 << 15
+
+
+def rest_states(a, b, x0, f, acceleration) -> tuple[np.ndarray | None, int | None]:
+    """The states after each step of x' = A x + B f (`linear_steps`), block by block
+    (BLOCK steps) until one is hot: `acceleration(states)` gives |a| of each state over
+    the uplift threshold (states: a row per state variable). Returns (states, index of the first hot state or None): the
+    states of every block computed, up to and including the one where it was found; None
+    for states where the map has a repeated mode (the caller steps it itself)."""
+    f = np.asarray(f, dtype=float)
+    x, parts, done = np.asarray(x0, dtype=float), [], 0
+    while done < f.size:
+        part = linear_steps(a, b, x, f[done:done + BLOCK])
+        if part is None:
+            return None, None
+        parts.append(part)
+        hot = first_hot(acceleration(part), 1.0)
+        if hot is not None:
+            return np.concatenate(parts, axis=1), done + hot
+        done += part.shape[1]
+        x = part[:, -1]
+    return (np.concatenate(parts, axis=1) if parts else np.zeros((len(x), 0))), None
+
+
+def linear_steps(a: np.ndarray, b: np.ndarray, x0: np.ndarray, f: np.ndarray) -> np.ndarray | None:
+    """The states after each step of x' = A x + B f (a column per entry of f, a row per
+    state variable), run mode by mode through scipy's lfilter (C speed: a Python loop
+    costs ~2 µs a step, as much as an engine's contact step): with A = V Λ V⁻¹, each mode
+    z = (V⁻¹x)_i is a first-order filter; a complex pair is run once (the conjugate adds
+    the conjugate). Modes, not the direct-form recursion of one state alone, whose poles
+    so near 1 lose ~1e-10 of u over a record (measured). Returns None where V is
+    ill-conditioned (a repeated mode: the caller steps the map itself)."""
     a, b, x0 = np.asarray(a, dtype=float), np.asarray(b, dtype=float), np.asarray(x0, dtype=float)
     lam, vec = np.linalg.eig(a)
     if np.linalg.cond(vec) > 1e6:
@@ -63,17 +96,22 @@ def linear_steps(a: np.ndarray, b: np.ndarray, x0: np.ndarray, f: np.ndarray) ->
     z0, g = inv @ x0.astype(complex), inv @ b
     f = np.asarray(f, dtype=float)
     out = np.zeros((a.shape[0], f.size))
+    fc = None
     for i, li in enumerate(lam):
         if li.imag < 0 and np.any(np.isclose(lam, np.conj(li), rtol=0, atol=1e-14) & (lam.imag > 0)):
             continue  # the conjugate of a mode already run
         if li.imag != 0:
-            mode = lfilter([g[i]], [1.0, -li], f.astype(complex), zi=[li * z0[i]])[0]
-            out += 2 * (vec[:, i:i + 1] * mode[None, :]).real
+            fc = f.astype(complex) if fc is None else fc
+            mode = lfilter([g[i]], [1.0, -li], fc, zi=[li * z0[i]])[0]
+            re, im = mode.real, mode.imag
+            for j in range(a.shape[0]):  # 2·Re(v_j · mode), without a complex (d, n) array
+                out[j] += 2 * vec[j, i].real * re - 2 * vec[j, i].imag * im
         else:
             mode = lfilter([g[i].real], [1.0, -li.real], f, zi=[(li * z0[i]).real])[0]
-            out += np.outer(vec[:, i].real, mode)
-    return out.T
+            for j in range(a.shape[0]):
+                out[j] += vec[j, i].real * mode
+    return out
 
 
 __all__ = ["F_HIGH", "LEAD_TIME", "F_LOW", "SETTLE_TIME", "REST_TILT", "REST_RATE", "REST_SPEED", "takeover",
-           "linear_steps"]
+           "first_hot", "rest_states", "linear_steps", "BLOCK"]

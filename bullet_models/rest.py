@@ -8,14 +8,14 @@ uplift threshold, Bullet is not stepped (the shared rules: `isorock.analytic.res
   −(k(u + l·u̇) + c(u̇ + l·ü)) held over a control step (l the sub-steps' mean lead, ü
   from the last step) and Bullet's semi-implicit Euler sub-steps (v += h·a, then
   x += h·v, n times: u' = u + dt·u̇ + dt²·a·(n+1)/(2n), u̇' = u̇ + dt·a). One control
-  step is a linear map of (u, u̇, u̇ one step back), run through `linear_steps`.
+  step is a linear map of (u, u̇, u̇ one step back), run through `rest_states`.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from isorock.analytic.rest_phase import (F_LOW, LEAD_TIME, REST_RATE, REST_SPEED, REST_TILT, SETTLE_TIME,
-                                         linear_steps, takeover)
+                                         first_hot, rest_states, takeover)
 from isorock.analytic.system import System
 
 
@@ -73,13 +73,14 @@ class Rest:
             hot = takeover(self.xg[i:end], self.threshold, self.lead_steps)
             steps = end - i if hot is None else hot
             return steps, np.zeros((steps, 3))
-        states = linear_steps(self.a, self.b, np.array([u, ud, ud_prev]), self.xg[i:end])
+        states, hot = rest_states(self.a, self.b, (u, ud, ud_prev), self.xg[i:end],
+                                  lambda x: self.acceleration(x[0], x[1]) / self.threshold)
         if states is None:  # a repeated mode: step the map itself
-            states, x = np.zeros((end - i, 3)), np.array([u, ud, ud_prev])
+            states, x = np.zeros((3, end - i)), np.array([u, ud, ud_prev])
             for j, f in enumerate(self.xg[i:end]):
                 x = self.a @ x + self.b * f
-                states[j] = x
-        # states[j] is after step i + j, one step past the record's index
-        hot = takeover(self.acceleration(states[:, 0], states[:, 1]), self.threshold, self.lead_steps - 1)
-        steps = end - i if hot is None else hot
-        return steps, states[:steps]
+                states[:, j] = x
+            hot = first_hot(self.acceleration(states[0], states[1]), self.threshold)
+        # states[:, j] is after step i + j, one step past the record's index
+        steps = states.shape[1] if hot is None else max(0, hot + 1 - self.lead_steps)
+        return steps, states[:, :steps].T

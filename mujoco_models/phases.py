@@ -32,7 +32,7 @@ from mujoco import rollout
 
 # the shared rules (thresholds, lead and settle times, "at rest"): one home for every engine
 from isorock.analytic.rest_phase import (F_HIGH, F_LOW, LEAD_TIME, REST_RATE, REST_SPEED, REST_TILT,
-                                         SETTLE_TIME, linear_steps, takeover)
+                                         SETTLE_TIME, first_hot, linear_steps, rest_states, takeover)
 from isorock.analytic.system import System
 
 #: Steps per full-scene rollout call while looking for rest (the steps of a call past
@@ -134,18 +134,17 @@ class Phases:
             return rows, s, np.zeros(lay.nv)
         u0 = row[1 + lay.base_q]
         dx = row[1 + lay.xq] - u0
-        u, v = self._isolator(u0, row[1 + lay.nq + lay.base_v], k, nstep)
+        u, v, hot = self._isolator(u0, row[1 + lay.nq + lay.base_v], k, nstep)
         # u[i] is the state after step k + i: one step later than the record's index
-        end = takeover(self.absolute_acceleration(u, v, None), self.threshold, self.lead - 1)
-        s = nstep if end is None else k + end
+        s = nstep if hot is None else k + max(0, hot + 1 - self.lead)
         steps = self._stored(k, s)
-        red = np.column_stack((u, v))[steps - k - 1]
-        rows = np.repeat(template[None, :], red.shape[0], axis=0)
+        us, vs = u[steps - k - 1], v[steps - k - 1]
+        rows = np.repeat(template[None, :], steps.size, axis=0)
         rows[:, 0] = steps * dt
-        rows[:, 1 + lay.base_q] = red[:, 0]
-        rows[:, 1 + lay.xq] = red[:, 0] + dx
-        rows[:, 1 + lay.nq + lay.base_v] = red[:, 1]
-        rows[:, 1 + lay.nq + lay.x_v] = red[:, 1]
+        rows[:, 1 + lay.base_q] = us
+        rows[:, 1 + lay.xq] = us + dx
+        rows[:, 1 + lay.nq + lay.base_v] = vs
+        rows[:, 1 + lay.nq + lay.x_v] = vs
         warm = np.zeros(lay.nv)
         if s - k >= 2:  # block and base accelerate together: qacc of the last step
             warm[lay.base_v] = warm[lay.x_v] = (v[s - k - 1] - v[s - k - 2]) / dt
@@ -158,12 +157,19 @@ class Phases:
             steps = np.append(steps, s)
         return steps
 
-    def _isolator(self, u0: float, v0: float, k: int, nstep: int) -> tuple[np.ndarray, np.ndarray]:
-        """u and u̇ after steps k … nstep−1 of the 1-DOF oscillator from (u0, v0)."""
+    def _isolator(self, u0: float, v0: float, k: int, nstep: int):
+        """(u, u̇, first hot) after steps k, k+1, … of the 1-DOF oscillator from (u0, v0),
+        far enough to hold the first state whose |a| reaches F_HIGH of the threshold (its
+        index, or None: then up to nstep)."""
         sy, f = self.system, -self.system.total_mass * self.xg[k:nstep]
         if self.integrator in MATCHED:
-            return isolator_steps(sy.total_mass, sy.stiffness, sy.damping, self.dt, u0, v0, f)
-        return reduced_steps(sy.total_mass, sy.stiffness, sy.damping, self.dt, self.integrator, u0, v0, f)
+            a, b = isolator_map(sy.total_mass, sy.stiffness, sy.damping, self.dt)
+            states, hot = rest_states(a, b, (u0, v0), f, lambda x: self.absolute_acceleration(x[0], x[1], None)
+                                      / self.threshold)
+            if states is not None:
+                return states[0], states[1], hot
+        u, v = reduced_steps(sy.total_mass, sy.stiffness, sy.damping, self.dt, self.integrator, u0, v0, f)
+        return u, v, first_hot(self.absolute_acceleration(u, v, None), self.threshold)
 
 
 #: Integrators whose step of the reduced scene `isolator_steps` writes out: semi-implicit
@@ -181,14 +187,18 @@ def isolator_steps(mass, stiffness, damping, dt, u0, v0, f) -> tuple[np.ndarray,
     both (x = 2·Re of its mode); an overdamped one has two real modes. Modes, not the
     direct-form recursion of u alone, whose poles so near 1 lose ~1e-10 of u over a record
     (measured). Agrees with `reduced_steps` to rounding (tested)."""
+    x = linear_steps(*isolator_map(mass, stiffness, damping, dt), np.array([u0, v0]), f)
+    if x is None:  # a repeated mode (critical damping): step MuJoCo's scene
+        return reduced_steps(mass, stiffness, damping, dt, "implicitfast", u0, v0, f)
+    return x[0], x[1]
+
+
+def isolator_map(mass, stiffness, damping, dt) -> tuple[np.ndarray, np.ndarray]:
+    """(A, B) of MuJoCo's step of the reduced scene, x = (u, u̇): x' = A x + B f."""
     mt = mass + dt * damping
     a = np.array([[1 - dt * dt * stiffness / mt, dt * (1 - dt * damping / mt)],
                   [-dt * stiffness / mt, 1 - dt * damping / mt]])
-    b = np.array([dt * dt / mt, dt / mt])
-    x = linear_steps(a, b, np.array([u0, v0]), f)
-    if x is None:  # a repeated mode (critical damping): step MuJoCo's scene
-        return reduced_steps(mass, stiffness, damping, dt, "implicitfast", u0, v0, f)
-    return x[:, 0].copy(), x[:, 1].copy()
+    return a, np.array([dt * dt / mt, dt / mt])
 
 
 def reduced_steps(mass, stiffness, damping, dt, integrator, u0, v0, f) -> tuple[np.ndarray, np.ndarray]:

@@ -34,7 +34,7 @@ def test_linear_steps_is_the_map_stepped_one_by_one():
             (np.array([[0.9995, 1.1e-3, 1e-7], [-0.9, 0.997, 1e-4], [0.0, 1.0, 0.0]]), np.array([-6e-7, -1.1e-3, 0.0]))]
     for a, b in maps:
         x0 = rng.normal(size=a.shape[0])
-        got = rest_phase.linear_steps(a, b, x0, f)
+        got = rest_phase.linear_steps(a, b, x0, f).T  # a column per step
         x, want = x0.copy(), []
         for fk in f:
             x = a @ x + b * fk
