@@ -5,14 +5,13 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 
 from isorock.analytic.motion import load_motion
 from isorock.analytic.system import paper_system
 from isorock.mujoco_models import Settings, phases, simulate
 from isorock.validate.core.compare import first_tilt
 from isorock.validate.core.engines import get_engine
-from isorock.validate.core.scenarios import REPORT_MOTIONS, ROBUST_SINE
+from isorock.validate.core.scenarios import ROBUST_SINE
 from isorock.validate.core.tolerances import tolerance
 
 PHASED, FULL = replace(Settings(), phased=True), replace(Settings(), phased=False)
@@ -28,83 +27,6 @@ def test_isolator_steps_are_mujocos_step_of_the_reduced_scene():
         ur, vr = phases.reduced_steps(s.total_mass, s.stiffness, s.damping, 5e-4, integrator, 0.01, -0.02, f)
         assert np.abs(u - ur).max() <= 1e-11 * np.abs(ur).max()
         assert np.abs(v - vr).max() <= 1e-11 * np.abs(vr).max()
-
-
-def test_a_weak_record_gives_the_exact_isolator_response():
-    """A sine at a tenth of the uplift threshold: the block never rocks, and u is the
-    1-DOF oscillator's response (solve_ivp at rtol 1e-10, an independent integration),
-    within semi-implicit Euler's first-order error ω·dt at the default step."""
-    s = paper_system()
-    amp_g = 0.1 * s.uplift_acceleration / 9.80665
-    motion = load_motion(f"sine:amp={amp_g!r},freq=1,cycles=3")
-    raw = simulate(s, motion, settings=PHASED, duration=6.0)
-
-    def rhs(t, y):
-        return [y[1], -(s.stiffness * y[0] + s.damping * y[1]) / s.total_mass - float(motion(np.array([t]))[0])]
-
-    exact = solve_ivp(rhs, (0, 6.0), [0.0, 0.0], t_eval=raw.t, rtol=1e-10, atol=1e-13, max_step=1e-3)
-    scale = np.abs(exact.y[0]).max()
-    assert np.abs(raw.u - exact.y[0]).max() <= s.omega * Settings.timestep * scale  # measured 0.5·ω·dt
-    assert np.abs(raw.theta).max() <= 1e-4 * s.alpha
-
-
-def test_free_rocking_is_stepped_in_full():
-    s = paper_system()
-    a = simulate(s, None, settings=FULL, duration=2.0, theta0=0.5 * s.alpha)
-    b = simulate(s, None, settings=PHASED, duration=2.0, theta0=0.5 * s.alpha)
-    assert np.array_equal(a.theta, b.theta) and np.array_equal(a.u, b.u)
-
-
-@pytest.mark.parametrize("fixed", [False, True])
-def test_a_lifting_pulse_agrees_with_full_stepping(fixed):
-    """The robust sine lifts the block on both bases: θmax/α, counted impacts and the
-    first uplift of the phased run are those of the full run (measured: Δθmax/α ≤ 2e-4,
-    same impacts, first uplift within 0.03 ms), within a tenth of the tolerance table's
-    limits for MuJoCo against the exact model."""
-    s = paper_system(fixed_base=fixed)
-    motion = load_motion(ROBUST_SINE)
-    full = MUJOCO.simulate(s, motion, settings=FULL, duration=motion.end_time + 2.0)
-    phased = MUJOCO.simulate(s, motion, settings=PHASED, duration=motion.end_time + 2.0)
-    assert full.impact_count >= 3 and phased.impact_count == full.impact_count
-    assert (abs(phased.theta_max_over_alpha - full.theta_max_over_alpha)
-            <= 0.1 * tolerance("mujoco", "theta_max_diff").limit)
-    assert abs(first_tilt(phased) - first_tilt(full)) <= 0.1 * tolerance("mujoco", "first_uplift_diff").limit
-
-
-@pytest.mark.parametrize("fixed", [False, True])
-def test_the_full_scene_takes_over_before_the_threshold(fixed, monkeypatch):
-    """Every rest phase ends at least LEAD_TIME before the base's absolute acceleration
-    first reaches F_HIGH·g·tanα, and before the block first lifts."""
-    s = paper_system(fixed_base=fixed)
-    motion = load_motion(REPORT_MOTIONS[1])  # a Ricker: the block rests first, then lifts
-    spans, rest = [], phases.Phases.rest
-
-    def recording(self, row, k, nstep):
-        out = rest(self, row, k, nstep)
-        spans.append((k, out[1]))
-        return out
-
-    monkeypatch.setattr(phases.Phases, "rest", recording)
-    raw = simulate(s, motion, settings=PHASED, duration=motion.end_time + 2.0)
-    dt = PHASED.for_system(s).timestep  # the step the run took (it follows the system)
-    steps = np.rint(raw.t / dt).astype(int)  # rows sit at whole steps, coarse ones every few
-    a = (np.abs(motion((steps + 0.5) * dt)) if fixed else
-         np.abs(s.stiffness * raw.u + s.damping * raw.u_dot) / s.total_mass)
-    lead = int(round(phases.LEAD_TIME / dt))
-    uplift = int(steps[np.argmax(np.abs(raw.theta) > 1e-3 * s.alpha)])
-    assert spans and uplift > 0
-    for k, end in spans:
-        if end < steps[-1]:
-            assert np.all(a[(steps >= k) & (steps < end + lead)] < phases.F_HIGH * s.uplift_acceleration)
-    assert any(end < uplift - lead for _, end in spans)
-    assert not any(k < uplift <= end for k, end in spans)
-
-
-@pytest.mark.parametrize("bad", ["yes", 1, None])
-def test_phased_must_be_a_boolean(bad):
-    from isorock.analytic.errors import InputError
-    with pytest.raises(InputError, match="phased"):
-        Settings(phased=bad)
 
 
 COARSE_OFF = replace(Settings(), coarse=1)
