@@ -234,6 +234,16 @@ def coarse_multiple(settings) -> int:
     return max(1, min(settings.coarse, fit))
 
 
+def coarse_applies(settings) -> bool:
+    """Whether a run steps coarse away from impacts (Flight): its stepping follows the
+    run's phase (`phased`), with the planar joints of the default scheme and a coarse
+    multiple above 1. Free rocking too: over the atlas's 100 cells it moved the worst β
+    error from 0.527% to 0.509% and t₁'s from 0.017% to 0.040%, 1.6× faster
+    (docs/mujoco.md, "Coarse steps away from impacts")."""
+    return (settings.phased and settings.joint == "planar" and settings.impact_timestep is None
+            and coarse_multiple(settings) > 1)
+
+
 class Flight:
     """Where a contact phase steps coarse and where fine: fine from IMPACT_ZONE coarse steps
     before θ crosses 0 (an impact) until SETTLE_TAUS·τ after it, coarse elsewhere. The rows

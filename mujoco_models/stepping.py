@@ -82,12 +82,15 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
     throttle = kinematics.Throttle(progress, duration)
+    # coarse steps away from impacts, in every run whose stepping follows its phase
+    flight = phases.Flight(model, lay, system, settings, dt) if phases.coarse_applies(settings) else None
     if phases.applies(settings, theta0, xg):
         rows, status, message, stop_reason = _phased(model, data, lay, system, motion, settings, xg,
-                                                     state0, rows, nstep, dt, throttle, warnings)
+                                                     state0, rows, nstep, dt, throttle, warnings, flight)
     else:
         rows, status, message, stop_reason, _, _ = _roll(model, data, lay, system, motion, xg, state0, warm,
-                                                         rows, nstep, chunk_steps, dt, throttle, warnings)
+                                                         rows, nstep, chunk_steps, dt, throttle, warnings,
+                                                         flight=flight)
     runtime = time.perf_counter() - start
     states = np.concatenate(rows)
     raw = raw_history(lay, system, states, dt, runtime, status, message, stop_reason, t=states[:, 0])
@@ -186,12 +189,11 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
     return [alone(item) for item in prepared] if warned else out
 
 
-def _phased(model, data, lay, system, motion, settings, xg, state0, rows, nstep, dt, throttle, warnings):
+def _phased(model, data, lay, system, motion, settings, xg, state0, rows, nstep, dt, throttle, warnings, flight):
     """Full-scene stepping only where contact can happen (phases.py): full phases until
-    the block has settled, rest phases (no contact scene) until the base's acceleration
-    nears the uplift threshold."""
+    the block has settled (coarse away from impacts with `flight`), rest phases (no
+    contact scene) until the base's acceleration nears the uplift threshold."""
     ph = phases.Phases(model, lay, system, settings, xg, dt)
-    flight = phases.Flight(model, lay, system, settings, dt)
     k, state, warm = 0, state0, np.zeros(lay.nv)
     while True:
         rows, status, message, stop_reason, k, _ = _roll(model, data, lay, system, motion, xg, state, warm,

@@ -373,11 +373,18 @@ def test_progress_reports_simulated_time(monkeypatch):
     monkeypatch.setattr(stepping, "CHUNK_STEPS", 500)
     monkeypatch.setattr(kinematics, "PROGRESS_INTERVAL", 0.0)  # report after every chunk
     calls = []
-    # the default's own 5e-4 s step (not the system's finer one): 500 steps are 0.25 s
-    scene.simulate(isolated(), None, settings=scene.Settings(follow_system=False), duration=1.0,
+    # the default's own 5e-4 s step (not the system's finer one), stepped throughout (no
+    # coarse steps, whose calls end where impacts come): 500 steps are 0.25 s
+    scene.simulate(isolated(), None, settings=scene.Settings(follow_system=False, phased=False), duration=1.0,
                    progress=lambda t, total: calls.append((t, total)))
     assert [round(t, 9) for t, _ in calls] == [0.25, 0.5, 0.75, 1.0]
     assert all(total == 1.0 for _, total in calls)
+    # with coarse steps away from impacts, the reports still climb to the end
+    calls.clear()
+    scene.simulate(isolated(), None, settings=scene.Settings(follow_system=False), duration=1.0,
+                   progress=lambda t, total: calls.append((t, total)))
+    times = [t for t, _ in calls]
+    assert len(times) >= 2 and times == sorted(times) and times[-1] == pytest.approx(1.0)
 
 
 def test_scene_text_compiles_and_cli_writes_it(tmp_path):
