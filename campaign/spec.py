@@ -428,9 +428,14 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
             check_isolator(shortest, longest)
         except InputError as e:
             raise InputError(f"systems.period: {str(e).replace(' (stiffness nan N/m)', '')}") from None
+    # an engine whose step follows the block (MuJoCo's, PyBullet's) takes the most steps on
+    # the campaign's fastest-rocking block: its steps are the bound
+    from isorock.validate.core.cases import build_system
+    from isorock.validate.core.engines import settings_used
+    fastest = max((build_system(g) for g in spec.system_grid()), key=lambda system: system.rocking_rate)
     for e in spec.engines:
         try:
-            check_settings(e.settings(), longest)
+            check_settings(settings_used(e.settings(), fastest, longest), longest)
         except InputError as err:
             raise InputError(f"{e.where or e.engine}: {err}") from None
 

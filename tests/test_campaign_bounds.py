@@ -69,3 +69,18 @@ def test_no_grid_is_built_for_a_campaign_its_lengths_already_refuse(tmp_path, mo
     with pytest.raises(InputError) as e:
         load_spec(spec)
     assert "campaign size" in str(e.value) and str(MAX_RUNS) in str(e.value)
+
+
+def test_steps_are_counted_at_the_step_each_system_derives(tmp_path):
+    """MuJoCo's default step follows the block (Settings.for_system: dt·p_eff fixed): a
+    campaign's work bound counts the steps its fastest-rocking block takes, not those of
+    the step written in seconds. A 5 mm block (p_eff ≈ 48 rad/s: a step of ~7 µs) over
+    500 s is ~7e7 steps, past MAX_STEPS (2e7), though 500 s at the default's own 0.5 ms
+    would be 1e6."""
+    from isorock.analytic.limits import MAX_STEPS
+    spec = write_spec(tmp_path, more='\n[[engines]]\nname = "mujoco"\n')
+    spec.write_text(spec.read_text().replace("size = 1.0", "size = 0.005").replace("tail = 1.0", "tail = 500"))
+    with pytest.raises(InputError) as e:
+        load_spec(spec)
+    assert "engines[1]" in str(e.value) and "MAX_STEPS" in str(e.value), str(e.value)
+    assert 500 / 5e-4 < MAX_STEPS  # the step in seconds alone would have passed
