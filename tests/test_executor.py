@@ -1,7 +1,8 @@
-"""The one executor's Pool (core.executor): tasks run in worker processes, in order; a task
-that never ends is stopped at its budget (wall or CPU time) and its worker replaced; a
-worker that dies is a crashed task, not a lost run; bad input is the caller's. The tasks
-that must be stopped never end by themselves, so no test depends on the machine's speed."""
+"""The one executor (core.executor): tasks run serially here or in worker processes, in
+order; a task that never ends is stopped at its budget (wall or CPU time) and its worker
+replaced; a worker that dies is a crashed task, not a lost run; bad input is the caller's;
+where a task ran does not change its outcome. The tasks that must be stopped never end by
+themselves, so no test depends on the machine's speed."""
 from __future__ import annotations
 
 import os
@@ -81,3 +82,53 @@ def test_bad_pool_arguments_are_named():
         Pool(0)
     with Pool(1) as pool, pytest.raises(InputError, match="clock = 'gpu'"):
         pool.map(square, [(1,)], clock="gpu")
+
+
+class Bar:
+    """A progress bar that records its updates (io.progress's shape)."""
+
+    def __init__(self):
+        self.updates = []
+
+    def update(self, n=1, work=0.0, note=""):
+        self.updates.append((n, work, note))
+
+
+def test_serial_and_worker_processes_give_the_same_outcomes():
+    from isorock.validate.core.executor import Executor
+    tasks = [(k,) for k in range(5)]
+    with Executor() as here, Executor(processes=2) as there:
+        assert here.where == "serial" and there.where == "processes"
+        a, b = here.map(square, tasks), there.map(square, tasks)
+        assert [o.value for o in a] == [o.value for o in b] == [k * k for k, in tasks]
+        assert here.map(fail, [(0,)])[0].value == there.map(fail, [(0,)])[0].value == "ValueError: broken"
+
+
+def test_progress_is_updated_once_per_task_with_its_weight_cost_and_note():
+    from isorock.validate.core.executor import Executor
+    bar = Bar()
+    Executor().map(square, [(2,), (3,)], progress=bar, weight=lambda a: a[0], cost=lambda a: 10.0 * a[0],
+                   note=lambda a: f"x{a[0]}")
+    assert bar.updates == [(2, 20.0, "x2"), (3, 30.0, "x3")]
+
+
+def test_serial_stop_and_bad_input():
+    from isorock.validate.core.executor import Executor
+    out = Executor().map(fail, [(0,), (1,)], stop=lambda o: o.status == "error")
+    assert out[0].status == "error" and isinstance(out[0].error, ValueError) and out[1] is None
+    with pytest.raises(InputError, match="must be positive"):
+        Executor().map(refuse, [(-1,)])
+
+
+def _run_square(task, threads):
+    if task < 0:
+        raise ValueError(f"task {task}")
+    return task * task
+
+
+def test_execute_raises_the_first_failure_and_runs_nothing_after_it():
+    from isorock.validate.core.executor import execute
+    done = []
+    with pytest.raises(ValueError, match="task -1"):
+        execute([2, -1, 3], on_done=lambda t, r: done.append((t, r)), run=_run_square, weight=lambda t: 1)
+    assert done == [(2, 4)]

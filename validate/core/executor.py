@@ -1,9 +1,16 @@
-"""The one executor: runs work serially in this process or on a Dask cluster (a local one
-or a scheduler's), and reports each result as it arrives.
+"""The one executor: every command's runs (validate, sweep, atlas, stress, calibrate) go
+through `Executor.map`, serially in this process, in worker processes that can be killed,
+or on a Dask cluster (a local one or a scheduler's), each result reported as it arrives
+and the one progress bar (io.progress) updated with the work done.
 
-- `execute(tasks, client=…, run=…, on_done=…)` runs any list of tasks; `here(task)` keeps
-  some in this process while the cluster works on the others (the analytic model's, done
-  in milliseconds). `validate`'s histories (core.runner) and every table of runs use it.
+- `Executor(processes=n | client=…)`: where the runs go; `map(fn, tasks, budget=…,
+  clock="wall" | "cpu")`: an `Outcome` per task; a run past its budget in a worker
+  process is killed ("timeout"), a worker that dies is "crashed", an exception is that
+  task's "error"; `here(args)` keeps some in this process while a cluster works on the
+  others (the analytic model's, done in milliseconds). `Pool(n)` is an executor of n
+  processes (atlas, stress, calibrate).
+- `execute(tasks, client=…, run=…, on_done=…)`: `map` for tasks that fail loudly (the
+  first exception is raised): `validate`'s histories (core.runner), every table of runs.
 - A `Chunk` is a list of cases for one engine choice: the analytic engine runs a
   chunk (hundreds of cases) in one call of the compiled kernel
   (`analytic.fast.simulate_batch`); a contact engine runs its chunk case by case. Its rows
@@ -21,7 +28,7 @@ import hashlib
 import json
 import socket
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -161,43 +168,30 @@ def expected_cost(task: Chunk) -> float:
 
 def execute(tasks: list, *, client=None, threads: int | None = None, on_done, progress=None, here=None,
             run=None, weight=None, cost=None) -> int:
-    """Run `tasks`, calling on_done(task, result) here as each one finishes (in the order
-    they finish). client: a dask.distributed Client, or None to run serially in this
-    process. run(task, threads): a task's result (default: `run_chunk`, a chunk's rows;
-    `isorock validate` runs its histories through here too). here(task): tasks that run
-    in this process even with a client (e.g. the analytic model's, loaded here already and
-    done in milliseconds), while the cluster works on the others. progress.update(n) after
-    each task, n = weight(task) (default: its number of cases), with the work it was,
-    cost(task) (the ETA's measure, `expected_cost`; 0 without `cost`). Returns the number
-    of tasks run."""
+    """`Executor.map` for tasks that fail loudly (a chunk of a table, a history of
+    validate's): on_done(task, result) here as each one finishes (in the order they
+    finish); the first task that raises stops the others and its exception is raised
+    here. client: a dask.distributed Client, or None to run serially in this process.
+    run(task, threads): a task's result (default: `run_chunk`, a chunk's rows);
+    `threads` is what a task run here may use, 1 on a cluster's worker (one core each).
+    here(task): tasks that run in this process even with a client (e.g. the analytic
+    model's, loaded here already and done in milliseconds), while the cluster works on
+    the others. progress.update(n, work) after each task, n = weight(task) (default: its
+    number of cases), work = cost(task) (the ETA's measure, `expected_cost`; 0 without
+    `cost`). Returns the number of tasks run."""
     run = run or run_chunk
     weight = weight or (lambda task: len(task.cases))
-    local = [t for t in tasks if client is None or (here is not None and here(t))]
-    remote = [t for t in tasks if client is not None and not (here is not None and here(t))]
 
-    def finished(task, result):
-        on_done(task, result)
-        if progress:
-            progress.update(weight(task), cost(task) if cost else 0.0)
-
-    by_key, futures = {}, []
-    for task in remote:  # submitted first, so that the cluster works while this process does its part
-        fut = client.submit(run, task, 1, pure=False)
-        by_key[fut.key] = task
-        futures.append(fut)
-    try:
-        for task in local:
-            finished(task, run(task, threads))
-        if futures:
-            from dask.distributed import as_completed
-            for fut in as_completed(futures):
-                task = by_key[fut.key]
-                finished(task, fut.result())
-                fut.release()
-    except BaseException:
-        if futures:
-            client.cancel(futures)
-        raise
+    def local(task) -> bool:
+        return client is None or (here is not None and here(task))
+    outcomes = Executor(client=client).map(
+        run, [(t, threads if local(t) else 1) for t in tasks], here=lambda args: local(args[0]),
+        on_result=lambda i, o: on_done(tasks[i], o.value) if o.done else None,
+        stop=lambda o: not o.done, progress=progress, weight=lambda args: weight(args[0]),
+        cost=(lambda args: cost(args[0])) if cost else None)
+    for outcome in outcomes:
+        if outcome is not None and not outcome.done:
+            raise outcome.error if outcome.error is not None else RuntimeError(str(outcome.value))
     return len(tasks)
 
 
@@ -339,26 +333,33 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
     return sort_table(rows_to_table(rows))
 
 
-# --- worker processes that can be stopped: a run past its budget is killed ---------------
+# --- the executor: where a command's runs go, each stopped at its budget ----------------
 
 @dataclass(frozen=True)
 class Outcome:
-    """What became of one task in a Pool: `status` "done" (its `value`), "error" (it raised:
-    `value` is "Type: message"), "timeout" (past its budget: its worker was killed) or
-    "crashed" (its worker died: `value` is the exit code); `seconds` of wall time."""
+    """What became of one task: `status` "done" (its `value`), "error" (it raised: `value`
+    is "Type: message", `error` the exception itself where it was raised here or on a
+    Dask worker), "timeout" (past its budget: its worker process was killed) or
+    "crashed" (its worker process died: `value` is the exit code); `seconds` of wall
+    time (on a Dask cluster, since the task was submitted)."""
 
     status: str
     value: object = None
     seconds: float = 0.0
+    error: BaseException | None = field(default=None, compare=False, repr=False)
 
     @property
     def done(self) -> bool:
         return self.status == "done"
 
 
+def _error(e: BaseException, seconds: float) -> Outcome:
+    return Outcome("error", f"{type(e).__name__}: {e}", seconds, e)
+
+
 def _serve(conn) -> None:
-    """A worker's loop: run each (function, args) it is sent, until None or its pipe
-    closes. An InputError is the caller's (bad input); any other exception the task's."""
+    """A worker process's loop: run each (function, args) it is sent, until None or its
+    pipe closes. An InputError is the caller's (bad input); any other exception the task's."""
     while True:
         try:
             task = conn.recv()
@@ -415,43 +416,143 @@ class _Worker:
         self.conn.close()
 
 
-#: How often (s) a Pool with a CPU-time budget reads its workers' CPU clocks.
+#: How often (s) the executor reads its worker processes' CPU clocks under a CPU budget.
 CPU_POLL = 0.25
+CLOCKS = ("wall", "cpu")
 
 
-class Pool:
-    """Worker processes that run tasks and can be stopped: each task is a module-level
-    function and its arguments, sent to a worker; a task past its budget is stopped by
-    killing its worker, which is replaced, and counts as "timeout". The budget is wall
-    seconds (clock "wall": bounds how long a user waits) or the worker's CPU seconds
-    (clock "cpu": others' load on a shared machine does not count against a run).
-    Workers are spawned, not forked: a fork of a process whose numba threads have started
-    is not safe. Use as a context manager (the workers stop on leaving it)."""
+class Executor:
+    """The one executor of every command (validate, sweep, atlas, stress, calibrate): where
+    its runs go, chosen once, and one `map` whatever the choice.
 
-    def __init__(self, workers: int):
-        import multiprocessing as mp
-        if workers < 1:
-            raise InputError(f"workers = {workers!r}: must be a whole number of processes ≥ 1")
-        self.context = mp.get_context("spawn")
-        self.workers = [_Worker(self.context) for _ in range(workers)]
+    - serial (the default): one after another in this process;
+    - `processes=n`: n worker processes, spawned, not forked (a fork of a process whose
+      numba threads have started is not safe), so a task's function must be importable
+      at module level; a task past its budget is stopped by killing its worker, which is
+      replaced (a run stuck inside an engine cannot be stopped in any other way);
+    - `client=`: a Dask client (a local cluster or a scheduler's, `client_for`), its
+      workers one core each; `close=True` closes it (and its LocalCluster) with the
+      executor.
 
-    def map(self, fn, tasks, *, budget: float | None = None, clock: str = "wall", on_result=None,
-            stop=None) -> list[Outcome | None]:
-        """fn(*args) for each args of `tasks`, up to len(workers) at a time: an Outcome
-        per task, in the order of `tasks`. on_result(index, outcome) as each arrives;
-        stop(outcome) true: start no further task (those not started stay None). An
-        InputError raised by fn is raised here (bad input is the caller's)."""
-        from multiprocessing.connection import wait
-        if clock not in ("wall", "cpu"):
+    A run's budget is wall seconds (clock "wall": how long a user waits) or its process's
+    CPU seconds (clock "cpu": others' load on a shared machine does not count against
+    it). Only worker processes can be killed: in this process and on Dask the budget is
+    the engines' own (analytic.limits.RUN_BUDGET_S, heard at each progress call of a
+    run). Use as a context manager (worker processes and an owned client stop on
+    leaving it)."""
+
+    def __init__(self, *, processes: int = 0, client=None, close: bool = False):
+        if processes and client is not None:
+            raise ValueError("an Executor runs on worker processes or on a Dask client, not both")
+        if processes < 0:
+            raise InputError(f"workers = {processes!r}: must be a whole number of processes ≥ 0")
+        self.client, self._close_client = client, close
+        self.workers: list[_Worker] = []
+        if processes:
+            import multiprocessing as mp
+            context = mp.get_context("spawn")
+            self.workers = [_Worker(context) for _ in range(processes)]
+
+    @classmethod
+    def on(cls, client=None, workers: int = 0, scheduler: str | None = None) -> "Executor":
+        """An executor on `client`; on a client connected to `scheduler`; on a LocalCluster
+        of `workers` Dask processes; or serial (client_for), closing what it opened."""
+        live, close = client_for(client, workers, scheduler)
+        return cls(client=live, close=close)
+
+    @property
+    def where(self) -> str:
+        return "processes" if self.workers else "dask" if self.client is not None else "serial"
+
+    def map(self, fn, tasks, *, budget: float | None = None, clock: str = "wall", here=None, on_result=None,
+            stop=None, progress=None, weight=None, cost=None, note=None) -> list[Outcome | None]:
+        """fn(*args) for each args of `tasks`: an Outcome per task, in the order of
+        `tasks`. on_result(index, outcome) here as each arrives (in the order they
+        finish); then progress.update(weight(args) or 1, cost(args) or 0, note(args) or
+        "") (io.progress's bar: its ETA follows `cost`). stop(outcome) true: start no
+        further task (those not started stay None; on Dask they are cancelled).
+        here(args) true: that task runs in this process whatever the executor (with Dask,
+        while the cluster works on the others). An InputError raised by fn is raised here
+        (bad input is the caller's); any other exception is that task's outcome."""
+        if clock not in CLOCKS:
             raise InputError(f"clock = {clock!r}: must be 'wall' or 'cpu'")
-        tasks = list(tasks)
+        tasks = [tuple(t) for t in tasks]
         results: list[Outcome | None] = [None] * len(tasks)
-        pending, busy, stopped = list(range(len(tasks)))[::-1], {}, False
-        while busy or (pending and not stopped):
+        state = {"stopped": False}
+
+        def arrived(i: int, outcome: Outcome) -> None:
+            results[i] = outcome
+            if on_result:
+                on_result(i, outcome)
+            if progress is not None:
+                args = tasks[i]
+                progress.update(weight(args) if weight else 1, cost(args) if cost else 0.0,
+                                note(args) if note else "")
+            state["stopped"] = state["stopped"] or bool(stop and stop(outcome))
+
+        mine = [i for i in range(len(tasks)) if self.where == "serial" or (here is not None and here(tasks[i]))]
+        others = [i for i in range(len(tasks)) if not (self.where == "serial" or (here is not None and here(tasks[i])))]
+        if self.where == "dask":
+            self._on_dask(fn, tasks, mine, others, arrived, state)
+        else:
+            self._here(fn, tasks, mine, arrived, state)
+            if others:
+                self._in_processes(fn, tasks, others, arrived, state, budget, clock)
+        return results
+
+    @staticmethod
+    def _here(fn, tasks, indices, arrived, state) -> None:
+        for i in indices:
+            if state["stopped"]:
+                return
+            start = time.perf_counter()
+            try:
+                value = fn(*tasks[i])
+            except InputError:
+                raise
+            except Exception as e:  # noqa: BLE001 — one task's failure is that task's outcome
+                arrived(i, _error(e, time.perf_counter() - start))
+            else:
+                arrived(i, Outcome("done", value, time.perf_counter() - start))
+
+    def _on_dask(self, fn, tasks, mine, others, arrived, state) -> None:
+        by_key, futures, submitted = {}, [], time.perf_counter()
+        for i in others:  # submitted first, so that the cluster works while this process does its part
+            fut = self.client.submit(fn, *tasks[i], pure=False)
+            by_key[fut.key] = i
+            futures.append(fut)
+        try:
+            self._here(fn, tasks, mine, arrived, state)
+            if futures and not state["stopped"]:
+                from dask.distributed import as_completed
+                for fut in as_completed(futures):
+                    i = by_key[fut.key]
+                    try:
+                        value = fut.result()
+                    except InputError:
+                        raise
+                    except Exception as e:  # noqa: BLE001 — that task's outcome
+                        arrived(i, _error(e, time.perf_counter() - submitted))
+                    else:
+                        arrived(i, Outcome("done", value, time.perf_counter() - submitted))
+                    fut.release()
+                    if state["stopped"]:
+                        break
+            if state["stopped"] and futures:
+                self.client.cancel(futures)
+        except BaseException:
+            if futures:
+                self.client.cancel(futures)
+            raise
+
+    def _in_processes(self, fn, tasks, indices, arrived, state, budget, clock) -> None:
+        from multiprocessing.connection import wait
+        pending, busy = list(indices)[::-1], {}
+        while busy or (pending and not state["stopped"]):
             for w in self.workers:
-                if w not in busy and pending and not stopped:
+                if w not in busy and pending and not state["stopped"]:
                     i = pending.pop()
-                    w.conn.send((fn, tuple(tasks[i])))
+                    w.conn.send((fn, tasks[i]))
                     busy[w] = (i, time.perf_counter(), w.cpu_seconds() if clock == "cpu" else 0.0)
             if budget is None:
                 timeout = None
@@ -481,15 +582,14 @@ class Pool:
                 else:
                     continue
                 del busy[w]
-                results[i] = outcome
-                if on_result:
-                    on_result(i, outcome)
-                stopped = stopped or bool(stop and stop(outcome))
-        return results
+                arrived(i, outcome)
 
-    def close(self):
+    def close(self) -> None:
         for w in self.workers:
             w.stop()
+        if self._close_client and self.client is not None:
+            close_client(self.client)
+            self.client = None
 
     def __enter__(self):
         return self
@@ -497,3 +597,11 @@ class Pool:
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+def Pool(workers: int) -> Executor:
+    """An executor of `workers` worker processes that can be killed (the name atlas,
+    stress and calibrate knew it by)."""
+    if workers < 1:
+        raise InputError(f"workers = {workers!r}: must be a whole number of processes ≥ 1")
+    return Executor(processes=workers)

@@ -206,20 +206,15 @@ def run_case(engine: str, case: StressCase, time_limit: float) -> dict:
     return run_cases([(engine, case)], time_limit, workers=1)[0]
 
 
-def run_cases(todo, time_limit: float, *, workers: int = 2, on_result=None) -> list[dict]:
-    """Every (engine, case) of `todo` in the executor's worker processes (core.executor.Pool),
-    `workers` at a time, each stopped and reported as 'timeout' past time_limit s of wall
-    time; results in the order of `todo`."""
-    from isorock.validate.core.executor import Pool
-    results: list[dict | None] = [None] * len(todo)
-
-    def arrived(i, outcome):
-        results[i] = _finish(outcome, todo[i], time_limit)
-        if on_result:
-            on_result(results[i])
-    with Pool(max(1, min(workers, len(todo) or 1))) as pool:
-        pool.map(run_one, todo, budget=time_limit, on_result=arrived)
-    return results
+def run_cases(todo, time_limit: float, *, workers: int = 2, bar=None) -> list[dict]:
+    """Every (engine, case) of `todo` on the one executor's worker processes
+    (core.executor.Executor), `workers` at a time, each stopped and reported as 'timeout'
+    past time_limit s of wall time; results in the order of `todo`. `bar`: the progress
+    bar (io.progress) the executor updates as each run ends, noting its case."""
+    from isorock.validate.core.executor import Executor
+    with Executor(processes=max(1, min(workers, len(todo) or 1))) as executor:
+        outcomes = executor.map(run_one, todo, budget=time_limit, progress=bar, note=lambda item: item[1].name[:30])
+    return [_finish(outcome, item, time_limit) for outcome, item in zip(outcomes, todo)]
 
 
 def _finish(outcome, item, time_limit) -> dict:
@@ -314,7 +309,7 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, dra
     for e in dict.fromkeys(e for e, _ in todo):  # an engine that cannot be loaded is named before the grid
         get_engine(e)
     bar = bar_of(progress, len(todo))
-    results = run_cases(todo, time_limit, workers=workers, on_result=lambda r: bar.update(note=r["case"][:30]))
+    results = run_cases(todo, time_limit, workers=workers, bar=bar)
     bar.close()
     compare_engines(results)
     recheck_disagreements(results, {c.name: c for c in edges + draws}, time_limit, workers=workers)
