@@ -37,7 +37,7 @@ from dataclasses import asdict, dataclass, fields
 import numpy as np
 
 from isorock.analytic.errors import InputError
-from isorock.validate.core.scenarios import Scenario
+from isorock.validate.core.cases import Case as _Case
 from isorock.validate.io.progress import bar_of
 from isorock.validate.core.tolerances import limit
 
@@ -81,10 +81,11 @@ NOISE_SIGMAS = 1.0
 
 
 @dataclass(frozen=True)
-class Case(Scenario):
-    """A free-rocking Scenario (motion "none") and the counted impacts compared: IMPACTS, or
-    fewer where the rigid model has fewer; its duration runs past the rigid model's impact
-    after the last compared one."""
+class Case(_Case):
+    """The one case type (core.cases.Case), free rocking (motion "none"), with the counted
+    impacts compared: IMPACTS, or fewer where the rigid model has fewer; its duration runs
+    past the rigid model's impact after the last compared one. Made by name:
+    Case.named(name, system, "none", duration, theta0_over_alpha, impacts=n)."""
 
     impacts: int = IMPACTS
 
@@ -127,7 +128,7 @@ def cases(system, n_tilts: int = DEFAULT_TILTS, impacts: int = IMPACTS) -> tuple
             raise InputError(f"system: free rocking from {fraction}·α has no impact above the counting threshold; "
                              "nothing to calibrate on")
         end = times[n] if len(times) > n else times[-1] + 0.5
-        return Case(f"θ0 = {fraction:g}α, {name}", sys_, "none", float(end + MARGIN), fraction, impacts=n)
+        return Case.named(f"θ0 = {fraction:g}α, {name}", sys_, "none", float(end + MARGIN), fraction, impacts=n)
 
     pairs = tuple(zip(names, (system, other)))
     return ([make(f, n, s) for n, s in pairs for f in fitted_tilts],
