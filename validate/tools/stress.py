@@ -41,6 +41,7 @@ from isorock.validate.core.scenarios import Scenario, block
 from isorock.validate.core.summary import row_of_trajectory
 from isorock.validate.core.tolerances import limit
 from isorock.validate.core.verdict import rate_verdict
+from isorock.validate.io.naming import cell
 
 #: The stress grid's limits, with their reasons, are in the one tolerance table.
 ENERGY_TOLERANCE = limit("stress_energy_residual")
@@ -329,12 +330,6 @@ COLUMNS = ("engine", "case", "verdict", "cross", "status", "finite", "wall_s", "
            "theta_max_over_alpha", "theta_peak_over_alpha", "u_max", "energy_residual", "what", "error", "note")
 
 
-def _fmt(v):
-    if isinstance(v, float):
-        return f"{v:.4g}" if math.isfinite(v) else str(v)
-    return "" if v is None else str(v)
-
-
 def summary(results) -> dict:
     """Counts the verdict line and the tables are made of."""
     cross = [r["cross"] for r in results if r.get("cross")]
@@ -388,11 +383,11 @@ def markdown(results) -> str:
     lines = [f"# {stress_verdict(results)}", ""]
     if bad:
         lines += ["## Failures and disagreements", "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
-        lines += ["| " + " | ".join(_fmt(r.get(c)).replace("|", "/") for c in COLUMNS) + " |" for r in bad]
+        lines += ["| " + " | ".join(cell(r.get(c), missing="").replace("|", "/") for c in COLUMNS) + " |" for r in bad]
         lines.append("")
     lines += ["## Every run", "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     for r in results:
-        lines.append("| " + " | ".join(_fmt(r.get(c)).replace("|", "/") for c in COLUMNS) + " |")
+        lines.append("| " + " | ".join(cell(r.get(c), missing="").replace("|", "/") for c in COLUMNS) + " |")
     lines += ["", f"Energy balance tolerance (analytic): {ENERGY_TOLERANCE:g} of the input energy. A disagreement "
                   f"counts only where the analytic outcome holds under ±{ROBUST_SCALE:.0%} of the motion."]
     return "\n".join(lines) + "\n"
