@@ -132,3 +132,24 @@ def test_execute_raises_the_first_failure_and_runs_nothing_after_it():
     with pytest.raises(ValueError, match="task -1"):
         execute([2, -1, 3], on_done=lambda t, r: done.append((t, r)), run=_run_square, weight=lambda t: 1)
     assert done == [(2, 4)]
+
+
+def stuck_or_square(task):
+    """A validate task's work (core.runner): stuck for ever inside one call (as an engine
+    that never calls its progress callback), or its key squared."""
+    if task.key < 0:
+        sleep_forever(0)
+    return task.key, task.key ** 2, None
+
+
+def test_validates_runs_in_worker_processes_a_stuck_one_killed_the_others_kept():
+    """validate's histories (core.runner.run_tasks) run on the executor's worker
+    processes: a run that never returns is killed at its budget and reported, not waited
+    on, and the runs beside it keep their results."""
+    from isorock.validate.core.executor import Executor
+    from isorock.validate.core.runner import Task, run_tasks
+    tasks = [Task(key=k, engine="mujoco", system=None, motion=None, duration=1.0) for k in (2, -1, 3)]
+    with Executor(processes=1) as executor:
+        out = run_tasks(tasks, executor=executor, work=stuck_or_square, stuck_after=0.3)
+    assert out[2] == (4, None) and out[3] == (9, None)
+    assert out[-1][0] is None and out[-1][1].startswith("StuckRun:") and "killed" in out[-1][1]

@@ -166,12 +166,13 @@ def expected_cost(task: Chunk) -> float:
     return simulated * (BATCH_COST if runs_as_batch(task.setting.engine) else 1.0)
 
 
-def execute(tasks: list, *, client=None, threads: int | None = None, on_done, progress=None, here=None,
-            run=None, weight=None, cost=None) -> int:
+def execute(tasks: list, *, client=None, executor: "Executor | None" = None, threads: int | None = None, on_done,
+            progress=None, here=None, run=None, weight=None, cost=None) -> int:
     """`Executor.map` for tasks that fail loudly (a chunk of a table, a history of
     validate's): on_done(task, result) here as each one finishes (in the order they
     finish); the first task that raises stops the others and its exception is raised
-    here. client: a dask.distributed Client, or None to run serially in this process.
+    here. executor: where they run (an Executor); else client: a dask.distributed Client,
+    or None to run serially in this process.
     run(task, threads): a task's result (default: `run_chunk`, a chunk's rows);
     `threads` is what a task run here may use, 1 on a cluster's worker (one core each).
     here(task): tasks that run in this process even with a client (e.g. the analytic
@@ -182,9 +183,11 @@ def execute(tasks: list, *, client=None, threads: int | None = None, on_done, pr
     run = run or run_chunk
     weight = weight or (lambda task: len(task.cases))
 
+    executor = executor if executor is not None else Executor(client=client)
+
     def local(task) -> bool:
-        return client is None or (here is not None and here(task))
-    outcomes = Executor(client=client).map(
+        return executor.where == "serial" or (here is not None and here(task))
+    outcomes = executor.map(
         run, [(t, threads if local(t) else 1) for t in tasks], here=lambda args: local(args[0]),
         on_result=lambda i, o: on_done(tasks[i], o.value) if o.done else None,
         stop=lambda o: not o.done, progress=progress, weight=lambda args: weight(args[0]),
@@ -299,16 +302,18 @@ def client_for(client=None, workers: int = 0, scheduler: str | None = None):
     return None, False
 
 
-def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: int = ANALYTIC_CHUNK,
-              contact_chunk: int = CONTACT_CHUNK, progress=None, overturn_rule: str | None = None,
-              threads: int | None = None, batch_here: bool = False):
+def run_cases(cases, engines, *, client=None, workers: int = 0, executor: "Executor | None" = None,
+              analytic_chunk: int = ANALYTIC_CHUNK, contact_chunk: int = CONTACT_CHUNK, progress=None,
+              overturn_rule: str | None = None, threads: int | None = None, batch_here: bool = False):
     """Rows for in-memory `cases` (core.cases.Case: system, motion, duration, theta0,
     optional inputs) under `engines`: labels ("ENGINE" or "ENGINE:PRESET"), (label,
     {setting: value}) pairs, or EngineChoices. Nothing is written. Returns a pyarrow.Table
     sorted by case, engine, setting.
 
     overturn_rule: model.md's rule for every engine (None: past α). threads: the serial
-    path's threads (None: every core). batch_here: with a cluster, the analytic chunks
+    path's threads (None: every core). executor: where they run (an Executor the caller
+    keeps; else client or workers, see client_for). batch_here: with a cluster or worker
+    processes, the analytic chunks
     (engines.runs_here) still run in this process (where the kernel is loaded; they take milliseconds) while
     the cluster runs the contact engines'. progress: an object with update(n, work)
     (io.progress.Progress), or None."""
@@ -321,15 +326,11 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
     tasks = make_tasks(list(cases), choices, analytic_chunk=analytic_chunk, contact_chunk=contact_chunk,
                        overturn_rule=overturn_rule)
     rows = []
-    live, close = client_for(client, workers, None)
     from .engines import runs_here
     here = (lambda task: runs_here(task.setting.engine)) if batch_here else None
-    try:
-        execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=progress,
+    with (Executor.on(client, workers) if executor is None else _borrowed(executor)) as where:
+        execute(tasks, executor=where, threads=threads, on_done=lambda t, r: rows.extend(r), progress=progress,
                 here=here, cost=expected_cost)
-    finally:
-        if close:
-            close_client(live)
     return sort_table(rows_to_table(rows))
 
 
@@ -368,6 +369,9 @@ def _serve(conn) -> None:
         if task is None:
             return
         fn, args = task
+        # loaded (the function's module imported, the arguments unpickled): the run's
+        # budget counts from here, not from a fresh worker's imports
+        conn.send(("started", None))
         try:
             conn.send(("done", fn(*args)))
         except InputError as e:
@@ -428,7 +432,8 @@ class Executor:
     - serial (the default): one after another in this process;
     - `processes=n`: n worker processes, spawned, not forked (a fork of a process whose
       numba threads have started is not safe), so a task's function must be importable
-      at module level; a task past its budget is stopped by killing its worker, which is
+      at module level; a task past its budget, counted from when its worker has loaded it
+      (a fresh worker's imports do not count), is stopped by killing its worker, which is
       replaced (a run stuck inside an engine cannot be stopped in any other way);
     - `client=`: a Dask client (a local cluster or a scheduler's, `client_for`), its
       workers one core each; `close=True` closes it (and its LocalCluster) with the
@@ -494,10 +499,10 @@ class Executor:
         others = [i for i in range(len(tasks)) if not (self.where == "serial" or (here is not None and here(tasks[i])))]
         if self.where == "dask":
             self._on_dask(fn, tasks, mine, others, arrived, state)
+        elif self.where == "processes":
+            self._in_processes(fn, tasks, others, mine, arrived, state, budget, clock)
         else:
             self._here(fn, tasks, mine, arrived, state)
-            if others:
-                self._in_processes(fn, tasks, others, arrived, state, budget, clock)
         return results
 
     @staticmethod
@@ -545,25 +550,31 @@ class Executor:
                 self.client.cancel(futures)
             raise
 
-    def _in_processes(self, fn, tasks, indices, arrived, state, budget, clock) -> None:
+    def _in_processes(self, fn, tasks, indices, mine, arrived, state, budget, clock) -> None:
+        """The workers run `indices`; this process runs `mine` (here(args)) one at a time
+        while they work, reading their results and clocks between its own."""
         from multiprocessing.connection import wait
-        pending, busy = list(indices)[::-1], {}
-        while busy or (pending and not state["stopped"]):
+        pending, busy, local = list(indices)[::-1], {}, list(mine)[::-1]
+        while busy or ((pending or local) and not state["stopped"]):
             for w in self.workers:
                 if w not in busy and pending and not state["stopped"]:
                     i = pending.pop()
                     w.conn.send((fn, tasks[i]))
-                    busy[w] = (i, time.perf_counter(), w.cpu_seconds() if clock == "cpu" else 0.0)
-            if budget is None:
+                    busy[w] = (i, time.perf_counter(), None, 0.0)  # (task, sent, started, CPU s then)
+            if local and not state["stopped"]:
+                self._here(fn, tasks, [local.pop()], arrived, state)
+                timeout = 0.0  # read what the workers finished meanwhile, then the next one here
+            elif budget is None:
                 timeout = None
             elif clock == "wall":
-                timeout = max(0.0, min(start + budget for _, start, _ in busy.values()) - time.perf_counter())
+                started = [start for _, _, start, _ in busy.values() if start is not None]
+                timeout = max(0.0, min(started) + budget - time.perf_counter()) if started else None
             else:
                 timeout = CPU_POLL
             ready = set(wait([w.conn for w in busy], timeout=timeout))
             for w in list(busy):
-                i, start, cpu0 = busy[w]
-                elapsed = time.perf_counter() - start
+                i, sent, start, cpu0 = busy[w]
+                elapsed = time.perf_counter() - sent
                 if w.conn in ready:
                     try:
                         kind, value = w.conn.recv()
@@ -575,8 +586,12 @@ class Executor:
                     else:
                         if kind == "input":
                             raise InputError(value)
+                        if kind == "started":
+                            busy[w] = (i, sent, time.perf_counter(), w.cpu_seconds() if clock == "cpu" else 0.0)
+                            continue
                         outcome = Outcome(kind, value, elapsed)
-                elif budget is not None and (elapsed if clock == "wall" else w.cpu_seconds() - cpu0) >= budget:
+                elif (budget is not None and start is not None
+                      and (time.perf_counter() - start if clock == "wall" else w.cpu_seconds() - cpu0) >= budget):
                     w.restart()  # stuck inside the engine: the run has failed
                     outcome = Outcome("timeout", None, elapsed)
                 else:
@@ -597,6 +612,26 @@ class Executor:
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+class _borrowed:
+    """An executor the caller keeps, used in a `with` without being closed by it."""
+
+    def __init__(self, executor: Executor):
+        self.executor = executor
+
+    def __enter__(self) -> Executor:
+        return self.executor
+
+    def __exit__(self, *exc):
+        return False
+
+
+#: Wall seconds after which a run in a worker process counts as stuck and its worker is
+#: killed: twice the budget every run hears (analytic.limits.RUN_BUDGET_S, at the engine's
+#: progress calls), so that only a run stuck where it cannot hear it (inside one call of an
+#: engine's own code) is killed, and a run that stops itself says why in its own words.
+STUCK_AFTER_S = 2 * limits.RUN_BUDGET_S
 
 
 def Pool(workers: int) -> Executor:
