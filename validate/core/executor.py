@@ -6,11 +6,12 @@ and the one progress bar (io.progress) updated with the work done.
 - `Executor(processes=n | client=…)`: where the runs go; `map(fn, tasks, budget=…,
   clock="wall" | "cpu")`: an `Outcome` per task; a run past its budget in a worker
   process is killed ("timeout"), a worker that dies is "crashed", an exception is that
-  task's "error"; `here(args)` keeps some in this process while a cluster works on the
-  others (the analytic model's, done in milliseconds). `Pool(n)` is an executor of n
-  processes (atlas, stress, calibrate).
-- `execute(tasks, client=…, run=…, on_done=…)`: `map` for tasks that fail loudly (the
-  first exception is raised): `validate`'s histories (core.runner), every table of runs.
+  task's "error"; `here(args)` keeps some in this process while the workers or a cluster
+  work on the others (the analytic model's, done in milliseconds). `Pool(n)` is an
+  executor of n processes. Worker processes: validate (its histories, core.runner, and
+  ensembles), atlas, stress, calibrate; Dask or serial: sweep.
+- `execute(tasks, executor=… | client=…, run=…, on_done=…)`: `map` for tasks that fail
+  loudly (the first exception is raised): every table of runs (`run_cases`, campaigns).
 - A `Chunk` is a list of cases for one engine choice: the analytic engine runs a
   chunk (hundreds of cases) in one call of the compiled kernel
   (`analytic.fast.simulate_batch`); a contact engine runs its chunk case by case. Its rows
@@ -41,8 +42,8 @@ from .engines import EngineChoice
 from .summary import case_inputs, row_of_batch, row_of_failure, row_of_trajectory, rows_to_table, sort_table
 
 def default_workers() -> int:
-    """Processes for a command's contact runs (validate's cluster, atlas's and calibrate's
-    Pool): two, or fewer where this process may use fewer cores (available_cores)."""
+    """Processes for a command's contact runs (validate's, atlas's and calibrate's worker
+    processes): two, or fewer where this process may use fewer cores (available_cores)."""
     return max(1, min(2, available_cores()))
 
 
@@ -313,10 +314,9 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, executor: "Execu
     overturn_rule: model.md's rule for every engine (None: past α). threads: the serial
     path's threads (None: every core). executor: where they run (an Executor the caller
     keeps; else client or workers, see client_for). batch_here: with a cluster or worker
-    processes, the analytic chunks
-    (engines.runs_here) still run in this process (where the kernel is loaded; they take milliseconds) while
-    the cluster runs the contact engines'. progress: an object with update(n, work)
-    (io.progress.Progress), or None."""
+    processes, the analytic chunks (engines.runs_here) still run in this process (where
+    the kernel is loaded; they take milliseconds) while they run the contact engines'.
+    progress: an object with update(n, work) (io.progress.Progress), or None."""
     from .engines import choose
     choices = []
     for e in engines:

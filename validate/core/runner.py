@@ -51,10 +51,11 @@ def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, executor=None
     client, a Dask client; else with workers > 1 that many worker processes are started
     for them and stopped after, otherwise all run here. In a worker process a run still
     going `stuck_after` s after it started (default STUCK_AFTER_S: it did not hear its
-    own budget) is killed, and its result is None with the reason. `on_result(key)` is called as each result
-    arrives. `work(task)` runs one task and returns (key, result, error) (default:
-    run_task, a Trajectory); one that measures its result where it ran (a row instead of
-    a history) must be picklable, a module-level function or a functools.partial of one."""
+    own budget) is killed, and its result is None with the reason. `on_result(key)` is
+    called as each result arrives. `work(task)` runs one task and returns (key, result,
+    error) (default: run_task, a Trajectory); one that measures its result where it ran
+    (a row instead of a history) must be picklable, a module-level function or a
+    functools.partial of one."""
     from functools import partial
 
     from .executor import STUCK_AFTER_S, Executor
