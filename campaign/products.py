@@ -12,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from isorock.validate.core.executor import runs_as_batch
+from isorock.validate.io.naming import cell
 from .spec import AXES
 
 #: θmax/α departure for an agreement map when the tolerance table has no entry for the
@@ -416,14 +417,10 @@ def _md_table(rows: list[dict]) -> list[str]:
     keys = list(dict.fromkeys(k for r in rows for k in r))
     out = ["| " + " | ".join(keys) + " |", "|" + "---|" * len(keys)]
     for r in rows:
-        out.append("| " + " | ".join(_fmt(r.get(k, "")) for k in keys) + " |")
+        out.append("| " + " | ".join(cell(r.get(k, "")) for k in keys) + " |")
     return out
 
 
-def _fmt(v):
-    if isinstance(v, (float, np.floating)):
-        return "–" if math.isnan(v) else f"{v:.4g}"
-    return str(v)
 
 
 def write_products(table, out: Path, spec=None) -> list[Path]:

@@ -18,7 +18,7 @@ from isorock.analytic.errors import InputError
 
 from isorock.validate.core.executor import client_for, close_client, execute, expected_cost, make_tasks, run_cases
 from isorock.validate.core.summary import rows_to_table, sort_table
-from isorock.validate.io.progress import Progress
+from isorock.validate.io.progress import bar_of, logged
 
 from .parts import part_problem, read_parts, write_part
 from .spec import CampaignSpec, load_spec
@@ -61,11 +61,18 @@ class CampaignResult:
 
 
 def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: str | None = None,
-                 progress: bool = True, products: bool = True) -> CampaignResult:
+                 progress=True, products: bool = True) -> CampaignResult:
     """Run a campaign (a CampaignSpec or the path of its TOML file).
 
     out: the folder for parts, the table and products (None: nothing is written and
-    nothing is resumed). client / scheduler / workers: where to run (see core.executor.client_for)."""
+    nothing is resumed). client / scheduler / workers: where to run (see core.executor.client_for).
+    progress: as every tool takes it, a factory (total, work=…) → bar (io.progress.bar_of),
+    with the estimate before the first chunk and a line while the figures are drawn;
+    True (the default): io.progress.logged, a bar that also writes a line every 10 s to a
+    log; False or None: nothing shown."""
+    if progress is True:
+        progress = logged
+    progress = progress or None
     if not isinstance(spec, CampaignSpec):
         spec = load_spec(spec)
     records = None
@@ -120,9 +127,7 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
             line = estimate_line(simulated, workers=max(1, workers), command="sweep")
             if line:
                 print(line, file=sys.stderr, flush=True)
-        # a campaign lasts hours: its log gets a line every 10 s when not on a terminal
-        bar = (Progress(sum(len(t.cases) for t in todo), work=sum(map(expected_cost, todo)), enabled=True)
-               if progress and todo else None)
+        bar = bar_of(progress if todo else None, sum(len(t.cases) for t in todo), work=sum(map(expected_cost, todo)))
         ran = execute(todo, client=live, threads=None, on_done=on_done, progress=bar, cost=expected_cost)
     finally:
         if bar is not None:

@@ -27,8 +27,8 @@ def housner_beta(system):
 
 def test_fitted_and_held_out_tilts_interleave_over_one_range_on_both_bases():
     fitted, held = cases(paper_system(fixed_base=True), n_tilts=3)
-    assert [c.theta0_over_alpha for c in fitted] == [0.3, 0.55, 0.8] * 2
-    assert [c.theta0_over_alpha for c in held] == [0.425, 0.675] * 2
+    assert [c.theta0_over_alpha for c in fitted] == pytest.approx([0.3, 0.55, 0.8] * 2, rel=1e-15)
+    assert [c.theta0_over_alpha for c in held] == pytest.approx([0.425, 0.675] * 2, rel=1e-15)
     assert {c.system.fixed_base for c in fitted} == {True, False} == {c.system.fixed_base for c in held}
     assert tilts(11)[1][0] == pytest.approx(0.325) and len(tilts(11)[1]) == 10
     # each run lasts past the rigid model's impact after its last compared one, and no longer
@@ -77,7 +77,7 @@ def test_a_run_that_hops_after_its_impacts_has_failed_whatever_its_beta():
     from isorock.validate.tools.calibrate import Case, lift_off_limit, run_case
     from isorock.validate.core.engines import get_engine
     system = paper_system(fixed_base=True)
-    case = Case("hop", system, "none", 2.1, 0.3, impacts=4)
+    case = Case.named("hop", system, "none", 2.1, 0.3, impacts=4)
     good = get_engine("mujoco").settings(timestep=2e-3)
     hopping = ENGINE.tuning.apply(good, [math.log2(2.2), 0.7, 0.9])
     tr = get_engine("mujoco").simulate(system, None, settings=hopping, duration=2.1, theta0=0.3 * system.alpha)
@@ -96,8 +96,8 @@ def test_a_run_past_its_time_limit_is_stopped_and_its_worker_replaced():
     from isorock.validate.core.engines import get_engine
     system = paper_system(fixed_base=True)
     settings = get_engine("mujoco").settings(timestep=2e-3)
-    endless, short = (Case("long", system, "none", 400.0, 0.3, impacts=4),
-                      Case("short", system, "none", 2.1, 0.3, impacts=4))
+    endless, short = (Case.named("long", system, "none", 400.0, 0.3, impacts=4),
+                      Case.named("short", system, "none", 2.1, 0.3, impacts=4))
     with Runner("mujoco", workers=1) as runner:
         runner.time_limit = 1.0
         start = time.perf_counter()
@@ -214,7 +214,7 @@ def test_the_starting_settings_runs_have_the_run_budget_too(monkeypatch):
     from isorock.validate.tools.calibrate import Case, Runner
     monkeypatch.setattr(limits, "RUN_BUDGET_S", 0.5)
     settings = get_engine("mujoco").settings(timestep=2e-3)
-    endless = Case("long", paper_system(fixed_base=True), "none", 3000.0, 0.3, impacts=4)
+    endless = Case.named("long", paper_system(fixed_base=True), "none", 3000.0, 0.3, impacts=4)
     with Runner("mujoco", workers=0) as runner:
         assert runner.time_limit == 0.5
         start = time.perf_counter()

@@ -478,3 +478,28 @@ def test_drawing_the_products_has_its_own_progress_line(tmp_path, capsys):
     assert "drawing the figures and summary of 18 rows" in err
     assert f"drew {len(result.products)} products" in err and len(result.products) > 0
     assert err.index("100%") < err.index("drawing the figures")
+
+
+def test_a_campaign_takes_progress_as_every_tool_does(tmp_path):
+    """progress is a factory (total, work) → bar, as atlas, stress and calibrate take it
+    (io.progress.bar_of): the bar is made once for the runs to do, counts every case once,
+    and its work is the chunks' expected cost (core.executor.expected_cost)."""
+    from isorock.validate.core.executor import expected_cost, make_tasks
+    from isorock.validate.io.progress import Silent
+    made = []
+
+    class Bar(Silent):
+        def __init__(self, total, work=None):
+            self.total, self.work, self.counted, self.worked = total, work, 0, 0.0
+            made.append(self)
+
+        def update(self, n=1, work=0.0, note=""):
+            self.counted += n
+            self.worked += work
+    spec = load_spec(write_spec(tmp_path, more=""))
+    result = run_campaign(spec, tmp_path / "out", workers=0, progress=Bar, products=False)
+    tasks = make_tasks(spec.cases(None), spec.engines, analytic_chunk=spec.analytic_chunk,
+                       contact_chunk=spec.contact_chunk)
+    (bar,) = made
+    assert bar.total == bar.counted == result.table.num_rows == 18
+    assert bar.work == pytest.approx(sum(map(expected_cost, tasks))) == pytest.approx(bar.worked)

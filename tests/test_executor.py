@@ -1,7 +1,8 @@
-"""The one executor's Pool (core.executor): tasks run in worker processes, in order; a task
-that never ends is stopped at its budget (wall or CPU time) and its worker replaced; a
-worker that dies is a crashed task, not a lost run; bad input is the caller's. The tasks
-that must be stopped never end by themselves, so no test depends on the machine's speed."""
+"""The one executor (core.executor): tasks run serially here or in worker processes, in
+order; a task that never ends is stopped at its budget (wall or CPU time) and its worker
+replaced; a worker that dies is a crashed task, not a lost run; bad input is the caller's;
+where a task ran does not change its outcome. The tasks that must be stopped never end by
+themselves, so no test depends on the machine's speed."""
 from __future__ import annotations
 
 import os
@@ -83,11 +84,82 @@ def test_bad_pool_arguments_are_named():
         pool.map(square, [(1,)], clock="gpu")
 
 
-def test_a_pool_readies_the_analytic_kernel_before_its_workers_start(monkeypatch):
+class Bar:
+    """A progress bar that records its updates (io.progress's shape)."""
+
+    def __init__(self):
+        self.updates = []
+
+    def update(self, n=1, work=0.0, note=""):
+        self.updates.append((n, work, note))
+
+
+def test_serial_and_worker_processes_give_the_same_outcomes():
+    from isorock.validate.core.executor import Executor
+    tasks = [(k,) for k in range(5)]
+    with Executor() as here, Executor(processes=2) as there:
+        assert here.where == "serial" and there.where == "processes"
+        a, b = here.map(square, tasks), there.map(square, tasks)
+        assert [o.value for o in a] == [o.value for o in b] == [k * k for k, in tasks]
+        assert here.map(fail, [(0,)])[0].value == there.map(fail, [(0,)])[0].value == "ValueError: broken"
+
+
+def test_progress_is_updated_once_per_task_with_its_weight_cost_and_note():
+    from isorock.validate.core.executor import Executor
+    bar = Bar()
+    Executor().map(square, [(2,), (3,)], progress=bar, weight=lambda a: a[0], cost=lambda a: 10.0 * a[0],
+                   note=lambda a: f"x{a[0]}")
+    assert bar.updates == [(2, 20.0, "x2"), (3, 30.0, "x3")]
+
+
+def test_serial_stop_and_bad_input():
+    from isorock.validate.core.executor import Executor
+    out = Executor().map(fail, [(0,), (1,)], stop=lambda o: o.status == "error")
+    assert out[0].status == "error" and isinstance(out[0].error, ValueError) and out[1] is None
+    with pytest.raises(InputError, match="must be positive"):
+        Executor().map(refuse, [(-1,)])
+
+
+def _run_square(task, threads):
+    if task < 0:
+        raise ValueError(f"task {task}")
+    return task * task
+
+
+def test_execute_raises_the_first_failure_and_runs_nothing_after_it():
+    from isorock.validate.core.executor import execute
+    done = []
+    with pytest.raises(ValueError, match="task -1"):
+        execute([2, -1, 3], on_done=lambda t, r: done.append((t, r)), run=_run_square, weight=lambda t: 1)
+    assert done == [(2, 4)]
+
+
+def stuck_or_square(task):
+    """A validate task's work (core.runner): stuck for ever inside one call (as an engine
+    that never calls its progress callback), or its key squared."""
+    if task.key < 0:
+        sleep_forever(0)
+    return task.key, task.key ** 2, None
+
+
+def test_validates_runs_in_worker_processes_a_stuck_one_killed_the_others_kept():
+    """validate's histories (core.runner.run_tasks) run on the executor's worker
+    processes: a run that never returns is killed at its budget and reported, not waited
+    on, and the runs beside it keep their results."""
+    from isorock.validate.core.executor import Executor
+    from isorock.validate.core.runner import Task, run_tasks
+    tasks = [Task(key=k, engine="mujoco", system=None, motion=None, duration=1.0) for k in (2, -1, 3)]
+    with Executor(processes=1) as executor:
+        out = run_tasks(tasks, executor=executor, work=stuck_or_square, stuck_after=0.3)
+    assert out[2] == (4, None) and out[3] == (9, None)
+    assert out[-1][0] is None and out[-1][1].startswith("StuckRun:") and "killed" in out[-1][1]
+
+
+def test_worker_processes_find_the_analytic_kernel_ready(monkeypatch):
     """Workers load the compiled analytic kernel from its cache; on first use (a fresh
     install) it is built, 1–2 minutes. Built inside a worker, the build counts against the
     task's budget, and a budget shorter than it kills every worker mid-build (a fresh
-    install's `isorock stress --quick` timed out on all its analytic cases): the Pool makes
+    install's `isorock stress --quick` timed out on all its analytic cases): the executor makes
     it ready in the parent, once, before the first worker starts."""
     from isorock.validate.core import executor
     order = []

@@ -48,10 +48,10 @@ def test_verdict_rules():
     assert verdict(dict(ok, sim_end=4.0, status="slid", overturned=True)) == "pass"  # slid, then overturned
     assert verdict(dict(ok, status="event-limit")) == "FAIL"
     alpha = 0.96  # a squat block: 4.3α is well past lying on its side (π/2)
-    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=4.3, status="overturned", overturned=True)) == "FAIL"
-    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.2, theta_end_over_alpha=0.1)) == "pass"  # leaned, came back
-    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.2, theta_end_over_alpha=1.1)) == "FAIL"  # ended past α
-    assert verdict(dict(ok, alpha=alpha, theta_max_over_alpha=1.01, status="overturned", overturned=True)) == "pass"
+    assert verdict(dict(ok, alpha=alpha, theta_peak_over_alpha=4.3, status="overturned", overturned=True)) == "FAIL"
+    assert verdict(dict(ok, alpha=alpha, theta_peak_over_alpha=1.2, theta_end_over_alpha=0.1)) == "pass"  # leaned, came back
+    assert verdict(dict(ok, alpha=alpha, theta_peak_over_alpha=1.2, theta_end_over_alpha=1.1)) == "FAIL"  # ended past α
+    assert verdict(dict(ok, alpha=alpha, theta_peak_over_alpha=1.01, status="overturned", overturned=True)) == "pass"
 
 
 def test_drawn_cases_are_the_same_every_time_and_span_the_classes():
@@ -131,3 +131,19 @@ def test_a_disagreement_the_engine_holds_under_scaling_stays_a_disagreement(monk
     monkeypatch.setattr(stress, "run_cases", lambda todo, *a, **k: [dict(verdict="pass", overturned=False)] * len(todo))
     stress.recheck_disagreements(results, {"c": case}, 10.0)
     assert mine["cross"] == "DISAGREE" and mine["engine_robust"] is True
+
+
+def test_a_run_is_the_one_summary_row_with_the_grids_own_checks_beside_it():
+    """An overturned block: the row's θmax/α is its end on its side, π/(2α) (every table's
+    definition, analytic.overturning), while the grid's lying check reads the peak reached,
+    which for a block stopped once its fall is certain lies between 1 and π/(2α)."""
+    import math
+
+    from isorock.validate.core.summary import RESULT_COLUMNS
+    from isorock.validate.tools.stress import edge_cases, run_one, verdict
+    case = next(c for c in edge_cases() if c.name == "pga-3g-fixed")
+    r = run_one("analytic", case)
+    assert set(RESULT_COLUMNS) - {"runtime_s"} <= set(r)
+    assert r["overturned"] and r["theta_max_over_alpha"] == math.pi / 2 / r["alpha"]
+    assert 1 < r["theta_peak_over_alpha"] <= math.pi / 2 / r["alpha"]
+    assert verdict(dict(r, duration=case.scenario.duration)) == "pass"

@@ -37,7 +37,7 @@ WENT_TO = {
     "validate/runner.py": "validate.core", "validate/tolerances.py": "validate.core",
     "analytic/agreement.py": "tests (test code, moved out)",
 }
-FLOOR_NAMES = {0: "model", 1: "engines", 2: "core", 3: "io", 4: "tools", 5: "cli"}
+FLOOR_NAMES = {0: "model", 1: "engines", 2: "core", 3: "io", 4: "tools", 5: "cli", 6: "api"}
 
 
 def packages(root: Path) -> dict[str, Path]:

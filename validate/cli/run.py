@@ -93,12 +93,9 @@ def plot_format(path) -> str:
     return fmt
 
 
-def _fmt(x, spec="{:.3g}"):
-    return "–" if x is None else spec.format(x)
-
-
 def comparison_table(runs: dict, comparisons: dict) -> str:
     """Each engine's metrics, then each engine against the reference (the first)."""
+    from isorock.validate.io.naming import cell
     ref_label = next(iter(runs))
     head = f"{'engine':<18}{'status':<12}{'θmax/α':>8}{'impacts':>9}{'overturned':>12}{'u_max cm':>10}{'wall s':>8}"
     lines = [head]
@@ -113,7 +110,7 @@ def comparison_table(runs: dict, comparisons: dict) -> str:
         for label, c in comparisons.items():
             beta = None if c.beta_error_median is None else 100 * c.beta_error_median
             lines.append(f"{label:<18}{c.theta_max_diff:>+9.3f}{c.horizon:>11.3f}{'yes' if c.parted else 'no':>8}"
-                         f"{_fmt(beta):>18}{_fmt(c.first_uplift_diff, '{:+.3g}'):>11}"
+                         f"{cell(beta, '{:.3g}'):>18}{cell(c.first_uplift_diff, '{:+.3g}'):>11}"
                          f"{'yes' if c.overturn_agree else 'NO':>16}")
     return "\n".join(lines)
 

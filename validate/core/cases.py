@@ -1,32 +1,96 @@
-"""Cases: one system under one motion for one duration (`Case`, a table row's inputs), and
+"""Cases: one system under one motion for one duration (`Case`, the one case type: a table
+row's inputs or a named run), the motion specs a named run holds (`synthetic_record`), and
 the one place a System is built from the numbers people vary (`block_system`: height,
 slenderness, mass ratio, isolator) or from a table's columns (`build_system`), and a
 pulse from its dimensionless form (`pulse_for`). A case's inputs are the table's
 columns, so they are the whole definition of a case."""
 from __future__ import annotations
 
+import functools
 import hashlib
 import math
 import weakref
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from isorock.analytic.motion import GroundMotion, Pulse
+from isorock.analytic.motion import GroundMotion, Pulse, load_motion
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, STANDARD_GRAVITY, System
 
 
 @dataclass(frozen=True)
 class Case:
-    """One system under one motion for one duration; `inputs` are the table's columns
-    that define it (everything needed to rebuild it, for the record)."""
+    """The one case type: one system under one motion for one duration from one initial
+    tilt (`theta0`, rad). A table's row (campaigns, ensembles: `case` its number, `inputs`
+    the table's columns that define it, everything needed to rebuild it) or a named run
+    (`named`: the report's, bench's, stress grid's, calibration's, golden files'; `name`).
+
+    `motion` is a GroundMotion, one made only when a run needs it (a campaign's pulses
+    and scaled records), or a spec: a pulse, a record path, "none", or a synthetic record
+    "noise:dt=…,pga=…,seconds=…,seed=…", so that a named case is small, frozen and cheap
+    to send to another process; `window` (s), if given, keeps only a record's first
+    seconds; `format` and `units` are how to read a record file. `ground_motion()` is the
+    motion, loaded once per process."""
 
     case: int
     system: object  # analytic.system.System
-    motion: object  # analytic.motion.GroundMotion
+    motion: object  # analytic.motion.GroundMotion, a lazy one, or a spec (str)
     duration: float
     inputs: dict = field(default_factory=dict, compare=False)
     theta0: float = 0.0
+    name: str = ""
+    window: float | None = None
+    format: str | None = None
+    units: str | None = None
+
+    @classmethod
+    def named(cls, name: str, system: System, motion: str, duration: float, theta0_over_alpha: float = 0.0,
+              window: float | None = None, format: str | None = None, units: str | None = None, **more) -> "Case":
+        """A named run from its tilt as a fraction of α (what `Scenario(...)` made)."""
+        return cls(0, system, motion, duration, theta0=theta0_over_alpha * system.alpha, name=name, window=window,
+                   format=format, units=units, **more)
+
+    @property
+    def theta0_over_alpha(self) -> float:
+        return self.theta0 / self.system.alpha
+
+    def ground_motion(self) -> GroundMotion:
+        m = self.motion
+        if isinstance(m, str):
+            return _load(m, self.window, self.format, self.units)
+        return m.motion() if isinstance(m, (_LazyPulse, _LazyScaled)) else m
+
+    def with_system(self, system: System, name: str | None = None) -> "Case":
+        """The same case on another system, its tilt the same fraction of the new α."""
+        return replace(self, system=system, theta0=self.theta0_over_alpha * system.alpha, name=name or self.name)
+
+
+@functools.lru_cache(maxsize=64)
+def _load(spec, window, format, units) -> GroundMotion:
+    if spec.startswith("noise:"):
+        p = dict(kv.split("=") for kv in spec[len("noise:"):].split(","))
+        m = synthetic_record(float(p["dt"]), float(p["pga"]), float(p["seconds"]), int(p["seed"]))
+    else:
+        kwargs = {"format": format} if format else {}
+        if units:
+            kwargs["units"] = units
+        m = load_motion(spec, **kwargs)
+    return m.trimmed(0.0, window) if window is not None and m.end_time > window else m
+
+
+def synthetic_record(dt: float, pga_g: float, seconds: float, seed: int) -> GroundMotion:
+    """Band-limited noise (0.2–10 Hz, or Nyquist) with a build-up and decay envelope,
+    scaled to `pga_g`: a record-like input at any sample step."""
+    rng = np.random.default_rng(seed)
+    n = int(round(seconds / dt)) + 1
+    spectrum = np.fft.rfft(rng.standard_normal(n))
+    f = np.fft.rfftfreq(n, dt)
+    spectrum[(f < 0.2) | (f > min(10.0, 0.45 / dt))] = 0
+    a = np.fft.irfft(spectrum, n)
+    t = np.arange(n) * dt
+    a *= np.minimum(1.0, t / (0.2 * seconds)) * np.exp(-np.maximum(0.0, t - 0.5 * seconds) / (0.2 * seconds))
+    return GroundMotion.from_array(a / np.max(np.abs(a)) * pga_g, dt=dt, units="g",
+                                   name=f"noise dt={dt:g} pga={pga_g:g}g")
 
 
 def block_system(*, height: float, slenderness: float, mass: float, mass_ratio: float,
@@ -154,6 +218,5 @@ def record_digest(case: Case) -> str | None:
 
 
 def motion_of(case: Case) -> GroundMotion:
-    """The case's GroundMotion, made here if the case carries it lazily."""
-    m = case.motion
-    return m.motion() if isinstance(m, (_LazyPulse, _LazyScaled)) else m
+    """The case's GroundMotion (Case.ground_motion)."""
+    return case.ground_motion()

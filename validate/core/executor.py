@@ -1,9 +1,17 @@
-"""The one executor: runs work serially in this process or on a Dask cluster (a local one
-or a scheduler's), and reports each result as it arrives.
+"""The one executor: every command's runs (validate, sweep, atlas, stress, calibrate) go
+through `Executor.map`, serially in this process, in worker processes that can be killed,
+or on a Dask cluster (a local one or a scheduler's), each result reported as it arrives
+and the one progress bar (io.progress) updated with the work done.
 
-- `execute(tasks, client=…, run=…, on_done=…)` runs any list of tasks; `here(task)` keeps
-  some in this process while the cluster works on the others (the analytic model's, done
-  in milliseconds). `validate`'s histories (core.runner) and every table of runs use it.
+- `Executor(processes=n | client=…)`: where the runs go; `map(fn, tasks, budget=…,
+  clock="wall" | "cpu")`: an `Outcome` per task; a run past its budget in a worker
+  process is killed ("timeout"), a worker that dies is "crashed", an exception is that
+  task's "error"; `here(args)` keeps some in this process while the workers or a cluster
+  work on the others (the analytic model's, done in milliseconds). `Pool(n)` is an
+  executor of n processes. Worker processes: validate (its histories, core.runner, and
+  ensembles), atlas, stress, calibrate; Dask or serial: sweep.
+- `execute(tasks, executor=… | client=…, run=…, on_done=…)`: `map` for tasks that fail
+  loudly (the first exception is raised): every table of runs (`run_cases`, campaigns).
 - A `Chunk` is a list of cases for one engine choice: the analytic engine runs a
   chunk (hundreds of cases) in one call of the compiled kernel
   (`analytic.fast.simulate_batch`); a contact engine runs its chunk case by case. Its rows
@@ -21,7 +29,7 @@ import hashlib
 import json
 import socket
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -34,8 +42,8 @@ from .engines import EngineChoice
 from .summary import case_inputs, row_of_batch, row_of_failure, row_of_trajectory, rows_to_table, sort_table
 
 def default_workers() -> int:
-    """Processes for a command's contact runs (validate's cluster, atlas's and calibrate's
-    Pool): two, or fewer where this process may use fewer cores (available_cores)."""
+    """Processes for a command's contact runs (validate's, atlas's and calibrate's worker
+    processes): two, or fewer where this process may use fewer cores (available_cores)."""
     return max(1, min(2, available_cores()))
 
 
@@ -159,45 +167,35 @@ def expected_cost(task: Chunk) -> float:
     return simulated * (BATCH_COST if runs_as_batch(task.setting.engine) else 1.0)
 
 
-def execute(tasks: list, *, client=None, threads: int | None = None, on_done, progress=None, here=None,
-            run=None, weight=None, cost=None) -> int:
-    """Run `tasks`, calling on_done(task, result) here as each one finishes (in the order
-    they finish). client: a dask.distributed Client, or None to run serially in this
-    process. run(task, threads): a task's result (default: `run_chunk`, a chunk's rows;
-    `isorock validate` runs its histories through here too). here(task): tasks that run
-    in this process even with a client (e.g. the analytic model's, loaded here already and
-    done in milliseconds), while the cluster works on the others. progress.update(n) after
-    each task, n = weight(task) (default: its number of cases), with the work it was,
-    cost(task) (the ETA's measure, `expected_cost`; 0 without `cost`). Returns the number
-    of tasks run."""
+def execute(tasks: list, *, client=None, executor: "Executor | None" = None, threads: int | None = None, on_done,
+            progress=None, here=None, run=None, weight=None, cost=None) -> int:
+    """`Executor.map` for tasks that fail loudly (a chunk of a table, a history of
+    validate's): on_done(task, result) here as each one finishes (in the order they
+    finish); the first task that raises stops the others and its exception is raised
+    here. executor: where they run (an Executor); else client: a dask.distributed Client,
+    or None to run serially in this process.
+    run(task, threads): a task's result (default: `run_chunk`, a chunk's rows);
+    `threads` is what a task run here may use, 1 on a cluster's worker (one core each).
+    here(task): tasks that run in this process even with a client (e.g. the analytic
+    model's, loaded here already and done in milliseconds), while the cluster works on
+    the others. progress.update(n, work) after each task, n = weight(task) (default: its
+    number of cases), work = cost(task) (the ETA's measure, `expected_cost`; 0 without
+    `cost`). Returns the number of tasks run."""
     run = run or run_chunk
     weight = weight or (lambda task: len(task.cases))
-    local = [t for t in tasks if client is None or (here is not None and here(t))]
-    remote = [t for t in tasks if client is not None and not (here is not None and here(t))]
 
-    def finished(task, result):
-        on_done(task, result)
-        if progress:
-            progress.update(weight(task), cost(task) if cost else 0.0)
+    executor = executor if executor is not None else Executor(client=client)
 
-    by_key, futures = {}, []
-    for task in remote:  # submitted first, so that the cluster works while this process does its part
-        fut = client.submit(run, task, 1, pure=False)
-        by_key[fut.key] = task
-        futures.append(fut)
-    try:
-        for task in local:
-            finished(task, run(task, threads))
-        if futures:
-            from dask.distributed import as_completed
-            for fut in as_completed(futures):
-                task = by_key[fut.key]
-                finished(task, fut.result())
-                fut.release()
-    except BaseException:
-        if futures:
-            client.cancel(futures)
-        raise
+    def local(task) -> bool:
+        return executor.where == "serial" or (here is not None and here(task))
+    outcomes = executor.map(
+        run, [(t, threads if local(t) else 1) for t in tasks], here=lambda args: local(args[0]),
+        on_result=lambda i, o: on_done(tasks[i], o.value) if o.done else None,
+        stop=lambda o: not o.done, progress=progress, weight=lambda args: weight(args[0]),
+        cost=(lambda args: cost(args[0])) if cost else None)
+    for outcome in outcomes:
+        if outcome is not None and not outcome.done:
+            raise outcome.error if outcome.error is not None else RuntimeError(str(outcome.value))
     return len(tasks)
 
 
@@ -305,19 +303,20 @@ def client_for(client=None, workers: int = 0, scheduler: str | None = None):
     return None, False
 
 
-def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: int = ANALYTIC_CHUNK,
-              contact_chunk: int = CONTACT_CHUNK, progress=None, overturn_rule: str | None = None,
-              threads: int | None = None, batch_here: bool = False):
+def run_cases(cases, engines, *, client=None, workers: int = 0, executor: "Executor | None" = None,
+              analytic_chunk: int = ANALYTIC_CHUNK, contact_chunk: int = CONTACT_CHUNK, progress=None,
+              overturn_rule: str | None = None, threads: int | None = None, batch_here: bool = False):
     """Rows for in-memory `cases` (core.cases.Case: system, motion, duration, theta0,
     optional inputs) under `engines`: labels ("ENGINE" or "ENGINE:PRESET"), (label,
     {setting: value}) pairs, or EngineChoices. Nothing is written. Returns a pyarrow.Table
     sorted by case, engine, setting.
 
     overturn_rule: model.md's rule for every engine (None: past α). threads: the serial
-    path's threads (None: every core). batch_here: with a cluster, the analytic chunks
-    (engines.runs_here) still run in this process (where the kernel is loaded; they take milliseconds) while
-    the cluster runs the contact engines'. progress: an object with update(n, work)
-    (io.progress.Progress), or None."""
+    path's threads (None: every core). executor: where they run (an Executor the caller
+    keeps; else client or workers, see client_for). batch_here: with a cluster or worker
+    processes, the analytic chunks (engines.runs_here) still run in this process (where
+    the kernel is loaded; they take milliseconds) while they run the contact engines'.
+    progress: an object with update(n, work) (io.progress.Progress), or None."""
     from .engines import choose
     choices = []
     for e in engines:
@@ -327,38 +326,41 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, analytic_chunk: 
     tasks = make_tasks(list(cases), choices, analytic_chunk=analytic_chunk, contact_chunk=contact_chunk,
                        overturn_rule=overturn_rule)
     rows = []
-    live, close = client_for(client, workers, None)
     from .engines import runs_here
     here = (lambda task: runs_here(task.setting.engine)) if batch_here else None
-    try:
-        execute(tasks, client=live, threads=threads, on_done=lambda t, r: rows.extend(r), progress=progress,
+    with (Executor.on(client, workers) if executor is None else _borrowed(executor)) as where:
+        execute(tasks, executor=where, threads=threads, on_done=lambda t, r: rows.extend(r), progress=progress,
                 here=here, cost=expected_cost)
-    finally:
-        if close:
-            close_client(live)
     return sort_table(rows_to_table(rows))
 
 
-# --- worker processes that can be stopped: a run past its budget is killed ---------------
+# --- the executor: where a command's runs go, each stopped at its budget ----------------
 
 @dataclass(frozen=True)
 class Outcome:
-    """What became of one task in a Pool: `status` "done" (its `value`), "error" (it raised:
-    `value` is "Type: message"), "timeout" (past its budget: its worker was killed) or
-    "crashed" (its worker died: `value` is the exit code); `seconds` of wall time."""
+    """What became of one task: `status` "done" (its `value`), "error" (it raised: `value`
+    is "Type: message", `error` the exception itself where it was raised here or on a
+    Dask worker), "timeout" (past its budget: its worker process was killed) or
+    "crashed" (its worker process died: `value` is the exit code); `seconds` of wall
+    time (on a Dask cluster, since the task was submitted)."""
 
     status: str
     value: object = None
     seconds: float = 0.0
+    error: BaseException | None = field(default=None, compare=False, repr=False)
 
     @property
     def done(self) -> bool:
         return self.status == "done"
 
 
+def _error(e: BaseException, seconds: float) -> Outcome:
+    return Outcome("error", f"{type(e).__name__}: {e}", seconds, e)
+
+
 def _serve(conn) -> None:
-    """A worker's loop: run each (function, args) it is sent, until None or its pipe
-    closes. An InputError is the caller's (bad input); any other exception the task's."""
+    """A worker process's loop: run each (function, args) it is sent, until None or its
+    pipe closes. An InputError is the caller's (bad input); any other exception the task's."""
     while True:
         try:
             task = conn.recv()
@@ -367,6 +369,9 @@ def _serve(conn) -> None:
         if task is None:
             return
         fn, args = task
+        # loaded (the function's module imported, the arguments unpickled): the run's
+        # budget counts from here, not from a fresh worker's imports
+        conn.send(("started", None))
         try:
             conn.send(("done", fn(*args)))
         except InputError as e:
@@ -415,13 +420,14 @@ class _Worker:
         self.conn.close()
 
 
-#: How often (s) a Pool with a CPU-time budget reads its workers' CPU clocks.
+#: How often (s) the executor reads its worker processes' CPU clocks under a CPU budget.
 CPU_POLL = 0.25
+CLOCKS = ("wall", "cpu")
 
 
 def ready_kernel() -> None:
-    """Make the compiled analytic kernel ready in this process before a Pool's workers
-    start. A worker loads it from its cache in milliseconds, but on first use (a fresh
+    """Make the compiled analytic kernel ready in this process before an executor's worker
+    processes start. A worker loads it from its cache in milliseconds, but on first use (a fresh
     install, changed sources) it is built, 1–2 minutes: built inside a worker, the build
     counts against the task's budget, a budget shorter than the build kills the worker
     mid-build, and the next worker starts it again (a fresh install's `isorock stress
@@ -437,51 +443,157 @@ def ready_kernel() -> None:
     engine.simulate(system, None, duration=0.05, theta0=0.1 * system.alpha)
 
 
-class Pool:
-    """Worker processes that run tasks and can be stopped: each task is a module-level
-    function and its arguments, sent to a worker; a task past its budget is stopped by
-    killing its worker, which is replaced, and counts as "timeout". The budget is wall
-    seconds (clock "wall": bounds how long a user waits) or the worker's CPU seconds
-    (clock "cpu": others' load on a shared machine does not count against a run).
-    Workers are spawned, not forked: a fork of a process whose numba threads have started
-    is not safe. Use as a context manager (the workers stop on leaving it)."""
+class Executor:
+    """The one executor of every command (validate, sweep, atlas, stress, calibrate): where
+    its runs go, chosen once, and one `map` whatever the choice.
 
-    def __init__(self, workers: int):
-        import multiprocessing as mp
-        if workers < 1:
-            raise InputError(f"workers = {workers!r}: must be a whole number of processes ≥ 1")
-        self.context = mp.get_context("spawn")
-        ready_kernel()
-        self.workers = [_Worker(self.context) for _ in range(workers)]
+    - serial (the default): one after another in this process;
+    - `processes=n`: n worker processes, spawned, not forked (a fork of a process whose
+      numba threads have started is not safe), so a task's function must be importable
+      at module level; a task past its budget, counted from when its worker has loaded it
+      (a fresh worker's imports do not count), is stopped by killing its worker, which is
+      replaced (a run stuck inside an engine cannot be stopped in any other way);
+    - `client=`: a Dask client (a local cluster or a scheduler's, `client_for`), its
+      workers one core each; `close=True` closes it (and its LocalCluster) with the
+      executor.
 
-    def map(self, fn, tasks, *, budget: float | None = None, clock: str = "wall", on_result=None,
-            stop=None) -> list[Outcome | None]:
-        """fn(*args) for each args of `tasks`, up to len(workers) at a time: an Outcome
-        per task, in the order of `tasks`. on_result(index, outcome) as each arrives;
-        stop(outcome) true: start no further task (those not started stay None). An
-        InputError raised by fn is raised here (bad input is the caller's)."""
-        from multiprocessing.connection import wait
-        if clock not in ("wall", "cpu"):
+    A run's budget is wall seconds (clock "wall": how long a user waits) or its process's
+    CPU seconds (clock "cpu": others' load on a shared machine does not count against
+    it). Only worker processes can be killed: in this process and on Dask the budget is
+    the engines' own (analytic.limits.RUN_BUDGET_S, heard at each progress call of a
+    run). Use as a context manager (worker processes and an owned client stop on
+    leaving it)."""
+
+    def __init__(self, *, processes: int = 0, client=None, close: bool = False):
+        if processes and client is not None:
+            raise ValueError("an Executor runs on worker processes or on a Dask client, not both")
+        if processes < 0:
+            raise InputError(f"workers = {processes!r}: must be a whole number of processes ≥ 0")
+        self.client, self._close_client = client, close
+        self.workers: list[_Worker] = []
+        if processes:
+            import multiprocessing as mp
+            context = mp.get_context("spawn")
+            ready_kernel()  # built here once, not inside a task's budget in each worker
+            self.workers = [_Worker(context) for _ in range(processes)]
+
+    @classmethod
+    def on(cls, client=None, workers: int = 0, scheduler: str | None = None) -> "Executor":
+        """An executor on `client`; on a client connected to `scheduler`; on a LocalCluster
+        of `workers` Dask processes; or serial (client_for), closing what it opened."""
+        live, close = client_for(client, workers, scheduler)
+        return cls(client=live, close=close)
+
+    @property
+    def where(self) -> str:
+        return "processes" if self.workers else "dask" if self.client is not None else "serial"
+
+    def map(self, fn, tasks, *, budget: float | None = None, clock: str = "wall", here=None, on_result=None,
+            stop=None, progress=None, weight=None, cost=None, note=None) -> list[Outcome | None]:
+        """fn(*args) for each args of `tasks`: an Outcome per task, in the order of
+        `tasks`. on_result(index, outcome) here as each arrives (in the order they
+        finish); then progress.update(weight(args) or 1, cost(args) or 0, note(args) or
+        "") (io.progress's bar: its ETA follows `cost`). stop(outcome) true: start no
+        further task (those not started stay None; on Dask they are cancelled).
+        here(args) true: that task runs in this process whatever the executor (with Dask,
+        while the cluster works on the others). An InputError raised by fn is raised here
+        (bad input is the caller's); any other exception is that task's outcome."""
+        if clock not in CLOCKS:
             raise InputError(f"clock = {clock!r}: must be 'wall' or 'cpu'")
-        tasks = list(tasks)
+        tasks = [tuple(t) for t in tasks]
         results: list[Outcome | None] = [None] * len(tasks)
-        pending, busy, stopped = list(range(len(tasks)))[::-1], {}, False
-        while busy or (pending and not stopped):
+        state = {"stopped": False}
+
+        def arrived(i: int, outcome: Outcome) -> None:
+            results[i] = outcome
+            if on_result:
+                on_result(i, outcome)
+            if progress is not None:
+                args = tasks[i]
+                progress.update(weight(args) if weight else 1, cost(args) if cost else 0.0,
+                                note(args) if note else "")
+            state["stopped"] = state["stopped"] or bool(stop and stop(outcome))
+
+        mine = [i for i in range(len(tasks)) if self.where == "serial" or (here is not None and here(tasks[i]))]
+        others = [i for i in range(len(tasks)) if not (self.where == "serial" or (here is not None and here(tasks[i])))]
+        if self.where == "dask":
+            self._on_dask(fn, tasks, mine, others, arrived, state)
+        elif self.where == "processes":
+            self._in_processes(fn, tasks, others, mine, arrived, state, budget, clock)
+        else:
+            self._here(fn, tasks, mine, arrived, state)
+        return results
+
+    @staticmethod
+    def _here(fn, tasks, indices, arrived, state) -> None:
+        for i in indices:
+            if state["stopped"]:
+                return
+            start = time.perf_counter()
+            try:
+                value = fn(*tasks[i])
+            except InputError:
+                raise
+            except Exception as e:  # noqa: BLE001 — one task's failure is that task's outcome
+                arrived(i, _error(e, time.perf_counter() - start))
+            else:
+                arrived(i, Outcome("done", value, time.perf_counter() - start))
+
+    def _on_dask(self, fn, tasks, mine, others, arrived, state) -> None:
+        by_key, futures, submitted = {}, [], time.perf_counter()
+        for i in others:  # submitted first, so that the cluster works while this process does its part
+            fut = self.client.submit(fn, *tasks[i], pure=False)
+            by_key[fut.key] = i
+            futures.append(fut)
+        try:
+            self._here(fn, tasks, mine, arrived, state)
+            if futures and not state["stopped"]:
+                from dask.distributed import as_completed
+                for fut in as_completed(futures):
+                    i = by_key[fut.key]
+                    try:
+                        value = fut.result()
+                    except InputError:
+                        raise
+                    except Exception as e:  # noqa: BLE001 — that task's outcome
+                        arrived(i, _error(e, time.perf_counter() - submitted))
+                    else:
+                        arrived(i, Outcome("done", value, time.perf_counter() - submitted))
+                    fut.release()
+                    if state["stopped"]:
+                        break
+            if state["stopped"] and futures:
+                self.client.cancel(futures)
+        except BaseException:
+            if futures:
+                self.client.cancel(futures)
+            raise
+
+    def _in_processes(self, fn, tasks, indices, mine, arrived, state, budget, clock) -> None:
+        """The workers run `indices`; this process runs `mine` (here(args)) one at a time
+        while they work, reading their results and clocks between its own."""
+        from multiprocessing.connection import wait
+        pending, busy, local = list(indices)[::-1], {}, list(mine)[::-1]
+        while busy or ((pending or local) and not state["stopped"]):
             for w in self.workers:
-                if w not in busy and pending and not stopped:
+                if w not in busy and pending and not state["stopped"]:
                     i = pending.pop()
-                    w.conn.send((fn, tuple(tasks[i])))
-                    busy[w] = (i, time.perf_counter(), w.cpu_seconds() if clock == "cpu" else 0.0)
-            if budget is None:
+                    w.conn.send((fn, tasks[i]))
+                    busy[w] = (i, time.perf_counter(), None, 0.0)  # (task, sent, started, CPU s then)
+            if local and not state["stopped"]:
+                self._here(fn, tasks, [local.pop()], arrived, state)
+                timeout = 0.0  # read what the workers finished meanwhile, then the next one here
+            elif budget is None:
                 timeout = None
             elif clock == "wall":
-                timeout = max(0.0, min(start + budget for _, start, _ in busy.values()) - time.perf_counter())
+                started = [start for _, _, start, _ in busy.values() if start is not None]
+                timeout = max(0.0, min(started) + budget - time.perf_counter()) if started else None
             else:
                 timeout = CPU_POLL
             ready = set(wait([w.conn for w in busy], timeout=timeout))
             for w in list(busy):
-                i, start, cpu0 = busy[w]
-                elapsed = time.perf_counter() - start
+                i, sent, start, cpu0 = busy[w]
+                elapsed = time.perf_counter() - sent
                 if w.conn in ready:
                     try:
                         kind, value = w.conn.recv()
@@ -493,22 +605,25 @@ class Pool:
                     else:
                         if kind == "input":
                             raise InputError(value)
+                        if kind == "started":
+                            busy[w] = (i, sent, time.perf_counter(), w.cpu_seconds() if clock == "cpu" else 0.0)
+                            continue
                         outcome = Outcome(kind, value, elapsed)
-                elif budget is not None and (elapsed if clock == "wall" else w.cpu_seconds() - cpu0) >= budget:
+                elif (budget is not None and start is not None
+                      and (time.perf_counter() - start if clock == "wall" else w.cpu_seconds() - cpu0) >= budget):
                     w.restart()  # stuck inside the engine: the run has failed
                     outcome = Outcome("timeout", None, elapsed)
                 else:
                     continue
                 del busy[w]
-                results[i] = outcome
-                if on_result:
-                    on_result(i, outcome)
-                stopped = stopped or bool(stop and stop(outcome))
-        return results
+                arrived(i, outcome)
 
-    def close(self):
+    def close(self) -> None:
         for w in self.workers:
             w.stop()
+        if self._close_client and self.client is not None:
+            close_client(self.client)
+            self.client = None
 
     def __enter__(self):
         return self
@@ -516,3 +631,31 @@ class Pool:
     def __exit__(self, *exc):
         self.close()
         return False
+
+
+class _borrowed:
+    """An executor the caller keeps, used in a `with` without being closed by it."""
+
+    def __init__(self, executor: Executor):
+        self.executor = executor
+
+    def __enter__(self) -> Executor:
+        return self.executor
+
+    def __exit__(self, *exc):
+        return False
+
+
+#: Wall seconds after which a run in a worker process counts as stuck and its worker is
+#: killed: twice the budget every run hears (analytic.limits.RUN_BUDGET_S, at the engine's
+#: progress calls), so that only a run stuck where it cannot hear it (inside one call of an
+#: engine's own code) is killed, and a run that stops itself says why in its own words.
+STUCK_AFTER_S = 2 * limits.RUN_BUDGET_S
+
+
+def Pool(workers: int) -> Executor:
+    """An executor of `workers` worker processes that can be killed (the name atlas,
+    stress and calibrate knew it by)."""
+    if workers < 1:
+        raise InputError(f"workers = {workers!r}: must be a whole number of processes ≥ 1")
+    return Executor(processes=workers)

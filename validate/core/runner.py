@@ -3,9 +3,10 @@ each a task naming its engine as "ENGINE" or "ENGINE:PRESET" plus setting overri
 it is small and can be sent to another process; an engine that raises on one task gets
 the message in that task's result, never a lost batch.
 
-Where and how tasks run is the one executor's (core.executor.execute: serially, or on a
-Dask cluster with the analytic model's runs kept in this process); runs read only as
-summaries (ensembles) are cases run into rows (core.executor.run_cases).
+Where and how tasks run is the one executor's (core.executor.Executor: serially, in worker
+processes that can be killed, or on a Dask cluster, with the analytic model's runs kept in
+this process); runs read only as summaries (ensembles) are cases run into rows
+(core.executor.run_cases) on the same executor.
 """
 from __future__ import annotations
 
@@ -43,36 +44,56 @@ def run_task(task: Task, threads: int | None = None):
         return task.key, None, f"{type(e).__name__}: {e}"
 
 
-def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, on_result=None,
-              work=None) -> dict:
-    """Run every task; key → (result or None, error or None). client: a Dask client
-    (core.executor.local_client) for the contact engines' tasks, the analytic model's
-    staying here; None: with workers > 1 a local cluster of that many processes is started
-    for them and closed after, otherwise all run here. `on_result(key)`
-    is called as each result arrives. `work(task)` runs one task and returns (key, result,
-    error) (default: run_task, a Trajectory); one that measures its result where it ran (a
-    row instead of a history) must be picklable, a module-level function or a
+def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, executor=None, on_result=None,
+              work=None, stuck_after: float | None = None) -> dict:
+    """Run every task; key → (result or None, error or None). executor: where the contact
+    engines' tasks run (core.executor.Executor), the analytic model's staying here; else
+    client, a Dask client; else with workers > 1 that many worker processes are started
+    for them and stopped after, otherwise all run here. In a worker process a run still
+    going `stuck_after` s after it started (default STUCK_AFTER_S: it did not hear its
+    own budget) is killed, and its result is None with the reason. `on_result(key)` is
+    called as each result arrives. `work(task)` runs one task and returns (key, result,
+    error) (default: run_task, a Trajectory); one that measures its result where it ran
+    (a row instead of a history) must be picklable, a module-level function or a
     functools.partial of one."""
     from functools import partial
 
-    from .executor import close_client, execute, local_client
+    from .executor import STUCK_AFTER_S, Executor
     out = {}
     own = None
-    if client is None and workers > 1 and not all(_light(t) for t in tasks):
-        own = client = local_client(workers)
+    if executor is None:
+        if client is not None:
+            executor = Executor(client=client)
+        elif workers > 1 and not all(_light(t) for t in tasks):
+            own = executor = Executor(processes=workers)
+        else:
+            executor = Executor()
 
-    def done(_task, result):
-        key, traj, err = result
+    def arrived(i, outcome):
+        if outcome.done:
+            key, traj, err = outcome.value
+        else:  # killed past STUCK_AFTER_S, its worker died, or the work itself raised
+            key, traj, err = tasks[i].key, None, _lost(outcome)
         out[key] = (traj, err)
         if on_result:
             on_result(key)
     try:
-        execute(tasks, client=client, on_done=done, run=partial(_one, work or run_task), here=_light,
-                weight=lambda _t: 1)
+        executor.map(partial(_one, work or run_task), [(t,) for t in tasks], here=lambda args: _light(args[0]),
+                     budget=STUCK_AFTER_S if stuck_after is None else stuck_after, on_result=arrived)
     finally:
         if own is not None:
-            close_client(own)
+            own.close()
     return out
+
+
+def _lost(outcome) -> str:
+    """Why a task has no result, in words."""
+    if outcome.status == "timeout":
+        return (f"StuckRun: no result {outcome.seconds:.3g} s after it started, past the run's budget "
+                f"(RUN_BUDGET_S, heard at the engine's progress calls): its worker process was killed")
+    if outcome.status == "crashed":
+        return f"WorkerDied: its worker process ended with exit code {outcome.value}"
+    return str(outcome.value)
 
 
 def _one(work, task: Task, threads: int | None = None):

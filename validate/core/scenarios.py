@@ -1,23 +1,15 @@
-"""Scenarios: one system, one motion, one duration, one initial tilt; and the named
-families the report, bench, stress grid, golden metrics and campaigns draw from.
-
-A motion is kept as its spec (a pulse, a record path, "none", or a synthetic record
-"noise:dt=…,pga=…,seconds=…,seed=…"), so a Scenario is small, frozen and cheap to send
-to another process; `ground_motion()` loads it (once per process).
+"""Named runs (`Scenario`: the one case type, core.cases.Case, made by name) and the named
+families the report, bench, stress grid, golden metrics and campaigns draw from; where the
+shared data folders lie.
 """
 from __future__ import annotations
 
-import functools
 import os
-from dataclasses import dataclass, replace
 from pathlib import Path
 
-import numpy as np
-
-from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, System, paper_system
 
-from .cases import block_system
+from .cases import Case, _load, block_system, synthetic_record
 
 
 
@@ -56,58 +48,10 @@ REPORT_MOTIONS = (ROBUST_SINE, "ricker:amp=0.5,freq=1")
 RECORD_WINDOW = 40.0
 
 
-@dataclass(frozen=True)
-class Scenario:
-    """`motion` is a spec (see the module docstring); `window` (s), if given, keeps only
-    the first seconds of a record; `format` and `units` are how to read a record file."""
-
-    name: str
-    system: System
-    motion: str
-    duration: float
-    theta0_over_alpha: float = 0.0
-    window: float | None = None
-    format: str | None = None
-    units: str | None = None
-
-    def ground_motion(self) -> GroundMotion:
-        return _load(self.motion, self.window, self.format, self.units)
-
-    @property
-    def theta0(self) -> float:
-        """The initial tilt in rad."""
-        return self.theta0_over_alpha * self.system.alpha
-
-    def with_system(self, system: System, name: str | None = None) -> "Scenario":
-        return replace(self, system=system, name=name or self.name)
-
-
-@functools.lru_cache(maxsize=64)
-def _load(spec, window, format, units) -> GroundMotion:
-    if spec.startswith("noise:"):
-        p = dict(kv.split("=") for kv in spec[len("noise:"):].split(","))
-        m = synthetic_record(float(p["dt"]), float(p["pga"]), float(p["seconds"]), int(p["seed"]))
-    else:
-        kwargs = {"format": format} if format else {}
-        if units:
-            kwargs["units"] = units
-        m = load_motion(spec, **kwargs)
-    return m.trimmed(0.0, window) if window is not None and m.end_time > window else m
-
-
-def synthetic_record(dt: float, pga_g: float, seconds: float, seed: int) -> GroundMotion:
-    """Band-limited noise (0.2–10 Hz, or Nyquist) with a build-up and decay envelope,
-    scaled to `pga_g`: a record-like input at any sample step."""
-    rng = np.random.default_rng(seed)
-    n = int(round(seconds / dt)) + 1
-    spectrum = np.fft.rfft(rng.standard_normal(n))
-    f = np.fft.rfftfreq(n, dt)
-    spectrum[(f < 0.2) | (f > min(10.0, 0.45 / dt))] = 0
-    a = np.fft.irfft(spectrum, n)
-    t = np.arange(n) * dt
-    a *= np.minimum(1.0, t / (0.2 * seconds)) * np.exp(-np.maximum(0.0, t - 0.5 * seconds) / (0.2 * seconds))
-    return GroundMotion.from_array(a / np.max(np.abs(a)) * pga_g, dt=dt, units="g",
-                                   name=f"noise dt={dt:g} pga={pga_g:g}g")
+#: A named run is the one case type (core.cases.Case), made from its name, system, motion
+#: spec, duration and tilt as a fraction of α: Scenario(name, system, motion, duration,
+#: theta0_over_alpha, window=…, format=…, units=…), as before the two types were one.
+Scenario = Case.named
 
 
 # --- families --------------------------------------------------------------------------

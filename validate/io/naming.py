@@ -47,3 +47,17 @@ def describe_system(system) -> str:
         return f"{block}, fixed base"
     return (f"{block}, isolated base T {_g(system.period)} s, ξ {_g(system.damping_ratio)}, "
             f"μ {_g(system.mu)}")
+
+
+def cell(value, spec: str = "{:.4g}", missing: str = "–") -> str:
+    """A value in a table of text (the run comparison, the stress grid, a campaign's
+    summary): a real number by `spec` (±inf as "inf"); None or NaN, a value that is not
+    there, as `missing` (each table keeps its own spelling: "–", or "" where most cells of
+    a column are empty); anything else as str() (an integer, a flag, a word)."""
+    import math
+    import numbers
+    if value is None:
+        return missing
+    if isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral):
+        return missing if math.isnan(value) else spec.format(value)
+    return str(value)

@@ -82,11 +82,21 @@ class Silent:
         pass
 
 
-def bar_of(progress, total: int):
+def bar_of(progress, total: int, work: float | None = None):
     """The one way a tool shows progress: it is given `progress`, a factory total → bar
     (a Progress, made by the command line once the tool knows its count of runs, or
-    anything with update(n, work, note)), or None; this is that bar, or a Silent one."""
-    return Silent() if progress is None else progress(total)
+    anything with update(n, work, note)), or None; this is that bar, or a Silent one.
+    `work`: the runs' expected cost, for a factory that takes it (the ETA of a campaign,
+    whose contact runs cost 10⁴ times its analytic ones, follows it)."""
+    if progress is None:
+        return Silent()
+    return progress(total) if work is None else progress(total, work=work)
 
 
-__all__ = ["Progress", "Silent", "bar_of", "ETA_AFTER"]
+def logged(total: int, work: float | None = None, label: str = "") -> Progress:
+    """A bar that also writes a line every 10 s where stderr is a log, not a terminal: a
+    campaign's (`isorock sweep` lasts hours, and its log is how one follows it)."""
+    return Progress(total, label, work=work, enabled=True)
+
+
+__all__ = ["Progress", "Silent", "bar_of", "logged", "ETA_AFTER"]

@@ -362,9 +362,9 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
              for c in cells for label in labels]
     bar = bar_of(progress, len(tasks))
     from isorock.validate.core.executor import Pool
-    with Pool(default_workers() if workers is None else workers) as pool:
-        outcomes = pool.map(run_cell, [(t,) for t in tasks], budget=budget, clock="cpu",
-                            on_result=lambda i, _o: bar.update(1, note=tasks[i].key[0]))
+    with Pool(default_workers() if workers is None else workers) as executor:
+        outcomes = executor.map(run_cell, [(t,) for t in tasks], budget=budget, clock="cpu", progress=bar,
+                                note=lambda args: args[0].key[0])
     results = {t.key: (o.value if o.done else _stopped(o, budget),) for t, o in zip(tasks, outcomes)}
     rows = [row(label, c, refs[c.key], results[(label, c.key)][0]) for label in labels for c in cells]
     summaries = [summarize(label, [r for r in rows if r["engine"] == label]) for label in labels]

@@ -37,7 +37,7 @@ from dataclasses import asdict, dataclass, fields
 import numpy as np
 
 from isorock.analytic.errors import InputError
-from isorock.validate.core.scenarios import Scenario
+from isorock.validate.core.cases import Case as _Case
 from isorock.validate.io.progress import bar_of
 from isorock.validate.core.tolerances import limit
 
@@ -81,10 +81,11 @@ NOISE_SIGMAS = 1.0
 
 
 @dataclass(frozen=True)
-class Case(Scenario):
-    """A free-rocking Scenario (motion "none") and the counted impacts compared: IMPACTS, or
-    fewer where the rigid model has fewer; its duration runs past the rigid model's impact
-    after the last compared one."""
+class Case(_Case):
+    """The one case type (core.cases.Case), free rocking (motion "none"), with the counted
+    impacts compared: IMPACTS, or fewer where the rigid model has fewer; its duration runs
+    past the rigid model's impact after the last compared one. Made by name:
+    Case.named(name, system, "none", duration, theta0_over_alpha, impacts=n)."""
 
     impacts: int = IMPACTS
 
@@ -127,7 +128,7 @@ def cases(system, n_tilts: int = DEFAULT_TILTS, impacts: int = IMPACTS) -> tuple
             raise InputError(f"system: free rocking from {fraction}·α has no impact above the counting threshold; "
                              "nothing to calibrate on")
         end = times[n] if len(times) > n else times[-1] + 0.5
-        return Case(f"θ0 = {fraction:g}α, {name}", sys_, "none", float(end + MARGIN), fraction, impacts=n)
+        return Case.named(f"θ0 = {fraction:g}α, {name}", sys_, "none", float(end + MARGIN), fraction, impacts=n)
 
     pairs = tuple(zip(names, (system, other)))
     return ([make(f, n, s) for n, s in pairs for f in fitted_tilts],
@@ -264,46 +265,38 @@ def lift_off_limit(engine_name: str) -> float:
 
 
 class Runner:
-    """Runs sets of cases for one engine. `workers` 0: here, one after the other (the
-    tests; a run stuck inside one of an engine's chunks cannot be stopped here); n ≥ 1:
-    in n worker processes of the one executor's Pool (core.executor), each run stopped
-    by killing its worker at `time_limit` (s of wall time; the search sets it from the
-    starting settings' runs: Drake's integrator can spend many minutes inside one chunk
-    at a stiff contact). `on_run()` is called after each run (a progress bar); `slowest`
-    is the longest run of the last set."""
+    """Runs sets of cases for one engine on the one executor (core.executor.Executor).
+    `workers` 0: here, one after the other (the tests; a run stuck inside one of an
+    engine's chunks cannot be stopped here); n ≥ 1: in n worker processes, each run
+    stopped by killing its worker at `time_limit` (s of wall time; the search sets it from
+    the starting settings' runs: Drake's integrator can spend many minutes inside one
+    chunk at a stiff contact). `on_run()` is called after each run (a progress bar);
+    `slowest` is the longest run of the last set."""
 
     def __init__(self, engine_name: str, workers: int = 0, on_run=None):
-        from isorock.validate.core.executor import Pool
+        from isorock.validate.core.executor import Executor
         from isorock.analytic import limits
         self.engine_name, self.on_run = engine_name, on_run
         # the starting settings' runs, before any is timed, have every run's budget
         self.time_limit, self.slowest = limits.RUN_BUDGET_S, 0.0
-        self.pool = Pool(workers) if workers else None
+        self.executor = Executor(processes=workers)
 
     def score(self, settings, case_list, *, until_failure: bool = False) -> Score:
         """The Score of the runs. `until_failure`: stop at the first failed run (the rest
         count as failed too): the search's objective is PENALTY from the first one on, and
         the other runs of a bad point would cost as much as a good point's."""
         tasks = [(self.engine_name, settings, c, self.time_limit) for c in case_list]
-        results = self._in_workers(tasks, until_failure) if self.pool else self._here(tasks, until_failure)
-        self.slowest = max((r[1] for r in results if r is not None), default=0.0)
-        return Score(tuple(None if r is None else r[0] for r in results))
 
-    def _here(self, tasks, until_failure):
-        results = [None] * len(tasks)
-        for i, task in enumerate(tasks):
-            results[i] = run_case(*task)
-            self._ran()
-            if until_failure and results[i][0] is None:
-                break
-        return results
-
-    def _in_workers(self, tasks, until_failure):
         def result(outcome):  # (errors, seconds): a run that timed out or died has failed
             return outcome.value if outcome.done else (None, outcome.seconds)
-        outcomes = self.pool.map(run_case, tasks, budget=self.time_limit, on_result=lambda i, o: self._ran(),
-                                 stop=(lambda o: result(o)[0] is None) if until_failure else None)
-        return [None if o is None else result(o) for o in outcomes]
+        # in worker processes the executor kills a run at time_limit; here run_case's own
+        # watch stops it at the engine's next progress call
+        outcomes = self.executor.map(run_case, tasks, budget=self.time_limit if self.executor.workers else None,
+                                     on_result=lambda i, o: self._ran(),
+                                     stop=(lambda o: result(o)[0] is None) if until_failure else None)
+        results = [None if o is None else result(o) for o in outcomes]
+        self.slowest = max((r[1] for r in results if r is not None), default=0.0)
+        return Score(tuple(None if r is None else r[0] for r in results))
 
     def limit_from_slowest(self, slowest: float) -> None:
         """The search's runs may take TIME_FACTOR × the starting settings' slowest (at least
@@ -316,8 +309,7 @@ class Runner:
             self.on_run()
 
     def close(self):
-        if self.pool:
-            self.pool.close()
+        self.executor.close()
 
     def __enter__(self):
         return self

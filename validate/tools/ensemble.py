@@ -89,13 +89,14 @@ class Ensemble:
 
 
 def run_ensembles(specs, engines, *, overrides_for=None, overturn_rule: str | None = None, client=None,
-                  threads: int | None = None, progress=None) -> list[Ensemble]:
+                  executor=None, threads: int | None = None, progress=None) -> list[Ensemble]:
     """One Ensemble per spec (system, motion, label, duration, scales): every engine
     ("ENGINE" or "ENGINE:PRESET", the analytic reference among them) on the motion scaled
     by each factor. The runs are campaign cases (`isorock.campaign.run_cases`): the
     analytic model's in batches of its compiled kernel in this process, the contact
-    engines' in chunks on the Dask `client`'s workers, or here when there is none (in
-    `threads` threads). overrides_for(name): the settings that differ for that engine
+    engines' in chunks on the `executor` (core.executor.Executor: validate's worker
+    processes) or the Dask `client`'s workers, or here when there is neither (in `threads`
+    threads). overrides_for(name): the settings that differ for that engine
     (those it lacks are ignored). A run that raised gets NaN and its message in `failed`;
     one that failed inside the engine (a blow-up) keeps what it measured, as a single
     run reports it. progress: an object with update(n, work), called as runs finish."""
@@ -116,8 +117,8 @@ def run_ensembles(specs, engines, *, overrides_for=None, overturn_rule: str | No
         for k, f in enumerate(np.asarray(scales, dtype=float)):
             where.append((i, k, float(f)))
             cases.append(Case(len(cases), system, motion.scaled(float(f)), duration))
-    table = run_cases(cases, list(settings.values()), client=client, threads=threads, progress=progress,
-                      overturn_rule=overturn_rule, batch_here=True).to_pydict()
+    table = run_cases(cases, list(settings.values()), client=client, executor=executor, threads=threads,
+                      progress=progress, overturn_rule=overturn_rule, batch_here=True).to_pydict()
     out = [Ensemble(system=system, motion=label, pga_g=motion.pga_g, duration=duration,
                     scales=np.asarray(scales, dtype=float))
            for system, motion, label, duration, scales in specs]

@@ -6,8 +6,9 @@ tolerance table. `build(config)` runs everything and returns a Results;
 Every run goes through the campaign machinery (`isorock.campaign`): the histories and
 free rocking as `isorock.validate.core.runner` tasks (whole Trajectories), the ensembles as
 campaign cases (`validate.ensemble.run_ensembles`: the analytic model in batches of its
-compiled kernel); the analytic model's runs in this process, the contact engines' on one
-Dask LocalCluster of `--workers` processes. A
+compiled kernel); the analytic model's runs in this process, the contact engines' on the
+one executor's `--workers` worker processes (core.executor: a run stuck past its budget is
+killed there). A
 scenario in which no engine lifts the block tests nothing about contact: it is "not
 exercised" and counted apart, never passed.
 """
@@ -342,19 +343,17 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         if line:
             print(line, file=sys.stderr)
     bar = bar_of(progress, total)
-    # one pool for every run: a Dask cluster when a contact engine runs on several
-    # processes (its workers start once), nothing when every run is made here
-    client = _cluster(config, engines)
+    # one executor for every run: worker processes when a contact engine runs on several
+    # (they start once; a run stuck past its budget is killed), this process otherwise
+    executor = _executor(config, engines)
     try:
-        results = run_tasks(tasks, client=client, on_result=lambda _key: bar.update(1))
+        results = run_tasks(tasks, executor=executor, on_result=lambda _key: bar.update(1))
         specs = [(sc.system, sc.motion, describe_motion(sc.motion), sc.duration, scales[i])
                  for i, sc in enumerate(histories)]
         ensembles = run_ensembles(specs, list(engines), overrides_for=config.overrides_for, overturn_rule=rule,
-                                  client=client, threads=1 if config.workers == 1 else None, progress=bar)
+                                  executor=executor, threads=1 if config.workers == 1 else None, progress=bar)
     finally:
-        if client is not None:
-            from isorock.validate.core.executor import close_client
-            close_client(client)
+        executor.close()
 
     free_rows, checks = _free_rocking(engines, free, results)
     for i, sc in enumerate(histories):
@@ -458,14 +457,15 @@ def _with_robustness(ens: Ensemble, sc: HistoryRuns) -> Ensemble:
     return replace(ens, robust=np.array([bool(r) and _robust(sc, f) for r, f in zip(rocks, ens.scales)]))
 
 
-def _cluster(config: ReportConfig, engines):
-    """A LocalCluster of config.workers processes (default: executor.default_workers) when
-    a contact engine runs, else None (the analytic model runs here in milliseconds)."""
+def _executor(config: ReportConfig, engines):
+    """The one executor (core.executor) on config.workers worker processes (default:
+    executor.default_workers) when a contact engine runs, else serial (the analytic
+    model runs here in milliseconds)."""
+    from isorock.validate.core.executor import Executor
     workers = default_workers() if config.workers is None else config.workers
     if workers <= 1 or all(runs_here(name) for name in engines):
-        return None
-    from isorock.validate.core.executor import local_client
-    return local_client(workers)
+        return Executor()
+    return Executor(processes=workers)
 
 
 def _robust(sc: HistoryRuns, scale: float) -> bool:

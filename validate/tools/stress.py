@@ -10,7 +10,7 @@ Two parts:
   in dimensionless form (kind, ω_p/p 0.5–12, a_p/(g·tanα) 0.8–10) and record-like noise
   scaled to 0.5–5 × g·tanα.
 
-Every (case, engine) runs in a worker process of the executor's Pool with a wall-time
+Every (case, engine) runs in a worker process of the one executor with a wall-time
 limit, two at a time, so a hang is a time-out (its worker is killed and replaced), not a
 stalled grid. A run FAILs when its histories are not finite, it times out or crashes, the engine reports a failure, it ends beyond α without calling
 it overturned or tilts past lying on its side, or (analytic) its energy balance residual
@@ -18,6 +18,10 @@ exceeds 1e-6 of the input energy. Across engines: a contact engine that overturn
 the analytic model does not (or the reverse) DISAGREEs when the analytic outcome is
 robust (it does not flip under ±3% of the motion); a block that slid is flagged "slid"
 (the analytic model assumes no sliding), not failed.
+
+A run's result is the one summary row of every table (core.summary: θmax/α as every table
+defines it, π/(2α) for an overturned block) and the grid's own checks beside it
+(`theta_peak_over_alpha`, the largest tilt reached, for the check past lying on its side).
 """
 from __future__ import annotations
 
@@ -34,8 +38,10 @@ from isorock.analytic.coefficients import no_bounce_slenderness
 from isorock.analytic.kinematics import LYING
 from isorock.validate.core.engines import REFERENCE
 from isorock.validate.core.scenarios import Scenario, block
+from isorock.validate.core.summary import row_of_trajectory
 from isorock.validate.core.tolerances import limit
 from isorock.validate.core.verdict import rate_verdict
+from isorock.validate.io.naming import cell
 
 #: The stress grid's limits, with their reasons, are in the one tolerance table.
 ENERGY_TOLERANCE = limit("stress_energy_residual")
@@ -189,12 +195,14 @@ def run_one(engine_name: str, case: StressCase, scale: float = 1.0) -> dict:
         if engine_name == REFERENCE:  # does its overturning hold under ±ROBUST_SCALE of the motion?
             robust = all(engine.simulate(system, motion.scaled(f), duration=sc.duration, theta0=sc.theta0).overturned
                          == tr.overturned for f in (1 - ROBUST_SCALE, 1 + ROBUST_SCALE))
-        out = dict(status=str(tr.status), finite=bool(finite), wall_s=wall, impacts=tr.impact_count, alpha=system.alpha,
-                   robust=robust,
+        # the one summary row every table has (status, θmax/α as every table defines it,
+        # impacts, uplifts, overturning, u_max), then what only this grid checks: finite
+        # histories, the raw peak tilt (the "past lying on its side" check needs the angle
+        # reached, not an overturned block's π/(2α)), the end tilt and time, the energy
+        out = dict(row_of_trajectory(tr), finite=bool(finite), wall_s=wall, alpha=system.alpha, robust=robust,
                    theta_end_over_alpha=float(abs(tr.theta[-1]) / system.alpha) if tr.theta.size else 0.0,
-                   uplifts=tr.uplifts, overturned=tr.overturned,
-                   theta_max_over_alpha=float(np.nanmax(np.abs(tr.theta)) / system.alpha) if tr.theta.size else 0.0,
-                   u_max=float(np.nanmax(np.abs(tr.u))) if tr.u.size else 0.0, sim_end=float(tr.t[-1]),
+                   theta_peak_over_alpha=float(np.nanmax(np.abs(tr.theta)) / system.alpha) if tr.theta.size else 0.0,
+                   sim_end=float(tr.t[-1]),
                    energy_residual=tr.energy.relative_residual if tr.energy is not None else None)
     except Exception as e:  # reported as the case's failure, never silently
         out = dict(status="error", error=f"{type(e).__name__}: {e}", trace=traceback.format_exc(limit=3))
@@ -206,20 +214,15 @@ def run_case(engine: str, case: StressCase, time_limit: float) -> dict:
     return run_cases([(engine, case)], time_limit, workers=1)[0]
 
 
-def run_cases(todo, time_limit: float, *, workers: int = 2, on_result=None) -> list[dict]:
-    """Every (engine, case) of `todo` in the executor's worker processes (core.executor.Pool),
-    `workers` at a time, each stopped and reported as 'timeout' past time_limit s of wall
-    time; results in the order of `todo`."""
-    from isorock.validate.core.executor import Pool
-    results: list[dict | None] = [None] * len(todo)
-
-    def arrived(i, outcome):
-        results[i] = _finish(outcome, todo[i], time_limit)
-        if on_result:
-            on_result(results[i])
-    with Pool(max(1, min(workers, len(todo) or 1))) as pool:
-        pool.map(run_one, todo, budget=time_limit, on_result=arrived)
-    return results
+def run_cases(todo, time_limit: float, *, workers: int = 2, bar=None) -> list[dict]:
+    """Every (engine, case) of `todo` on the one executor's worker processes
+    (core.executor.Executor), `workers` at a time, each stopped and reported as 'timeout'
+    past time_limit s of wall time; results in the order of `todo`. `bar`: the progress
+    bar (io.progress) the executor updates as each run ends, noting its case."""
+    from isorock.validate.core.executor import Executor
+    with Executor(processes=max(1, min(workers, len(todo) or 1))) as executor:
+        outcomes = executor.map(run_one, todo, budget=time_limit, progress=bar, note=lambda item: item[1].name[:30])
+    return [_finish(outcome, item, time_limit) for outcome, item in zip(outcomes, todo)]
 
 
 def _finish(outcome, item, time_limit) -> dict:
@@ -248,7 +251,7 @@ def verdict(r: dict) -> str:
     if not r.get("overturned") and r.get("sim_end", 0) < r["duration"] - END_SLACK:
         return "FAIL"  # stopped early without saying why
     alpha = r.get("alpha")
-    if alpha and r.get("theta_max_over_alpha", 0) * alpha > LYING + LYING_SLACK:
+    if alpha and r.get("theta_peak_over_alpha", 0) * alpha > LYING + LYING_SLACK:
         return "FAIL"  # tilted past lying on its side: not a physical answer
     if not r.get("overturned") and r.get("theta_end_over_alpha", 0) > 1:
         return "FAIL"  # ended beyond α without calling it overturned (model.md, "Past α")
@@ -314,7 +317,7 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, dra
     for e in dict.fromkeys(e for e, _ in todo):  # an engine that cannot be loaded is named before the grid
         get_engine(e)
     bar = bar_of(progress, len(todo))
-    results = run_cases(todo, time_limit, workers=workers, on_result=lambda r: bar.update(note=r["case"][:30]))
+    results = run_cases(todo, time_limit, workers=workers, bar=bar)
     bar.close()
     compare_engines(results)
     recheck_disagreements(results, {c.name: c for c in edges + draws}, time_limit, workers=workers)
@@ -324,13 +327,7 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, dra
 # --- output ----------------------------------------------------------------------------
 
 COLUMNS = ("engine", "case", "verdict", "cross", "status", "finite", "wall_s", "impacts", "uplifts", "overturned",
-           "theta_max_over_alpha", "u_max", "energy_residual", "what", "error", "note")
-
-
-def _fmt(v):
-    if isinstance(v, float):
-        return f"{v:.4g}" if math.isfinite(v) else str(v)
-    return "" if v is None else str(v)
+           "theta_max_over_alpha", "theta_peak_over_alpha", "u_max", "energy_residual", "what", "error", "note")
 
 
 def summary(results) -> dict:
@@ -386,11 +383,11 @@ def markdown(results) -> str:
     lines = [f"# {stress_verdict(results)}", ""]
     if bad:
         lines += ["## Failures and disagreements", "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
-        lines += ["| " + " | ".join(_fmt(r.get(c)).replace("|", "/") for c in COLUMNS) + " |" for r in bad]
+        lines += ["| " + " | ".join(cell(r.get(c), missing="").replace("|", "/") for c in COLUMNS) + " |" for r in bad]
         lines.append("")
     lines += ["## Every run", "", "| " + " | ".join(COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     for r in results:
-        lines.append("| " + " | ".join(_fmt(r.get(c)).replace("|", "/") for c in COLUMNS) + " |")
+        lines.append("| " + " | ".join(cell(r.get(c), missing="").replace("|", "/") for c in COLUMNS) + " |")
     lines += ["", f"Energy balance tolerance (analytic): {ENERGY_TOLERANCE:g} of the input energy. A disagreement "
                   f"counts only where the analytic outcome holds under ±{ROBUST_SCALE:.0%} of the motion."]
     return "\n".join(lines) + "\n"
