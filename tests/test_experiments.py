@@ -291,6 +291,34 @@ def test_command_on_three_real_tests_writes_its_outputs(vsr_dir, tmp_path, capsy
     assert len(rows) == 1 + 2 * 4 * 3  # header + specimens × (analytic, asymmetric: 2 settings each) × tests
 
 
+def test_command_runs_bullet_on_a_real_test_and_refuses_a_bad_restitution(vsr_dir, tmp_path, capsys):
+    """PyBullet's hull through the command on two real tests: a run per specimen, sign and test,
+    its score the peak tilt over the smaller α (a standing rock's: below 1) or 100 when it
+    fell, agreeing with its verdict; a restitution out of [0, 1] is one line, exit 2."""
+    from isorock.validate.cli.main import main
+    first, second = sorted(data.test_files(vsr_dir))[:2]
+    test = f"{first},{second}"
+    bad = tmp_path / "bad"
+    assert main(["experiments", "--data", str(vsr_dir), "--engines", "bullet", "--bullet-restitution", "1.5",
+                 "--tests", test, "--out", str(bad)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "bullet-restitution = 1.5" in err[0] and not bad.exists()
+    # one test: nothing to fit its held-out threshold on (it was an IndexError traceback)
+    assert main(["experiments", "--data", str(vsr_dir), "--tests", str(first), "--out", str(bad)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "at least 2 tests" in err[0] and not bad.exists()
+    out = tmp_path / "o"
+    assert main(["experiments", "--data", str(vsr_dir), "--engines", "bullet", "--tests", test,
+                 "--out", str(out)]) == 0
+    import csv
+    rows = list(csv.DictReader((out / "runs.csv").open()))
+    assert sorted((r["specimen"], r["engine"]) for r in rows) == [
+        (s, f"bullet:{x}") for s in ("1", "2") for x in ("+x", "-x") for _ in (first, second)]
+    for r in rows:
+        score = float(r["score"])
+        assert (score == 100.0) == (r["predicted"] == "1") and score >= 0
+
+
 # --- the asymmetric rigid model -----------------------------------------------------------
 
 def test_asymmetric_impact_map_reduces_to_housner_for_a_rectangle():

@@ -61,9 +61,12 @@ def _tests(text):
     if text is None:
         return None
     try:
-        return [int(x) for x in text.split(",") if x.strip()]
+        tests = [int(x) for x in text.split(",") if x.strip()]
     except ValueError:
         raise InputError(f"tests = {text!r}: must be comma-separated test numbers") from None
+    if len(set(tests)) < 2:  # one test leaves nothing to fit its held-out threshold on
+        raise InputError(f"tests = {text!r}: name at least 2 tests (each is scored by a threshold fitted on the others)")
+    return tests
 
 
 def main(a) -> int:
