@@ -50,15 +50,17 @@ def _motion(tm: data.TableMotion, steps, lowpass_hz):
     return processing.process(tm.acceleration, tm.dt, steps, lowpass_hz=lowpass_hz)
 
 
-def run_analytic(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
+def run_analytic(spec: specimen.Specimen, accel: dict, dt: dict, directions=("forward", "backward")) -> dict:
     """{setting: {test: (overturned, θmax/α, wall s)}} of the rigid model on the specimen's
-    forward and backward equivalent blocks."""
+    forward and backward equivalent blocks (those of `directions`)."""
     from isorock.analytic.motion import GroundMotion
     from isorock.analytic.system import System
     from isorock.validate.core.engines import get_engine
     engine = get_engine("analytic")
     out = {}
     for name, sign in (("forward", 1), ("backward", -1)):
+        if name not in directions:
+            continue
         d = spec.direction(sign)
         system = System.fixed(height=d["block_height"], width=d["block_width"], mass=spec.mass)
         rows = {}

@@ -5,64 +5,66 @@ threshold on θmax/α) chosen on 4 of 5 folds by training accuracy, scored on th
 interval over tests of the held-out predictions. The grids are fixed here before any run;
 none is narrowed after seeing a score.
 
-Attempts (the rigid planar model, integrated by experiments/asymmetric.py, which agrees
-with the exact model on a rectangle within 0.5%: tests/test_experiments.py):
+Attempts (the exact rigid model, isorock.analytic's compiled kernel, on the forward-edge
+equivalent block of docs/experiments.md; its impact coefficient, the angular-velocity ratio
+β, is set through the kernel's packed parameters, as `with_beta` says):
 
-- restitution: the forward block (both edges the forward edge: the symmetric model of
-  docs/experiments.md) with its impact's angular-velocity ratio ∈ RESTITUTION instead of
-  Housner's (a real granite impact loses energy differently from the rigid law);
-- lowpass: the low-pass corner ∈ LOWPASS (Hz; None: no low-pass), the other steps kept;
+- restitution: β ∈ RESTITUTION instead of Housner's 1 − 3/2 sin²α (a real granite impact
+  loses energy differently from the rigid law), the default processing (20 Hz low-pass);
+- lowpass: the low-pass corner ∈ LOWPASS (Hz; None: no low-pass), Housner's β;
 - both: restitution × lowpass;
-- asymmetric restitution: the rock's own two edges, their rigid impact ratios × FACTORS, both signs;
-- shared: one restitution (and low-pass) for both specimens, chosen on the training folds
-  of both (the same granite, table and tests), each specimen's threshold its own;
+- shared: one β (and low-pass) for both specimens, chosen on the training folds of both
+  (the same granite, table and tests), each specimen's threshold its own;
 - logistic: a logistic regression of the outcome on (log θmax/α of the forward block, log
   PGV/PGA), fitted on the training folds (a statistical correction on top of the physics,
   not an engine: reported as such).
 
-Usage: nice -n 10 python docs/scripts/experiments_levers.py [DATA]   (about 2 min of CPU)
+(An earlier version of this script ran the planar model of experiments/asymmetric.py; at
+its 8 RK4 sub-steps per sample it is not converged on these records: docs/experiments.md.)
+
+Usage: nice -n 10 python docs/scripts/experiments_levers.py [DATA]   (about 5 min of CPU)
 """
 from __future__ import annotations
 
 import sys
 import time
+from contextlib import contextmanager
 
 import numpy as np
 
-from isorock.experiments import asymmetric, data, processing, scores, specimen, study
+from isorock.experiments import data, processing, scores, specimen, study
 
 #: the impact's angular-velocity ratio of the forward block: fixed values, and "housner"
 #: (1 − 3/2 sin²α, the exact model's: the baseline); 1 loses nothing, more would gain energy
 RESTITUTION = (0.85, 0.9, 0.95, "housner", 1.0)
-#: the own-edge model's rigid ratios scaled by these (at most 1 after scaling)
-FACTORS = (0.85, 0.9, 0.95, 1.0)
-LOWPASS = (10.0, 20.0, 30.0, 50.0, None)
+
+LOWPASS = (10.0, 20.0, 50.0, None)
 STEPS = ("offset", "drift", "trim")  # + lowpass where a corner is given
 
 
-def forward_params(spec, ratio):
-    """The symmetric forward block (both edges the forward one: α and p of analytic:forward)
-    with the impact ratio `ratio` ("housner": 1 − 3/2 sin²α, the equivalent rectangle's)."""
-    p = asymmetric.parameters(spec)
-    fw = spec.direction(1)
-    if ratio == "housner":
-        ratio = 1.0 - 1.5 * np.sin(fw["alpha"]) ** 2
-    return dict(alpha=np.array([fw["alpha"]] * 2), R=np.array([fw["R"]] * 2), I=np.array([fw["I_O"]] * 2),
-                m=p["m"], g=p["g"], ratio=np.array([float(ratio)] * 2))
+@contextmanager
+def with_beta(beta):
+    """The compiled kernel run with the impact coefficient β (None: Housner's, the model's):
+    its packed system parameters (analytic.physics.system_params) with β replaced."""
+    from isorock.analytic import fast, physics
+    original = fast._system_params
+    if beta is not None:
+        def patched(system, settings):
+            sp = original(system, settings)
+            sp[physics.BETA] = beta
+            return sp
+        fast._system_params = patched
+    try:
+        yield
+    finally:
+        fast._system_params = original
 
 
-def own_params(spec, factor):
-    p = asymmetric.parameters(spec)
-    return dict(p, ratio=np.minimum(p["ratio"] * factor, 1.0))
-
-
-def run(params, accel, dts, tests, sign=1.0):
-    pred, score = [], []
-    for t in tests:
-        over, peak, _ = asymmetric.simulate(params, sign * accel[t], dts[t], pad=study.PAD)
-        pred.append(over)
-        score.append(study.OVERTURNED_SCORE if over else peak)
-    return np.array(pred, bool), np.array(score, float)
+def run(spec, beta, accel, dts, tests):
+    """(predictions, θmax/α scores) of the forward block with impact coefficient β."""
+    with with_beta(None if beta == "housner" else beta):
+        r = study.run_analytic(spec, accel, dts, directions=("forward",))["analytic:forward"]
+    return np.array([r[t][0] for t in tests], bool), np.array([r[t][1] for t in tests], float)
 
 
 def select_shared(ys: dict, candidates: dict, k=scores.FOLDS):
@@ -139,15 +141,12 @@ def main(folder):
     for s in data.SPECIMENS:
         spec = specimen.load_specimen(folder, s)
         y = np.array([outcomes[t].measured[s] for t in tests], bool)
-        fwd = {(r, hz): run(forward_params(spec, r), accel[hz], dts, tests) for r in RESTITUTION for hz in LOWPASS}
-        own = {(r, sg): run(own_params(spec, r), accel[20.0], dts, tests, sg)
-               for r in FACTORS for sg in (1.0, -1.0)}
+        fwd = {(r, hz): run(spec, r, accel[hz], dts, tests) for r in RESTITUTION for hz in LOWPASS}
         attempts = {
             "forward block, Housner, default processing (20 Hz): threshold only": {("housner", 20.0): fwd["housner", 20.0]},
-            "forward block, restitution r fitted (20 Hz)": {k: v for k, v in fwd.items() if k[1] == 20.0},
+            "forward block, β fitted (20 Hz)": {k: v for k, v in fwd.items() if k[1] == 20.0},
             "forward block, low-pass corner fitted (Housner)": {k: v for k, v in fwd.items() if k[0] == "housner"},
-            "forward block, restitution × low-pass fitted": fwd,
-            "asymmetric (own edges), restitution × sign fitted (20 Hz)": own,
+            "forward block, β × low-pass fitted": fwd,
         }
         ys[s], shared[s] = y, fwd
         for name, cands in attempts.items():
@@ -159,8 +158,8 @@ def main(folder):
             held = logistic_cv(y, [sc, ratio])
             rows.setdefault(f"logistic on (log θmax/α forward block at {hz or 'no'} low-pass, log PGV/PGA)",
                             {})[s] = (scores.bootstrap(y, held), None)
-    for name, keep in (("forward block, one restitution × low-pass for both specimens", lambda k: True),
-                       ("forward block, one restitution for both specimens (20 Hz)", lambda k: k[1] == 20.0)):
+    for name, keep in (("forward block, one β × low-pass for both specimens", lambda k: True),
+                       ("forward block, one β for both specimens (20 Hz)", lambda k: k[1] == 20.0)):
         held, chosen = select_shared(ys, {s: {k: v for k, v in c.items() if keep(k)} for s, c in shared.items()})
         for s in data.SPECIMENS:
             rows.setdefault(name, {})[s] = (scores.bootstrap(ys[s], held[s]), [(c,) for c in chosen])
