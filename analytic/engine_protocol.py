@@ -103,9 +103,9 @@ class EngineSpec:
     `replay_scene(system)` (optional) is (model, pose(u, θ) → joint positions): a scene of
     the engine's viewer in which any engine's history can be replayed (`isorock view`);
     `simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration, friction,
-    dampratio)`
-    (optional) is a free rigid body of that convex hull on a flat table moved by a
-    horizontal acceleration history (m/s², step dt s): a dict with `overturned`,
+    **contact)` (optional) is a free rigid body of that convex hull on a flat table moved by a
+    horizontal acceleration history (m/s², step dt s), friction and the engine's own
+    contact keywords (MuJoCo: dampratio; PyBullet: restitution) None for its defaults: a dict with `overturned`,
     `tilt_max` (rad) and `wall_s` (`isorock experiments`); `step_cost(system, settings)`
     (optional) is the CPU time (s) of one physics step of the engine's scene, the block at
     rest, with no Python between steps: the limit of its speed (`isorock bench`)."""
@@ -130,6 +130,12 @@ class EngineSpec:
         if self.settings_for is not None:
             return self.settings_for(**overrides)
         return replace(self.settings_type(), **overrides)
+
+
+#: A rigid body of EngineSpec.simulate_body whose tilt from its resting orientation passes
+#: this (rad) has overturned: well past any rocking edge's α of the measured rocks (≤ 0.41
+#: rad), where no granite rock comes back. One rule for every engine's hull scene.
+BODY_OVERTURN_TILT = 1.0
 
 
 #: seconds simulated after the motion ends, and without any motion (free rocking)

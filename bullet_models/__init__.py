@@ -30,10 +30,16 @@ TUNING = Tuning(
     apply=lambda s, x: replace(s, contact_erp=float(10 ** x[0])))
 
 
+def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=None, friction=None, restitution=None):
+    from . import mesh_scene  # the rock's hull as a free body, for measured shake-table tests
+    contact = {k: v for k, v in (("friction", friction), ("restitution", restitution)) if v is not None}
+    return mesh_scene.simulate(vertices, com, inertia, mass, acceleration, dt, duration=duration, **contact)
+
+
 ENGINE = EngineSpec(
     name="bullet", label="PyBullet", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False),
-    settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
+    settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, simulate_body=_simulate_body,
     presets={
         "default": Preset("the measured default, its step following the block (docs/bullet.md, \"Settings that follow "
                           "the block's size\")", Settings),

@@ -39,11 +39,17 @@ PRESET_REASONS = {
 }
 
 
+def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=None, friction=None):
+    from . import mesh_scene  # the rock's hull as a free body, for measured shake-table tests
+    contact = {} if friction is None else {"friction": friction}
+    return mesh_scene.simulate(vertices, com, inertia, mass, acceleration, dt, duration=duration, **contact)
+
+
 ENGINE = EngineSpec(
     name="drake", label="Drake", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
                               campaigns=False),
-    settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
+    settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, simulate_body=_simulate_body,
     presets={"default": Preset("the continuous plant's, as \"continuous\"", Settings),
              **{name: Preset(PRESET_REASONS[name], lambda s=s: s) for name, s in PRESETS.items()}},
     ladder=ladder, tuning=TUNING)

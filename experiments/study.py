@@ -7,8 +7,9 @@ Engines (each a predictor of "specimen s overturned in test k"):
 - asymmetric:+x / asymmetric:-x — the rigid model of the rock's own two edges (α, R, I of
   each, the impact law re-derived for an asymmetric body: asymmetric.py), the record along
   +x or −x of the rest pose.
-- mujoco:+x / mujoco:-x — the rock's convex hull on a free joint (mujoco_models.mesh_scene),
-  the measured acceleration along +x or −x of the rest pose (the data do not state which
+- mujoco:±x, bullet:±x, drake:±x — the rock's convex hull on a free joint
+  (mujoco_models.mesh_scene, bullet_models.mesh_scene, drake_models.mesh_scene), the measured acceleration along +x
+  or −x of the rest pose (the data do not state which
   way the record's positive sign points in the rock's frame; the sign is fitted like any
   other parameter, on training folds only).
 - dem:KN=.. — the data's own discrete-element predictions (the baseline), as given.
@@ -34,7 +35,7 @@ from . import data, processing, scores, specimen
 #: the shake-table tests (shared/data/vsr, or $ISOROCK_VSR): found as the records are, not
 #: computed from this file's location (which, in a wheel, is site-packages)
 DEFAULT_DATA = shared_folder("vsr", "ISOROCK_VSR")
-ENGINES = ("analytic", "asymmetric", "mujoco")
+ENGINES = ("analytic", "asymmetric", "mujoco", "bullet", "drake")
 #: A run past this θmax/α counts as overturned in the continuous score (an overturned run's
 #: θmax/α is not a measure of how far it was from overturning: it is "beyond").
 OVERTURNED_SCORE = 100.0
@@ -49,15 +50,17 @@ def _motion(tm: data.TableMotion, steps, lowpass_hz):
     return processing.process(tm.acceleration, tm.dt, steps, lowpass_hz=lowpass_hz)
 
 
-def run_analytic(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
+def run_analytic(spec: specimen.Specimen, accel: dict, dt: dict, directions=("forward", "backward")) -> dict:
     """{setting: {test: (overturned, θmax/α, wall s)}} of the rigid model on the specimen's
-    forward and backward equivalent blocks."""
+    forward and backward equivalent blocks (those of `directions`)."""
     from isorock.analytic.motion import GroundMotion
     from isorock.analytic.system import System
     from isorock.validate.core.engines import get_engine
     engine = get_engine("analytic")
     out = {}
     for name, sign in (("forward", 1), ("backward", -1)):
+        if name not in directions:
+            continue
         d = spec.direction(sign)
         system = System.fixed(height=d["block_height"], width=d["block_width"], mass=spec.mass)
         rows = {}
@@ -90,28 +93,29 @@ def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
     return out
 
 
-def run_mujoco(spec: specimen.Specimen, accel: dict, dt: dict, progress=None, *, friction=None,
-               dampratio=None) -> dict:
-    """MuJoCo's rigid body (the rock's hull on a free joint), through the registry; friction
-    and the contact's damping ratio None: the engine's own (mujoco_models.mesh_scene)."""
-    from isorock.validate.core.engines import get_engine
-    simulate_body = get_engine("mujoco").spec.simulate_body  # the engine's own rigid body on a table
-    contact = {k: v for k, v in (("friction", friction), ("dampratio", dampratio)) if v is not None}
+#: the engines with a rigid body of the rock's hull on a table (EngineSpec.simulate_body)
+HULL_ENGINES = ("mujoco", "bullet", "drake")
 
-    def body(*args, **kwargs):
-        return simulate_body(*args, **kwargs, **contact)
+
+def run_body(engine: str, spec: specimen.Specimen, accel: dict, dt: dict, progress=None, **contact) -> dict:
+    """The engine's rigid body (the rock's hull on a free joint, EngineSpec.simulate_body),
+    through the registry, the acceleration along +x and −x of the rest pose; `contact`: the
+    engine's contact keywords (friction, and MuJoCo's dampratio or PyBullet's restitution),
+    absent for its own defaults. The continuous score: the peak tilt over the smaller α."""
+    from isorock.validate.core.engines import get_engine
+    simulate_body = get_engine(engine).spec.simulate_body
     alpha = min(spec.direction(1)["alpha"], spec.direction(-1)["alpha"])
     out = {}
     for name, sign in (("+x", 1.0), ("-x", -1.0)):
         rows = {}
         for test, a in accel.items():
-            r = body(spec.vertices, spec.com, spec.inertia, spec.mass, sign * a, dt[test],
-                     duration=(a.size - 1) * dt[test] + PAD)
+            r = simulate_body(spec.vertices, spec.com, spec.inertia, spec.mass, sign * a, dt[test],
+                              duration=(a.size - 1) * dt[test] + PAD, **contact)
             score = OVERTURNED_SCORE if r["overturned"] else r["tilt_max"] / alpha
             rows[test] = (bool(r["overturned"]), score, r["wall_s"])
             if progress:
                 progress()
-        out[f"mujoco:{name}"] = rows
+        out[f"{engine}:{name}"] = rows
     return out
 
 
@@ -148,8 +152,9 @@ def select_cv(y, candidates: dict, k=scores.FOLDS, threshold=True) -> tuple[np.n
 
 
 def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz=processing.LOWPASS_HZ,
-          tests=None, sensitivity=False, progress=None, mujoco_contact=None) -> dict:
-    """mujoco_contact: {'friction': μ, 'dampratio': ζ} for the hull scene (default: mesh_scene's)."""
+          tests=None, sensitivity=False, progress=None, contact=None) -> dict:
+    """contact: engine → its hull scene's contact keywords ({'mujoco': {'friction': μ,
+    'dampratio': ζ}, 'bullet': {'friction': μ, 'restitution': e}}; absent: the scene's own)."""
     outcomes, files = data.load(folder, tests)
     t0 = time.perf_counter()
     motions = {t: data.read_test(files[t], t) for t in outcomes}
@@ -171,8 +176,8 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
                 runs.update(run_analytic(sp, accel, dts))
             elif eng == "asymmetric":
                 runs.update(run_asymmetric(sp, accel, dts))
-            elif eng == "mujoco":
-                runs.update(run_mujoco(sp, accel, dts, progress, **(mujoco_contact or {})))
+            elif eng in HULL_ENGINES:
+                runs.update(run_body(eng, sp, accel, dts, progress, **(contact or {}).get(eng, {})))
             result["cost"][f"{eng} SP{s}"] = time.perf_counter() - start
         rows = {}
         by_engine: dict = {}

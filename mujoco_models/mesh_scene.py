@@ -23,9 +23,7 @@ FRICTION = 0.5
 TIMESTEP = 1e-3
 SOLREF = (0.004, 1.0)
 SOLIMP = (0.9, 0.95, 0.001)
-#: A rock whose tilt from its resting orientation passes this (rad) has overturned: well
-#: past any rocking edge's α here (≤ 0.41 rad), where no granite rock comes back.
-OVERTURN_TILT = 1.0
+from isorock.analytic.engine_protocol import BODY_OVERTURN_TILT as OVERTURN_TILT  # every hull scene's rule
 
 
 def _fmt(v) -> str:

@@ -227,27 +227,54 @@ def test_cross_validated_prediction_never_sees_its_own_label():
 
 # --- the MuJoCo hull scene ------------------------------------------------------------------
 
-def test_mujoco_hull_rock_uplifts_only_past_g_tan_alpha():
+HULL_ENGINES = ("mujoco", "bullet", "drake")
+
+
+def _simulate_body(engine):
+    from isorock.validate.core.engines import get_engine
+    return get_engine(engine).spec.simulate_body
+
+
+@pytest.mark.parametrize("engine", HULL_ENGINES)
+def test_hull_rock_uplifts_only_past_g_tan_alpha(engine):
     """Quasi-static closed form: a block on a table accelerating at a constant a stays when
-    a < g·tan α and overturns when a is well above it (held 2 s)."""
-    from isorock.mujoco_models import mesh_scene
+    a < g·tan α and overturns when a is well above it (held 2 s), through each engine's
+    simulate_body (the path `isorock experiments` runs)."""
     v, f = _box(0.2, 0.2, 1.0)  # α = atan(0.1/0.5) = 0.197, g tan α = 0.2 g
     sp = specimen.resting(v, f, 100.0, np.eye(3))
-    xml = mesh_scene.scene_xml(sp.vertices, sp.com, sp.inertia, sp.mass)
+    simulate = _simulate_body(engine)
     dt = 0.01
-    stay = mesh_scene.simulate(xml, np.full(201, 0.1 * G), dt)
-    fall = mesh_scene.simulate(xml, np.full(201, 0.5 * G), dt)
+    stay = simulate(sp.vertices, sp.com, sp.inertia, sp.mass, np.full(201, 0.1 * G), dt)
+    fall = simulate(sp.vertices, sp.com, sp.inertia, sp.mass, np.full(201, 0.3 * G), dt)
     assert not stay["overturned"] and stay["tilt_max"] < 0.02
     assert fall["overturned"]
+
+
+@pytest.mark.parametrize("engine", HULL_ENGINES)
+def test_hull_rock_slides_by_the_coulomb_closed_form(engine):
+    """A squat block (g tan α = 2 g: it cannot tip) with friction μ = 0.2 under a constant
+    0.3 g slides relative to the table by ½ (a − μ g) t², and under 0.1 g not at all: the
+    friction coefficient given is the contact's (PyBullet multiplies the two bodies'
+    coefficients: the table's must be 1)."""
+    v, f = _box(1.0, 1.0, 0.5)
+    sp = specimen.resting(v, f, 100.0, np.eye(3))
+    simulate = _simulate_body(engine)
+    dt, t = 0.01, 1.0
+    slide = simulate(sp.vertices, sp.com, sp.inertia, sp.mass, np.full(101, 0.3 * G), dt, friction=0.2)
+    still = simulate(sp.vertices, sp.com, sp.inertia, sp.mass, np.full(101, 0.1 * G), dt, friction=0.2)
+    expected = 0.5 * (0.3 - 0.2) * G * t ** 2  # 0.49 m
+    assert slide["slide_max"] == pytest.approx(expected, rel=0.1)
+    # below the limit, a creep only: Drake's SAP regularizes stiction (7 mm in the second measured)
+    assert still["slide_max"] < 0.03 * expected and not slide["overturned"]
 
 
 # --- the command ------------------------------------------------------------------------------
 
 def test_bad_engine_and_data_exit_2_with_one_line(tmp_path, capsys):
     from isorock.validate.cli.main import main
-    assert main(["experiments", "--engines", "bullet", "--out", str(tmp_path / "o")]) == 2
+    assert main(["experiments", "--engines", "havok", "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "bullet" in err[0]
+    assert len(err) == 1 and "havok" in err[0]
     assert main(["experiments", "--data", str(tmp_path / "none"), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "not a folder" in err[0]
@@ -262,6 +289,34 @@ def test_command_on_three_real_tests_writes_its_outputs(vsr_dir, tmp_path, capsy
     assert {p.name for p in out.iterdir()} >= {"experiments.md", "scores.csv", "runs.csv", "study.json", "errors.png"}
     rows = (out / "runs.csv").read_text().splitlines()
     assert len(rows) == 1 + 2 * 4 * 3  # header + specimens × (analytic, asymmetric: 2 settings each) × tests
+
+
+def test_command_runs_bullet_on_a_real_test_and_refuses_a_bad_restitution(vsr_dir, tmp_path, capsys):
+    """PyBullet's hull through the command on two real tests: a run per specimen, sign and test,
+    its score the peak tilt over the smaller α (a standing rock's: below 1) or 100 when it
+    fell, agreeing with its verdict; a restitution out of [0, 1] is one line, exit 2."""
+    from isorock.validate.cli.main import main
+    first, second = sorted(data.test_files(vsr_dir))[:2]
+    test = f"{first},{second}"
+    bad = tmp_path / "bad"
+    assert main(["experiments", "--data", str(vsr_dir), "--engines", "bullet", "--bullet-restitution", "1.5",
+                 "--tests", test, "--out", str(bad)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "bullet-restitution = 1.5" in err[0] and not bad.exists()
+    # one test: nothing to fit its held-out threshold on (it was an IndexError traceback)
+    assert main(["experiments", "--data", str(vsr_dir), "--tests", str(first), "--out", str(bad)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "at least 2 tests" in err[0] and not bad.exists()
+    out = tmp_path / "o"
+    assert main(["experiments", "--data", str(vsr_dir), "--engines", "bullet", "--tests", test,
+                 "--out", str(out)]) == 0
+    import csv
+    rows = list(csv.DictReader((out / "runs.csv").open()))
+    assert sorted((r["specimen"], r["engine"]) for r in rows) == [
+        (s, f"bullet:{x}") for s in ("1", "2") for x in ("+x", "-x") for _ in (first, second)]
+    for r in rows:
+        score = float(r["score"])
+        assert (score == 100.0) == (r["predicted"] == "1") and score >= 0
 
 
 # --- the asymmetric rigid model -----------------------------------------------------------
@@ -301,6 +356,30 @@ def test_asymmetric_model_of_a_rectangle_agrees_with_the_exact_analytic_model():
         assert over == exact.overturned == falls
         if not falls:
             assert peak == pytest.approx(exact.theta_max_over_alpha, rel=0.005)
+
+
+@pytest.mark.xfail(strict=True, reason="known defect, not fixed: the asymmetric model's RK4 at 8 sub-steps is not "
+                   "converged on measured records (docs/experiments.md, asymmetric)")
+def test_asymmetric_model_of_the_forward_block_agrees_with_the_exact_model_on_a_real_record(vsr_dir):
+    """Independent computation on a measured record: SP1's forward block (both edges the
+    forward one) under test 62, the exact model (it overturns) against the asymmetric
+    model's integrator at its default sub-steps (θmax/α 0.44, 488 impacts: it stands)."""
+    from isorock.analytic.motion import GroundMotion
+    from isorock.analytic.system import System
+    from isorock.experiments import asymmetric
+    from isorock.validate.core.engines import get_engine
+    sp = specimen.load_specimen(vsr_dir, 1)
+    d = sp.direction(1)
+    motion = data.read_test(data.test_files(vsr_dir)[62], 62)
+    a = processing.process(motion.acceleration, motion.dt)
+    p = asymmetric.parameters(sp)
+    forward = dict(p, alpha=np.full(2, d["alpha"]), R=np.full(2, d["R"]), I=np.full(2, d["I_O"]),
+                   ratio=np.full(2, 1 - 1.5 * math.sin(d["alpha"]) ** 2))
+    system = System.fixed(height=d["block_height"], width=d["block_width"], mass=sp.mass)
+    exact = get_engine("analytic").simulate(system, GroundMotion.from_array(a, dt=motion.dt, units="m/s2"),
+                                            duration=(a.size - 1) * motion.dt + 5)
+    over, _, _ = asymmetric.simulate(forward, a, motion.dt)
+    assert over == exact.overturned
 
 
 def test_cv_selection_of_a_setting_never_sees_the_held_out_label():

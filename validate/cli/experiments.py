@@ -1,4 +1,4 @@
-"""Score the rigid rocking model and MuJoCo against measured shake-table tests of two
+"""Score the rigid rocking model, MuJoCo and PyBullet against measured shake-table tests of two
 granite rocks (overturned or not), beside the data's discrete-element baseline.
 
 `isorock experiments [--data DIR] [--engines …] [--out DIR]` runs study.py and writes
@@ -25,7 +25,7 @@ def add_parser(sub) -> None:
                         "%(default)s)")
     p.add_argument("--engines", default="analytic,asymmetric", metavar="E[,E]",
                    help=f"engines to run, comma-separated, from {', '.join(study.ENGINES)} (default: "
-                        "%(default)s; mujoco adds about 0.4 s per test, specimen and sign)")
+                        "%(default)s; mujoco adds about 0.4 s per test, specimen and sign, bullet about 0.7 s)")
     p.add_argument("--steps", default=",".join(processing.DEFAULT_STEPS), metavar="S[,S]",
                    help=f"processing steps of the table acceleration, from {', '.join(processing.STEPS)}, "
                         "or none (default: %(default)s)")
@@ -39,6 +39,10 @@ def add_parser(sub) -> None:
                    help="mujoco: table–rock friction coefficient (default 0.5, the data's own simulation's)")
     p.add_argument("--mujoco-dampratio", type=float, metavar="ZETA",
                    help="mujoco: contact damping ratio, solref's second number (default 1: critical)")
+    p.add_argument("--bullet-friction", type=float, metavar="MU",
+                   help="bullet: table–rock friction coefficient (default 0.5, as mujoco's)")
+    p.add_argument("--bullet-restitution", type=float, metavar="E",
+                   help="bullet: table–rock restitution, 0 to 1 (default 0.3, the data's own simulation's)")
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR", help="output folder (default: %(default)s)")
     p.set_defaults(func=main)
 
@@ -57,9 +61,12 @@ def _tests(text):
     if text is None:
         return None
     try:
-        return [int(x) for x in text.split(",") if x.strip()]
+        tests = [int(x) for x in text.split(",") if x.strip()]
     except ValueError:
         raise InputError(f"tests = {text!r}: must be comma-separated test numbers") from None
+    if len(set(tests)) < 2:  # one test leaves nothing to fit its held-out threshold on
+        raise InputError(f"tests = {text!r}: name at least 2 tests (each is scored by a threshold fitted on the others)")
+    return tests
 
 
 def main(a) -> int:
@@ -69,16 +76,21 @@ def main(a) -> int:
     if not (a.lowpass_hz > 0 and math.isfinite(a.lowpass_hz)):
         raise InputError(f"lowpass-hz = {a.lowpass_hz!r}: must be a positive number of Hz below the Nyquist frequency")
     tests = _tests(a.tests)
-    contact = {}
-    for name, value in (("friction", a.mujoco_friction), ("dampratio", a.mujoco_dampratio)):
+    contact: dict = {}
+    for engine, name, value, allowed in (
+            ("mujoco", "friction", a.mujoco_friction, "a positive number"),
+            ("mujoco", "dampratio", a.mujoco_dampratio, "a positive number"),
+            ("bullet", "friction", a.bullet_friction, "a positive number"),
+            ("bullet", "restitution", a.bullet_restitution, "a number from 0 to 1")):
         if value is not None:
-            if not (value > 0 and math.isfinite(value)):
-                raise InputError(f"mujoco-{name} = {value!r}: must be a positive number")
-            contact[name] = value
+            ok = 0 <= value <= 1 if name == "restitution" else value > 0 and math.isfinite(value)
+            if not ok:
+                raise InputError(f"{engine}-{name} = {value!r}: must be {allowed}")
+            contact.setdefault(engine, {})[name] = value
     with Outputs() as outputs:
         out = outputs.folder("out", a.out)  # refused before the runs, not after
         result = study.build(a.data, engines=engines, steps=steps, lowpass_hz=a.lowpass_hz, tests=tests,
-                             sensitivity=a.sensitivity, mujoco_contact=contact)
+                             sensitivity=a.sensitivity, contact=contact)
         from isorock.validate.io.provenance import provenance
         result["provenance"] = provenance()
         out.write(lambda folder: write(result, folder))
