@@ -58,7 +58,10 @@ def test_mujocos_calibration_coordinates_are_its_own_timeconst_and_dampratio():
     from isorock.mujoco_models import ENGINE, Settings, simulate
     tuning = ENGINE.tuning
     # follow_system off: the direct form is used as given, so the (τ, ζ) form must be too
-    given = Settings(timestep=1e-3, solref=(0.004, 1.5), solimp=(0.85, 0.95, 0.002), follow_system=False)
+    # phased off: both forms step at the timestep (the (τ, ζ) form would step coarse away
+    # from impacts, the direct form, tied to its step, would not)
+    given = Settings(timestep=1e-3, solref=(0.004, 1.5), solimp=(0.85, 0.95, 0.002), follow_system=False,
+                     phased=False)
     x = tuning.start(given)
     assert x == pytest.approx([2.0, 1.5, 0.85])
     direct = tuning.apply(given, x)
@@ -95,7 +98,9 @@ def test_a_run_past_its_time_limit_is_stopped_and_its_worker_replaced():
     from isorock.validate.tools.calibrate import Case, Runner
     from isorock.validate.core.engines import get_engine
     system = paper_system(fixed_base=True)
-    settings = get_engine("mujoco").settings(timestep=2e-3)
+    # 400 s at 2e-4 s stepped throughout: 2e6 steps, seconds of CPU whatever the machine,
+    # far past the 1 s limit (at 2e-3 a run took ~0.6 s and could finish within it)
+    settings = get_engine("mujoco").settings(timestep=2e-4, phased=False)
     endless, short = (Case.named("long", system, "none", 400.0, 0.3, impacts=4),
                       Case.named("short", system, "none", 2.1, 0.3, impacts=4))
     with Runner("mujoco", workers=1) as runner:

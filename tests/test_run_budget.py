@@ -14,8 +14,11 @@ from isorock.analytic.motion import GroundMotion, Pulse
 from isorock.analytic.system import paper_system
 from isorock.validate.core.engines import get_engine
 
-LONG = 600.0  # simulated s: PyBullet takes minutes for it, far past a 0.5 s budget
+LONG = 600.0  # simulated s: PyBullet stepped throughout takes minutes for it, far past a 0.5 s budget
 MOTION = GroundMotion.from_pulse(Pulse("sine", amp=0.2, freq=1.0, cycles=1))
+#: bullet:full steps Bullet throughout: the default skips the rest phase, and the block
+#: rests for all but the sine's second, so its 600 s take well under the budget
+FULL = {"phased": False}
 
 
 def _stopped_at(message: str) -> float:
@@ -26,16 +29,18 @@ def _stopped_at(message: str) -> float:
 
 def test_a_run_past_its_budget_stops_with_that_reason():
     with pytest.raises(BudgetExceeded) as e:
-        get_engine("bullet").simulate(paper_system(), MOTION, duration=LONG, budget_s=0.5)
+        get_engine("bullet").simulate(paper_system(), MOTION, settings=get_engine("bullet").settings(**FULL),
+                                      duration=LONG, budget_s=0.5)
     assert "budget of 0.5 s" in str(e.value) and _stopped_at(str(e.value)) < LONG
 
 
 def test_validate_histories_and_campaign_runs_have_the_budget(monkeypatch):
     from isorock.validate.core.runner import Task, run_task
     monkeypatch.setattr(limits, "RUN_BUDGET_S", 0.5)
-    key, traj, error = run_task(Task("k", "bullet", paper_system(), MOTION, LONG))
+    key, traj, error = run_task(Task("k", "bullet:full", paper_system(), MOTION, LONG))
     assert traj is None and "budget" in error and _stopped_at(error) < LONG
-    out = get_engine("bullet").simulate_many([(paper_system(), MOTION, LONG, 0.0)], budget_s=0.5)
+    out = get_engine("bullet").simulate_many([(paper_system(), MOTION, LONG, 0.0)], budget_s=0.5,
+                                             settings=get_engine("bullet").settings(**FULL))
     assert isinstance(out[0], BudgetExceeded)
 
 
@@ -68,7 +73,7 @@ def test_run_announces_its_cost_and_stops_at_its_budget_writing_nothing(tmp_path
     run stops at --budget with one line, exit 1, and no output is written."""
     from isorock.validate.cli.main import main
     out = tmp_path / "x.json"
-    code = main(["run", "--engine", "bullet", *FIXED, *SINE, "--duration", "1800", "--budget", "0.5",
+    code = main(["run", "--engine", "bullet:full", *FIXED, *SINE, "--duration", "1800", "--budget", "0.5",
                  "--json", str(out)])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 1, err
