@@ -9,12 +9,13 @@ Each engine's speed is its measured simulated seconds per wall second on a rocki
 from __future__ import annotations
 
 #: simulated seconds per wall second of one run on one core, with the block rocking
-#: (impacts are what is slow), rounded down: `isorock bench`'s speed goals (Kobe 40 s, the
-#: paper's block, both bases, at the defaults that follow the block: MuJoCo 26–38, PyBullet
-#: 4.9–7.2 at load 5–6; README), and docs/drake.md's free-rocking table for Drake
+#: (impacts are what is slow), rounded down: free rocking of the paper's block for 10 s from
+#: 0.5α at the defaults (MuJoCo 56–68 and PyBullet 20–40 simulated s per CPU s, load 4; a
+#: record, where the block mostly rests and the rest phase is skipped, runs 3–5× faster:
+#: `isorock bench`'s speed goals, README), and docs/drake.md's free-rocking table for Drake
 #: (continuous preset: 0.27). An engine not listed counts as the slowest.
-SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.0, "mujoco": 25.0,
-          "bullet": 5.0, "drake": 0.27}
+SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.0, "mujoco": 40.0,
+          "bullet": 10.0, "drake": 0.27}
 #: wall seconds from which the estimate is announced
 ANNOUNCE_AFTER = 120.0
 
