@@ -105,14 +105,15 @@ def _rest_pass(sp, mp_in, acc, breaks, T, thresholds, uplift):
 
 
 def rest_phases(systems, records, factors, durations, settings: AnalyticSettings | None = None,
-                workers: int | None = None):
+                workers: int | None = None, on_system=None):
     """For each linear isolator of `systems` (on an isolated base) under each of `records`
     scaled by each of its `factors` (records × levels, > 0), from rest, for durations[r]
     s: (uplift, u1_max). uplift[s, r, k]: the first time the block would lift, inf where
     it never does; u1_max[s, r]: max|u₁| under the unscaled record over the whole run
     (the stroke of a run that never lifts is factor·u1_max; nan where every factor lifts,
     the pass having stopped at the last uplift). Threads over the GIL-free pass
-    (`workers`: default, the cores this process may use)."""
+    (`workers`: default, the cores this process may use); on_system(): called here, in the
+    calling thread, as each system's passes are done (a progress bar's update)."""
     from concurrent.futures import ThreadPoolExecutor
 
     from .errors import InputError
@@ -150,11 +151,15 @@ def rest_phases(systems, records, factors, durations, settings: AnalyticSettings
     if workers == 1 or len(systems) == 1:
         for i in range(len(systems)):
             one(i)
+            if on_system is not None:
+                on_system()
     else:
         pool = ThreadPoolExecutor(max_workers=workers)
         try:
             for fut in [pool.submit(one, i) for i in range(len(systems))]:
                 fut.result()
+                if on_system is not None:
+                    on_system()
         finally:
             pool.shutdown(wait=False, cancel_futures=True)  # a signal: the passes not started are dropped
     return uplift, u1_max

@@ -35,11 +35,14 @@ from isorock.validate.core.cases import Case, _LazyScaled, record_factor
 ENGINE = "analytic"
 #: Default time after each record's end (s): model.md's tail, as campaigns use.
 DEFAULT_TAIL = 5.0
-#: Simulated seconds per CPU second of the kernel over a design grid, for the estimate
-#: announced before the work: measured over the paper's block, T 1–4 s × ξ 0.02–0.4,
-#: FEMA P695 far field at 0.1–1 g (20–40 % of the runs lift the block): 8,800 runs of
-#: ~49 s in 3.2–6.9 s wall on 2 threads at load 3 (docs/design.md), rounded down.
+#: Simulated seconds per CPU second over a design grid, for the estimate announced before
+#: the work: the kernel running every run (KERNEL_SPEED: 8,800 runs of ~49 s in 3.2–6.9 s
+#: wall on 2 threads at load 3), and with the rest phase settling the runs that never lift
+#: (REST_PHASE_SPEED: the paper's block, T 1–4 s × ξ 0.02–0.4 × FEMA P695 far field ×
+#: PGA 0.1–1 g, 8.69e6 simulated s in 33.7–36.6 CPU s; the 0.5 m statue in 27.5), both
+#: rounded down (docs/design.md).
 KERNEL_SPEED = 40_000.0
+REST_PHASE_SPEED = 200_000.0
 #: Largest number of runs a design may ask for (the campaigns' bound: campaign.spec.MAX_RUNS).
 MAX_DESIGN_RUNS = 2_000_000
 
@@ -178,6 +181,7 @@ class Design:
     table: object = None  # the executor's pyarrow table, one row per run
     wall_s: float = math.nan
     check: dict | None = field(default=None)
+    _memo: dict = field(default_factory=dict, repr=False)
 
     # --- per system ---------------------------------------------------------------------
     @property
@@ -205,8 +209,12 @@ class Design:
 
     def stroke(self, q: float) -> np.ndarray:
         """(systems, levels) the q-quantile over the records of the peak base displacement (m)."""
-        u = np.where(self._valid(), self.u_max, np.nan)
-        return np.nanquantile(u, q, axis=1)
+        key = ("stroke", q)
+        if key not in self._memo:
+            u = np.where(self._valid(), self.u_max, np.nan)
+            self._memo[key] = (np.quantile(u, q, axis=1) if not np.isnan(u).any()  # nanquantile: 10× slower
+                               else np.nanquantile(u, q, axis=1))
+        return self._memo[key]
 
     def non_monotone(self) -> int:
         """(system, record) pairs that survive a level above one that overturned them."""
@@ -215,13 +223,13 @@ class Design:
         above = np.arange(o.shape[2])[None, None, :] > first[:, :, None]
         return int((above & ~o & self._valid()).any(axis=2).sum())
 
-    def fragility_medians(self) -> np.ndarray:
-        """(systems,) PGA (g) at which half the records overturn (lognormal MLE,
-        core.fragility); nan where no run or every run overturned."""
+    def fragility_median(self, system: int) -> float:
+        """The PGA (g) at which half the records overturn `system` (lognormal MLE,
+        core.fragility); nan where no run or every run overturned. (Per system on demand:
+        a fit is ~10 ms, 400 of them were a chart's slowest step.)"""
         from isorock.validate.core.fragility import fit_counts
-        v = self._valid()
-        n, k = v.sum(axis=1), (self.overturned & v).sum(axis=1)
-        return np.array([fit_counts(self.hazard.levels, n[i], k[i])[0] for i in range(n.shape[0])])
+        v = self._valid()[system]
+        return fit_counts(self.hazard.levels, v.sum(axis=0), (self.overturned[system] & v).sum(axis=0))[0]
 
     def grid(self, values: np.ndarray) -> np.ndarray:
         """The isolators' values (systems 1…) as a (y, x) grid."""
@@ -256,12 +264,14 @@ def build_cases(statue: Statue, family, hazard: Hazard, tail: float = DEFAULT_TA
     every record (name order) at every level. A record is shared by its levels' cases
     (core.cases._LazyScaled), scaled only when run."""
     systems = [statue.fixed()] + [family.system(statue, x, y) for y in family.y_values for x in family.x_values]
+    # a record's factors once, not once per system (each reads the record's peak)
+    factors = {name: [record_factor(hazard.records[name], "pga", level) for level in hazard.levels]
+               for name in hazard.names}
     cases = []
     for system in systems:
         for name in hazard.names:
             record = hazard.records[name]
-            for level in hazard.levels:
-                factor = record_factor(record, "pga", level)
+            for level, factor in zip(hazard.levels, factors[name]):
                 cases.append(Case(len(cases), system, _LazyScaled(record, factor), record.end_time + tail,
                                   {"motion": name, "scale_by": "pga", "intensity": level, "scale_factor": factor}))
     return cases
@@ -269,6 +279,13 @@ def build_cases(statue: Statue, family, hazard: Hazard, tail: float = DEFAULT_TA
 
 def simulated_seconds(hazard: Hazard, n_systems: int, tail: float = DEFAULT_TAIL) -> float:
     return n_systems * len(hazard.levels) * sum(r.end_time + tail for r in hazard.records.values())
+
+
+def estimate_s(family, hazard: Hazard, tail: float, cores: int) -> float:
+    """Wall seconds a design should take on `cores` idle cores (load on a shared machine
+    stretches it)."""
+    simulated = simulated_seconds(hazard, 1 + len(family.x_values) * len(family.y_values), tail)
+    return simulated / (REST_PHASE_SPEED if family.kind == LINEAR else KERNEL_SPEED) / max(cores, 1)
 
 
 def check_size(family, hazard: Hazard, tail: float = DEFAULT_TAIL) -> int:
@@ -299,7 +316,9 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     gather the outcomes by system, record and level. rest_phase (linear isolators): the
     runs in which the block never lifts are settled first, all levels of a record in one
     pass (analytic.rest_phase), and only the others are run; the outcome is the same
-    (tests/test_design.py)."""
+    (tests/test_design.py). progress: None, or a factory (total, label, unit) → a bar
+    (io.progress.Progress) for each phase, made when the phase's size is known, closed
+    by the caller."""
     import time
 
     from isorock.validate.core.executor import run_cases
@@ -311,12 +330,12 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     start = time.perf_counter()
     settled = []
     if rest_phase and family.kind == LINEAR:
-        settled = _settle_at_rest(cases, shape, hazard, tail, threads)
-        if progress is not None and settled:
-            progress.update(len(settled))
+        bar = progress(shape[0] - 1, "rest phase", "isolators") if progress is not None else None
+        settled = _settle_at_rest(cases, shape, hazard, tail, threads, bar)
     done = {row["case"] for row in settled}
     todo = [c for c in cases if c.case not in done]
-    table = run_cases(todo, [ENGINE], threads=threads, progress=progress) if todo else None
+    bar = progress(len(todo), "kernel", "runs") if progress is not None and todo else None
+    table = run_cases(todo, [ENGINE], threads=threads, progress=bar) if todo else None
     if settled:
         import pyarrow as pa
 
@@ -332,7 +351,7 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
                   theta_max=col("theta_max_over_alpha"), status=col("status").astype(str), table=table, wall_s=wall)
 
 
-def _settle_at_rest(cases, shape, hazard: Hazard, tail: float, threads) -> list[dict]:
+def _settle_at_rest(cases, shape, hazard: Hazard, tail: float, threads, bar=None) -> list[dict]:
     """The summary rows of the isolated runs in which the block never lifts, from one
     rest-phase pass per (isolator, record): stays down, completes, stroke factor·max|u₁|."""
     import time
@@ -345,7 +364,8 @@ def _settle_at_rest(cases, shape, hazard: Hazard, tail: float, threads) -> list[
     records = [hazard.records[n] for n in hazard.names]
     factors = np.array([[record_factor(r, "pga", lv) for lv in hazard.levels] for r in records])
     systems = [cases[i * n_rec * n_lev].system for i in range(1, n_sys)]
-    uplift, u1 = rest_phases(systems, records, factors, [r.end_time + tail for r in records], workers=threads)
+    uplift, u1 = rest_phases(systems, records, factors, [r.end_time + tail for r in records], workers=threads,
+                             on_system=(lambda: bar.update(1)) if bar is not None else None)
     never = ~np.isfinite(uplift)
     per_run = (time.perf_counter() - start) / max(int(never.sum()), 1)
     label = choose(ENGINE, {}, strict=True).label
@@ -428,8 +448,9 @@ def verdict(d: Design, target: float, max_stroke: float | None) -> dict:
     return {"headline": headline, "rule": rule, "recommended": n_ok, "of": int(ok.size),
             "best": {fam.x_name: fam.x_values[ix], fam.y_name: fam.y_values[iy], "p_hazard": float(p_h[k]),
                      "p_top": float(p_l[k, -1]), "stroke_median_top": float(s50[k, -1]),
-                     "stroke_84_top": float(s84[k, -1])},
-            "fixed_base": {"p_hazard": float(p_h[0]), "p_levels": p_l[0].tolist()},
+                     "stroke_84_top": float(s84[k, -1]), "fragility_median_pga": float(d.fragility_median(k))},
+            "fixed_base": {"p_hazard": float(p_h[0]), "p_levels": p_l[0].tolist(),
+                           "fragility_median_pga": float(d.fragility_median(0))},
             "region_edges": [{fam.y_name: y, f"{fam.x_name}_from": a, f"{fam.x_name}_to": b, "contiguous": w}
                              for y, a, b, w in edges]}
 

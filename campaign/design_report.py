@@ -113,7 +113,6 @@ def isolator_rows(d: Design, target: float, max_stroke: float | None) -> list[di
     fam, h = d.family, d.hazard
     p_h, p_l = d.p_hazard(), d.p_level()
     s50, s84 = d.stroke(0.5), d.stroke(0.84)
-    med = d.fragility_medians()
     ok = np.concatenate([[False], d.recommended(target, max_stroke).ravel()])
     rows = []
     for k in range(p_h.size):
@@ -125,7 +124,7 @@ def isolator_rows(d: Design, target: float, max_stroke: float | None) -> list[di
         rows.append({"base": "fixed" if k == 0 else "isolated", fam.x_name: x, fam.y_name: y,
                      "p_hazard": float(p_h[k]), "p_levels": [float(v) for v in p_l[k]],
                      "stroke_median": [float(v) for v in s50[k]], "stroke_84": [float(v) for v in s84[k]],
-                     "fragility_median_pga": float(med[k]), "recommended": bool(ok[k])})
+                     "recommended": bool(ok[k])})
     return rows
 
 
@@ -141,8 +140,10 @@ def _grid_table(d: Design, values, fmt) -> str:
 def markdown(d: Design, target: float, max_stroke: float | None, v: dict) -> str:
     fam, h = d.family, d.hazard
     n_runs = d.overturned.size
-    lines = [f"# Which isolator keeps the statue standing?", "", f"**{v['headline']}**", "",
-             "![design chart](design.png)", "",
+    lines = ["# Which isolator keeps the statue standing?", "", f"**{v['headline']}**", ""]
+    if d.check is not None:  # the contact engine's agreement is part of the answer
+        lines += [f"Checked: {d.check['text']} (details below).", ""]
+    lines += ["![design chart](design.png)", "",
              f"- statue: {d.statue.label}",
              f"- hazard: {hazard_text(h)}",
              f"- isolators: {fam.kind}, {fam.x_name.replace('_', ' ')} "
@@ -179,9 +180,19 @@ def markdown(d: Design, target: float, max_stroke: float | None, v: dict) -> str
               _grid_table(d, s84, lambda x: f"{x:.3g}"), "",
               "## Fixed base, per level", "", "| PGA (g) | P(overturn) |", "|---:|---:|"]
     lines += [f"| {lv:g} | {_pct(pv)} |" for lv, pv in zip(h.levels, d.p_level()[0])]
-    lines += ["", "design.json holds every isolator's P per level, its stroke (median and 84th percentile) per "
-              "level and the PGA at which half the records overturn it; runs.parquet every run.", ""]
+    fb, named = v["fixed_base"]["fragility_median_pga"], v["best"]["fragility_median_pga"]
+    lines += ["", f"PGA at which half the records overturn the block (lognormal fit): fixed base "
+              f"{_median_words(fb, h.levels)}, the named isolator {_median_words(named, h.levels)}.", "",
+              "design.json holds every isolator's P per level and its stroke (median and 84th percentile) per level; "
+              "runs.parquet every run.", ""]
     return "\n".join(lines)
+
+
+def _median_words(m: float, levels) -> str:
+    if not math.isfinite(m):
+        return "not bounded by the runs (none or all overturned)"
+    beyond = " (beyond the levels run: an extrapolation)" if not levels[0] <= m <= levels[-1] else ""
+    return f"{m:.3g} g{beyond}"
 
 
 def csv_text(rows: list[dict], fam, levels) -> str:
@@ -189,11 +200,10 @@ def csv_text(rows: list[dict], fam, levels) -> str:
     w = csv.writer(buf, lineterminator="\n")
     top = levels[-1]
     w.writerow(["base", fam.x_name, fam.y_name, "p_hazard", f"p_at_{top:g}g", f"stroke_median_at_{top:g}g_m",
-                f"stroke_84_at_{top:g}g_m", "fragility_median_pga_g", "recommended"])
+                f"stroke_84_at_{top:g}g_m", "recommended"])
     for r in rows:
         w.writerow([r["base"], r[fam.x_name], r[fam.y_name], f"{r['p_hazard']:.6g}", f"{r['p_levels'][-1]:.6g}",
-                    f"{r['stroke_median'][-1]:.6g}", f"{r['stroke_84'][-1]:.6g}",
-                    f"{r['fragility_median_pga']:.6g}", r["recommended"]])
+                    f"{r['stroke_median'][-1]:.6g}", f"{r['stroke_84'][-1]:.6g}", r["recommended"]])
     return buf.getvalue()
 
 

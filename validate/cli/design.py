@@ -197,7 +197,7 @@ def hazard_from_args(a):
 
 
 def cmd_design(a) -> int:
-    from isorock.campaign.design import (KERNEL_SPEED, check_family_runs, check_points, check_size, check_with,
+    from isorock.campaign.design import (check_family_runs, check_points, check_size, check_with, estimate_s,
                                          run_design, simulated_seconds)
     from isorock.campaign.design_report import write_design
     from isorock.validate.io.output import Outputs
@@ -229,14 +229,21 @@ def cmd_design(a) -> int:
         if not a.quiet:
             print(f"isorock design: {n_runs:,} runs ({len(family.x_values)} × {len(family.y_values)} isolators and the "
                   f"fixed base × {len(hazard.records)} records × {len(hazard.levels)} levels), "
-                  f"{simulated:,.0f} simulated s; estimated ≈ {simulated / KERNEL_SPEED / cores:.0f} s on {cores} "
-                  f"core{'s' if cores != 1 else ''} (the compiled kernel)", file=sys.stderr, flush=True)
-        bar = None if a.quiet else Progress(n_runs, "design", enabled=True)
+                  f"{simulated:,.0f} simulated s; estimated ≈ {estimate_s(family, hazard, a.tail, cores):.0f} s on "
+                  f"{cores} idle core{'s' if cores != 1 else ''} (the compiled kernel; other load stretches it)",
+                  file=sys.stderr, flush=True)
+        bars = []
+
+        def phase(total, label, unit):
+            for bar in bars:  # the phase before is over: its last line first
+                bar.close()
+            bars.append(Progress(total, label, unit=unit, enabled=True))
+            return bars[-1]
         start = time.perf_counter()
         try:
-            d = run_design(statue, family, hazard, tail=a.tail, progress=bar)
+            d = run_design(statue, family, hazard, tail=a.tail, progress=None if a.quiet else phase)
         finally:
-            if bar is not None:
+            for bar in bars:
                 bar.close()
         if a.check is not None:
             picks = check_points(d, a.target, a.max_stroke, a.check_runs)
