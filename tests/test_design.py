@@ -200,3 +200,11 @@ def test_the_command_writes_the_chart_and_the_answer(tmp_path, capsys, records_f
     for name in ("design.md", "design.png", "design.csv", "runs.parquet"):
         assert (out / name).is_file()
     assert (out / "design.md").read_text().splitlines()[2] == f"**{doc['verdict']}**"
+
+
+def test_the_fema_suite_without_its_package_is_one_line_naming_the_extra(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr("isorock.campaign.records.fema_available", lambda: False)
+    rc = main(["design", "--out", str(tmp_path / "out"), "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and "isorock[records]" in err
+    assert not (tmp_path / "out").exists()

