@@ -180,6 +180,7 @@ class Design:
     status: np.ndarray  # str
     table: object = None  # the executor's pyarrow table, one row per run
     wall_s: float = math.nan
+    tail: float = DEFAULT_TAIL  # s simulated after each record
     check: dict | None = field(default=None)
     _memo: dict = field(default_factory=dict, repr=False)
 
@@ -348,7 +349,8 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     def col(name):
         return table.column(name).to_numpy(zero_copy_only=False)[order].reshape(shape)
     return Design(statue, family, hazard, overturned=col("overturned").astype(bool), u_max=col("u_max"),
-                  theta_max=col("theta_max_over_alpha"), status=col("status").astype(str), table=table, wall_s=wall)
+                  theta_max=col("theta_max_over_alpha"), status=col("status").astype(str), table=table, wall_s=wall,
+                  tail=tail)
 
 
 def _settle_at_rest(cases, shape, hazard: Hazard, tail: float, threads, bar=None) -> list[dict]:
@@ -512,7 +514,7 @@ def check_with(d: Design, engine: str, picks, *, progress=None) -> dict:
     for k, name, li in picks:
         record, level = h.records[name], h.levels[li]
         factor = record_factor(record, "pga", level)
-        cases.append(Case(len(cases), systems[k], _LazyScaled(record, factor), record.end_time + DEFAULT_TAIL,
+        cases.append(Case(len(cases), systems[k], _LazyScaled(record, factor), record.end_time + d.tail,
                           {"motion": name, "scale_by": "pga", "intensity": level, "scale_factor": factor}))
     table = run_cases(cases, [engine], progress=progress)
     cols = {c: table.column(c).to_numpy(zero_copy_only=False) for c in ("case", "overturned", "u_max", "status",

@@ -208,3 +208,18 @@ def test_the_fema_suite_without_its_package_is_one_line_naming_the_extra(tmp_pat
     err = capsys.readouterr().err.strip()
     assert rc == 2 and len(err.splitlines()) == 1 and "isorock[records]" in err
     assert not (tmp_path / "out").exists()
+
+
+def test_the_contact_check_reruns_the_picked_runs_and_compares_them(small_design):
+    """--check: the named isolator, the worst and the fixed base, each under records the
+    kernel says overturn and survive; MuJoCo's stroke where both stand within its
+    tolerance (the same spring and dashpot; only the rocking's feedback differs)."""
+    pytest.importorskip("mujoco")
+    from isorock.campaign.design import check_points, check_with
+    picks = check_points(small_design, 0.05, None, 3)
+    assert {k for k, _, _ in picks} == {0, 1 + int(np.argmax(small_design.p_hazard()[1:])),
+                                        1 + small_design.best(0.05, None)[0] * 2 + small_design.best(0.05, None)[1]}
+    c = check_with(small_design, "mujoco", picks)
+    assert c["n"] == len(picks) and all(r["pga"] == small_design.hazard.levels[-1] for r in c["runs"])
+    assert c["stroke_rel_diffs"] and c["stroke_within"] == len(c["stroke_rel_diffs"])
+    assert c["text"].startswith(f"mujoco on {len(picks)} of the design's runs")
