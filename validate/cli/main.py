@@ -11,6 +11,7 @@
     isorock presets  every engine's presets (ENGINE:PRESET), with their reasons and settings
     isorock atlas    the contact-model atlas: every preset's β and t₁ error over λ × μ × size, and its cost
     isorock sweep    campaigns: spectra, fragility curves, agreement maps (Dask)
+    isorock design   which isolator keeps a statue standing at a site: P(overturn) and stroke per isolator
     isorock experiments  the engines scored against measured shake-table tests of two rocks
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
@@ -47,6 +48,8 @@ EXTRA_COMMANDS = {
                                       "display"),
     "presets": ("isorock.validate.cli.presets", "every engine's presets, with their reasons and settings"),
     "sweep": ("isorock.validate.cli.sweep", "run a campaign (TOML): overturning spectra, fragility curves, agreement maps"),
+    "design": ("isorock.validate.cli.design", "which isolator keeps my statue standing at my site: P(overturn) and "
+                                              "stroke per isolator over a record suite, the chart, the recommended region"),
     "experiments": ("isorock.validate.cli.experiments", "score the rigid model and the contact engines against measured "
                                                         "shake-table tests"),
 }

@@ -1,0 +1,560 @@
+"""`isorock design`: for my statue and my site, which isolator keeps it standing? (issue 22)
+
+Every isolator of a family (the linear isolator's period × damping ratio grid; any
+family whose `system(statue, x, y)` the compiled kernel carries) and the fixed base are
+run by the analytic kernel under every record of a hazard (a record suite scaled to one
+or more PGA levels), through the one executor (core.executor.run_cases, summary rows).
+Per isolator: the probability of overturning at each level (the fraction of records
+that overturn it, under model.md's rule, past α) and over the hazard (the levels
+weighted: equally unless the caller gives weights, e.g. from a hazard curve), the
+isolator's stroke (peak |u| over the run: median and 84th percentile over the records
+at each level) and the PGA at which half the records overturn it (a lognormal fit,
+core.fragility). Nothing here assumes that overturning grows with the level: rocking is
+not monotone in the scale of a motion (model.md, "Past α"), so every level is run and
+the (isolator, record) pairs that survive a level above one that overturned them are
+counted (`non_monotone`).
+
+An isolator is *recommended* when its P(overturn) over the hazard is at most the target
+and, where a stroke limit is given, its 84th-percentile stroke at the highest level is
+within it. `check_with` runs a few of the design's points again with a contact engine
+and says how far it agrees.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from isorock.analytic.errors import InputError
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.system import FRICTION_PENDULUM, LINEAR, FrictionPendulum, System
+from isorock.validate.core.cases import Case, _LazyScaled, record_factor
+
+#: The engine that answers the design question (the compiled kernel).
+ENGINE = "analytic"
+#: Default time after each record's end (s): model.md's tail, as campaigns use.
+DEFAULT_TAIL = 5.0
+#: Simulated seconds per CPU second over a design grid, for the estimate announced before
+#: the work: the kernel running every run (KERNEL_SPEED: 8,800 runs of ~49 s in 3.2–6.9 s
+#: wall on 2 threads at load 3), and with the rest phase settling the runs that never lift
+#: (REST_PHASE_SPEED: the paper's block, T 1–4 s × ξ 0.02–0.4 × FEMA P695 far field ×
+#: PGA 0.1–1 g, 8.69e6 simulated s in 33.7–36.6 CPU s; the 0.5 m statue in 27.5), both
+#: rounded down (docs/design.md).
+KERNEL_SPEED = 40_000.0
+REST_PHASE_SPEED = 200_000.0
+#: Largest number of runs a design may ask for (the campaigns' bound: campaign.spec.MAX_RUNS).
+MAX_DESIGN_RUNS = 2_000_000
+
+
+# --- the statue ---------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Statue:
+    """The block and its base plate's mass: what every isolator of a family carries."""
+
+    height: float
+    width: float
+    mass: float
+    base_mass: float
+
+    def __post_init__(self):
+        System.fixed(height=self.height, width=self.width, mass=self.mass)  # the block's own checks
+        if not (self.base_mass > 0 and math.isfinite(self.base_mass)):
+            raise InputError(f"base-mass = {self.base_mass!r}: must be a positive finite number (kg)")
+
+    def fixed(self) -> System:
+        return System.fixed(height=self.height, width=self.width, mass=self.mass)
+
+    @property
+    def label(self) -> str:
+        s = self.fixed()
+        return (f"H {self.height:g} m, B {self.width:g} m (λ = H/B = {s.slenderness:.3g}, α = {s.alpha:.3g} rad), "
+                f"m {self.mass:g} kg on a {self.base_mass:g} kg base (μ = {self.mass / self.base_mass:.3g})")
+
+
+# --- isolator families: two axes, and the System at each cell ----------------------------
+
+@dataclass(frozen=True)
+class LinearFamily:
+    """The seed paper's isolator: period T (s) × damping ratio ξ."""
+
+    x_values: tuple[float, ...]
+    y_values: tuple[float, ...]
+    kind = LINEAR
+    x_name, y_name = "period", "damping_ratio"
+    x_label, y_label = "isolation period T (s)", "damping ratio ξ"
+    x_unit, y_unit = "s", ""
+
+    def system(self, statue: Statue, x: float, y: float) -> System:
+        return System.isolated(height=statue.height, width=statue.width, mass=statue.mass,
+                               base_mass=statue.base_mass, period=x, damping_ratio=y)
+
+
+@dataclass(frozen=True)
+class FrictionPendulumFamily:
+    """The friction pendulum: radius of curvature R_fp (m) × friction coefficient μ_f. Runs
+    once the compiled kernel carries it (its Capabilities.isolators name it)."""
+
+    x_values: tuple[float, ...]
+    y_values: tuple[float, ...]
+    kind = FRICTION_PENDULUM
+    x_name, y_name = "radius", "friction_coefficient"
+    x_label, y_label = "radius of curvature R_fp (m)", "friction coefficient μ_f"
+    x_unit, y_unit = "m", ""
+
+    def system(self, statue: Statue, x: float, y: float) -> System:
+        return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
+                                    base_mass=statue.base_mass,
+                                    isolator=FrictionPendulum(radius=x, friction_coefficient=y))
+
+
+#: isolator kind → its family (what `--isolator` names)
+FAMILIES = {LINEAR: LinearFamily, FRICTION_PENDULUM: FrictionPendulumFamily}
+
+
+def check_family_runs(family) -> None:
+    """The kernel must carry the family's isolator: one line otherwise, before any work."""
+    from isorock.validate.core.engines import get_engine
+    carried = get_engine(ENGINE).capabilities.isolators
+    if family.kind not in carried:
+        raise InputError(f"isolator = {family.kind}: the compiled kernel (engine '{ENGINE}') that answers a design "
+                         f"carries the {', '.join(carried)} isolator only so far (docs/design.md)")
+
+
+# --- the hazard ----------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Hazard:
+    """Records (name → unscaled GroundMotion) each scaled to every PGA level (g); the
+    levels' weights in P(overturn) over the hazard (normalised; equal by default)."""
+
+    records: dict
+    levels: tuple[float, ...]
+    weights: tuple[float, ...] = ()
+    source: str = ""
+
+    def __post_init__(self):
+        if not self.records:
+            raise InputError("records: the hazard has no record")
+        if not self.levels:
+            raise InputError("pga: give one or more levels (g)")
+        for x in self.levels:
+            if not (x > 0 and math.isfinite(x)):
+                raise InputError(f"pga = {x!r}: must be a positive finite PGA (g)")
+        if list(self.levels) != sorted(set(self.levels)):
+            raise InputError(f"pga = {','.join(f'{x:g}' for x in self.levels)}: must be increasing, each level once")
+        w = self.weights or (1.0,) * len(self.levels)
+        if len(w) != len(self.levels):
+            raise InputError(f"level-weights: {len(w)} given for {len(self.levels)} PGA levels; give one per level")
+        if any(not (x >= 0 and math.isfinite(x)) for x in w) or sum(w) <= 0:
+            raise InputError(f"level-weights = {','.join(f'{x:g}' for x in w)}: must be non-negative finite numbers, "
+                             "not all zero")
+        object.__setattr__(self, "weights", tuple(float(x) / sum(w) for x in w))
+        for name, r in self.records.items():
+            if not r.pga_g > 0:
+                raise InputError(f"records: {name!r} has a PGA of 0 and cannot be scaled to a level")
+
+    @property
+    def names(self) -> list[str]:
+        return sorted(self.records)
+
+    @property
+    def equal_weights(self) -> bool:
+        return len(set(self.weights)) == 1
+
+
+# --- the cases, and running them ----------------------------------------------------------
+
+@dataclass
+class Design:
+    """What a design run found. Arrays over systems (0: the fixed base, 1 + iy·nx + ix:
+    the isolator at x_values[ix], y_values[iy]) × records (hazard.names) × levels."""
+
+    statue: Statue
+    family: object
+    hazard: Hazard
+    overturned: np.ndarray  # bool
+    u_max: np.ndarray  # m
+    theta_max: np.ndarray  # θmax/α
+    status: np.ndarray  # str
+    table: object = None  # the executor's pyarrow table, one row per run
+    wall_s: float = math.nan
+    tail: float = DEFAULT_TAIL  # s simulated after each record
+    check: dict | None = field(default=None)
+    _memo: dict = field(default_factory=dict, repr=False)
+
+    # --- per system ---------------------------------------------------------------------
+    @property
+    def shape(self) -> tuple[int, int]:
+        return len(self.family.y_values), len(self.family.x_values)
+
+    def _valid(self):
+        """Runs that gave an answer: a failed run (or one stopped at its event limit) is
+        left out of every fraction and counted apart (`failed`)."""
+        return np.isin(self.status, ("completed", "overturned"))
+
+    @property
+    def failed(self) -> int:
+        return int((~self._valid()).sum())
+
+    def p_level(self) -> np.ndarray:
+        """(systems, levels) fraction of records that overturn."""
+        v = self._valid()
+        with np.errstate(invalid="ignore"):
+            return (self.overturned & v).sum(axis=1) / v.sum(axis=1)
+
+    def p_hazard(self) -> np.ndarray:
+        """(systems,) P(overturn) over the hazard: the levels' fractions, weighted."""
+        return self.p_level() @ np.asarray(self.hazard.weights)
+
+    def stroke(self, q: float) -> np.ndarray:
+        """(systems, levels) the q-quantile over the records of the peak base displacement (m)."""
+        key = ("stroke", q)
+        if key not in self._memo:
+            u = np.where(self._valid(), self.u_max, np.nan)
+            self._memo[key] = (np.quantile(u, q, axis=1) if not np.isnan(u).any()  # nanquantile: 10× slower
+                               else np.nanquantile(u, q, axis=1))
+        return self._memo[key]
+
+    def non_monotone(self) -> int:
+        """(system, record) pairs that survive a level above one that overturned them."""
+        o = self.overturned & self._valid()
+        first = np.where(o.any(axis=2), o.argmax(axis=2), o.shape[2])
+        above = np.arange(o.shape[2])[None, None, :] > first[:, :, None]
+        return int((above & ~o & self._valid()).any(axis=2).sum())
+
+    def fragility_median(self, system: int) -> float:
+        """The PGA (g) at which half the records overturn `system` (lognormal MLE,
+        core.fragility); nan where no run or every run overturned. (Per system on demand:
+        a fit is ~10 ms, 400 of them were a chart's slowest step.)"""
+        from isorock.validate.core.fragility import fit_counts
+        v = self._valid()[system]
+        return fit_counts(self.hazard.levels, v.sum(axis=0), (self.overturned[system] & v).sum(axis=0))[0]
+
+    def grid(self, values: np.ndarray) -> np.ndarray:
+        """The isolators' values (systems 1…) as a (y, x) grid."""
+        return np.asarray(values)[1:].reshape(self.shape)
+
+    # --- the answer ---------------------------------------------------------------------
+    def recommended(self, target: float, max_stroke: float | None) -> np.ndarray:
+        """(y, x) bool: P over the hazard ≤ target and, with a stroke limit, the
+        84th-percentile stroke at the highest level within it."""
+        ok = self.grid(self.p_hazard()) <= target
+        if max_stroke is not None:
+            ok &= self.grid(self.stroke(0.84)[:, -1]) <= max_stroke
+        return ok
+
+    def best(self, target: float, max_stroke: float | None) -> tuple[int, int]:
+        """(iy, ix) of the isolator to name: the lowest P(overturn) over the hazard, then
+        the smallest 84th-percentile stroke at the highest level, among the recommended
+        (among all where none is): not the region's edge, where the smallest stroke
+        alone would lead, a grid step from failing."""
+        p = self.grid(self.p_hazard()).ravel()
+        s = self.grid(self.stroke(0.84)[:, -1]).ravel()
+        ok = self.recommended(target, max_stroke).ravel()
+        first, second = (np.nan_to_num(v, nan=np.inf) for v in (p, s))
+        pool = np.flatnonzero(ok) if ok.any() else np.arange(p.size)
+        k = pool[np.lexsort((second[pool], first[pool]))[0]]
+        iy, ix = np.unravel_index(k, self.shape)
+        return int(iy), int(ix)
+
+
+def build_cases(statue: Statue, family, hazard: Hazard, tail: float = DEFAULT_TAIL) -> list[Case]:
+    """Every run: the fixed base first, then each isolator (y outer, x inner), each under
+    every record (name order) at every level. A record is shared by its levels' cases
+    (core.cases._LazyScaled), scaled only when run."""
+    systems = [statue.fixed()] + [family.system(statue, x, y) for y in family.y_values for x in family.x_values]
+    # a record's factors once, not once per system (each reads the record's peak)
+    factors = {name: [record_factor(hazard.records[name], "pga", level) for level in hazard.levels]
+               for name in hazard.names}
+    cases = []
+    for system in systems:
+        for name in hazard.names:
+            record = hazard.records[name]
+            for level, factor in zip(hazard.levels, factors[name]):
+                cases.append(Case(len(cases), system, _LazyScaled(record, factor), record.end_time + tail,
+                                  {"motion": name, "scale_by": "pga", "intensity": level, "scale_factor": factor}))
+    return cases
+
+
+def simulated_seconds(hazard: Hazard, n_systems: int, tail: float = DEFAULT_TAIL) -> float:
+    return n_systems * len(hazard.levels) * sum(r.end_time + tail for r in hazard.records.values())
+
+
+def estimate_s(family, hazard: Hazard, tail: float, cores: int) -> float:
+    """Wall seconds a design should take on `cores` idle cores (load on a shared machine
+    stretches it)."""
+    simulated = simulated_seconds(hazard, 1 + len(family.x_values) * len(family.y_values), tail)
+    return simulated / (REST_PHASE_SPEED if family.kind == LINEAR else KERNEL_SPEED) / max(cores, 1)
+
+
+def check_size(family, hazard: Hazard, tail: float = DEFAULT_TAIL) -> int:
+    """The number of runs, refused past MAX_DESIGN_RUNS; each run within analytic/limits.py."""
+    from isorock.analytic.limits import check_duration, check_isolator
+    n = (1 + len(family.x_values) * len(family.y_values)) * len(hazard.records) * len(hazard.levels)
+    if n > MAX_DESIGN_RUNS:
+        raise InputError(f"design size = {n} runs (isolators × records × levels): must be at most {MAX_DESIGN_RUNS}")
+    longest = max(r.end_time for r in hazard.records.values()) + tail
+    check_duration("records", longest, " (the longest record + tail)")
+    if family.kind == LINEAR:
+        shortest = System.isolated(height=2.0, width=0.7, mass=1.0, base_mass=1.0, period=min(family.x_values),
+                                   damping_ratio=0.1)
+        try:
+            check_isolator(shortest, longest)
+        except InputError as e:
+            raise InputError(f"periods: {e}") from None
+    return n
+
+
+#: the message of a run the rest phase settled (analytic.rest_scales): the block never lifts
+SETTLED_AT_REST = "the block never lifts: the rest phase in closed form settles the run (analytic.rest_scales)"
+
+
+def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_TAIL, threads: int | None = None,
+               progress=None, rest_phase: bool = True) -> Design:
+    """Run every case through the one executor (the compiled kernel in batches) and
+    gather the outcomes by system, record and level. rest_phase (linear isolators): the
+    runs in which the block never lifts are settled first, all levels of a record in one
+    pass (analytic.rest_scales), and only the others are run; the outcome is the same
+    (tests/test_design.py). progress: None, or a factory (total, label, unit) → a bar
+    (io.progress.Progress) for each phase, made when the phase's size is known, closed
+    by the caller."""
+    import time
+
+    from isorock.validate.core.executor import run_cases
+    check_family_runs(family)
+    check_size(family, hazard, tail)
+    cases = build_cases(statue, family, hazard, tail)
+    n_rec, n_lev = len(hazard.records), len(hazard.levels)
+    shape = (1 + len(family.x_values) * len(family.y_values), n_rec, n_lev)
+    start = time.perf_counter()
+    settled = []
+    if rest_phase and family.kind == LINEAR:
+        bar = progress(shape[0] - 1, "rest phase", "isolators") if progress is not None else None
+        settled = _settle_at_rest(cases, shape, hazard, tail, threads, bar)
+    done = {row["case"] for row in settled}
+    todo = [c for c in cases if c.case not in done]
+    bar = progress(len(todo), "kernel", "runs") if progress is not None and todo else None
+    table = run_cases(todo, [ENGINE], threads=threads, progress=bar) if todo else None
+    if settled:
+        import pyarrow as pa
+
+        from isorock.validate.core.summary import rows_to_table, sort_table
+        parts = [rows_to_table(settled)] + ([table] if table is not None else [])
+        table = sort_table(pa.concat_tables(parts))
+    wall = time.perf_counter() - start
+    order = np.argsort(table.column("case").to_numpy())  # sorted by case already; said, not assumed
+
+    def col(name):
+        return table.column(name).to_numpy(zero_copy_only=False)[order].reshape(shape)
+    return Design(statue, family, hazard, overturned=col("overturned").astype(bool), u_max=col("u_max"),
+                  theta_max=col("theta_max_over_alpha"), status=col("status").astype(str), table=table, wall_s=wall,
+                  tail=tail)
+
+
+def _settle_at_rest(cases, shape, hazard: Hazard, tail: float, threads, bar=None) -> list[dict]:
+    """The summary rows of the isolated runs in which the block never lifts, from one
+    rest-phase pass per (isolator, record): stays down, completes, stroke factor·max|u₁|."""
+    import time
+
+    from isorock.analytic.rest_scales import rest_phases
+    from isorock.validate.core.engines import choose
+    from isorock.validate.core.summary import case_inputs, row_of_batch
+    n_sys, n_rec, n_lev = shape
+    start = time.perf_counter()
+    records = [hazard.records[n] for n in hazard.names]
+    factors = np.array([[record_factor(r, "pga", lv) for lv in hazard.levels] for r in records])
+    systems = [cases[i * n_rec * n_lev].system for i in range(1, n_sys)]
+    uplift, u1 = rest_phases(systems, records, factors, [r.end_time + tail for r in records], workers=threads,
+                             on_system=(lambda: bar.update(1)) if bar is not None else None)
+    never = ~np.isfinite(uplift)
+    per_run = (time.perf_counter() - start) / max(int(never.sum()), 1)
+    label = choose(ENGINE, {}, strict=True).label
+    rows = []
+    for i, r, k in zip(*np.nonzero(never)):
+        case = cases[((i + 1) * n_rec + r) * n_lev + k]
+        result = {"status": "completed", "message": SETTLED_AT_REST, "theta_max_over_alpha": 0.0, "impacts": 0,
+                  "uplifts": 0, "overturned": False, "overturn_time": None, "u_max": float(factors[r, k] * u1[i, r])}
+        rows.append({**case_inputs(case), "engine": ENGINE, "setting": label, **row_of_batch(case, result),
+                     "runtime_s": per_run})
+    return rows
+
+
+# --- the verdict in words -------------------------------------------------------------------
+
+def _fmt_value(v: float, unit: str) -> str:
+    return f"{v:.3g} {unit}".strip()
+
+
+def _span(values, unit) -> str:
+    lo, hi = min(values), max(values)
+    return _fmt_value(lo, unit) if lo == hi else f"{lo:.3g}–{_fmt_value(hi, unit)}"
+
+
+def _pct(p: float) -> str:
+    if not math.isfinite(p):
+        return "n/a"
+    return f"{100 * p:.1f}%" if p < 0.995 or p == 1 else f"{100 * p:.2f}%"
+
+
+def hazard_text(h: Hazard) -> str:
+    levels = (f"PGA {h.levels[0]:g} g" if len(h.levels) == 1
+              else f"PGA {h.levels[0]:g}–{h.levels[-1]:g} g in {len(h.levels)} levels")
+    weights = "" if len(h.levels) == 1 else (", levels weighted equally" if h.equal_weights else ", levels weighted as given")
+    return f"{len(h.records)} records{' (' + h.source + ')' if h.source else ''}, {levels}{weights}"
+
+
+def region_rows(d: Design, target: float, max_stroke: float | None) -> list[dict]:
+    """Per y value (a damping ratio, a friction coefficient): the x values recommended."""
+    ok = d.recommended(target, max_stroke)
+    fam = d.family
+    rows = []
+    for iy, y in enumerate(fam.y_values):
+        xs = [fam.x_values[ix] for ix in range(len(fam.x_values)) if ok[iy, ix]]
+        rows.append({fam.y_name: y, f"{fam.x_name}_recommended": xs})
+    return rows
+
+
+def verdict(d: Design, target: float, max_stroke: float | None) -> dict:
+    """The answer, verdict first: the recommended region in words, the isolator to name,
+    the fixed base beside it."""
+    fam, h = d.family, d.hazard
+    p_h, p_l = d.p_hazard(), d.p_level()
+    s84, s50 = d.stroke(0.84), d.stroke(0.5)
+    ok = d.recommended(target, max_stroke)
+    iy, ix = d.best(target, max_stroke)
+    k = 1 + iy * len(fam.x_values) + ix
+    top = h.levels[-1]
+    rule = f"P(overturn) ≤ {_pct(target)} over the hazard" + (
+        f" and 84th-percentile stroke ≤ {max_stroke:g} m at {top:g} g" if max_stroke is not None else "")
+    fixed = (f"Fixed base: P(overturn) {_pct(p_h[0])} over the hazard"
+             + (f" ({_pct(p_l[0, -1])} at {top:g} g)." if len(h.levels) > 1 else "."))
+    best = (f"{fam.x_name.replace('_', ' ')} {_fmt_value(fam.x_values[ix], fam.x_unit)}, "
+            f"{fam.y_name.replace('_', ' ')} {fam.y_values[iy]:.3g}: P {_pct(p_h[k])} over the hazard"
+            + (f" ({_pct(p_l[k, -1])} at {top:g} g)" if len(h.levels) > 1 else "")
+            + f", stroke {s50[k, -1]:.3g} m median, {s84[k, -1]:.3g} m 84th percentile at {top:g} g")
+    n_ok = int(ok.sum())
+    edges = []
+    for row in region_rows(d, target, max_stroke):
+        got = row[f"{fam.x_name}_recommended"]
+        if got:
+            whole = len(got) == fam.x_values.index(max(got)) - fam.x_values.index(min(got)) + 1
+            edges.append((row[fam.y_name], min(got), max(got), whole))
+    x_words, y_words = fam.x_name.replace("_", " "), fam.y_name.replace("_", " ")
+    if n_ok:
+        headline = (f"Recommended: {fam.kind} isolators with {x_words} {_region_words(edges, fam)} "
+                    f"({n_ok} of {ok.size} on the grid) keep {rule}. Named: {best}. {fixed}")
+    else:
+        headline = f"No {fam.kind} isolator on the grid meets {rule}. Lowest P: {best}. {fixed}"
+    return {"headline": headline, "rule": rule, "recommended": n_ok, "of": int(ok.size),
+            "best": {fam.x_name: fam.x_values[ix], fam.y_name: fam.y_values[iy], "p_hazard": float(p_h[k]),
+                     "p_top": float(p_l[k, -1]), "stroke_median_top": float(s50[k, -1]),
+                     "stroke_84_top": float(s84[k, -1]), "fragility_median_pga": float(d.fragility_median(k))},
+            "fixed_base": {"p_hazard": float(p_h[0]), "p_levels": p_l[0].tolist(),
+                           "fragility_median_pga": float(d.fragility_median(0))},
+            "region_edges": [{fam.y_name: y, f"{fam.x_name}_from": a, f"{fam.x_name}_to": b, "contiguous": w}
+                             for y, a, b, w in edges]}
+
+
+def _region_words(edges, fam) -> str:
+    """The recommended x values per y, rows with the same span merged: "≥ 2 s at damping
+    ratio 0.05–0.13, ≥ 1.5 s at 0.22" (≥ where the span reaches the grid's largest x)."""
+    top = max(fam.x_values)
+    groups = []
+    for y, a, b, whole in edges:
+        span = (f"≥ {_fmt_value(a, fam.x_unit)}" if b == top and whole else
+                f"{_span([a, b], fam.x_unit)}" + ("" if whole else " (not every value between)"))
+        if groups and groups[-1][0] == span and groups[-1][2] == fam.y_values.index(y) - 1:
+            groups[-1][1].append(y)
+            groups[-1][2] += 1
+        else:
+            groups.append([span, [y], fam.y_values.index(y)])
+    y_words = fam.y_name.replace("_", " ")
+    parts = [f"{span} at {_span(ys, fam.y_unit)}" for span, ys, _ in groups]
+    return parts[0].replace(" at ", f" at {y_words} ", 1) + "".join(f", {p}" for p in parts[1:])
+
+
+# --- a few points checked by a contact engine --------------------------------------------------
+
+def check_points(d: Design, target: float, max_stroke: float | None, runs: int) -> list[tuple[int, str, int]]:
+    """(system, record, level index) to run again with a contact engine: the named
+    isolator, the grid's worst and the fixed base, at the highest level, each under
+    records the kernel says overturn and records it says survive (half and half where it
+    can), in name order. `runs` in all."""
+    fam = d.family
+    iy, ix = d.best(target, max_stroke)
+    p = d.p_hazard()
+    systems = list(dict.fromkeys([1 + iy * len(fam.x_values) + ix, 1 + int(np.nanargmax(p[1:])), 0]))
+    per = max(1, runs // len(systems))
+    names = d.hazard.names
+    level = len(d.hazard.levels) - 1
+    picks = []
+    for k in systems:
+        o = d.overturned[k, :, level]
+        fell = [r for r in range(len(names)) if o[r]]
+        stood = [r for r in range(len(names)) if not o[r]]
+        chosen = fell[:per // 2] + stood[:per - min(per // 2, len(fell))]
+        chosen += [r for r in fell if r not in chosen][:per - len(chosen)]
+        picks += [(k, names[r], level) for r in chosen[:per]]
+    return picks[:max(runs, len(systems))]
+
+
+def check_with(d: Design, engine: str, picks, *, progress=None) -> dict:
+    """The picked runs with `engine` (through the one executor), against the kernel's
+    rows: outcomes agreed (overturned or not), and the stroke's relative difference
+    where neither overturned, judged by the engine's u_max tolerance (a single history's,
+    core.tolerances); runs near overturning may part for reasons of chaos, not of the
+    engine (model.md), so the outcome count is reported, not judged."""
+    from isorock.validate.core.executor import run_cases
+    from isorock.validate.core.tolerances import has_tolerance, tolerance
+    fam, h = d.family, d.hazard
+    systems = [d.statue.fixed()] + [fam.system(d.statue, x, y) for y in fam.y_values for x in fam.x_values]
+    cases = []
+    for k, name, li in picks:
+        record, level = h.records[name], h.levels[li]
+        factor = record_factor(record, "pga", level)
+        cases.append(Case(len(cases), systems[k], _LazyScaled(record, factor), record.end_time + d.tail,
+                          {"motion": name, "scale_by": "pga", "intensity": level, "scale_factor": factor}))
+    table = run_cases(cases, [engine], progress=progress)
+    cols = {c: table.column(c).to_numpy(zero_copy_only=False) for c in ("case", "overturned", "u_max", "status",
+                                                                         "theta_max_over_alpha")}
+    names = h.names
+    limit = tolerance(engine, "u_max_rel_error").limit if has_tolerance(engine, "u_max_rel_error") else math.nan
+    rows = []
+    for i, (k, name, li) in enumerate(picks):
+        j = int(np.flatnonzero(cols["case"] == i)[0])
+        r = names.index(name)
+        a_over, e_over = bool(d.overturned[k, r, li]), bool(cols["overturned"][j])
+        a_u, e_u = float(d.u_max[k, r, li]), float(cols["u_max"][j])
+        both_stand = not a_over and not e_over and k != 0
+        rel = abs(e_u - a_u) / a_u if both_stand and a_u > 0 else math.nan
+        rows.append({"system": "fixed base" if k == 0 else _isolator_label(d, k), "record": name,
+                     "pga": h.levels[li], "analytic_overturned": a_over, f"{engine}_overturned": e_over,
+                     "analytic_u_max": a_u, f"{engine}_u_max": e_u, "u_max_rel_diff": rel,
+                     "analytic_theta_max_over_alpha": float(d.theta_max[k, r, li]),
+                     f"{engine}_theta_max_over_alpha": float(cols["theta_max_over_alpha"][j]),
+                     f"{engine}_status": str(cols["status"][j])})
+    agree = sum(row["analytic_overturned"] == row[f"{engine}_overturned"] for row in rows)
+    rels = [row["u_max_rel_diff"] for row in rows if math.isfinite(row["u_max_rel_diff"])]
+    within = sum(x <= limit for x in rels) if math.isfinite(limit) else None
+    text = (f"{engine} on {len(rows)} of the design's runs: overturning as the analytic model's in {agree} of "
+            f"{len(rows)}")
+    if rels:
+        text += (f"; stroke where both stand: worst {100 * max(rels):.2g}% apart, median {100 * float(np.median(rels)):.2g}%"
+                 + (f", {within} of {len(rels)} within its tolerance {100 * limit:.2g}%" if within is not None else ""))
+    return {"engine": engine, "runs": rows, "outcomes_agree": agree, "n": len(rows), "stroke_rel_diffs": rels,
+            "stroke_tolerance": limit, "stroke_within": within, "text": text}
+
+
+def _isolator_label(d: Design, k: int) -> str:
+    fam = d.family
+    iy, ix = divmod(k - 1, len(fam.x_values))
+    return (f"{fam.x_name.replace('_', ' ')} {_fmt_value(fam.x_values[ix], fam.x_unit)}, "
+            f"{fam.y_name.replace('_', ' ')} {fam.y_values[iy]:.3g}")
+
+
+def unit_scaled(record: GroundMotion, level: float) -> GroundMotion:
+    """The record as a design run sees it at `level` (g): what a direct run must be given
+    to reproduce a chart cell."""
+    return _LazyScaled(record, record_factor(record, "pga", level)).motion()

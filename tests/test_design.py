@@ -1,0 +1,225 @@
+"""isorock design (campaign.design, analytic.rest_scales, validate/cli/design.py), against
+independent oracles: the kernel run by run (a chart cell, the rest phase, the fixed base's
+fragility counts), a closed-form bound under which no block can lift, and the command's
+one-line refusals. Synthetic records keep it fast and independent of the shared folder."""
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from isorock.analytic.fast import simulate_batch, simulate_fast
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.rest_scales import rest_phase
+from isorock.analytic.system import System
+from isorock.campaign.design import SETTLED_AT_REST, Hazard, LinearFamily, Statue, run_design, unit_scaled
+from isorock.validate.cli.main import main
+
+DT = 0.01
+
+
+def _record(seed: int, seconds: float = 8.0) -> GroundMotion:
+    """A broadband record of unit-ish PGA (g): a few sines with an envelope and noise."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, seconds, DT)
+    env = np.minimum(1.0, t / 1.5) * np.exp(-np.maximum(0.0, t - 4.0) / 2.0)
+    a = sum(rng.uniform(0.2, 1.0) * np.sin(2 * np.pi * rng.uniform(0.3, 3.0) * t + rng.uniform(0, 6))
+            for _ in range(5)) + 0.3 * rng.standard_normal(t.size)
+    return GroundMotion.from_array(env * a, dt=DT, units="g", name=f"synthetic-{seed}")
+
+
+RECORDS = {f"synthetic-{s}": _record(s) for s in (1, 2, 3)}
+STATUE = Statue(height=1.0, width=0.35, mass=100.0, base_mass=100.0)
+TAIL = 2.0
+
+
+@pytest.fixture(scope="module")
+def small_design():
+    family = LinearFamily((1.0, 2.5), (0.05, 0.3))
+    hazard = Hazard(RECORDS, (0.15, 0.4, 0.8))
+    return run_design(STATUE, family, hazard, tail=TAIL, threads=1)
+
+
+def test_rest_phase_matches_the_kernel_run_by_run():
+    """Uplift or not, the first uplift time and the stroke of a run that never lifts, from
+    one rest-phase pass over all levels, equal the kernel's own full runs."""
+    levels = np.array([0.05, 0.1, 0.2, 0.3, 0.5, 0.8])
+    lifted_somewhere = settled_somewhere = False
+    for name, record in RECORDS.items():
+        T = record.end_time + TAIL
+        factors = levels / record.pga_g
+        for period, xi in ((1.0, 0.05), (2.0, 0.2)):
+            system = System.isolated(height=1.0, width=0.35, mass=100.0, base_mass=100.0, period=period,
+                                     damping_ratio=xi)
+            uplift, u1_max = rest_phase(system, record, factors, T)
+            for f, t_up in zip(factors, uplift):
+                tr = simulate_fast(system, record.scaled(f), duration=T)
+                assert (tr.uplifts > 0) == math.isfinite(t_up), (name, period, xi, f)
+                if tr.uplifts:
+                    lifted_somewhere = True
+                    assert abs(tr.uplift_times[0] - t_up) < 1e-9
+                else:
+                    settled_somewhere = True
+                    assert tr.theta_max_over_alpha == 0 and not tr.overturned
+                    assert abs(f * u1_max - tr.u_max) <= 1e-9 * tr.u_max
+    assert lifted_somewhere and settled_somewhere  # both branches were exercised
+
+
+def test_a_chart_cell_equals_the_direct_runs(small_design):
+    d = small_design
+    fam, h = d.family, d.hazard
+    iy, ix = 0, 0  # T 1 s, ξ 0.05: the block lifts and falls at some levels
+    system = fam.system(STATUE, fam.x_values[ix], fam.y_values[iy])
+    k = 1 + iy * len(fam.x_values) + ix
+    outcomes = np.zeros((len(h.names), len(h.levels)), bool)
+    for r, name in enumerate(h.names):
+        for li, level in enumerate(h.levels):
+            record = h.records[name]
+            tr = simulate_fast(system, unit_scaled(record, level), duration=record.end_time + TAIL)
+            outcomes[r, li] = tr.overturned
+            assert d.overturned[k, r, li] == tr.overturned
+            assert abs(d.u_max[k, r, li] - tr.u_max) <= 1e-9 * max(tr.u_max, 1e-12)
+    assert outcomes.any() and not outcomes.all()
+    np.testing.assert_array_equal(d.p_level()[k], outcomes.mean(axis=0))
+    assert d.p_hazard()[k] == pytest.approx(outcomes.mean(), abs=1e-15)
+    # stroke: the quantiles of the direct runs' peaks
+    np.testing.assert_allclose(d.stroke(0.84)[k], np.quantile(d.u_max[k], 0.84, axis=0), rtol=0)
+
+
+def test_the_rest_phase_changes_nothing_but_the_work(small_design):
+    plain = run_design(STATUE, small_design.family, small_design.hazard, tail=TAIL, threads=1, rest_phase=False)
+    np.testing.assert_array_equal(plain.overturned, small_design.overturned)
+    np.testing.assert_allclose(small_design.u_max, plain.u_max, rtol=1e-9, atol=1e-15)
+    settled = np.asarray(small_design.table.column("message").to_pylist()) == SETTLED_AT_REST
+    assert 0 < settled.sum() < settled.size
+
+
+def test_the_fixed_base_column_is_the_direct_fragility_count(small_design):
+    from isorock.validate.core.fragility import fit_counts
+    d, h = small_design, small_design.hazard
+    motions = [unit_scaled(h.records[n], lv) for n in h.names for lv in h.levels]
+    rows = simulate_batch([STATUE.fixed()], motions, duration=np.array([m.end_time + TAIL for m in motions]),
+                          workers=1)
+    fell = np.array([r["overturned"] for r in rows]).reshape(len(h.names), len(h.levels))
+    np.testing.assert_array_equal(d.p_level()[0], fell.mean(axis=0))
+    theta, _ = fit_counts(h.levels, np.full(len(h.levels), len(h.names)), fell.sum(axis=0))
+    med = d.fragility_median(0)
+    assert (math.isnan(theta) and math.isnan(med)) or med == pytest.approx(theta, rel=1e-12)
+
+
+def _acceleration_amplification(period: float, xi: float) -> float:
+    """∫|h_a(t)| dt of the linear isolator: the largest ratio of the base's peak absolute
+    acceleration to the ground's, whatever the motion (its impulse response's L1 norm,
+    by quadrature of the closed form)."""
+    w = 2 * np.pi / period
+    wd = w * math.sqrt(1 - xi * xi)
+    t = np.linspace(0.0, 60.0 / (xi * w), 2_000_001)
+    e = np.exp(-xi * w * t)
+    h = e * (2 * xi * w * (np.cos(wd * t) - xi * w / wd * np.sin(wd * t)) + w * w / wd * np.sin(wd * t))
+    return float(np.sum(np.abs(h)) * (t[1] - t[0]))
+
+
+def test_no_uplift_possible_by_the_closed_form_bound_gives_p_zero():
+    """Below g·tanα / ∫|h_a| no motion can lift the block on the isolator, nor below
+    g·tanα on a fixed base: P(overturn) is 0 everywhere, nothing rocks."""
+    statue = Statue(height=1.0, width=1.0, mass=100.0, base_mass=100.0)  # tanα = 1
+    family = LinearFamily((1.5, 3.0), (0.1, 0.3))
+    worst = max(_acceleration_amplification(T, xi) for T in family.x_values for xi in family.y_values)
+    top = 0.95 / worst  # PGA in g (g·tanα = 1 g)
+    d = run_design(statue, family, Hazard(RECORDS, (0.5 * top, top)), tail=TAIL, threads=1)
+    assert not d.overturned.any() and np.all(d.theta_max == 0)
+    assert np.all(d.p_hazard() == 0)
+    settled = np.asarray(d.table.column("message").to_pylist()) == SETTLED_AT_REST
+    assert settled.sum() == d.overturned[1:].size  # every isolated run settled at rest
+
+
+def test_a_hazard_refuses_bad_levels_and_weights():
+    from isorock.analytic.errors import InputError
+    with pytest.raises(InputError, match="increasing"):
+        Hazard(RECORDS, (0.5, 0.2))
+    with pytest.raises(InputError, match="level-weights"):
+        Hazard(RECORDS, (0.2, 0.5), (1.0,))
+    h = Hazard(RECORDS, (0.2, 0.5), (1.0, 3.0))
+    assert h.weights == (0.25, 0.75)
+
+
+# --- the command -----------------------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def records_folder(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("records")
+    for name, m in list(RECORDS.items())[:2]:
+        lines = ["# units: m/s2", *(f"{i * m.dt:.4f},{float(a)!r}" for i, a in enumerate(m.acceleration))]
+        (folder / f"{name}.csv").write_text("\n".join(lines) + "\n")
+    return folder
+
+
+@pytest.mark.parametrize("args, field", [
+    (["--pga", "0.8:0.2:3"], "--pga"),
+    (["--damping-ratios", "0.1,1.2"], "--damping-ratios"),
+    (["--periods", "two"], "--periods"),
+    (["--records", "/nonexistent/folder"], "--records"),
+    (["--slenderness", "3"], "--slenderness"),
+    (["--target", "1.5"], "--target"),
+    (["--radii", "1,2"], "--radii"),
+    (["--level-weights", "1,2"], "level-weights"),
+    (["--check", "analytic"], "--check"),
+])
+def test_bad_input_is_one_line_exit_2_and_writes_nothing(args, field, tmp_path, capsys, records_folder):
+    out = tmp_path / "out"
+    rc = main(["design", "--records", str(records_folder), "--out", str(out), "--quiet", *args])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and field in err, err
+    assert not out.exists()
+
+
+def test_a_foreign_folder_is_refused_before_the_work(tmp_path, capsys, records_folder):
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "notes.txt").write_text("keep me")
+    rc = main(["design", "--records", str(records_folder), "--out", str(out), "--quiet", "--pga", "0.3"])
+    assert rc == 2 and "notes.txt" in capsys.readouterr().err
+    assert [p.name for p in out.iterdir()] == ["notes.txt"]
+
+
+def test_the_command_writes_the_chart_and_the_answer(tmp_path, capsys, records_folder):
+    out = tmp_path / "design"
+    rc = main(["design", "--records", str(records_folder), "--height", "1", "--width", "0.35", "--mass", "100",
+               "--mass-ratio", "1", "--pga", "0.2,0.6", "--periods", "1,2.5", "--damping-ratios", "0.05,0.3",
+               "--tail", "2", "--out", str(out)])
+    captured = capsys.readouterr()
+    assert rc == 0
+    doc = json.loads((out / "design.json").read_text())
+    assert captured.out.splitlines()[0] == doc["verdict"]
+    assert doc["runs"] == (1 + 4) * 2 * 2 and doc["failed"] == 0
+    assert doc["verdict"].startswith(("Recommended:", "No linear isolator"))
+    assert "Fixed base: P(overturn)" in doc["verdict"]
+    assert "estimated" in captured.err and "ETA" in captured.err  # the budget first, progress after
+    for name in ("design.md", "design.png", "design.csv", "runs.parquet"):
+        assert (out / name).is_file()
+    assert (out / "design.md").read_text().splitlines()[2] == f"**{doc['verdict']}**"
+
+
+def test_the_fema_suite_without_its_package_is_one_line_naming_the_extra(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr("isorock.campaign.records.fema_available", lambda: False)
+    rc = main(["design", "--out", str(tmp_path / "out"), "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and "isorock[records]" in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_contact_check_reruns_the_picked_runs_and_compares_them(small_design):
+    """--check: the named isolator, the worst and the fixed base, each under records the
+    kernel says overturn and survive; MuJoCo's stroke where both stand within its
+    tolerance (the same spring and dashpot; only the rocking's feedback differs)."""
+    pytest.importorskip("mujoco")
+    from isorock.campaign.design import check_points, check_with
+    picks = check_points(small_design, 0.05, None, 3)
+    assert {k for k, _, _ in picks} == {0, 1 + int(np.argmax(small_design.p_hazard()[1:])),
+                                        1 + small_design.best(0.05, None)[0] * 2 + small_design.best(0.05, None)[1]}
+    c = check_with(small_design, "mujoco", picks)
+    assert c["n"] == len(picks) and all(r["pga"] == small_design.hazard.levels[-1] for r in c["runs"])
+    assert c["stroke_rel_diffs"] and c["stroke_within"] == len(c["stroke_rel_diffs"])
+    assert c["text"].startswith(f"mujoco on {len(picks)} of the design's runs")

