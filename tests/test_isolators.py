@@ -229,21 +229,23 @@ def test_bearing_yields_on_time_and_decays_by_its_loop():
     (bearing(3e6, 0.1, 0.002, 1000.0), "sine:amp=0.45,freq=2,cycles=3"),
     (bearing(3e6, 0.1, 0.002, 1000.0), "ricker:amp=0.6,freq=1.5"),
 ], ids=["pendulum", "pendulum-ricker", "pendulum-pinned", "bearing", "bearing-ricker"])
-def test_energy_balance_closes_with_the_slip_work(system, motion):
+@pytest.mark.parametrize("run", [simulate, simulate_fast], ids=["reference", "kernel"])
+def test_energy_balance_closes_with_the_slip_work(system, motion, run):
     """E(t) − E(0) = ground work − dashpot − impacts − slip work, to 1e-10 of the energy involved,
-    through uplifts, impacts and stick–slip in both modes."""
-    tr = simulate(system, load_motion(motion))
+    through uplifts, impacts and stick–slip in both modes, on both analytic paths."""
+    tr = run(system, load_motion(motion))
     assert tr.uplifts > 0 and tr.impacts
     assert tr.energy.isolator_loss[-1] > 0
     assert tr.energy.relative_residual <= ENERGY
     assert tr.summary()["energy_lost_in_isolator"] == tr.energy.isolator_loss[-1]
 
 
-def test_pinned_pendulum_rocks_on_the_moving_ground():
+@pytest.mark.parametrize("run", [simulate, simulate_fast], ids=["reference", "kernel"])
+def test_pinned_pendulum_rocks_on_the_moving_ground(run):
     """With high friction the base holds while the block rocks: the block rocks as on a fixed
     base (u and u̇ unchanged), and an impact's momentum (β₂θ̇⁻, no impulsive friction) sets
     the base sliding."""
-    tr = simulate(pendulum(1.0, 0.25), load_motion("sine:amp=0.9,freq=2.0,cycles=3"))
+    tr = run(pendulum(1.0, 0.25), load_motion("sine:amp=0.9,freq=2.0,cycles=3"))
     phase = tr.extras["isolator_phase"]
     pinned_rocking = (tr.mode != 0) & (phase == 0)
     assert pinned_rocking.any()
@@ -254,16 +256,7 @@ def test_pinned_pendulum_rocks_on_the_moving_ground():
 
 # --- who carries them ---------------------------------------------------------------------------
 
-@pytest.mark.parametrize("system", [pendulum(1.0, 0.05), bearing()], ids=["pendulum", "bearing"])
-def test_kernel_refuses_a_non_linear_isolator(system):
-    for run in (lambda: simulate_fast(system), lambda: simulate_batch(system, duration=1.0)):
-        with pytest.raises(InputError) as e:
-            run()
-        message = str(e.value)
-        assert "\n" not in message and system.isolator_kind in message and "analytic-reference" in message
-
-
-@pytest.mark.parametrize("engine", ["analytic", "mujoco", "bullet", "drake"])
+@pytest.mark.parametrize("engine", ["mujoco", "bullet", "drake"])
 def test_registry_refuses_what_an_engine_does_not_carry(engine):
     from isorock.validate.core.engines import get_engine
     try:
@@ -294,14 +287,15 @@ def test_shared_engine_checks_refuse_by_default():
 PAPER = ["--height", "2.0", "--width", "0.7", "--mass", "3800", "--base-mass", "3800"]
 
 
-def test_run_takes_a_pendulum_on_the_reference_path(capsys):
+@pytest.mark.parametrize("engine", [[], ["--engine", "analytic-reference"]], ids=["kernel", "reference"])
+def test_run_takes_a_pendulum_on_either_analytic_path(engine, capsys):
     code = main(["run", *PAPER, "--isolator", "friction-pendulum", "--radius", "1.0",
                  "--friction-coefficient", "0.06", "--motion", "sine:amp=0.3,freq=1.0,cycles=1", "--quiet",
-                 "--json", "-"])
+                 "--json", "-", *engine])
     out = capsys.readouterr().out
     assert code == 0
     d = json.loads(out)
-    assert d["engine"] == "analytic-reference"
+    assert d["engine"] == ("analytic-reference" if engine else "analytic")  # the kernel by default
     assert d["system"]["isolator"] == "friction-pendulum" and d["system"]["radius"] == 1.0
     assert d["energy_lost_in_isolator"] > 0
 
@@ -316,8 +310,6 @@ def test_run_takes_a_pendulum_on_the_reference_path(capsys):
     (["--isolator", "bilinear", "--stiffness", "1e5", "--post-yield-ratio", "1", "--yield-displacement", "0.01"],
      "post_yield_ratio = "),
     (["--isolator", "bilinear", "--stiffness", "1e5", "--post-yield-ratio", "0.1"], "--yield-displacement"),
-    (["--isolator", "friction-pendulum", "--radius", "1", "--friction-coefficient", "0.1", "--engine", "analytic"],
-     "isolator = friction-pendulum"),
     (["--isolator", "bilinear", "--stiffness", "1e5", "--post-yield-ratio", "0.1", "--yield-displacement", "0.01",
       "--engine", "mujoco"], "isolator = bilinear"),
 ])
