@@ -172,20 +172,20 @@ _DIRECTION = np.array([[1, 1, 0, 0, 0], [-1, 1, 0, 0, 1]], dtype=np.int64)
 # stops: slot 5, direction −1; a stuck slider slips, or an elastic bearing yields, either
 # way: slots 5 and 6, direction +1), and the slider's phase and position go from piece to
 # piece. `iso`, the tuple the functions take, is that state within a piece (_IS_*). The
-# linear kernel passes _NO_ISO, a float it never reads: a tuple of nine, passed by value to
+# linear kernel passes _NO_ISO, a float it never reads: a tuple of floats, passed by value to
 # every call that is not inlined, cost it ~1% with stored histories.
 _ISO = False
 _NY = 6
 _ISO_N_EV = 7
 _ISO_DIRECTION = np.array([[1, 1, 0, 0, 0, 1, 1], [-1, 1, 0, 0, 1, 1, 1]], dtype=np.int64)
-# iso tuple: physics.isolator_params's I_KIND, I_KEL, I_FSLIP (so that physics's isolator
-# functions take it as their ip), then the bearing's u_y, the pendulum's stick limit
+# iso tuple: physics.isolator_params's I_KIND, I_KEL, I_FSLIP, I_FMAX, I_RATE (so that physics's
+# isolator functions take it as their ip), then the bearing's u_y, the pendulum's stick limit
 # (physics.stick_limit), the phase (0 stuck, ±1 slipping), the slider's position u_p, whether
 # a slip started from u̇ = 0 at the piece's start, and σ·ü there
-_IS_UY, _IS_FLIM, _IS_PH, _IS_UP, _IS_REST, _IS_START = 3, 4, 5, 6, 7, 8
+_IS_UY, _IS_FLIM, _IS_PH, _IS_UP, _IS_REST, _IS_START = 5, 6, 7, 8, 9, 10
 _NO_ISO = 0.0
-# ip, the array the isolator kernel takes: I_KIND, I_KEL, I_FSLIP, u_y
-_IP_UY, _N_IPK = 3, 4
+# ip, the array the isolator kernel takes: physics's ip (I_KIND … I_RATE), then u_y
+_IP_UY, _N_IPK = 5, 6
 _ISO_FRICTION = float(physics.ISO_FRICTION)
 _ISO_BILINEAR = float(physics.ISO_BILINEAR)
 
@@ -226,7 +226,7 @@ def _compile_physics():
               "free_vibration_change", "rocking_pivot_force_ratio", "_times_a", "base_pinned",
               "isolator_element_force", "isolator_translation_acceleration", "isolator_rocking_accelerations",
               "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
-              "slip_power")
+              "slip_power", "slip_force")
     for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
@@ -239,7 +239,7 @@ def _compile_physics():
                  "translation_velocity_zeros", "translation_u_bound", "base_pinned", "isolator_element_force",
                  "isolator_translation_acceleration", "isolator_rocking_accelerations",
                  "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
-                 "slip_power"):
+                 "slip_power", "slip_force"):
         f = getattr(physics, name)
         rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
         table[name] = njit(inline="always")(rebuilt) if name in inline else njit(rebuilt)
@@ -741,9 +741,9 @@ def _next_point(kg, odt, grid, t_stop, roots, n_roots, kr, offset):
 
 @njit(inline="always")
 def _iso_state(ipk, phase, u_p, rest, start):
-    """The iso tuple of a piece (_IS_*) from the run's isolator constants ipk (I_KIND, I_KEL,
-    I_FSLIP, u_y, stick limit)."""
-    return (ipk[0], ipk[1], ipk[2], ipk[3], ipk[4], phase, u_p, rest, start)
+    """The iso tuple of a piece (_IS_*) from the run's isolator constants ipk (physics's ip,
+    u_y, stick limit: the tuple's first _IS_PH entries)."""
+    return (ipk[0], ipk[1], ipk[2], ipk[3], ipk[4], ipk[5], ipk[6], phase, u_p, rest, start)
 
 
 @njit(inline="always")
@@ -784,7 +784,7 @@ def _set_phase(ipk, phase, u_p, u, u_dot, new):
     if new == phase:
         return phase, u_p, u_dot
     if phase != 0.0 and ipk[0] == _ISO_BILINEAR:
-        u_p = u - phase * ipk[3]
+        u_p = u - phase * ipk[_IS_UY]
     if new == 0.0 and ipk[0] == _ISO_FRICTION:
         u_dot = 0.0
     return new, u_p, u_dot
@@ -929,7 +929,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     if not _ISO:
         iso = _NO_ISO
     else:
-        ipk = (ip[0], ip[1], ip[2], ip[_IP_UY], _stick_limit(sp, ip))
+        ipk = (ip[0], ip[1], ip[2], ip[3], ip[4], ip[_IP_UY], _stick_limit(sp, ip))
         iso = _iso_state(ipk, 0.0, 0.0, 0.0, 0.0)
         if ipk[0] == _ISO_FRICTION:
             if y[1] != 0.0:
@@ -938,7 +938,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 m0 = 0 if y[2] == 0.0 else (1 if y[2] > 0.0 else -1)
                 phase = _stick_or_slip(sp, iso, m0, y[2], y[3], y[0], _xg(0.0, mp, acc))
         else:
-            u_p = y[0] - min(max(y[0], -ipk[3]), ipk[3])
+            u_p = y[0] - min(max(y[0], -ipk[_IS_UY]), ipk[_IS_UY])
         iso = _iso_state(ipk, phase, u_p, 0.0, 0.0)
     if y[2] != 0.0:
         mode = 1 if y[2] > 0.0 else -1

@@ -82,7 +82,7 @@ def compare_paths(cases, settings: AnalyticSettings | None = None) -> dict:
 
 def isolator_cases(seed: int, n: int, kind: str) -> list[tuple[System, GroundMotion]]:
     """n cases on a bilinear bearing or a single concave friction pendulum (kind: System's
-    isolator_kind): blocks of slenderness 2–8 and height 0.5–4 m, μ = m/m_b 0.2–5; a pendulum
+    isolator_kind, or "velocity-friction": a pendulum with μ_f(v)): blocks of slenderness 2–8 and height 0.5–4 m, μ = m/m_b 0.2–5; a pendulum
     of R_fp 0.5–4 m and μ_f 0–0.15, or a bearing of initial period 0.3–2 s, post-yield ratio
     0–0.5, u_y 1–20 mm and ξ 0–0.2 on its initial stiffness; a sine, cosine or Ricker pulse of
     ω_p/p 0.5–12 and 0.8–12 × g·tanα (so that many lift, slip and stick, some overturn)."""
@@ -94,6 +94,10 @@ def isolator_cases(seed: int, n: int, kind: str) -> list[tuple[System, GroundMot
         m, m_b = 1000.0, 1000.0 / mu
         if kind == "friction-pendulum":
             iso = FrictionPendulum(radius=rng.uniform(0.5, 4), friction_coefficient=rng.uniform(0, 0.15))
+        elif kind == "velocity-friction":  # μ_f(v): μ_min 0–0.1, μ_max μ_min + 0–0.1, a 5–200 s/m
+            mu_min = rng.uniform(0, 0.1)
+            iso = FrictionPendulum(radius=rng.uniform(0.5, 4), friction_coefficient=mu_min,
+                                   friction_max=mu_min + rng.uniform(0, 0.1), friction_rate=rng.uniform(5, 200))
         else:
             w0 = 2 * math.pi / rng.uniform(0.3, 2)
             k0 = (m + m_b) * w0 ** 2

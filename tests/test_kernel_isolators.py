@@ -16,7 +16,7 @@ from agreement_cases import compare_isolator_paths, isolator_cases  # noqa: E402
 AGREE = tolerance("analytic", "kernel_isolator_agreement").limit
 
 
-@pytest.mark.parametrize("kind", ["friction-pendulum", "bilinear"])
+@pytest.mark.parametrize("kind", ["friction-pendulum", "velocity-friction", "bilinear"])
 def test_kernel_agrees_with_reference_on_random_isolator_cases(kind):
     out = compare_isolator_paths(isolator_cases(seed=2, n=6, kind=kind))
     # the draw covers rocking, overturning and many slider events (the test can fail where it matters)

@@ -28,7 +28,7 @@ def main(argv=None):
     p.add_argument("--json", help="write every case's row here")
     a = p.parse_args(argv)
     report = {}
-    for kind in ("friction-pendulum", "bilinear"):
+    for kind in ("friction-pendulum", "velocity-friction", "bilinear"):
         start = time.perf_counter()
         out = compare_isolator_paths(isolator_cases(a.seed, a.cases, kind))
         out["wall_s"] = round(time.perf_counter() - start, 1)
