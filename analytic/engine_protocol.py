@@ -49,7 +49,7 @@ class Capabilities:
     events of the rigid model, not measured from a contact history; campaigns: it is fast
     enough for grids of thousands of runs (bench and stress run it unless told otherwise);
     isolators: the isolator kinds it carries (System.isolator_kind; every engine the
-    linear one, the SciPy reference path every kind: docs/isolators.md). Any other is
+    linear one, both analytic paths every kind: docs/isolators.md). Any other is
     refused with one line, never run as linear."""
 
     isolated_base: bool = True

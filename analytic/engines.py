@@ -32,7 +32,8 @@ def simulate_reference(system, motion=None, **kwargs):
 
 ENGINE = EngineSpec(
     name="analytic", label="analytic", settings_type=Settings, simulate=simulate,
-    capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=True, exact_impacts=True),
+    capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=True, exact_impacts=True,
+                              isolators=ISOLATOR_KINDS),
     presets=PRESETS, ladder=ladder)
 
 REFERENCE_ENGINE = EngineSpec(

@@ -42,11 +42,16 @@ the two agree to ~1e-5 relative). Where the reference leaves SciPy to IEEE arith
 has decayed into denormals), the kernel says what C would have done instead of raising
 ZeroDivisionError.
 
+Every isolator of the System (linear, bilinear bearing, friction pendulum) runs here: the
+non-linear ones in a second kernel compiled from the same source (`_integrate_iso`, see "one
+source, two kernels" below; docs/isolators.md), a port of hybrid._IsolatorIntegrator that
+agrees with it to ~1e-11 (docs/scripts/kernel_isolator_agreement.py).
+
 Public entry points:
 - `simulate_fast(system, motion, ...) -> Trajectory`, engine "analytic" (formerly
   "analytic-fast", a name that still works);
 - `simulate_batch(systems, motions, ...) -> list[dict]`, summaries over many cases
-  on all cores (Python threads over the GIL-free kernel);
+  on all cores (Python threads over the GIL-free kernel), any mix of isolators;
 - `compare_on_grid(a, b)`, the largest |Δθ| of two histories on their shared output grid.
 (`isorock bench` times the kernel against the reference: validate/tools/bench.py.)
 
@@ -87,7 +92,7 @@ from .settings import AnalyticSettings
 from .motion import GroundMotion
 from .engine_protocol import check_isolator_kind, run_inputs
 from .status import Status
-from .system import LINEAR, System
+from .system import ISOLATOR_KINDS, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
 ENGINE = "analytic"
@@ -142,7 +147,7 @@ _EPS = float(np.finfo(float).eps)
 from .physics import (GRAZE_MARGIN as _GRAZE, ALPHA as _ALPHA, FIXED as _FIXED, INV_DT as _INV_DT, KIND as _KIND,  # noqa: E402
                       M_BLOCK as _M_BLOCK, M_TOTAL as _M_TOTAL, PA0 as _PA0, PA1 as _PA1, PI as _PI,
                       PIECE as _PIECE, DT as _DT, END as _END, SAMPLED as _SAMPLED, THR as _THR, SIDE_ANGLE as _SIDE,
-                      C_DAMP as _C_DAMP, K as _K, INV_M as _INV_M)
+                      C_DAMP as _C_DAMP, K as _K, INV_M as _INV_M, G as _G)
 
 # statuses
 _COMPLETED, _OVERTURNED, _EVENT_LIMIT, _FAILED = 0, 1, 2, 3
@@ -156,6 +161,33 @@ STATUS_NAMES = (Status.COMPLETED, Status.OVERTURNED, Status.EVENT_LIMIT, Status.
 # fixed base after the motion), slot 4 under "past-alpha"; otherwise slot 1 is noted only.
 _N_EV = 5
 _DIRECTION = np.array([[1, 1, 0, 0, 0], [-1, 1, 0, 0, 1]], dtype=np.int64)
+
+# --- one source, two kernels --------------------------------------------------------
+# The kernel is compiled twice from the functions below (_isolator_kernel): for the
+# linear isolator with _ISO False, where numba prunes every `if _ISO:` block before typing,
+# so that what it compiles is the linear kernel as it was (same arithmetic, bit for bit); and
+# for the non-linear isolators (docs/isolators.md) with _ISO True: the state carries the
+# slider's loss S as a 7th component (_NY, as the reference's state does, so that the step
+# sizes and error norms are the reference's), event slots 5 and 6 watch the slider (a slip
+# stops: slot 5, direction −1; a stuck slider slips, or an elastic bearing yields, either
+# way: slots 5 and 6, direction +1), and the slider's phase and position go from piece to
+# piece. `iso`, the tuple the functions take, is that state within a piece (_IS_*). The
+# linear kernel passes _NO_ISO, a float it never reads: a tuple of floats, passed by value to
+# every call that is not inlined, cost it ~1% with stored histories.
+_ISO = False
+_NY = 6
+_ISO_N_EV = 7
+_ISO_DIRECTION = np.array([[1, 1, 0, 0, 0, 1, 1], [-1, 1, 0, 0, 1, 1, 1]], dtype=np.int64)
+# iso tuple: physics.isolator_params's I_KIND, I_KEL, I_FSLIP, I_FMAX, I_RATE (so that physics's
+# isolator functions take it as their ip), then the bearing's u_y, the pendulum's stick limit
+# (physics.stick_limit), the phase (0 stuck, ±1 slipping), the slider's position u_p, whether
+# a slip started from u̇ = 0 at the piece's start, and σ·ü there
+_IS_UY, _IS_FLIM, _IS_PH, _IS_UP, _IS_REST, _IS_START = 5, 6, 7, 8, 9, 10
+_NO_ISO = 0.0
+# ip, the array the isolator kernel takes: physics's ip (I_KIND … I_RATE), then u_y
+_IP_UY, _N_IPK = 5, 6
+_ISO_FRICTION = float(physics.ISO_FRICTION)
+_ISO_BILINEAR = float(physics.ISO_BILINEAR)
 
 
 # --- reference counting off the hot path ----------------------------------------------
@@ -191,7 +223,10 @@ def _compile_physics():
     table = dict(vars(physics))
     inline = ("ground_acceleration", "piece_acceleration", "pulse_acceleration", "translation_acceleration",
               "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "oscillator_constants",
-              "free_vibration_change", "rocking_pivot_force_ratio", "_times_a")
+              "free_vibration_change", "rocking_pivot_force_ratio", "_times_a", "base_pinned",
+              "isolator_element_force", "isolator_translation_acceleration", "isolator_rocking_accelerations",
+              "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
+              "slip_power", "slip_force")
     for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
@@ -201,7 +236,10 @@ def _compile_physics():
                  "free_vibration", "translation_start", "translation_state", "_energy_norm", "_times_a",
                  "_second_rate_norm",
                  "_oscillator_line", "_newton_bracket", "_oscillator_zeros", "translation_uplift",
-                 "translation_velocity_zeros", "translation_u_bound"):
+                 "translation_velocity_zeros", "translation_u_bound", "base_pinned", "isolator_element_force",
+                 "isolator_translation_acceleration", "isolator_rocking_accelerations",
+                 "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
+                 "slip_power", "slip_force"):
         f = getattr(physics, name)
         rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
         table[name] = njit(inline="always")(rebuilt) if name in inline else njit(rebuilt)
@@ -230,6 +268,14 @@ _tr_state = _P["translation_state"]
 _tr_uplift = _P["translation_uplift"]
 _tr_vzeros = _P["translation_velocity_zeros"]
 _tr_ubound = _P["translation_u_bound"]
+_iso_tr_acc = _P["isolator_translation_acceleration"]
+_iso_rocking_acc = _P["isolator_rocking_accelerations"]
+_iso_base_acc = _P["isolator_base_acceleration"]
+_stick_demand = _P["stick_demand"]
+_stick_limit = _P["stick_limit"]
+_slip_power = _P["slip_power"]
+_lift_order = _P["lift_order"]
+_lifts_clearly = _P["lifts_clearly"]
 
 
 assert physics.N_SP == 19 and physics.N_MP == 14  # the tuples below
@@ -251,11 +297,20 @@ def _mp_tuple(a):
 
 
 @njit(inline="always")
-def _rhs(mode, t, y0, y1, y2, y3, sp, mp):
-    """Right-hand side of (u, u̇, θ, θ̇, ground work, dashpot loss) in `mode`; mp: the
+def _rhs(mode, t, y0, y1, y2, y3, sp, mp, iso):
+    """Right-hand side of (u, u̇, θ, θ̇, ground work, dashpot loss) in `mode`, and of the
+    slider's loss S on a non-linear isolator (hybrid._IsolatorIntegrator's); mp: the
     piece's motion parameters (physics.piece_acceleration)."""
     xg = _xgp(t, mp)
     c = sp[_C_DAMP]
+    if _ISO:
+        ph, up = iso[_IS_PH], iso[_IS_UP]
+        slip = _slip_power(iso, ph, y1)
+        if mode == 0:
+            return (y1, _iso_tr_acc(sp, iso, ph, y0, y1, up, xg), 0.0, 0.0, -xg * sp[_M_TOTAL] * y1,
+                    c * y1 * y1, slip)
+        udd, thdd, L1 = _iso_rocking_acc(sp, iso, ph, float(mode), y2, y3, y0, y1, up, xg)
+        return (y1, udd, y3, thdd, -xg * (sp[_M_TOTAL] * y1 + sp[_M_BLOCK] * L1 * y3), c * y1 * y1, slip)
     if mode == 0:
         if sp[_FIXED] != 0.0:
             return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
@@ -266,14 +321,16 @@ def _rhs(mode, t, y0, y1, y2, y3, sp, mp):
 
 
 @njit
-def _eval_rhs(mode, t, y, out, sp, mp):
-    r = _rhs(mode, t, y[0], y[1], y[2], y[3], sp, mp)
+def _eval_rhs(mode, t, y, out, sp, mp, iso):
+    r = _rhs(mode, t, y[0], y[1], y[2], y[3], sp, mp, iso)
     out[0] = r[0]
     out[1] = r[1]
     out[2] = r[2]
     out[3] = r[3]
     out[4] = r[4]
     out[5] = r[5]
+    if _ISO:
+        out[6] = r[6]
 
 
 # --- events -------------------------------------------------------------------------
@@ -291,9 +348,29 @@ def _impact_fun(s, theta, t, t0, kpow, limit):
 
 
 @njit(inline="always")
-def _event(e, mode, t, ud, th, thd, a, alpha, t0, kpow, limit, thr):
+def _slider_event(e, mode, t, u, ud, th, thd, xg, t0, sp, iso):
+    """Slot 5 or 6 on a non-linear isolator (hybrid._IsolatorIntegrator.slider_events): a
+    slipping slider's σ·u̇ (÷ (t − t0) for a slip that started from rest: STICK_BAND), a
+    pinned pendulum's ±demand − F_s, an elastic bearing's ±(u − u_p) − u_y."""
+    ph = iso[_IS_PH]
+    if ph != 0.0:
+        if iso[_IS_REST] != 0.0:
+            return ph * ud / (t - t0) if t > t0 else iso[_IS_START]
+        return ph * ud
+    if iso[0] == _ISO_FRICTION:
+        demand = _stick_demand(sp, mode, th, thd, u, xg)
+        return (demand - iso[_IS_FLIM]) if e == 5 else (-demand - iso[_IS_FLIM])
+    return (u - iso[_IS_UP] - iso[_IS_UY]) if e == 5 else (iso[_IS_UP] - u - iso[_IS_UY])
+
+
+@njit(inline="always")
+def _event(e, mode, t, ud, th, thd, a, alpha, t0, kpow, limit, thr, u, xg, sp, iso):
     """Event slot e's function (see _DIRECTION) in `mode`; a: the base's absolute
-    acceleration (translation), thr: the uplift threshold. Scalars only (see _sp_tuple)."""
+    acceleration (translation), thr: the uplift threshold. Scalars only (see _sp_tuple);
+    u, xg, sp and iso are read by the slider's slots only."""
+    if _ISO:
+        if e >= 5:
+            return _slider_event(e, mode, t, u, ud, th, thd, xg, t0, sp, iso)
     if mode == 0:
         if e == 3:
             return ud
@@ -327,7 +404,7 @@ def _dense1(F, y_old, x, i):
 @njit(inline="always")
 def _dense_all(F, y_old, t_old, h, t, out, full):
     x = (t - t_old) / h
-    for i in range(6):
+    for i in range(_NY):
         if full or i < 2 or i > 3:
             out[i] = _dense1(F, y_old, x, i)
         else:
@@ -335,8 +412,16 @@ def _dense_all(F, y_old, t_old, h, t, out, full):
 
 
 @njit
-def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr):
+def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr, iso):
     x = (t - t_old) / h
+    if _ISO:
+        if e >= 5:
+            return _slider_event(e, mode, t, _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1),
+                                 _dense1(F, y_old, x, 2), _dense1(F, y_old, x, 3), _xgp(t, mp), t0, sp, iso)
+        if mode == 0 and e < 3:
+            a = _iso_base_acc(sp, iso, iso[_IS_PH], _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1),
+                              iso[_IS_UP], _xgp(t, mp))
+            return (-a - thr) if e == 0 else (a - thr)
     if mode == 0:
         if e == 3:
             return _dense1(F, y_old, x, 1)
@@ -357,14 +442,14 @@ def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr):
 
 
 @njit
-def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr):
+def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr, iso):
     """scipy.optimize.brentq (Zeros/brentq.c) with xtol = rtol = 4·eps, on the dense
     output, as solve_ivp's solve_event_equation calls it; fpre is f(xa)."""
     xtol = 4.0 * _EPS
     rtol = 4.0 * _EPS
     xpre, xcur = xa, xb
     xblk, fblk, spre, scur = 0.0, 0.0, 0.0, 0.0
-    fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr)
+    fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr, iso)
     if fpre == 0.0:
         return xpre
     if fcur == 0.0:
@@ -413,7 +498,7 @@ def _brentq(e, mode, xa, xb, fpre, F, y_old, t_old, h, sp, mp, t0, kpow, limit, 
             xcur += scur
         else:
             xcur += delta if sbis > 0 else -delta
-        fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr)
+        fcur = _event_dense(e, mode, xcur, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr, iso)
     return xcur
 
 
@@ -425,11 +510,37 @@ def _rms(x0, x1, x2, x3, x4, x5):
 
 
 @njit
-def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, mp):
+def _rms7(x0, x1, x2, x3, x4, x5, x6):
+    return math.sqrt(x0 * x0 + x1 * x1 + x2 * x2 + x3 * x3 + x4 * x4 + x5 * x5 + x6 * x6) / math.sqrt(7.0)
+
+
+@njit
+def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, mp, iso):
     """scipy.integrate._ivp.common.select_initial_step for order 7."""
     interval = abs(t_bound - t0)
     if interval == 0.0:
         return 0.0
+    if _ISO:  # the same with the slider's loss S, the 7th component
+        s0, s1, s2 = atol + abs(y0[0]) * rtol, atol + abs(y0[1]) * rtol, atol + abs(y0[2]) * rtol
+        s3, s4, s5 = atol + abs(y0[3]) * rtol, atol + abs(y0[4]) * rtol, atol + abs(y0[5]) * rtol
+        s6 = atol + abs(y0[6]) * rtol
+        d0 = _rms7(y0[0] / s0, y0[1] / s1, y0[2] / s2, y0[3] / s3, y0[4] / s4, y0[5] / s5, y0[6] / s6)
+        d1 = _rms7(f0[0] / s0, f0[1] / s1, f0[2] / s2, f0[3] / s3, f0[4] / s4, f0[5] / s5, f0[6] / s6)
+        if d0 < 1e-5 or d1 < 1e-5:
+            h0 = 1e-6
+        else:
+            h0 = 0.01 * d0 / d1
+        h0 = min(h0, interval)
+        for i in range(_NY):
+            tmp[i] = y0[i] + h0 * f0[i]
+        _eval_rhs(mode, t0 + h0, tmp, f1, sp, mp, iso)
+        d2 = _rms7((f1[0] - f0[0]) / s0, (f1[1] - f0[1]) / s1, (f1[2] - f0[2]) / s2,
+                   (f1[3] - f0[3]) / s3, (f1[4] - f0[4]) / s4, (f1[5] - f0[5]) / s5, (f1[6] - f0[6]) / s6) / h0
+        if d1 <= 1e-15 and d2 <= 1e-15:
+            h1 = max(1e-6, h0 * 1e-3)
+        else:
+            h1 = math.sqrt(math.sqrt(math.sqrt(0.01 / max(d1, d2))))
+        return min(100.0 * h0, h1, interval, max_step)
     s0, s1, s2 = atol + abs(y0[0]) * rtol, atol + abs(y0[1]) * rtol, atol + abs(y0[2]) * rtol
     s3, s4, s5 = atol + abs(y0[3]) * rtol, atol + abs(y0[4]) * rtol, atol + abs(y0[5]) * rtol
     d0 = _rms(y0[0] / s0, y0[1] / s1, y0[2] / s2, y0[3] / s3, y0[4] / s4, y0[5] / s5)
@@ -441,7 +552,7 @@ def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, 
     h0 = min(h0, interval)
     for i in range(6):
         tmp[i] = y0[i] + h0 * f0[i]
-    _eval_rhs(mode, t0 + h0, tmp, f1, sp, mp)
+    _eval_rhs(mode, t0 + h0, tmp, f1, sp, mp, iso)
     d2 = _rms((f1[0] - f0[0]) / s0, (f1[1] - f0[1]) / s1, (f1[2] - f0[2]) / s2,
               (f1[3] - f0[3]) / s3, (f1[4] - f0[4]) / s4, (f1[5] - f0[5]) / s5) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
@@ -455,7 +566,7 @@ def _initial_step(mode, t0, y0, f0, t_bound, max_step, rtol, atol, tmp, f1, sp, 
 def _stage(K, s, y, h, tmp, full):
     """tmp = y + h·Σ_j A[s, j] K[j] over the non-zero A[s, j] (rk.rk_step's np.dot).
     In translation (full False) θ and θ̇ have zero rates and are carried as they are."""
-    a0 = a1 = a2 = a3 = a4 = a5 = 0.0
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = 0.0
     if full:
         for q in range(_A_NNZ[s]):
             j = _A_IDX[s, q]
@@ -466,6 +577,8 @@ def _stage(K, s, y, h, tmp, full):
             a3 += K[j, 3] * a
             a4 += K[j, 4] * a
             a5 += K[j, 5] * a
+            if _ISO:
+                a6 += K[j, 6] * a
         tmp[2] = y[2] + a2 * h
         tmp[3] = y[3] + a3 * h
     else:
@@ -476,8 +589,12 @@ def _stage(K, s, y, h, tmp, full):
             a1 += K[j, 1] * a
             a4 += K[j, 4] * a
             a5 += K[j, 5] * a
+            if _ISO:
+                a6 += K[j, 6] * a
         tmp[2] = y[2]
         tmp[3] = y[3]
+    if _ISO:
+        tmp[6] = y[6] + a6 * h
     tmp[0] = y[0] + a0 * h
     tmp[1] = y[1] + a1 * h
     tmp[4] = y[4] + a4 * h
@@ -492,10 +609,12 @@ def _set_row(K, s, r):
     K[s, 3] = r[3]
     K[s, 4] = r[4]
     K[s, 5] = r[5]
+    if _ISO:
+        K[s, 6] = r[6]
 
 
 @njit(inline="always")
-def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp):
+def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp, iso):
     """One DOP853 step from (t, y) with K[0] = f(t, y) already set; fills K[1..12] and
     y_new (rk.rk_step). The stage sums are _stage's, written out (see _sp_tuple)."""
     full = mode != 0
@@ -511,9 +630,9 @@ def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp):
                 a2 += K[j, 2] * a
                 a3 += K[j, 3] * a
         r = _rhs(mode, t + _C[s] * h, y0 + a0 * h, y1 + a1 * h, (y2 + a2 * h) if full else y2,
-                 (y3 + a3 * h) if full else y3, sp, mp)
+                 (y3 + a3 * h) if full else y3, sp, mp, iso)
         _set_row(K, s, r)
-    for i in range(6):
+    for i in range(_NY):
         if mode == 0 and (i == 2 or i == 3):
             y_new[i] = y[i]
             continue
@@ -522,14 +641,14 @@ def _rk_step(mode, t, y, h, K, tmp, y_new, sp, mp):
             j = _B_IDX[0, q]
             acc_ += K[j, i] * _B[j]
         y_new[i] = y[i] + h * acc_
-    _set_row(K, 12, _rhs(mode, t + h, y_new[0], y_new[1], y_new[2], y_new[3], sp, mp))
+    _set_row(K, 12, _rhs(mode, t + h, y_new[0], y_new[1], y_new[2], y_new[3], sp, mp, iso))
 
 
 @njit(inline="always")
 def _error_norm(K, h, y, y_new, rtol, atol, full):
     e5sq = 0.0
     e3sq = 0.0
-    for i in range(6):
+    for i in range(_NY):
         if not full and (i == 2 or i == 3):
             continue  # zero rates: no error
         sc = atol + max(abs(y[i]), abs(y_new[i])) * rtol
@@ -543,19 +662,19 @@ def _error_norm(K, h, y, y_new, rtol, atol, full):
         e3 /= sc
         e5sq += e5 * e5
         e3sq += e3 * e3
-    den = (e5sq + 0.01 * e3sq) * 6.0
+    den = (e5sq + 0.01 * e3sq) * (7.0 if _ISO else 6.0)
     if den == 0.0:  # both zero, or underflowed to zero from denormals: no error to speak of
         return 0.0
     return abs(h) * e5sq / math.sqrt(den)
 
 
 @njit
-def _dense_coeffs(mode, t_old, h, y_old, y_new, K, F, tmp, sp, mp):
+def _dense_coeffs(mode, t_old, h, y_old, y_new, K, F, tmp, sp, mp, iso):
     """Extra stages 13-15 and the 7 interpolant rows (DOP853._dense_output_impl)."""
     for s in range(13, 16):
         _stage(K, s, y_old, h, tmp, mode != 0)
-        _set_row(K, s, _rhs(mode, t_old + _C[s] * h, tmp[0], tmp[1], tmp[2], tmp[3], sp, mp))
-    for i in range(6):
+        _set_row(K, s, _rhs(mode, t_old + _C[s] * h, tmp[0], tmp[1], tmp[2], tmp[3], sp, mp, iso))
+    for i in range(_NY):
         if mode == 0 and (i == 2 or i == 3):
             for r_ in range(7):
                 F[r_, i] = 0.0
@@ -587,14 +706,19 @@ def _spacing(t):
 # and its caller runs it again with more (_call_integrate).
 
 @njit(inline="always")
-def _store(out_t, out_y, out_m, n, t, y, mode):
-    """Store one point at index n; False (nothing stored) when the arrays are full."""
+def _store(out_t, out_y, out_m, n, t, y, mode, out_ph, out_up, iso):
+    """Store one point at index n; False (nothing stored) when the arrays are full. On a
+    non-linear isolator also its phase and slider (which moves with a yielding bearing)."""
     if n >= out_t.size:
         return False
     out_t[n] = t
-    for i in range(6):
+    for i in range(_NY):
         out_y[i, n] = y[i]
     out_m[n] = mode
+    if _ISO:
+        ph = iso[_IS_PH]
+        out_ph[n] = ph
+        out_up[n] = y[0] - ph * iso[_IS_UY] if (ph != 0.0 and iso[0] == _ISO_BILINEAR) else iso[_IS_UP]
     return True
 
 
@@ -613,6 +737,90 @@ def _next_point(kg, odt, grid, t_stop, roots, n_roots, kr, offset):
     return True, tg, kg + 1, kr
 
 
+# --- the isolator's slider (hybrid._IsolatorIntegrator), compiled ------------------------
+
+@njit(inline="always")
+def _iso_state(ipk, phase, u_p, rest, start):
+    """The iso tuple of a piece (_IS_*) from the run's isolator constants ipk (physics's ip,
+    u_y, stick limit: the tuple's first _IS_PH entries)."""
+    return (ipk[0], ipk[1], ipk[2], ipk[3], ipk[4], ipk[5], ipk[6], phase, u_p, rest, start)
+
+
+@njit(inline="always")
+def _stick_or_slip(sp, iso, mode, theta, theta_dot, u, xg):
+    """A pendulum's phase at rest (u̇ = 0): 0 if its demand is within the stick limit, else its sign."""
+    demand = _stick_demand(sp, mode, theta, theta_dot, u, xg)
+    if abs(demand) <= iso[_IS_FLIM]:
+        return 0.0
+    return 1.0 if demand > 0 else -1.0
+
+
+@njit(inline="always")
+def _phase_after_velocity(sp, iso, phase, mode, theta, theta_dot, u, u_dot, xg):
+    """The phase a new base velocity (after an impact) leaves the slider in."""
+    if iso[0] == _ISO_FRICTION:
+        if u_dot != 0.0:
+            return 1.0 if u_dot > 0 else -1.0
+        return _stick_or_slip(sp, iso, mode, theta, theta_dot, u, xg)
+    if phase != 0.0 and phase * u_dot <= 0:
+        return 0.0  # the bearing unloads elastically
+    return phase
+
+
+@njit(inline="always")
+def _iso_relift(sp, iso, phase, u, u_dot, u_p, xg):
+    """physics.relift on the isolator (hybrid._IsolatorIntegrator.relift)."""
+    side = _uplift_dir(sp, _iso_base_acc(sp, iso, phase, u, u_dot, u_p, xg))
+    if side == 0:
+        return 0
+    thdd = _iso_rocking_acc(sp, iso, phase, float(side), 0.0, 0.0, u, u_dot, u_p, xg)[1]
+    return side if _lifts_clearly(sp, side, thdd) else 0
+
+
+@njit(inline="always")
+def _set_phase(ipk, phase, u_p, u, u_dot, new):
+    """hybrid._IsolatorIntegrator.set_phase: (phase, u_p, u̇) once the slider takes phase
+    `new`: a yielding bearing's slider stops where it is, a sticking pendulum's base rests."""
+    if new == phase:
+        return phase, u_p, u_dot
+    if phase != 0.0 and ipk[0] == _ISO_BILINEAR:
+        u_p = u - phase * ipk[_IS_UY]
+    if new == 0.0 and ipk[0] == _ISO_FRICTION:
+        u_dot = 0.0
+    return new, u_p, u_dot
+
+
+@njit(inline="always")
+def _log_phase(iev, n, t, phase, u):
+    """Row n of the isolator's events (t, phase after, u); -1 when they are full (_NO_ROOM)."""
+    if n == iev.shape[0]:
+        return -1
+    iev[n, 0] = t
+    iev[n, 1] = phase
+    iev[n, 2] = u
+    return n + 1
+
+
+@njit(inline="always")
+def _base_acc_of(sp, u, u_dot, xg, iso):
+    """The base's absolute acceleration in translation (the uplift events read it)."""
+    if _ISO:
+        return _iso_base_acc(sp, iso, iso[_IS_PH], u, u_dot, iso[_IS_UP], xg)
+    return _base_acc(sp, u, u_dot, xg)
+
+
+@njit(inline="always")
+def _pivot_ratio(sp, mode, theta, theta_dot, u, u_dot, xg, iso):
+    """physics.pivot_force_ratio, with the isolator's accelerations on a non-linear one."""
+    if _ISO:
+        ph, up = iso[_IS_PH], iso[_IS_UP]
+        if mode == 0:
+            return abs(_iso_base_acc(sp, iso, ph, u, u_dot, up, xg)) / sp[_G]
+        udd, thdd, _l1 = _iso_rocking_acc(sp, iso, ph, float(mode), theta, theta_dot, u, u_dot, up, xg)
+        return _friction_rocking(sp, float(mode), theta, theta_dot, udd, thdd, xg)
+    return _friction(sp, mode, theta, theta_dot, u, u_dot, xg)
+
+
 # --- the driver ---------------------------------------------------------------------
 
 def _integrate_signature():
@@ -621,16 +829,20 @@ def _integrate_signature():
     makes them (a copy of one that is not, or is read-only)."""
     from numba import types as nt
     f8, i8, b1, vec = nt.float64, nt.int64, nt.boolean, nt.float64[::1]
-    return (vec, vec, vec, vec, f8, vec, f8, f8, f8, i8, f8, b1, i8, f8, b1, f8)
+    return (vec, vec, vec, vec, f8, vec, f8, f8, f8, i8, f8, b1, i8, f8, b1, f8, vec)
 
 
 @ahead_of_time(_integrate_signature())
 @cached_jit(nogil=True)
 def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events, odt,
-               history, cap, impact_frac, rule_alpha, motion_end):
+               history, cap, impact_frac, rule_alpha, motion_end, ip):
     """hybrid._Integrator.run. Returns (status, t_last, overturn_time, n_out, out_t,
     out_y, out_mode, n_imp, impacts, n_upl, uplifts, theta_max, u_max, verdict,
-    friction_demand).
+    friction_demand); the isolator kernel (_integrate_iso: hybrid._IsolatorIntegrator.run)
+    also (out_phase, out_slider, n_iso_events, iso_events), its y_init and out_y with the
+    slider's loss S as a 7th row, iso_events rows (t, phase after, u).
+
+    ip: the isolator's constants (I_KIND, I_KEL, I_FSLIP, u_y; read by _integrate_iso only).
 
     history: store points (every odt, at every step end and event) in out_*;
     otherwise only the summary is kept. impacts rows: t, θ̇⁻, θ̇⁺, u̇⁻, u̇⁺, continued,
@@ -644,7 +856,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     breaks = _borrowed(breaks)
     fixed = sp[_FIXED] != 0.0
     alpha = sp[_ALPHA]
-    own = np.zeros(mp.size + 6 + 16 * 6 + 7 * 6 + 4 * 6 + 3 * _N_EV + 4)
+    own = np.zeros(mp.size + _NY + 16 * _NY + 7 * _NY + 4 * _NY + 3 * _N_EV + 4)
     own_flags = np.zeros(3 * _N_EV, dtype=np.bool_)
     own_ev = np.zeros(_N_EV, dtype=np.int64)
     work = _borrowed(own)
@@ -657,13 +869,13 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     mp[:] = mp_in
     mp[_PIECE] = 0.0
     mp[_INV_DT] = 1.0 / mp[_DT] if mp[_DT] > 0.0 else 0.0
-    y = work[o:o + 6]
-    o += 6
+    y = work[o:o + _NY]
+    o += _NY
     y[:] = y_init
     t = 0.0
     cap = max(cap, 64)
     own_t = np.empty(cap if history else 1)
-    own_y = np.empty((6, cap if history else 1))  # rows u, u̇, θ, θ̇, W, D
+    own_y = np.empty((_NY, cap if history else 1))  # rows u, u̇, θ, θ̇, W, D (, S)
     own_m = np.empty(cap if history else 1, dtype=np.int8)
     own_imp = np.empty((cap, 9))
     own_upl = np.empty(cap)
@@ -672,19 +884,29 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     out_m = _borrowed(own_m)
     imp = _borrowed(own_imp)
     upl = _borrowed(own_upl)
+    if _ISO:
+        own_ph = np.zeros(cap if history else 1, dtype=np.int8)
+        own_up = np.zeros(cap if history else 1)
+        own_iev = np.empty((cap, 3))
+        out_ph = _borrowed(own_ph)
+        out_up = _borrowed(own_up)
+        iev = _borrowed(own_iev)
+    else:
+        out_ph = out_m  # never written (_store's isolator part is pruned)
+        out_up = out_t
     room = True  # False: an output is full, the run stops (_NO_ROOM)
     n_out = 0
     n_imp = 0
     n_upl = 0
-    K = work[o:o + 96].reshape((16, 6))
-    o += 96
-    F = work[o:o + 42].reshape((7, 6))
-    o += 42
-    tmp = work[o:o + 6]
-    y_new = work[o + 6:o + 12]
-    f1 = work[o + 12:o + 18]
-    yq = work[o + 18:o + 24]
-    o += 24
+    K = work[o:o + 16 * _NY].reshape((16, _NY))
+    o += 16 * _NY
+    F = work[o:o + 7 * _NY].reshape((7, _NY))
+    o += 7 * _NY
+    tmp = work[o:o + _NY]
+    y_new = work[o + _NY:o + 2 * _NY]
+    f1 = work[o + 2 * _NY:o + 3 * _NY]
+    yq = work[o + 3 * _NY:o + 4 * _NY]
+    o += 4 * _NY
     g_old = work[o:o + _N_EV]
     g_new = work[o + _N_EV:o + 2 * _N_EV]
     roots = work[o + 2 * _N_EV:o + 3 * _N_EV]
@@ -692,18 +914,38 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     ext = work[o:o + 4]  # extremes of u inside a closed-form translation piece
     # closed-form translation pieces span at most 0.1 rad of the isolator's phase (records
     # are cut at every sample anyway; this bounds the tail after the record)
-    cf_ok = not fixed and sp[_K] > 0.0
+    cf_ok = not _ISO and not fixed and sp[_K] > 0.0
     cf_cap = 0.1 / math.sqrt(sp[_K] * sp[_INV_M]) if cf_ok else math.inf
     active = flags[0:_N_EV]
     use = flags[_N_EV:2 * _N_EV]
     terminal = flags[2 * _N_EV:3 * _N_EV]
 
+    # the slider's phase and position (hybrid._IsolatorIntegrator.initial_state): a bearing
+    # displaced to u0 was pushed there from its virgin state; a pendulum moving slips its
+    # way, at rest it sticks unless its demand exceeds F_s
+    phase = 0.0
+    u_p = 0.0
+    n_iev = 0
+    if not _ISO:
+        iso = _NO_ISO
+    else:
+        ipk = (ip[0], ip[1], ip[2], ip[3], ip[4], ip[_IP_UY], _stick_limit(sp, ip))
+        iso = _iso_state(ipk, 0.0, 0.0, 0.0, 0.0)
+        if ipk[0] == _ISO_FRICTION:
+            if y[1] != 0.0:
+                phase = 1.0 if y[1] > 0.0 else -1.0
+            else:
+                m0 = 0 if y[2] == 0.0 else (1 if y[2] > 0.0 else -1)
+                phase = _stick_or_slip(sp, iso, m0, y[2], y[3], y[0], _xg(0.0, mp, acc))
+        else:
+            u_p = y[0] - min(max(y[0], -ipk[_IS_UY]), ipk[_IS_UY])
+        iso = _iso_state(ipk, phase, u_p, 0.0, 0.0)
     if y[2] != 0.0:
         mode = 1 if y[2] > 0.0 else -1
     elif y[3] != 0.0:
         mode = 1 if y[3] > 0.0 else -1
     else:
-        mode = _uplift_dir(sp, _base_acc(sp, y[0], y[1], _xg(0.0, mp, acc)))
+        mode = _uplift_dir(sp, _base_acc_of(sp, y[0], y[1], _xg(0.0, mp, acc), iso))
         if mode != 0:
             upl[0] = 0.0
             n_upl = 1
@@ -744,7 +986,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             tq = t
             while True:  # stored points: the piece's start, grid points, its end
                 if history and (n_out == 0 or tq > out_t[n_out - 1]):
-                    room = _store(out_t, out_y, out_m, n_out, tq, y, 0)
+                    room = _store(out_t, out_y, out_m, n_out, tq, y, 0, out_ph, out_up, iso)
                     if not room:
                         break
                     n_out += 1
@@ -775,7 +1017,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 u1, v1, dW, dD = _tr_state(sp, zu0, zv0, p1, u0, v0, a0, a1, tau_up)
             h_stop = t_stop - t
             if history:
-                room = _store(out_t, out_y, out_m, n_out, t, y, 0)
+                room = _store(out_t, out_y, out_m, n_out, t, y, 0, out_ph, out_up, iso)
                 if not room:
                     break
                 n_out += 1
@@ -796,7 +1038,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 uq, vq, dWq, dDq = _tr_state(sp, zu0, zv0, p1, u0, v0, a0, a1, tq - t)
                 yq[0], yq[1], yq[2], yq[3], yq[4], yq[5] = uq, vq, 0.0, 0.0, y[4] + dWq, y[5] + dDq
                 if history:
-                    room = _store(out_t, out_y, out_m, n_out, tq, yq, 0)
+                    room = _store(out_t, out_y, out_m, n_out, tq, yq, 0, out_ph, out_up, iso)
                     if not room:
                         break
                     n_out += 1
@@ -807,7 +1049,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 break
             y[0], y[1], y[4], y[5] = u1, v1, y[4] + dW, y[5] + dD
             if history and t_stop > last_t:
-                room = _store(out_t, out_y, out_m, n_out, t_stop, y, 0)
+                room = _store(out_t, out_y, out_m, n_out, t_stop, y, 0, out_ph, out_up, iso)
                 if not room:
                     break
                 n_out += 1
@@ -839,31 +1081,52 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
         thr = sp[_THR] * (1.0 + (_GRAZE if graze else 0.0))
         kpow = 0
         limit = 0.0
+        if _ISO:
+            iso = _iso_state(ipk, phase, u_p, 0.0, 0.0)
         if mode != 0 and y[2] == 0.0:
-            kpow, limit = _impact_order(sp, s, y[0], y[1], y[3], _xgp(t, mpt))
+            if _ISO:  # hybrid._IsolatorIntegrator.function_order
+                if y[3] != 0.0:
+                    kpow, limit = 1, s * y[3]
+                else:
+                    kpow, limit = _lift_order(sp, s, _iso_rocking_acc(sp, iso, phase, s, 0.0, 0.0, y[0], y[1], u_p,
+                                                                      _xgp(t, mpt))[1])
+            else:
+                kpow, limit = _impact_order(sp, s, y[0], y[1], y[3], _xgp(t, mpt))
         mi = 0 if mode == 0 else 1
         for e in range(_N_EV):
             use[e] = not ((e == 3 and fixed) or (mode == 0 and (e == 2 or e == 4))
                           or (e == 4 and rule_alpha))
             terminal[e] = e == 0 or e == 4 or (e == 1 and (mode == 0 or rule_alpha
                                                             or (fixed and tp0 >= motion_end)))
+            if _ISO:
+                terminal[e] = terminal[e] or e >= 5
+                if e == 6:
+                    use[e] = phase == 0.0  # a slipping slider has one event (it stops), a stuck one two
+                if e == 3 and phase == 0.0 and ipk[0] == _ISO_FRICTION:
+                    use[e] = False  # a pinned base: u̇ ≡ 0, no extremes of u to locate
         # piece start: f, first step, events
         if carry:
             h_abs = h_next  # K[0] holds f at t already
         else:
-            _eval_rhs(mode, t, y, tmp, sp, mpt)
-            for i in range(6):
+            _eval_rhs(mode, t, y, tmp, sp, mpt, iso)
+            for i in range(_NY):
                 K[0, i] = tmp[i]
-            h_abs = _initial_step(mode, t, y, tmp, t1, max_step, rtol, atol, yq, f1, sp, mpt)
+            h_abs = _initial_step(mode, t, y, tmp, t1, max_step, rtol, atol, yq, f1, sp, mpt, iso)
         carry = False
         h_full = 0.0
-        a_now = _base_acc(sp, y[0], y[1], _xgp(t, mpt)) if mode == 0 else 0.0
+        if _ISO and phase != 0.0 and y[1] == 0.0:
+            # a slip from u̇ = 0 (from rest, or reversing) is watched as σ·u̇/(t − t0), which
+            # starts at σ·ü(t0) (hybrid: slider_events)
+            iso = _iso_state(ipk, phase, u_p, 1.0, phase * K[0, 1])
+        xg_now = _xgp(t, mpt) if _ISO else 0.0
+        a_now = _base_acc_of(sp, y[0], y[1], _xgp(t, mpt), iso) if mode == 0 else 0.0
         for e in range(_N_EV):
             if use[e]:
-                g_old[e] = _event(e, mode, t, y[1], y[2], y[3], a_now, alpha, tp0, kpow, limit, thr)
+                g_old[e] = _event(e, mode, t, y[1], y[2], y[3], a_now, alpha, tp0, kpow, limit, thr,
+                                  y[0], xg_now, sp, iso)
         piece_out = n_out
         if history:
-            room = _store(out_t, out_y, out_m, n_out, t, y, mode)
+            room = _store(out_t, out_y, out_m, n_out, t, y, mode, out_ph, out_up, iso)
             if not room:
                 break
             n_out += 1
@@ -871,7 +1134,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             peak = max(peak, abs(y[2]))
             th_max = max(th_max, abs(y[2]))
         u_max = max(u_max, abs(y[0]))
-        demand = max(demand, _friction(sp, mode, y[2], y[3], y[0], y[1], _xgp(t, mpt)))
+        demand = max(demand, _pivot_ratio(sp, mode, y[2], y[3], y[0], y[1], _xgp(t, mpt), iso))
         kg = math.ceil(t / odt - 1e-9)
         last_t = t
         term = -1
@@ -894,7 +1157,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     t_new = t1
                 h = t_new - t
                 h_abs = abs(h)
-                _rk_step(mode, t, y, h, K, tmp, y_new, sp, mpt)
+                _rk_step(mode, t, y, h, K, tmp, y_new, sp, mpt, iso)
                 err = _error_norm(K, h, y, y_new, rtol, atol, mode != 0)
                 if err < 1.0:
                     if err == 0.0:
@@ -916,14 +1179,18 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             # events that fired in this step (ivp.find_active_events); the dense output
             # is built once, if a root or a stored grid point needs it
             need_dense = history and kg * odt < t_new
-            a_new = _base_acc(sp, y_new[0], y_new[1], _xgp(t_new, mpt)) if mode == 0 else 0.0
+            a_new = _base_acc_of(sp, y_new[0], y_new[1], _xgp(t_new, mpt), iso) if mode == 0 else 0.0
+            xg_new = _xgp(t_new, mpt) if _ISO else 0.0
             for e in range(_N_EV):
                 active[e] = False
                 if not use[e]:
                     continue
                 g_new[e] = _event(e, mode, t_new, y_new[1], y_new[2], y_new[3], a_new, alpha,
-                                  tp0, kpow, limit, thr)
+                                  tp0, kpow, limit, thr, y_new[0], xg_new, sp, iso)
                 d = _DIRECTION[mi, e]
+                if _ISO:
+                    if e == 5 and phase != 0.0:
+                        d = -1  # a slip stops: σ·u̇ falling through 0
                 go, gn = g_old[e], g_new[e]
                 up = go <= 0.0 and gn >= 0.0
                 down = go >= 0.0 and gn <= 0.0
@@ -931,7 +1198,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     active[e] = True
                     need_dense = need_dense or go != 0.0
             if need_dense:
-                _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mpt)
+                _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mpt, iso)
             # their roots, in time order (ivp.handle_events, np.argsort)
             n_root = 0
             for e in range(_N_EV):
@@ -942,7 +1209,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     r = t_old  # brentq returns the bracket end where f is zero
                 else:
                     r = _brentq(e, mode, t_old, t_new, go, F, y, t_old, h, sp, mpt,
-                                tp0, kpow, limit, thr)
+                                tp0, kpow, limit, thr, iso)
                 k = n_root
                 while k > 0 and roots[k - 1] > r:
                     roots[k] = roots[k - 1]
@@ -971,7 +1238,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     if tq <= last_t or tq >= t_stop:
                         continue
                     _dense_all(F, y, t_old, h, tq, yq, mode != 0)
-                    room = _store(out_t, out_y, out_m, n_out, tq, yq, mode)
+                    room = _store(out_t, out_y, out_m, n_out, tq, yq, mode, out_ph, out_up, iso)
                     if not room:
                         break
                     n_out += 1
@@ -980,7 +1247,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                         peak = max(peak, abs(yq[2]))
                         th_max = max(th_max, abs(yq[2]))
                     u_max = max(u_max, abs(yq[0]))
-                    demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1], _xgp(tq, mpt)))
+                    demand = max(demand, _pivot_ratio(sp, mode, yq[2], yq[3], yq[0], yq[1], _xgp(tq, mpt), iso))
             else:
                 for k in range(cut):
                     if roots[k] <= t_old:
@@ -990,21 +1257,21 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                         peak = max(peak, abs(yq[2]))
                         th_max = max(th_max, abs(yq[2]))
                     u_max = max(u_max, abs(yq[0]))
-                    demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1],
-                                                   _xgp(roots[k], mpt)))
+                    demand = max(demand, _pivot_ratio(sp, mode, yq[2], yq[3], yq[0], yq[1],
+                                                      _xgp(roots[k], mpt), iso))
             if not room:
                 break
             # the step end, or the event that ends the piece
             if term >= 0 and t_stop == t_old:
-                for i in range(6):
+                for i in range(_NY):
                     yq[i] = y[i]
             elif term >= 0:
                 _dense_all(F, y, t_old, h, t_stop, yq, mode != 0)
             else:
-                for i in range(6):
+                for i in range(_NY):
                     yq[i] = y_new[i]
             if history and t_stop > last_t:
-                room = _store(out_t, out_y, out_m, n_out, t_stop, yq, mode)
+                room = _store(out_t, out_y, out_m, n_out, t_stop, yq, mode, out_ph, out_up, iso)
                 if not room:
                     break
                 n_out += 1
@@ -1017,9 +1284,9 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 demand = max(demand, _friction_rocking(sp, s, yq[2], yq[3], K[12, 1], K[12, 3],
                                                        _xgp(t_stop, mpt)))
             else:
-                demand = max(demand, _friction(sp, mode, yq[2], yq[3], yq[0], yq[1], _xgp(t_stop, mpt)))
+                demand = max(demand, _pivot_ratio(sp, mode, yq[2], yq[3], yq[0], yq[1], _xgp(t_stop, mpt), iso))
             t = t_stop
-            for i in range(6):
+            for i in range(_NY):
                 y[i] = yq[i]
                 K[0, i] = K[12, i]  # f at the new step start (unused after a terminal event)
             for e in range(_N_EV):
@@ -1041,6 +1308,36 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
         if n_events > max_events:
             status = _EVENT_LIMIT
             break
+        if _ISO:
+            if term >= 5:  # the slider sticks or slips (hybrid._IsolatorIntegrator.isolator_event)
+                if term == 5 and phase != 0.0:  # a slip's u̇ crossed 0: located to rounding, made exact
+                    y[1] = 0.0
+                    new = 0.0
+                    if ipk[0] == _ISO_FRICTION:
+                        new = _stick_or_slip(sp, iso, mode, y[2], y[3], y[0], _xgp(t, mpt))
+                    if new == phase:
+                        new = 0.0  # slipping on the same way is rounding: the slider holds
+                else:
+                    new = 1.0 if term == 5 else -1.0
+                nph, u_p, y[1] = _set_phase(ipk, phase, u_p, y[0], y[1], new)
+                if nph != phase:
+                    phase = nph
+                    n_iev = _log_phase(iev, n_iev, t, phase, y[0])
+                    if n_iev < 0:
+                        room = False
+                        break
+                if mode == 0:  # the base's acceleration may have jumped (the pendulum sticking)
+                    side = _iso_relift(sp, iso, phase, y[0], y[1], u_p, _xgp(t, mpt))
+                    if side != 0:
+                        mode = side
+                        if n_upl == upl.size:
+                            room = False
+                            break
+                        upl[n_upl] = t
+                        n_upl += 1
+                        peak = 0.0
+                        graze = False
+                continue
         if mode != 0 and term == 1:
             t_alpha = t
             verdict = 1 if rule_alpha else 3
@@ -1073,7 +1370,21 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 mode = -mode
             else:
                 y[3] = 0.0
-                mode = _relift(sp, y[0], y[1], _xgp(t, mpt))
+            if _ISO:  # the slider takes the new u̇ (hybrid._IsolatorIntegrator.after_impact)
+                new = _phase_after_velocity(sp, iso, phase, mode if continued else 0, y[2], y[3], y[0], y[1],
+                                            _xgp(t, mpt))
+                nph, u_p, y[1] = _set_phase(ipk, phase, u_p, y[0], y[1], new)
+                if nph != phase:
+                    phase = nph
+                    n_iev = _log_phase(iev, n_iev, t, phase, y[0])
+                    if n_iev < 0:
+                        room = False
+                        break
+            if not continued:
+                if _ISO:
+                    mode = _iso_relift(sp, iso, phase, y[0], y[1], u_p, _xgp(t, mpt))
+                else:
+                    mode = _relift(sp, y[0], y[1], _xgp(t, mpt))
                 if mode != 0:
                     if n_upl == upl.size:
                         room = False
@@ -1099,20 +1410,69 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     if verdict != 0:
         status = _OVERTURNED
     own[0] = own_flags.size + own_ev.size  # the owners of the borrowed views live until here
+    if _ISO:
+        return (status, t, t_alpha, n_out, own_t, own_y, own_m, n_imp, own_imp, n_upl, own_upl, th_max,
+                u_max, verdict, demand, own_ph, own_up, n_iev, own_iev)
     return (status, t, t_alpha, n_out, own_t, own_y, own_m, n_imp, own_imp, n_upl, own_upl, th_max,
             u_max, verdict, demand)
 
 
+# the functions compiled into the kernel that the isolator kernel rebuilds (see "one
+# source, two kernels"): every one that reads _ISO, _NY, _N_EV or _DIRECTION, or calls one that does
+_KERNEL_FUNCTIONS = ("_rhs", "_eval_rhs", "_slider_event", "_event", "_dense_all", "_event_dense", "_brentq",
+                     "_initial_step", "_stage", "_set_row", "_rk_step", "_error_norm", "_dense_coeffs", "_store",
+                     "_base_acc_of", "_pivot_ratio", "_stick_or_slip", "_phase_after_velocity", "_iso_relift")
+
+
+def _isolator_kernel():
+    """_integrate compiled with _ISO True (the non-linear isolators): its functions rebuilt
+    over a copy of this module's globals (as _compile_physics does for analytic.physics),
+    named _integrate_iso so that its caches (JIT and ahead of time) are its own."""
+    table = dict(globals())
+    table.update(_ISO=True, _NY=7, _N_EV=_ISO_N_EV, _DIRECTION=_ISO_DIRECTION)
+    for name in _KERNEL_FUNCTIONS:
+        dispatcher = table[name]
+        f = dispatcher.py_func
+        rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
+        inline = dispatcher.targetoptions.get("inline", "never")
+        table[name] = njit(inline=inline)(rebuilt)
+    f = _integrate.py_func
+    rebuilt = types.FunctionType(f.__code__, table, "_integrate_iso", f.__defaults__, f.__closure__)
+    rebuilt.__qualname__ = "_integrate_iso"
+    rebuilt.__doc__ = f.__doc__
+    return ahead_of_time(_integrate_signature())(cached_jit(nogil=True)(rebuilt))
+
+
+_integrate_iso = _isolator_kernel()
+
+
 # --- Python side: packing, the public wrapper, batches --------------------------------
 
-def _call_integrate(*args):
-    """call_kernel(_integrate, *args), run again with four times the room (args[12], `cap`)
-    while a run reports that it filled its outputs (_NO_ROOM)."""
+def _call_integrate(*args, kernel=None):
+    """call_kernel(kernel, *args) (default _integrate), run again with four times the room
+    (args[12], `cap`) while a run reports that it filled its outputs (_NO_ROOM)."""
+    kernel = _integrate if kernel is None else kernel
     while True:
-        r = call_kernel(_integrate, *args)
+        r = call_kernel(kernel, *args)
         if r[0] != _NO_ROOM:
             return r
         args = args[:12] + (4 * args[12],) + args[13:]
+
+
+_LINEAR_IP = np.zeros(_N_IPK)
+
+
+def _kernel_for(system: System, settings: AnalyticSettings):
+    """(kernel, sp, ip, state size) for a System: the linear kernel and physics.system_params
+    for the linear isolator and the fixed base, as before; the isolator kernel with
+    physics.isolator_params (K the parallel spring) and the element's constants otherwise."""
+    if system.fixed_base or system.isolator is None:
+        return _integrate, _system_params(system, settings), _LINEAR_IP, 6
+    sp, ip = physics.isolator_params(system, settings.rest_velocity)
+    ipk = np.zeros(_N_IPK)
+    ipk[:physics.N_IP] = ip
+    ipk[_IP_UY] = system.isolator.yield_displacement if ip[physics.I_KIND] == physics.ISO_BILINEAR else 0.0
+    return _integrate_iso, sp, ipk, 7
 
 
 _FAILED_MESSAGE = "Required step size is less than spacing between numbers."
@@ -1142,16 +1502,18 @@ def _check_settings(settings: AnalyticSettings | None) -> AnalyticSettings:
 
 
 def _check_isolator(system) -> None:
-    """The kernel carries the linear isolator only: any other is refused, never run as linear."""
+    """The kernel carries the isolators of ISOLATOR_KINDS (the linear one, the bilinear bearing
+    and the single concave pendulum: _integrate and _integrate_iso); any other is refused,
+    never run as linear."""
     if isinstance(system, System):
-        check_isolator_kind(system, (LINEAR,), "the compiled kernel (engine 'analytic')")
+        check_isolator_kind(system, ISOLATOR_KINDS, "the compiled kernel (engine 'analytic')")
 
 
 def _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0, impact_threshold):
     """The input checks every engine shares (analytic.protocol)."""
     _check_isolator(system)
     return run_inputs(system, motion, duration, theta0, impact_threshold,
-                      theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0)
+                      theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS)
 
 
 def simulate_fast(system: System, motion: GroundMotion | None = None, *,
@@ -1173,19 +1535,19 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
     motion, duration = _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0,
                                   impact_threshold)
     odt = settings.output_dt if output_dt is None else require_positive_finite("output_dt", output_dt)
-    sp = _system_params(system, settings)
+    kernel, sp, ip, n_y = _kernel_for(system, settings)
     mp, acc = _motion_params(motion)
-    y0 = np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0])
+    y0 = np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0, 0.0][:n_y])  # W, D (, S) from 0
     cap = int(2.5 * duration / odt) + 256  # grid points, step ends and events
     # plain float/int/bool, so that one compiled signature serves every call
     args = (sp, mp, acc, _breaks(motion, duration), float(duration), y0, float(settings.rtol),
             float(settings.atol), float(settings.max_step), int(settings.max_events), float(odt), True, cap,
-            float(impact_threshold), settings.overturn == physics.AT_ALPHA, float(motion.end_time))
+            float(impact_threshold), settings.overturn == physics.AT_ALPHA, float(motion.end_time), ip)
     try:
-        r = _call_integrate(*args)
+        r = _call_integrate(*args, kernel=kernel)
     except ArithmeticError as e:  # a failed run is a status, not a traceback
         return _failed_trajectory(system, settings, impact_threshold, start, f"{type(e).__name__}: {e}")
-    return _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start)
+    return _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start, ip)
 
 
 def _failed_trajectory(system, settings, impact_threshold, start, why) -> Trajectory:
@@ -1196,7 +1558,7 @@ def _failed_trajectory(system, settings, impact_threshold, start, why) -> Trajec
         message=f"the compiled kernel failed: {why}", extras={"overturn_rule": settings.overturn})
 
 
-def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start) -> Trajectory:
+def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start, ip) -> Trajectory:
     status_code, t_last, t_alpha, n_out, out_t, out_y, out_m, n_imp, imp, n_upl, upl = r[:11]
     verdict, demand = int(r[13]), float(r[14])
     status = STATUS_NAMES[status_code]
@@ -1221,14 +1583,24 @@ def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start) -> Tr
     kin = physics.kinetic_energy(sp, s, y[1], y[2], y[3])
     pot = physics.potential_energy(sp, s, y[0], y[2])
     cum = cumulative_impact_loss(t, imp[:, 0], imp[:, 8])
-    log = EnergyLog(kinetic=kin, potential=pot, ground_work=y[4], dashpot_loss=y[5], impact_loss=cum,
-                    per_impact=tuple(imp[:, 8].tolist()))
+    extras = {"overturn_rule": settings.overturn, "friction_demand": demand}
+    if len(r) > 15:  # a non-linear isolator (hybrid._IsolatorIntegrator.trajectory)
+        out_ph, out_up, n_iev, iev = r[15:]
+        u_p = out_up[:n_out]
+        log = EnergyLog(kinetic=kin, potential=pot + physics.element_energy(ip, y[0], u_p), ground_work=y[4],
+                        dashpot_loss=y[5], impact_loss=cum, per_impact=tuple(imp[:, 8].tolist()),
+                        isolator_loss=y[6])
+        extras.update(isolator=system.isolator_kind, isolator_phase=out_ph[:n_out].copy(), isolator_slider=u_p,
+                      isolator_events=tuple((float(a), int(b), float(c)) for a, b, c in iev[:n_iev].tolist()))
+    else:
+        log = EnergyLog(kinetic=kin, potential=pot, ground_work=y[4], dashpot_loss=y[5], impact_loss=cum,
+                        per_impact=tuple(imp[:, 8].tolist()))
     return Trajectory(
         engine=ENGINE, system=system, t=t, u=y[0], u_dot=y[1], theta=y[2], theta_dot=y[3],
         mode=mode, impacts=impacts, uplift_times=tuple(upl[:n_upl].tolist()),
         overturned=status == "overturned", overturn_time=t_alpha if status == "overturned" else None,
         impact_threshold=impact_threshold, runtime_s=time.perf_counter() - start, status=status,
-        message=message, energy=log, extras={"overturn_rule": settings.overturn, "friction_demand": demand})
+        message=message, energy=log, extras=extras)
 
 
 # --- many runs ---------------------------------------------------------------------
@@ -1317,7 +1689,9 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
 
 def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers):
     n = case_sys.size
-    sps = np.stack([_system_params(s, settings) for s in systems])
+    kernels = [_kernel_for(s, settings) for s in systems]  # (kernel, sp, ip, state size) per system
+    sps = np.stack([k[1] for k in kernels])
+    ips = np.stack([k[2] for k in kernels])
     packed = [_motion_params(m) for m in motions]
     mps = np.stack([p[0] for p in packed])
     # a record's samples after its longest run's end are never read: leave them out
@@ -1339,14 +1713,15 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
         case_brk[c] = keys[key]
     brk_off = np.concatenate([[0], np.cumsum([b.size for b in brk_list])]).astype(np.int64)
     brk_all = np.concatenate(brk_list)
-    y_init = np.zeros((n, 6))
+    y_init = np.zeros((n, 7))  # the isolator kernel's state has the slider's loss S too
     y_init[:, 2] = th0
     out = np.zeros((n, _N_OUT))
     motion_end = np.array([m.end_time for m in motions], dtype=np.float64)
     args = (sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys.astype(np.int64),
             case_mot.astype(np.int64), case_brk, T, y_init, float(settings.rtol), float(settings.atol),
             float(settings.max_step), int(settings.max_events), float(impact_threshold),
-            settings.overturn == physics.AT_ALPHA, motion_end, out)
+            settings.overturn == physics.AT_ALPHA, motion_end, out, [k[0] for k in kernels], ips,
+            [k[3] for k in kernels])
     failures = {}  # case: why the kernel raised
     if n == 1 or (workers == 1 and threading.current_thread() is not threading.main_thread()):
         _run_cases(args, 0, n, failures)
@@ -1382,14 +1757,14 @@ def _run_cases(args, lo, hi, failures):
     """Cases lo..hi-1, one kernel call each from Python: the call costs ~10 µs against
     milliseconds of integration, and the kernel (nogil) lets other threads run."""
     (sps, mps, acc_all, acc_off, brk_all, brk_off, case_sys, case_mot, case_brk, T, y_init,
-     rtol, atol, max_step, max_events, impact_frac, rule_alpha, motion_end, out) = args
+     rtol, atol, max_step, max_events, impact_frac, rule_alpha, motion_end, out, kernels, ips, sizes) = args
     for n in range(lo, hi):
         i, j, kb = case_sys[n], case_mot[n], case_brk[n]
         try:
             r = _call_integrate(sps[i], mps[j], acc_all[acc_off[j]:acc_off[j + 1]],
-                                brk_all[brk_off[kb]:brk_off[kb + 1]], float(T[n]), y_init[n], rtol, atol,
-                                max_step, max_events, 1.0, False, _BATCH_ROOM, impact_frac, rule_alpha,
-                                float(motion_end[j]))
+                                brk_all[brk_off[kb]:brk_off[kb + 1]], float(T[n]), y_init[n, :sizes[i]], rtol,
+                                atol, max_step, max_events, 1.0, False, _BATCH_ROOM, impact_frac, rule_alpha,
+                                float(motion_end[j]), ips[i], kernel=kernels[i])
         except Exception as e:  # noqa: BLE001 - one case's failure is its row's status, never the batch's
             out[n, 0] = _FAILED
             out[n, 1:] = math.nan

@@ -253,7 +253,7 @@ def lift_order(sp, s, thdd):
 # when u̇ crosses 0, and the pendulum's slips on the other way at once if its demand there
 # exceeds F_s.
 
-(I_KIND, I_KEL, I_FSLIP, N_IP) = range(4)
+(I_KIND, I_KEL, I_FSLIP, I_FMAX, I_RATE, N_IP) = range(6)
 ISO_LINEAR, ISO_BILINEAR, ISO_FRICTION = 0, 1, 2
 ISO_KIND = {"linear": ISO_LINEAR, "bilinear": ISO_BILINEAR, "friction-pendulum": ISO_FRICTION}
 
@@ -261,7 +261,8 @@ ISO_KIND = {"linear": ISO_LINEAR, "bilinear": ISO_BILINEAR, "friction-pendulum":
 def isolator_params(system, rest_velocity: float):
     """(sp, ip): system_params with K the isolator's parallel spring (the bilinear bearing's
     post-yield r·k0, the pendulum's M·g/R_fp) and the element's parameters ip
-    (I_KIND, I_KEL: k_e in N/m, I_FSLIP: F_s in N)."""
+    (I_KIND, I_KEL: k_e in N/m, I_FSLIP: F_s in N, the slip force at rest; I_FMAX, I_RATE: a
+    pendulum's velocity-dependent friction, slip_force)."""
     sp = system_params(system, rest_velocity)
     ip = np.zeros(N_IP)
     iso = None if system.fixed_base else system.isolator
@@ -274,6 +275,9 @@ def isolator_params(system, rest_velocity: float):
         ip[I_FSLIP] = ip[I_KEL] * iso.yield_displacement
     else:  # the pendulum's normal force is M·g in both modes (docs/isolators.md)
         ip[I_FSLIP] = iso.friction_coefficient * system.total_mass * system.gravity
+        if iso.friction_rate > 0.0:
+            ip[I_FMAX] = iso.friction_max * system.total_mass * system.gravity
+            ip[I_RATE] = iso.friction_rate
     return sp, ip
 
 
@@ -282,11 +286,20 @@ def base_pinned(ip, phase):
     return ip[I_KIND] == ISO_FRICTION and phase == 0
 
 
-def isolator_element_force(ip, phase, u, u_p):
+def slip_force(ip, u_dot):
+    """The slider's force (N) while it slips at u̇: F_s, or with a velocity-dependent friction
+    (I_RATE a > 0) F_max − (F_max − F_s)·exp(−a|u̇|), μ_f(v) = μ_max − (μ_max − μ_min)·exp(−a|v|)
+    (F_s = μ_min·M·g, what holds a pinned slider)."""
+    if ip[I_RATE] == 0.0:
+        return ip[I_FSLIP]
+    return ip[I_FMAX] - (ip[I_FMAX] - ip[I_FSLIP]) * math.exp(-ip[I_RATE] * abs(u_dot))
+
+
+def isolator_element_force(ip, phase, u, u_dot, u_p):
     """q (N): the element's force on the base in a slipping or elastic phase (0 for the
     linear isolator; a stuck pendulum's is a constraint force, stick_demand)."""
     if phase != 0:
-        return phase * ip[I_FSLIP]
+        return phase * slip_force(ip, u_dot)
     if ip[I_KIND] == ISO_BILINEAR:
         return ip[I_KEL] * (u - u_p)
     return 0.0
@@ -296,7 +309,7 @@ def isolator_translation_acceleration(sp, ip, phase, u, u_dot, u_p, xg):
     """ü in pure translation, M ü + c u̇ + k u + q = −M ẍg (0 while the base is pinned)."""
     if base_pinned(ip, phase):
         return 0.0
-    return -xg - (sp[C_DAMP] * u_dot + sp[K] * u + isolator_element_force(ip, phase, u, u_p)) * sp[INV_M]
+    return -xg - (sp[C_DAMP] * u_dot + sp[K] * u + isolator_element_force(ip, phase, u, u_dot, u_p)) * sp[INV_M]
 
 
 def isolator_rocking_accelerations(sp, ip, phase, s, theta, theta_dot, u, u_dot, u_p, xg):
@@ -305,7 +318,7 @@ def isolator_rocking_accelerations(sp, ip, phase, s, theta, theta_dot, u, u_dot,
     if base_pinned(ip, phase):
         return pinned_rocking_accelerations(sp, s, theta, xg)
     return rocking_accelerations_with(sp, s, theta, theta_dot, u, u_dot,
-                                      isolator_element_force(ip, phase, u, u_p), xg)
+                                      isolator_element_force(ip, phase, u, u_dot, u_p), xg)
 
 
 def pinned_rocking_accelerations(sp, s, theta, xg):
@@ -322,7 +335,7 @@ def isolator_base_acceleration(sp, ip, phase, u, u_dot, u_p, xg):
     (ẍg while the base is pinned), m/s²: the uplift condition reads it."""
     if base_pinned(ip, phase):
         return xg
-    return -(sp[C_DAMP] * u_dot + sp[K] * u + isolator_element_force(ip, phase, u, u_p)) * sp[INV_M]
+    return -(sp[C_DAMP] * u_dot + sp[K] * u + isolator_element_force(ip, phase, u, u_dot, u_p)) * sp[INV_M]
 
 
 def stick_demand(sp, mode, theta, theta_dot, u, xg):
@@ -352,7 +365,7 @@ def stick_limit(sp, ip):
 
 def slip_power(ip, phase, u_dot):
     """F_s·|u̇| while slipping (q·u̇_p, ≥ 0), the rate of the hysteretic or friction loss (W)."""
-    return phase * ip[I_FSLIP] * u_dot if phase != 0 else 0.0
+    return phase * slip_force(ip, u_dot) * u_dot if phase != 0 else 0.0
 
 
 def element_energy(ip, u, u_p):

@@ -83,11 +83,18 @@ class FrictionPendulum:
     """A single concave friction pendulum: the base slides on a spherical surface of
     `radius` R_fp (m) with Coulomb friction coefficient `friction_coefficient` μ_f. Its
     restoring force is (M·g/R_fp)·u and its friction μ_f·M·g (docs/isolators.md: the
-    normal force is taken as M·g in both modes, and why). A double concave slider (and
-    μ_f(v)) is not modelled yet."""
+    normal force is taken as M·g in both modes, and why). A double concave slider is not
+    modelled yet.
+
+    Velocity-dependent friction (optional): with `friction_rate` a > 0 (s/m) the friction
+    coefficient while slipping at speed v is μ_f(v) = μ_max − (μ_max − μ_f)·exp(−a|v|),
+    μ_max = `friction_max`; `friction_coefficient` is then μ_min, the value at rest, which
+    is what holds a stuck slider. a = 0 (the default) is Coulomb friction μ_f."""
 
     radius: float
     friction_coefficient: float
+    friction_max: float | None = None
+    friction_rate: float = 0.0
     kind = FRICTION_PENDULUM
 
     def __post_init__(self):
@@ -96,11 +103,23 @@ class FrictionPendulum:
         require(mu <= MAX_FRICTION_COEFFICIENT, "friction_coefficient", self.friction_coefficient,
                 f"a friction coefficient in [0, {MAX_FRICTION_COEFFICIENT:g}]")
         object.__setattr__(self, "friction_coefficient", mu)
+        rate = require_nonnegative_finite("friction_rate", self.friction_rate)
+        object.__setattr__(self, "friction_rate", rate)
+        if self.friction_max is None:
+            require(rate == 0.0, "friction_rate", self.friction_rate, "0 unless friction_max (μ_max) is given")
+            object.__setattr__(self, "friction_max", mu)
+        top = require_nonnegative_finite("friction_max", self.friction_max)
+        require(mu <= top <= MAX_FRICTION_COEFFICIENT, "friction_max", self.friction_max,
+                f"a friction coefficient in [friction_coefficient = {mu:g}, {MAX_FRICTION_COEFFICIENT:g}]")
+        object.__setattr__(self, "friction_max", top)
 
     def describe(self, total_mass: float, gravity: float) -> dict:
-        return {"isolator": FRICTION_PENDULUM, "radius": self.radius,
-                "friction_coefficient": self.friction_coefficient,
-                "friction_force": self.friction_coefficient * total_mass * gravity}
+        d = {"isolator": FRICTION_PENDULUM, "radius": self.radius,
+             "friction_coefficient": self.friction_coefficient,
+             "friction_force": self.friction_coefficient * total_mass * gravity}
+        if self.friction_rate > 0.0:  # μ_f(v): friction_coefficient is μ_min
+            d.update(friction_max=self.friction_max, friction_rate=self.friction_rate)
+        return d
 
 
 

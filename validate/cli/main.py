@@ -100,8 +100,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     p.add_argument("--engine", default=None, metavar="ENGINE[:PRESET][,…]",
                    help=f"one of {', '.join(_registered())}, optionally ENGINE:PRESET (e.g. mujoco:fast); "
                         "several, comma-separated, run on the same system and motion and are compared with "
-                        "the first (default: analytic; analytic-reference with a non-linear --isolator, which "
-                        "only it carries)")
+                        "the first (default: analytic, the compiled kernel, which carries every --isolator)")
     add_system_options(p)
     add_isolator_options(p)
     add_motion_options(p)

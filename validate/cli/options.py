@@ -77,7 +77,8 @@ def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=No
 
 
 #: the options of a non-linear isolator (add_isolator_options), argparse dests
-ISOLATOR_KEYS = ("radius", "friction_coefficient", "post_yield_ratio", "yield_displacement")
+ISOLATOR_KEYS = ("radius", "friction_coefficient", "friction_max", "friction_rate", "post_yield_ratio",
+                 "yield_displacement")
 
 
 def add_isolator_options(p: argparse.ArgumentParser) -> None:
@@ -88,11 +89,16 @@ def add_isolator_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("isolator (docs/isolators.md)")
     g.add_argument("--isolator", choices=ISOLATOR_KINDS, default=LINEAR,
                    help="the isolator under the base (default: %(default)s; bilinear: --stiffness/--period set its "
-                        "initial stiffness; the compiled engine carries the linear one only)")
+                        "initial stiffness)")
     g.add_argument("--radius", type=number, help="friction-pendulum: radius of curvature R_fp, m")
     g.add_argument("--friction-coefficient", type=number,
                    help="friction-pendulum: the slider's friction coefficient μ_f (not --friction, the block–base "
-                        "contact's)")
+                        "contact's); with --friction-rate, μ_min, its value at rest")
+    g.add_argument("--friction-max", type=number,
+                   help="friction-pendulum: μ_max of a velocity-dependent friction "
+                        "μ_f(v) = μ_max − (μ_max − μ_min)·exp(−a|v|) (with --friction-rate)")
+    g.add_argument("--friction-rate", type=number,
+                   help="friction-pendulum: a, s/m, of that velocity-dependent friction (with --friction-max)")
     g.add_argument("--post-yield-ratio", type=number, help="bilinear: post-yield over initial stiffness, in [0, 1)")
     g.add_argument("--yield-displacement", type=number, help="bilinear: yield displacement u_y, m")
 
@@ -104,7 +110,10 @@ def _isolator_from_args(a, common):
     kind = getattr(a, "isolator", None) or "linear"
     wants = {"linear": (), FRICTION_PENDULUM: ("radius", "friction_coefficient"),
              BILINEAR: ("post_yield_ratio", "yield_displacement")}[kind]
+    optional = ("friction_max", "friction_rate") if kind == FRICTION_PENDULUM else ()
     for key in ISOLATOR_KEYS:
+        if key in optional:
+            continue
         given = getattr(a, key, None) is not None
         if given and key not in wants:
             raise InputError(f"--{key.replace('_', '-')}: not an option of --isolator {kind}"
@@ -120,8 +129,13 @@ def _isolator_from_args(a, common):
         if given:
             raise InputError(f"--{given[0].replace('_', '-')}: not an option of --isolator {kind} (its period is "
                              "2π√(R_fp/g), set by --radius)")
+        if (a.friction_max is None) != (a.friction_rate is None):
+            missing = "--friction-rate" if a.friction_rate is None else "--friction-max"
+            raise InputError(f"{missing}: needed with {'--friction-max' if a.friction_rate is None else '--friction-rate'}"
+                             " (a velocity-dependent friction takes both)")
         return System.with_isolator(**common, isolator=FrictionPendulum(
-            radius=a.radius, friction_coefficient=a.friction_coefficient))
+            radius=a.radius, friction_coefficient=a.friction_coefficient, friction_max=a.friction_max,
+            friction_rate=0.0 if a.friction_rate is None else a.friction_rate))
     linear = _linear_from_args(a, common)  # the bearing's initial stiffness and dashpot
     return System.with_isolator(**common, isolator=BilinearIsolator(
         stiffness=linear.stiffness, damping=linear.damping, post_yield_ratio=a.post_yield_ratio,

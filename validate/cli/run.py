@@ -138,11 +138,9 @@ class RunPlan:
 
 
 def engine_asked(a) -> str:
-    """--engine as given, or the default: the compiled kernel, which carries the linear
-    isolator only (docs/isolators.md); the reference path for another isolator."""
-    if a.engine is not None:
-        return a.engine
-    return "analytic" if getattr(a, "isolator", "linear") == "linear" else "analytic-reference"
+    """--engine as given, or the default: the compiled kernel, which carries every isolator
+    the model has (docs/isolators.md)."""
+    return a.engine if a.engine is not None else "analytic"
 
 
 def plan_runs(a, specs) -> RunPlan:

@@ -10,6 +10,8 @@ Metrics (units):
     energy_residual                analytic energy balance, relative to the input energy
     isolator_closed_form           a non-linear isolator's closed forms (relative, or m and s: docs/isolators.md)
     isolator_energy_residual       the energy balance of a non-linear isolator's run, its slip work included
+    kernel_isolator_agreement      the compiled kernel against the reference path on a non-linear isolator:
+                                   θ (rad) and u (m) on the output grid, impact and stick–slip times (s)
     theta_max_diff                 |Δ θmax/α| of a single history (robust references only)
     impacts_diff                   |Δ counted impacts| of a single history (robust references only)
     u_max_rel_error                |Δ max|u| / max|u|| of a single history, isolated base
@@ -78,6 +80,13 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("analytic", "isolator_energy_residual"): Tolerance(
         1e-10, "the energy balance of a non-linear isolator's run with its slip work (issue 22's goal), on "
                "pulses and a record, rocking included: measured 1e-15–2e-12 (docs/isolators.md)"),
+    ("analytic", "kernel_isolator_agreement"): Tolerance(
+        1e-9, "the compiled kernel against the SciPy reference on a non-linear isolator (issue 22's goal): the "
+              "same integrator steps, events and physics module, so histories differ by rounding and "
+              "by the noise-level error estimates that set the step sizes; measured ≤ 6.4e-10 in 887 of 900 "
+              "seeded cases; the others are a fall past α, a Zeno tail and μ_f(v) slips that stop with "
+              "ü ≈ 0, where rounding is amplified (docs/isolators.md, "
+              "docs/scripts/kernel_isolator_agreement.py)"),
     # --- MuJoCo (default Settings; measured values from the full report, 2026-11) ------
     ("mujoco", "beta_rel_error"): Tolerance(
         0.01, f"{_MODEL}: elliptic cone, solref tied to dt gives <0.6% at dt=1e-3; the squat "
