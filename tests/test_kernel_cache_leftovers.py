@@ -94,3 +94,29 @@ def test_a_killed_writers_staging_files_are_cleared_by_the_next_write(tmp_path, 
     stale.write_text("half a file")
     code, _ = _in(tmp_path, ["run", *BLOCK, "--theta0", "0.5", "--duration", "1", "--json", "x.json"], capsys)
     assert code == 0 and sorted(p.name for p in tmp_path.iterdir()) == ["x.json"]
+
+
+def test_threads_that_all_need_an_unbuilt_kernel_build_it_once(monkeypatch):
+    """simulate_batch's threads all call a kernel on its first use: each built it side by
+    side (`isorock design --isolator friction-pendulum` on a fresh checkout compiled
+    _integrate_iso twice, 91 and 120 s); the later threads now wait and load the first's."""
+    import threading
+    import time
+    monkeypatch.setattr(kernel_cache, "_aot_loaded", {})
+    monkeypatch.setattr(kernel_cache, "_find_modules", lambda name: [])  # nothing cached yet
+    monkeypatch.setattr(kernel_cache, "_pycc", lambda: None)
+    builds = []
+
+    def build(dispatcher, name):
+        builds.append(name)
+        time.sleep(0.2)  # long enough for every thread to arrive while it builds
+        raise OSError("no compiler here")  # the JIT kernel serves: all threads get None
+    monkeypatch.setattr(kernel_cache, "_build_module", build)
+    got = []
+    threads = [threading.Thread(target=lambda: got.append(kernel_cache._aot_function(fast._integrate)))
+               for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert len(builds) == 1 and got == [None] * 4
