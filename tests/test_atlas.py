@@ -212,3 +212,21 @@ def test_a_bad_grid_is_one_line_and_exit_2_before_any_run(tmp_path, capsys, opti
 def test_atlas_help_names_no_issue(capsys):
     assert main(["atlas", "--help"]) == 0
     assert "issue" not in capsys.readouterr().out.lower()
+
+
+def test_an_atlas_row_carries_the_one_summary_row():
+    """Every table's rows start from core.summary.row_of_trajectory (issue 23): an atlas
+    run's row holds the summary row of the same run made directly, beside its own columns."""
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.core.runner import Task
+    from isorock.validate.core.summary import row_of_trajectory
+    cell = Cell(4.0, 1.0, 1.0)
+    ref = reference(cell)
+    system = cell.system()
+    theta0 = 0.5 * system.alpha
+    task = Task(key=cell.key, engine="analytic", system=system, motion=None, duration=ref["duration"], theta0=theta0)
+    row = run_cell(task)
+    direct = row_of_trajectory(get_engine("analytic").simulate(system, None, duration=ref["duration"], theta0=theta0))
+    for key, value in direct.items():
+        assert row[key] == value or (isinstance(value, float) and math.isnan(value) and math.isnan(row[key])), key
+    assert "beta_errors_counted" in row and "sim_s" in row

@@ -210,6 +210,7 @@ def run_cell(task) -> dict:
     # loaded before the clock: a worker's first run would otherwise pay for the imports
     from isorock.validate.core.engines import resolve
     from isorock.validate.core.measure import beta_errors
+    from isorock.validate.core.summary import row_of_trajectory
     out = {"status": "error", "message": "", "sim_s": 0.0, "loop_s": math.nan}
     try:
         engine, settings = resolve(task.engine, task.overrides)  # imports the engine's package
@@ -225,6 +226,7 @@ def run_cell(task) -> dict:
         out.update(status="error", message=f"{type(e).__name__}: {e}")
     else:
         counted = traj.counted_impacts
+        out.update(row_of_trajectory(traj))  # the one summary row every table shares, then the atlas's own
         out.update(status=str(traj.status), message=traj.message or "",
                    sim_s=float(traj.t[-1]) if len(traj.t) else 0.0, loop_s=float(traj.runtime_s),
                    impacts_counted=len(counted), beta_errors_counted=beta_errors(traj, KEPT_IMPACTS),
