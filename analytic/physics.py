@@ -720,6 +720,11 @@ def _newton_bracket(sp, wu, wv, sigma, c0, c1, lo, hi, glo, ghi):
     return x
 
 
+#: Intervals `_oscillator_zeros` examines at most before it splits none further (a search
+#: that separates every zero takes tens; a degenerate one would take 2^78).
+ZERO_VISITS = 10_000
+
+
 def _oscillator_zeros(sp, wu, wv, sigma, c0, c1, bound, h, rising, out):
     """Zeros of g(τ) = σ·(e^(Aτ) w)_v + c0 + c1·τ in [0, h], in increasing order, up to
     out.size of them (rising: only the first at which g rises through 0, counting g(0) = 0
@@ -736,8 +741,10 @@ def _oscillator_zeros(sp, wu, wv, sigma, c0, c1, bound, h, rising, out):
     lo_s[0], hi_s[0], glo_s[0], ghi_s[0] = 0.0, h, g0, gh
     top = 1
     last = -1.0
+    visits = 0
     while top > 0:
         top -= 1
+        visits += 1
         lo, hi, glo, ghi = lo_s[top], hi_s[top], glo_s[top], ghi_s[top]
         w = hi - lo
         dev = 0.125 * bound * w * w
@@ -750,7 +757,12 @@ def _oscillator_zeros(sp, wu, wv, sigma, c0, c1, bound, h, rising, out):
         gm, gpm = glo, 0.0
         if dev != 0.0:
             gm, gpm = _oscillator_line(sp, wu, wv, sigma, c0, c1, mid)
-        if dev == 0.0 or abs(gpm) > 0.5 * bound * w or top >= 78 or mid <= lo or mid >= hi:
+        # past ZERO_VISITS intervals no interval is split again: near a double zero (a base at
+        # rest under a record that starts at 0: u̇ = ü = 0 at τ = 0) with `bound` above |g''|,
+        # neither test above decides, and both halves split down to depth 78 (2^78 leaves:
+        # the compiled kernel hung on a stress case)
+        if (dev == 0.0 or abs(gpm) > 0.5 * bound * w or top >= 78 or mid <= lo or mid >= hi
+                or visits > ZERO_VISITS):
             # g is monotone here (or the interval cannot be split further)
             if glo * ghi > 0.0 or (glo == 0.0 and ghi == 0.0):
                 continue
