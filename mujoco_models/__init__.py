@@ -77,7 +77,8 @@ ENGINE = EngineSpec(
             "paper's 2 m block, 80% off in β on a 0.2 m one (docs/atlas.md): kept to compare against",
             lambda: Settings(follow_system=False)),
         "full": Preset(
-            "the contact scene stepped throughout, also while the block rests on its base (phases.py)",
+            "the contact scene stepped throughout at the timestep: no rest phase skipped, no coarse steps away "
+            "from impacts (phases.py)",
             lambda: Settings(phased=False)),
         "newton": Preset(
             "Newton, MuJoCo's own solver and the default's: named so that it reads beside cg",
