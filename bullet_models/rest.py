@@ -16,6 +16,7 @@ import numpy as np
 
 from isorock.analytic.rest_phase import (F_LOW, LEAD_TIME, REST_RATE, REST_SPEED, REST_TILT, SETTLE_TIME,
                                          first_hot, rest_states, takeover)
+from isorock.analytic import kinematics
 from isorock.analytic.system import System
 
 
@@ -57,7 +58,7 @@ class Rest:
             return False
         r = np.array(rows[-self.settle_rows:], dtype=float)
         qx, qy, qz, qw = r[:, 6:10].T
-        theta = np.arctan2(2 * (qx * qz + qw * qy), 1 - 2 * (qx * qx + qy * qy))
+        theta = kinematics.tilts_from_quaternion(qw, qx, qy, qz)[0]
         dt = np.diff(r[:, 0])
         slide = np.abs(np.diff(r[:, 3] - r[:, 1])) / dt  # the block's x relative to the base
         lift = np.abs(np.diff(r[:, 5])) / dt

@@ -175,7 +175,7 @@ def _stop_in(system, rows, checked, motion_end):
     if not new.size:
         return None, None
     qx, qy, qz, qw = new[:, 6:10].T
-    theta = np.arctan2(2 * (qx * qz + qw * qy), 1 - 2 * (qx * qx + qy * qy))
+    theta = kinematics.tilts_from_quaternion(qw, qx, qy, qz)[0]
     finite = np.all(np.isfinite(new), axis=1)
     k, reason = kinematics.first_stop(new[:, 0], theta, new[:, 10], finite, system=system, motion_end=motion_end)
     return (None, None) if k is None else (checked + k, reason)

@@ -116,7 +116,7 @@ def step_cost(system: System, settings: Settings | None = None, *, steps: int = 
     return (time.process_time() - start) / steps
 
 
-@functools.lru_cache(maxsize=16)
+@functools.lru_cache(maxsize=64)
 def _scene(system: System, settings: Settings) -> mujoco.MjModel:
     """The compiled scene of a (system, settings), kept for the runs that follow (compiling
     costs ~9 ms, a tenth of a 40 s record's run): private to this module, which never
@@ -138,8 +138,8 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
     motion, duration, theta0), as `simulate` takes them; returns, per run, its RawHistory
     or the exception it raised (one bad case is that case's result, not a lost batch).
 
-    A scene is compiled once per distinct system (a chunk of a campaign shares one or
-    two), and `threads` runs step side by side, each with its own MjData: rollout
+    A scene is compiled once per distinct system (`_scene` keeps the last 64; a chunk
+    of a campaign shares one or two), and `threads` runs step side by side, each with its own MjData: rollout
     releases the GIL while it steps, so a process uses that many cores. Each run's steps,
     forces, warm starts and stop rules are those of `simulate`, so each history is
     identical to a run made alone (tested). MuJoCo reports warnings through one
@@ -148,15 +148,11 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
     is its own, as `simulate` reports it."""
     settings = settings or Settings()
     runs = list(runs)
-    models: dict = {}
 
     def prepare(run):
         system, motion, duration, theta0 = run
         motion, duration, derived = _inputs(settings, system, motion, duration, theta0)  # per system
-        if (system, derived) not in models:
-            models[system, derived] = _scene(system, derived)
-        model = models[system, derived]
-        return model, derived, system, motion, duration, theta0
+        return _scene(system, derived), derived, system, motion, duration, theta0
 
     prepared = []
     for run in runs:
