@@ -15,6 +15,8 @@ length).
 """
 from __future__ import annotations
 
+import functools
+
 import math
 import re
 from dataclasses import dataclass, field
@@ -166,8 +168,9 @@ class GroundMotion:
     def is_zero(self) -> bool:
         return self.pulse is None and not np.any(self.acceleration)
 
-    @property
+    @functools.cached_property
     def times(self) -> np.ndarray:
+        """The samples' times (s), kept: every evaluation interpolates over them."""
         return np.arange(self.n) * self.dt
 
     def __call__(self, t):

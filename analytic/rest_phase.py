@@ -39,12 +39,17 @@ REST_RATE = 1e-4
 REST_SPEED = 1e-4
 
 
-def takeover(acceleration: np.ndarray, threshold: float, lead: int) -> int | None:
-    """Index into `acceleration` (|a| after each step of a rest phase) of the last step
-    before the contact scene takes over: `lead` steps before |a| first reaches
-    F_HIGH·threshold (at least 0), or None if it never does."""
-    hot = first_hot(acceleration, threshold)
-    return None if hot is None else max(0, hot - lead)
+def takeover(acceleration, threshold: float, lead: int, start: int = 0) -> int | None:
+    """Index into `acceleration` (|a| after each step of a rest phase, from index `start`)
+    of the last step before the contact scene takes over: `lead` steps before |a| first
+    reaches F_HIGH·threshold (at least `start`), or None if it never does.
+    `acceleration` is an array or anything sliced like one (it is read BLOCK steps at a
+    time, so a record evaluated as it is read is evaluated only as far as needed)."""
+    for block in range(start, acceleration.size, BLOCK):
+        hot = first_hot(acceleration[block:min(block + BLOCK, acceleration.size)], threshold)
+        if hot is not None:
+            return max(start, block + hot - lead)
+    return None
 
 
 def first_hot(acceleration: np.ndarray, threshold: float) -> int | None:

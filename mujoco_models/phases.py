@@ -35,17 +35,19 @@ from isorock.analytic.rest_phase import (F_HIGH, F_LOW, LEAD_TIME, REST_RATE, RE
                                          SETTLE_TIME, first_hot, linear_steps, rest_states, takeover)
 from isorock.analytic.system import System
 
+from .state import fresh_data
+
 #: Steps per full-scene rollout call while looking for rest (the steps of a call past
 #: the row where rest is found are discarded).
 FULL_CHUNK = 256
 
 
-def applies(settings, theta0: float, xg: np.ndarray) -> bool:
+def applies(settings, theta0: float, motion, nstep: int) -> bool:
     """Whether a run is stepped by phases: asked for, starting at rest (free rocking
     starts tilted and is stepped in full), with the planar joints of the default
     stepping scheme, and a record that moves."""
     return (getattr(settings, "phased", False) and theta0 == 0.0 and settings.joint == "planar"
-            and settings.impact_timestep is None and xg.size > 0 and bool(np.any(xg != 0.0)))
+            and settings.impact_timestep is None and nstep > 0 and not motion.is_zero)
 
 
 @functools.lru_cache(maxsize=32)
@@ -70,7 +72,7 @@ class Phases:
     """What a phased run needs besides the full scene: the threshold, the rest test over
     state rows, and the rest phase's rows."""
 
-    def __init__(self, model, lay, system: System, settings, xg: np.ndarray, dt: float):
+    def __init__(self, model, lay, system: System, settings, xg, dt: float):
         self.lay, self.system, self.xg, self.dt = lay, system, xg, dt
         self.z_v = model.jnt_dofadr[model.joint("block_z").id]
         self.threshold = system.uplift_acceleration
@@ -92,12 +94,12 @@ class Phases:
         return np.abs(self.system.stiffness * u + self.system.damping * u_dot) / self.system.total_mass
 
     def rest_finder(self):
-        """until(chunk, steps) for a full phase (`steps`: each row's step index): the index of the row
-        ending SETTLE_TIME of rest with |a| < F_LOW·threshold, or None."""
+        """until(chunk, steps, hist) for a full phase (`steps`: each row's step index; `hist`: the
+        chunk's Layout.histories): the index of the row ending SETTLE_TIME of rest with
+        |a| < F_LOW·threshold, or None."""
         lay, broken = self.lay, [None]  # step index of the last row not at rest, carried across calls
 
-        def until(chunk, steps):
-            h = lay.histories(self.system, chunk)
+        def until(chunk, steps, h):
             vel = chunk[:, self.v]
             rest = ((np.abs(h["theta"]) < self.tilt) & (np.abs(h["theta_dot"]) < self.rate)
                     & (np.abs(vel[:, lay.x_v] - h["u_dot"]) < self.speed) & (np.abs(vel[:, self.z_v]) < self.speed))
@@ -126,8 +128,8 @@ class Phases:
         template = row.copy()
         template[self.v] = 0.0
         if self.system.fixed_base:
-            end = takeover(self.xg[k:], self.threshold, self.lead)
-            s = nstep if end is None else k + end
+            end = takeover(self.xg, self.threshold, self.lead, start=k)
+            s = nstep if end is None else end
             steps = self._stored(k, s)
             rows = np.repeat(template[None, :], steps.size, axis=0)
             rows[:, 0] = steps * dt
@@ -219,7 +221,7 @@ MIN_RATE = 1e-3
 #: (the impact's transient, critically damped or slower, is over within a few τ).
 SETTLE_TAUS = 20
 #: Coarse steps per rollout call at most (a call runs about as far as the next impact zone).
-COARSE_CHUNK = 128
+COARSE_CHUNK = 256
 
 
 def coarse_multiple(settings) -> int:
@@ -244,6 +246,24 @@ def coarse_applies(settings) -> bool:
             and coarse_multiple(settings) > 1)
 
 
+_coarse: dict = {}
+
+
+def coarse_model(model: mujoco.MjModel, multiple: int) -> mujoco.MjModel:
+    """The same scene with a step `multiple` times `model`'s (everything else, the contact
+    included, equal), kept for the runs that follow (a copy costs ~0.15 ms). Never changed
+    once made, so threads share it."""
+    key = (id(model), multiple)
+    entry = _coarse.get(key)
+    if entry is None or entry[0] is not model:  # the id of a model since freed
+        if len(_coarse) >= 64:
+            _coarse.clear()
+        coarse = copy.copy(model)
+        coarse.opt.timestep = model.opt.timestep * multiple
+        entry = _coarse[key] = (model, coarse)
+    return entry[1]
+
+
 class Flight:
     """Where a contact phase steps coarse and where fine: fine from IMPACT_ZONE coarse steps
     before θ crosses 0 (an impact) until SETTLE_TAUS·τ after it, coarse elsewhere. The rows
@@ -253,52 +273,47 @@ class Flight:
     def __init__(self, model, lay, system: System, settings, dt: float):
         self.lay, self.system, self.dt = lay, system, dt
         self.multiple = coarse_multiple(settings)
-        # the same scene with the coarse step (everything else, the contact included, equal)
-        self.model = copy.copy(model)
-        self.model.opt.timestep = dt * self.multiple
-        self.data = mujoco.MjData(self.model)
+        self.model = coarse_model(model, self.multiple)
+        self.data = fresh_data(self.model)
         self.rate = MIN_RATE * system.alpha * system.p
         self.reach = IMPACT_ZONE * self.multiple * dt  # s: the zone, as a time to θ = 0
         self.settle = max(1, int(math.ceil(SETTLE_TAUS * settings.solref[0] / dt)))
         self.last_cross = -(10 ** 12)  # step index of the last sign change of θ
         self.refine = False  # a coarse call was cut where θ changed sign: step fine from there
-
-    def _theta(self, rows):
-        h = self.lay.histories(self.system, rows)
-        return h["theta"], h["theta_dot"]
+        self.theta = 0.0  # θ at the row the current call started from (plan)
 
     def in_zone(self, theta, theta_dot):
         return (np.abs(theta_dot) > self.rate) & (np.abs(theta) < self.reach * np.abs(theta_dot))
 
-    def plan(self, row: np.ndarray, k: int, nstep: int) -> tuple[int, int]:
-        """(multiple, steps) of the next rollout call from step k, the state `row`: fine
-        (multiple 1) within an impact's zone or its settling, else coarse, about as far as
-        the next zone (the call is cut there afterwards)."""
-        th, thd = (float(x[0]) for x in self._theta(row[None, :]))
+    def plan(self, theta: float, theta_dot: float, k: int, nstep: int) -> tuple[int, int]:
+        """(multiple, steps) of the next rollout call from step k, where the block's tilt is
+        θ = `theta`, θ̇ = `theta_dot`: fine (multiple 1) within an impact's zone or its
+        settling, else coarse, about as far as the next zone (the call is cut there
+        afterwards, by `keep`)."""
+        self.theta = theta  # the row the call starts from: `keep` looks for sign changes after it
         coarse = (nstep - k) // self.multiple
-        if (self.multiple == 1 or self.refine or k - self.last_cross < self.settle or self.in_zone(th, thd)
-                or coarse < 2):
+        if (self.multiple == 1 or self.refine or k - self.last_cross < self.settle
+                or self.in_zone(theta, theta_dot) or coarse < 2):
             self.refine = False
             return 1, min(max(self.settle, 16), nstep - k)
-        if abs(thd) > self.rate and th * thd < 0:  # heading for θ = 0
-            ahead = int(abs(th / thd) / (self.multiple * self.dt))
+        if abs(theta_dot) > self.rate and theta * theta_dot < 0:  # heading for θ = 0
+            ahead = int(abs(theta / theta_dot) / (self.multiple * self.dt))
             return self.multiple, max(2, min(ahead, COARSE_CHUNK, coarse))
         return self.multiple, min(COARSE_CHUNK, coarse)
 
-    def keep(self, chunk: np.ndarray, prev: np.ndarray, steps: np.ndarray, multiple: int) -> int:
-        """How many rows of a call to keep, noting sign changes of θ: all of a fine call; a
-        coarse call up to its first row inside an impact zone, or up to the row before θ
-        changed sign outside one (stepped again fine from there)."""
-        th, thd = self._theta(chunk)
-        before = np.concatenate(([self._theta(prev[None, :])[0][0]], th))
+    def keep(self, th: np.ndarray, thd: np.ndarray, steps: np.ndarray, multiple: int) -> int:
+        """How many rows of a call (θ `th`, θ̇ `thd` at each) to keep, noting sign changes of
+        θ: all of a fine call; a coarse call up to its first row inside an impact zone, or
+        up to the row before θ changed sign outside one (stepped again fine from there)."""
+        before = np.concatenate(([self.theta], th))
         crossed = np.sign(before[1:]) * np.sign(before[:-1]) < 0
         if multiple == 1:
             if crossed.any():
                 self.last_cross = int(steps[np.nonzero(crossed)[0][-1]])
-            return chunk.shape[0]
+            return th.size
         stop = np.nonzero(self.in_zone(th, thd) | crossed)[0]
         if stop.size == 0:
-            return chunk.shape[0]
+            return th.size
         i = int(stop[0])
         if crossed[i]:  # the impact fell within a coarse step: the rows before it stand
             self.refine = True

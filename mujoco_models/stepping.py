@@ -38,7 +38,7 @@ from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 from .scene import build_model
 from . import phases
 from .settings import Settings
-from .state import Layout, raw_history, stop_in, warning_failure, warnings_as_status
+from .state import Layout, StepRecord, fresh_data, raw_history, stop_in, warning_failure, warnings_as_status
 #: Steps per call of mujoco.rollout: the progress callback and the stop rules run
 #: between calls. The warm start is carried across calls, so the split does not change
 #: the result (tested).
@@ -76,15 +76,15 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
                                   duration, warnings)
 
     chunk_steps = chunk_steps or CHUNK_STEPS
-    data = mujoco.MjData(model)
-    xg = np.asarray(motion((np.arange(nstep) + 0.5) * dt), dtype=float)
+    data = fresh_data(model)
+    xg = StepRecord(motion, dt, nstep)
     state0 = lay.initial_state(model, system, theta0)
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
     throttle = kinematics.Throttle(progress, duration)
     # coarse steps away from impacts, in every run whose stepping follows its phase
     flight = phases.Flight(model, lay, system, settings, dt) if phases.coarse_applies(settings) else None
-    if phases.applies(settings, theta0, xg):
+    if phases.applies(settings, theta0, motion, nstep):
         rows, status, message, stop_reason = _phased(model, data, lay, system, motion, settings, xg,
                                                      state0, rows, nstep, dt, throttle, warnings, flight)
     else:
@@ -217,11 +217,12 @@ def _roll(model, data, lay, system, motion, xg, state0, warm, rows, nstep, chunk
     done, warm start)."""
     status, message, stop_reason = Status.COMPLETED, "reached the end time", None
     done = start
+    tilt = _tilt(lay.histories(system, state0[None, :]), 0)  # (θ, θ̇) of state0
     while done < nstep:
         if flight is None:
             multiple, n = 1, min(chunk_steps, nstep - done)
         else:
-            multiple, n = flight.plan(state0, done, nstep)
+            multiple, n = flight.plan(*tilt, done, nstep)
         if multiple == 1:
             # ẍg at each step's middle (xg), as forces on the block's and the base's x dofs
             step_model, step_data, f = model, data, lay.forces(system, xg[done:done + n])
@@ -241,13 +242,17 @@ def _roll(model, data, lay, system, motion, xg, state0, warm, rows, nstep, chunk
             rows.append(chunk[:keep])
             status, message = Status.FAILED, f"MuJoCo: {text} (try a smaller timestep)"
             break
+        # the chunk's θ, u, … once: every rule below reads them
+        hist = lay.histories(system, chunk)
         if flight is not None:
-            kept = flight.keep(chunk, state0, steps, multiple)
-            chunk, steps = chunk[:kept], steps[:kept]
+            kept = flight.keep(hist["theta"], hist["theta_dot"], steps, multiple)
             if kept == 0:
                 continue
+            if kept < chunk.shape[0]:
+                chunk, steps = chunk[:kept], steps[:kept]
+                hist = {name: column[:kept] for name, column in hist.items()}
         t = chunk[:, 0]
-        k, reason = stop_in(lay, system, chunk, t, motion)
+        k, reason = stop_in(lay, system, chunk, t, motion, hist)
         if reason == "non-finite":
             rows.append(chunk[:k])
             status = Status.FAILED
@@ -258,14 +263,19 @@ def _roll(model, data, lay, system, motion, xg, state0, warm, rows, nstep, chunk
             rows.append(chunk[:k + 1])
             stop_reason = reason
             break
-        settled = until(chunk, steps) if until is not None else None
+        settled = until(chunk, steps, hist) if until is not None else None
         if settled is not None:
             rows.append(chunk[:settled + 1])
             done = int(steps[settled])
             break
         rows.append(chunk)
         done = int(steps[-1])
-        state0 = chunk[-1]
+        state0, tilt = chunk[-1], _tilt(hist, -1)
         warm = step_data.qacc_warmstart.copy()
         throttle(done * dt)
     return rows, status, message, stop_reason, done, warm
+
+
+def _tilt(hist: dict, i: int) -> tuple[float, float]:
+    """(θ, θ̇) of row i of a chunk's histories."""
+    return float(hist["theta"][i]), float(hist["theta_dot"][i])
