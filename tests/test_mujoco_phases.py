@@ -107,3 +107,39 @@ def test_free_rocking_steps_coarse_between_impacts_within_tolerance(fixed):
     assert all(abs(i.beta / beta - 1) <= limit for i in coarse.counted_impacts[:4])
     t1 = tolerance("mujoco", "first_impact_time_rel_error").limit
     assert abs(coarse.counted_impacts[0].t / fine.counted_impacts[0].t - 1) <= 0.25 * t1
+
+
+def test_step_record_is_the_motion_at_each_steps_middle():
+    """StepRecord (evaluated block by block as a run reads it) against the motion evaluated
+    at every step's middle at once, read in the orders a run reads it."""
+    from isorock.analytic.rest_phase import BLOCK
+    from isorock.mujoco_models.state import StepRecord
+    motion = load_motion("sine:amp=2.0,freq=1.3,cycles=3")
+    dt, nstep = 1e-4, 3 * BLOCK + 17
+    whole = motion((np.arange(nstep) + 0.5) * dt)
+    xg = StepRecord(motion, dt, nstep)
+    assert np.array_equal(xg[10:20], whole[10:20])
+    steps = np.array([5, BLOCK + 3, 2 * BLOCK + 1])
+    assert np.array_equal(xg[steps], whole[steps])
+    assert np.array_equal(xg[BLOCK - 5:], whole[BLOCK - 5:])
+    assert xg.size == nstep and np.array_equal(xg[:], whole)
+
+
+def test_a_kept_mjdata_starts_each_run_as_a_new_one():
+    """A thread's MjData is kept between runs and reset: an earlier run's warning counters
+    and warm start are gone (a warning left over would fail the next run), and two runs of
+    one case, the second on the kept data, give the same history bit for bit."""
+    import mujoco
+    from isorock.mujoco_models.state import fresh_data
+    from isorock.mujoco_models.stepping import _scene
+    s = paper_system()
+    model = _scene(s, Settings().for_system(s, 2.0))
+    data = fresh_data(model)
+    data.warning[int(mujoco.mjtWarning.mjWARN_BADQACC)].number = 3
+    data.qacc_warmstart[:] = 1.0
+    again = fresh_data(model)
+    assert again is data
+    assert not again.warning.number.any() and not again.qacc_warmstart.any()
+    motion = load_motion(ROBUST_SINE)
+    first, second = (simulate(s, motion, duration=4.0) for _ in range(2))
+    assert np.array_equal(first.theta, second.theta) and np.array_equal(first.u, second.u)
