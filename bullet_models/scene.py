@@ -1,4 +1,4 @@
-"""The block on its base as a PyBullet scene (one private `p.DIRECT` client per run),
+"""The block on its base as a PyBullet scene (a private `p.DIRECT` client per thread, emptied for each run),
 and the same scene as an SDF file a user can open.
 
 - block: a free box 2b × 2b × 2h (x, y, z) of mass m, a plain rigid body (maximal
@@ -18,6 +18,7 @@ from __future__ import annotations
 import ctypes
 import os
 import sys
+import threading
 from contextlib import contextmanager
 from dataclasses import dataclass, fields
 
@@ -127,6 +128,31 @@ def connect() -> BulletClient:
     """A private DIRECT client: runs in one process share no state."""
     with _c_output_silenced():
         return BulletClient(connection_mode=p.DIRECT)
+
+
+_local = threading.local()
+
+
+@contextmanager
+def run_client():
+    """This thread's own DIRECT client, emptied for a run, kept for the thread's next run
+    (`resetSimulation` removes every body and restores the engine's parameters, gravity
+    included, except the time step and sub-steps (checked with getPhysicsEngineParameters),
+    which `build` sets for each run):
+    connecting costs ~12 ms, a tenth of a run, resetting ~1.5 ms. Runs side by side on
+    threads each have their own client, so they share no state; a run that raises leaves
+    its client disconnected (the next run connects afresh)."""
+    client = getattr(_local, "client", None)
+    if client is None or not client.isConnected():
+        client = _local.client = connect()
+    else:
+        client.resetSimulation()
+    try:
+        yield client
+    except BaseException:
+        _local.client = None
+        client.disconnect()
+        raise
 
 
 # --- the scene as a file ----------------------------------------------------------

@@ -26,7 +26,7 @@ from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
-from .scene import build, connect, p
+from .scene import build, connect, p, run_client
 from .rest import Rest
 from .settings import Settings
 
@@ -68,8 +68,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     throttle = kinematics.Throttle(progress, duration)
     check_every = max(1, round(0.25 / dt))  # the stop rules look at the rows every 0.25 s
 
-    client = connect()
-    try:
+    with run_client() as client:
         scene = build(client, system, settings, theta0)
         c, block, base = client, scene.block, scene.base
         set_gravity, step = c.setGravity, c.stepSimulation
@@ -151,8 +150,6 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
             step()
             i += 1
         runtime = time.perf_counter() - start
-    finally:
-        client.disconnect()
     raw = raw_history(system, np.array(rows), runtime, status, message, stop_reason)
     # the numbers this run used (Settings.for_system may have made them finer than asked)
     raw.extras.update(timestep=float(settings.timestep), control_step=float(settings.control_step))

@@ -8,6 +8,8 @@ there: β per impact, staying down at 0.99·g·tanα, pivot slip, out-of-plane d
 import math
 from dataclasses import replace
 
+import threading
+
 import numpy as np
 import pybullet as p
 import pytest
@@ -269,7 +271,11 @@ def test_bad_arguments_raise_input_error():
 
 # --- the client's lifetime ---------------------------------------------------------
 
-def test_client_is_disconnected_after_a_run_and_after_a_failure(monkeypatch):
+def test_a_thread_keeps_its_client_and_a_failure_disconnects_it(monkeypatch):
+    """A thread's runs share one client, emptied before each (two runs of one case give the
+    same history bit for bit, and a run after another case equals it too); a run that
+    raises disconnects its client, and the next run connects a new one."""
+    from isorock.bullet_models import scene as bullet_scene
     ids = []
 
     def tracking_connect(fail_at=None):
@@ -286,13 +292,21 @@ def test_client_is_disconnected_after_a_run_and_after_a_failure(monkeypatch):
             client.stepSimulation = failing_step
         return client
 
-    monkeypatch.setattr(stepping, "connect", tracking_connect)
-    simulate(FIXED, duration=0.05)
-    monkeypatch.setattr(stepping, "connect", lambda: tracking_connect(fail_at=10))
+    monkeypatch.setattr(bullet_scene, "_local", threading.local())  # this test's own thread state
+    monkeypatch.setattr(bullet_scene, "connect", tracking_connect)
+    first = simulate(FIXED, duration=0.3, theta0=0.5 * FIXED.alpha)
+    simulate(ISOLATED, duration=0.3, theta0=0.5 * ISOLATED.alpha)
+    again = simulate(FIXED, duration=0.3, theta0=0.5 * FIXED.alpha)
+    assert len(ids) == 1 and p.isConnected(physicsClientId=ids[0])
+    assert np.array_equal(first.theta, again.theta) and np.array_equal(first.t, again.t)
+    bullet_scene._local.client = None
+    monkeypatch.setattr(bullet_scene, "connect", lambda: tracking_connect(fail_at=10))
     with pytest.raises(RuntimeError, match="stepping failed"):
         simulate(FIXED, duration=0.1)
-    assert len(ids) == 2 and all(cid >= 0 for cid in ids)
-    assert not any(p.isConnected(physicsClientId=cid) for cid in ids)
+    assert len(ids) == 2 and not p.isConnected(physicsClientId=ids[1])
+    monkeypatch.setattr(bullet_scene, "connect", tracking_connect)
+    simulate(FIXED, duration=0.05)
+    assert len(ids) == 3 and p.isConnected(physicsClientId=ids[2])
 
 
 def test_progress_is_called_with_the_duration(monkeypatch):
