@@ -421,5 +421,6 @@ def test_a_blown_up_state_is_a_failure_and_leaves_no_log_file(tmp_path, monkeypa
 def test_a_squat_block_that_slides_says_so():
     # λ 0.89 with friction 1 < b/h: the block slides instead of rocking (model.md assumes it cannot)
     squat = System.fixed(height=0.5, width=0.56, mass=100.0)
-    traj = MUJOCO.simulate(squat, load_motion("sine:amp=1.5,freq=1,cycles=2"), duration=3.0)
+    traj = MUJOCO.simulate(squat, load_motion("sine:amp=1.5,freq=1,cycles=2"), duration=3.0,
+                           settings=MUJOCO.settings(friction=1.0))
     assert traj.status == "slid" and traj.extras["pivot_slip_max"] > 0.01 * squat.b
