@@ -168,3 +168,19 @@ def test_linear_steps_is_the_map_stepped_one_by_one():
             want.append(x)
         want = np.array(want)
         assert np.abs(got - want).max() <= 1e-10 * np.abs(want).max()
+
+
+def test_takeover_is_lead_steps_before_the_first_hot_step_from_start():
+    """takeover read block by block from `start` against the rule written out over the
+    whole array (the first |a| ≥ F_HIGH·threshold, `lead` steps earlier, not before start),
+    with the hot step in the first block, past it, within `lead` of start, and never."""
+    n, threshold, lead = 3 * rest_phase.BLOCK + 11, 2.0, 40
+    hot_at = rest_phase.F_HIGH * threshold
+    for first_hot, start in ((100, 0), (rest_phase.BLOCK + 7, 5), (2 * rest_phase.BLOCK + 3, 2 * rest_phase.BLOCK),
+                             (60, 30), (None, 17)):
+        a = np.full(n, 0.5 * hot_at)
+        if first_hot is not None:
+            a[first_hot] = hot_at
+            a[first_hot + 5:] = 3 * hot_at
+        want = None if first_hot is None else max(start, first_hot - lead)
+        assert rest_phase.takeover(a, threshold, lead, start=start) == want
