@@ -11,9 +11,18 @@ import math
 from .errors import require, require_nonnegative_finite, require_positive_finite
 
 
+#: The largest slenderness and mass ratio the closed forms take: λ²(μ + 4) must stay a
+#: double (λ = 1e300 overflowed λ², a traceback from `isorock beta`). No statue or base
+#: comes within many orders of magnitude of it; past it every form has reached its limit
+#: (β → 1, β₂ → 0 as λ → ∞) to the last digit.
+MAX_CLOSED_FORM = 1e100
+
+
 def _check(slenderness, mass_ratio):
     lam = require_positive_finite("slenderness", slenderness)
     mu = require_nonnegative_finite("mass_ratio", mass_ratio)
+    require(lam <= MAX_CLOSED_FORM, "slenderness", slenderness, f"at most {MAX_CLOSED_FORM:g}")
+    require(mu <= MAX_CLOSED_FORM, "mass_ratio", mass_ratio, f"at most {MAX_CLOSED_FORM:g}")
     return lam, mu
 
 

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import mujoco
 
+from isorock.analytic.errors import require
 from isorock.analytic.system import System
 
 from .settings import Settings
@@ -46,6 +47,7 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     named = {el.get("name"): el for el in root.iter() if el.get("name")}
     h, b, d = system.h, system.b, DEPTH_FRACTION * system.b
     m, mb = system.mass, system.base_mass
+    check_representable(system)
 
     opt = root.find("option")
     opt.set("timestep", repr(settings.timestep))
@@ -114,6 +116,20 @@ def _corner_pairs(root, block, pair, b, h, d, free):
             corner = ET.SubElement(contact, "pair", dict(pair.attrib))
             corner.set("name", name)
             corner.set("geom1", name)
+
+
+def check_representable(system: System) -> None:
+    """MuJoCo refuses a moving body whose mass or any principal inertia is below mjMINVAL
+    (1e-15): its compiler raised a ValueError from deep inside a run (a 1e-30 kg statue).
+    Such a system is bad input for this engine, named by its field."""
+    h, b, d = system.h, system.b, DEPTH_FRACTION * system.b
+    least = mujoco.mjMINVAL
+    inertia = system.mass * min(d**2 + h**2, b**2 + h**2, b**2 + d**2) / 3
+    require(system.mass > least and inertia > least, "mass", system.mass,
+            f"heavier for MuJoCo: its mass and least inertia ({inertia:.3g} kg·m²) must exceed mjMINVAL = {least:g}")
+    if not system.fixed_base:
+        require(system.base_mass > least, "base_mass", system.base_mass,
+                f"more than MuJoCo's mjMINVAL = {least:g} kg")
 
 
 def build_model(system: System, settings: Settings | None = None) -> mujoco.MjModel:

@@ -329,3 +329,23 @@ def test_pga_with_scale_is_refused(tmp_path, capsys):
     code, _, err = run_cli(["run", *FIXED, "--motion", "sine:amp=0.6,freq=1.3,cycles=1", "--pga", "0.3",
                             "--scale", "2"], capsys)
     assert code == 2 and "pga" in err and err.count("\n") == 1
+
+
+def test_beta_with_a_slenderness_past_double_precision_is_one_line(capsys):
+    """λ = 1e300 gave a traceback (OverflowError from λ²): now exit 2 naming the field."""
+    code, _, err = run_cli(["beta", "--slenderness", "1e300", "--mass-ratio", "1"], capsys)
+    assert code == 2 and "slenderness" in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_mujoco_refuses_a_body_lighter_than_it_can_represent(capsys):
+    """A 1e-30 kg statue: MuJoCo's compiler raised ValueError (mass and inertia of moving
+    bodies must exceed mjMINVAL), a traceback; now exit 2 naming the field."""
+    code, _, err = run_cli(["run", "--engine", "mujoco", "--height", "1", "--width", "0.3", "--mass", "1e-30",
+                            "--base-mass", "200", "--period", "2", "--damping-ratio", "0.1",
+                            "--motion", "ricker:amp=0.5,freq=2"], capsys)
+    assert code == 2 and "mass" in err and "Traceback" not in err
+    code, _, err = run_cli(["run", "--engine", "mujoco", "--height", "1", "--width", "0.3", "--mass", "100",
+                            "--base-mass", "1e-30", "--period", "2", "--damping-ratio", "0.1",
+                            "--motion", "ricker:amp=0.5,freq=2"], capsys)
+    assert code == 2 and "base_mass" in err and "Traceback" not in err

@@ -89,3 +89,20 @@ def test_beta2_beta3_units_scale_with_height():
 def test_bad_arguments_name_the_field(call, field):
     with pytest.raises(InputError, match=field):
         call()
+
+
+@pytest.mark.parametrize("field,args", [("slenderness", (1e300, 1.0)), ("mass_ratio", (4.0, 1e300))])
+def test_closed_forms_refuse_values_past_double_precision(field, args):
+    """λ² of λ = 1e300 overflows a double (Python's float power raised OverflowError, a
+    traceback from `isorock beta`): such a value is refused by name, not computed."""
+    with pytest.raises(InputError, match=field):
+        beta(*args)
+
+
+def test_closed_forms_near_the_bound_reach_their_limits():
+    # λ → ∞: β → 1 and β₂ → 0 (the block no longer rotates relative to the base's slide);
+    # the oracle is the limit of the written-out expressions, not the code's value
+    assert beta(1e99, 1.0) == pytest.approx(1.0, abs=1e-15)
+    assert beta2(1e99, 1.0, 1.0) == pytest.approx(0.0, abs=1e-150)
+    # μ → ∞ (a weightless base): β → (λ² − 2)/(λ² + 4)
+    assert beta(4.0, 1e99) == pytest.approx((16 - 2) / (16 + 4), rel=1e-12)
