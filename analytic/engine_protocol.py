@@ -108,7 +108,12 @@ class EngineSpec:
     contact keywords (MuJoCo: dampratio; PyBullet: restitution) None for its defaults: a dict with `overturned`,
     `tilt_max` (rad) and `wall_s` (`isorock experiments`); `step_cost(system, settings)`
     (optional) is the CPU time (s) of one physics step of the engine's scene, the block at
-    rest, with no Python between steps: the limit of its speed (`isorock bench`)."""
+    rest, with no Python between steps: the limit of its speed (`isorock bench`);
+    `check_system(system, settings)` (optional) raises an InputError naming the field for a
+    System the engine cannot carry with those (derived) settings, beyond the checks every
+    engine shares (MuJoCo: a body below mjMINVAL; PyBullet: a base too light, an isolator
+    too stiff for its control step): what `simulate` refuses, asked before any work (a
+    campaign asks it of every system of its grid when its file is read)."""
 
     name: str
     label: str
@@ -125,6 +130,7 @@ class EngineSpec:
     replay_scene: Callable[..., tuple] | None = None
     simulate_body: Callable[..., dict] | None = None
     step_cost: Callable[..., float] | None = None
+    check_system: Callable[..., None] | None = None
 
     def settings(self, **overrides):
         if self.settings_for is not None:

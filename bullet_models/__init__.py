@@ -76,7 +76,9 @@ ENGINE = EngineSpec(
             "every 30 physics steps: fewer Python steps, the force held longer",
             lambda: Settings(substeps=30)),
     },
-    ladder=ladder, tuning=TUNING, step_cost=step_cost)
+    ladder=ladder, tuning=TUNING, step_cost=step_cost,
+    # the base light enough, the isolator slow enough for Bullet (Settings.check_isolator)
+    check_system=lambda system, settings: settings.check_isolator(system))
 
 __all__ = ["ENGINE", "Settings", "simulate", "scene_text", "build", "connect", "settings_for",
            "settings_for_timestep"]

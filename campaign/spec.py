@@ -431,11 +431,18 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
     # an engine whose step follows the block (MuJoCo's, PyBullet's) takes the most steps on
     # the campaign's fastest-rocking block: its steps are the bound
     from isorock.validate.core.cases import build_system
-    from isorock.validate.core.engines import settings_used
-    fastest = max((build_system(g) for g in spec.system_grid()), key=lambda system: system.rocking_rate)
+    from isorock.validate.core.engines import get_engine, settings_used
+    systems = [build_system(g) for g in spec.system_grid()]
+    fastest = max(systems, key=lambda system: system.rocking_rate)
     for e in spec.engines:
         try:
             check_settings(settings_used(e.settings(), fastest, longest), longest)
+            # the engine's own bounds (EngineSpec.check_system) on every system of the grid,
+            # as `run` would refuse one: not a chunk of error rows and exit 0
+            engine = get_engine(e.engine)
+            if engine.spec.check_system is not None:
+                for system in systems:
+                    engine.check_system(system, settings_used(e.settings(), system, longest))
         except InputError as err:
             raise InputError(f"{e.where or e.engine}: {err}") from None
 

@@ -8,7 +8,7 @@ from dataclasses import replace
 
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
 
-from .scene import SCENE_FORMAT, build_model, scene_text
+from .scene import SCENE_FORMAT, build_model, check_representable, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep
 from .stepping import run_model, simulate, simulate_many, step_cost
 
@@ -110,7 +110,8 @@ ENGINE = EngineSpec(
             "a small sphere in each bottom corner instead of box–box: cheaper collision, no better per cost",
             lambda: Settings(contact="corners")),
     },
-    ladder=ladder, tuning=TUNING, simulate_many=simulate_many, step_cost=step_cost)
+    ladder=ladder, tuning=TUNING, simulate_many=simulate_many, step_cost=step_cost,
+    check_system=lambda system, settings: check_representable(system))
 
 __all__ = ["ENGINE", "Settings", "simulate", "simulate_many", "run_model", "scene_text", "build_model", "settings_for",
            "settings_for_timestep", "event_resolved_settings"]

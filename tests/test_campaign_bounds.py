@@ -84,3 +84,19 @@ def test_steps_are_counted_at_the_step_each_system_derives(tmp_path):
         load_spec(spec)
     assert "engines[1]" in str(e.value) and "MAX_STEPS" in str(e.value), str(e.value)
     assert 500 / 5e-4 < MAX_STEPS  # the step in seconds alone would have passed
+
+
+@pytest.mark.parametrize("edit, engine, field", [
+    # a statue lighter than MuJoCo's mjMINVAL: 9 rows of errors and exit 0 before
+    (lambda s: s.replace("mass = 1000.0", "mass = 1e-30"), "mujoco", "mass"),
+    # a base lighter than 1/1000 of the block: PyBullet's own bound (bullet_models/settings.py)
+    (lambda s: s.replace("mass_ratio = 1.0", "mass_ratio = [1.0, 5000.0]"), "bullet", "mass_ratio"),
+])
+def test_an_engine_refusing_a_system_of_the_grid_is_refused_when_the_file_is_read(tmp_path, edit, engine, field):
+    """Each engine's own bounds on a System (EngineSpec.check_system) hold for every
+    system of the grid before anything runs, as `run` and `validate` refuse them."""
+    spec = write_spec(tmp_path, more=f'\n[[engines]]\nname = "{engine}"\n')
+    spec.write_text(edit(spec.read_text()))
+    with pytest.raises(InputError) as e:
+        load_spec(spec)
+    assert f"engines[1]" in str(e.value) and f"{field} =" in str(e.value), str(e.value)

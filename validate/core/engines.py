@@ -105,6 +105,14 @@ class Engine:
         from isorock.analytic.engine_protocol import check_isolator_kind
         check_isolator_kind(system, self.capabilities.isolators, f"engine {self.name!r}")
 
+    def check_system(self, system, settings=None) -> None:
+        """Every bound this engine puts on `system` before any work: the isolator it carries
+        and the engine's own (EngineSpec.check_system), with `settings` as the run will use
+        them (default: the engine's defaults derived for the system)."""
+        self.check_isolator(system)
+        if self.spec.check_system is not None:
+            self.spec.check_system(system, settings if settings is not None else settings_used(self.settings(), system))
+
     def simulate(self, system, motion=None, *, settings=None, duration=None, theta0=0.0,
                  impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule=None,
                  progress=None, effective_beta: bool = True, budget_s: float | None = None) -> Trajectory:
