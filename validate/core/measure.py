@@ -78,8 +78,12 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
         message = (f"the block slid {slip * 1000:.3g} mm at its pivot (more than {SLIDING_FRACTION:g}·b): the "
                    f"analytic model assumes no sliding (friction above b/h = {1 / system.slenderness:.3g} is needed)"
                    + (f"; it also {message}" if overturned else ""))
+    # the rigid map to θ = 0 (hybrid.map_to_impact) carries the linear isolator only: over a
+    # window a non-linear one's slider may stick, slip or yield, which a contact engine's state row
+    # does not say, so its counted impacts keep NaN velocities (times, counts and θmax are measured)
+    linear = system.fixed_base or system.isolator_kind == "linear"
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
-                                impact_threshold=impact_threshold, window=window, mapped=effective_beta)
+                                impact_threshold=impact_threshold, window=window, mapped=effective_beta and linear)
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
                       mode=mode, impacts=impacts, uplift_times=_uplifts(t, mode, window), overturned=overturned,
                       overturn_time=overturn_time, impact_threshold=impact_threshold, runtime_s=raw.runtime_s,
