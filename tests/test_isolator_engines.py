@@ -7,7 +7,8 @@ parts (analytic/isolator_parts.py), and are judged here against oracles they do 
   under a step of ground acceleration, acos(1 − k0 u_y/(M a0))/ω0, and its peaks and loop areas
   from the energy of its springs and F_s times the plastic travel (tests/test_isolators.py);
 - the analytic model (the SciPy reference path): base displacement history, first uplift,
-  counted impacts and θmax/α on short pulses that rock the block, per device.
+  counted impacts and θmax/α on short pulses that rock the block, per device, and each
+  measured impact's effective β against model.md's closed form.
 
 Limits: validate/core/tolerances.py, keyed (engine, metric), each with its measured value.
 """
@@ -157,21 +158,27 @@ def test_bearing_peaks_and_loop_area(engine):
         assert value <= limit(engine, metric), metric
 
 
-#: (device, parameters, pulse): each rocks the paper's block (analytic θmax/α 0.27–0.56, 3–5
-#: impacts), one from each side of the pendulum's friction (μ_f above tanα = 0.35: the base
-#: sticks and the block lifts on it; below: it slides, and lifts off the slope's force).
+#: (device, parameters, pulse, impacts with a measured β): each rocks the paper's block (analytic
+#: θmax/α 0.27–0.56, 3–5 impacts), one from each side of the pendulum's friction (μ_f above tanα
+#: = 0.35: the base sticks and the block lifts on it; below: it slides, and lifts off the slope's
+#: force). β is measured where the element keeps one phase over the window (analytic.isolator_map):
+#: every impact on the sliding pendulum; the first on the sticking one (later ones kick the base
+#: loose, and it sticks again within the window); on the stiff bearing it yields and unloads
+#: within most windows.
 ROCKING = [
-    ("pendulum", (1.0, 0.4), "sine:amp=0.5,freq=1.5,cycles=1"),
-    ("pendulum", (0.3, 0.1), "sine:amp=0.5,freq=1.5,cycles=1"),
-    ("bearing", (3e6, 0.1, 0.002, 1000.0), "ricker:amp=0.6,freq=1.5"),
-    ("bearing", (3e6, 0.1, 0.002, 1000.0), "ricker:amp=0.8,freq=2"),
+    ("pendulum", (1.0, 0.4), "sine:amp=0.5,freq=1.5,cycles=1", 1),
+    ("pendulum", (0.3, 0.1), "sine:amp=0.5,freq=1.5,cycles=1", 4),
+    ("bearing", (3e6, 0.1, 0.002, 1000.0), "ricker:amp=0.6,freq=1.5", 0),
+    ("bearing", (3e6, 0.1, 0.002, 1000.0), "ricker:amp=0.8,freq=2", 1),
 ]
 
 
-def measure_rocking(engine, device, params, pulse) -> dict:
+def measure_rocking(engine, device, params, pulse, with_beta=0) -> dict:
     """The engine against the analytic model (reference path) on a pulse that rocks the block:
     max |Δu| on a 2 ms grid over u_max, the first uplift (read alike, compare.first_tilt),
-    counted impacts, θmax/α and overturning."""
+    counted impacts, θmax/α and overturning; and the effective β of each impact where it is
+    measured against model.md's closed form (the impact maps hold on every isolator,
+    docs/isolators.md "Assumptions" 2): at least `with_beta` of them."""
     system = pendulum(*params) if device == "pendulum" else bearing(*params)
     motion = load_motion(pulse)
     duration = motion.end_time + 2.0
@@ -182,14 +189,17 @@ def measure_rocking(engine, device, params, pulse) -> dict:
     grid = np.linspace(0.0, duration, 2001)
     du = np.max(np.abs(np.interp(grid, tr.t, tr.u) - np.interp(grid, ref.t, ref.u)))
     assert c.first_uplift_diff is not None and c.overturn_agree
+    betas = [abs(e) for e in c.beta_errors if math.isfinite(e)]
+    assert len(betas) >= with_beta
     return {"isolator_u_history": du / ref.u_max, "first_uplift_diff": abs(c.first_uplift_diff),
-            "impacts_diff": abs(c.impacts - c.impacts_ref), "theta_max_diff": abs(c.theta_max_diff)}
+            "impacts_diff": abs(c.impacts - c.impacts_ref), "theta_max_diff": abs(c.theta_max_diff),
+            "beta_rel_error": max(betas, default=0.0)}
 
 
 @pytest.mark.parametrize("engine", ENGINES)
-@pytest.mark.parametrize("device, params, pulse", ROCKING)
-def test_rocking_on_the_device_agrees_with_the_analytic_model(engine, device, params, pulse):
-    for metric, value in measure_rocking(engine, device, params, pulse).items():
+@pytest.mark.parametrize("device, params, pulse, with_beta", ROCKING)
+def test_rocking_on_the_device_agrees_with_the_analytic_model(engine, device, params, pulse, with_beta):
+    for metric, value in measure_rocking(engine, device, params, pulse, with_beta).items():
         assert value <= limit(engine, metric), metric
 
 
@@ -211,3 +221,31 @@ def test_the_engines_declare_the_devices():
     for engine in ENGINES:
         assert set(get_engine(engine).capabilities.isolators) == {"linear", "bilinear", "friction-pendulum"}
     assert get_engine("drake").capabilities.isolators == ("linear",)
+
+
+@pytest.mark.parametrize("system, pulse", [
+    (pendulum(0.3, 0.1), "sine:amp=0.5,freq=1.5,cycles=1"),
+    (bearing(3e6, 0.1, 0.002, 1000.0), "ricker:amp=0.8,freq=2"),
+], ids=["pendulum", "bearing"])
+def test_the_isolator_map_lands_where_the_analytic_model_impacts(system, pulse):
+    """analytic.isolator_map, which measures a contact engine's β on a non-linear isolator,
+    carries the analytic model's own state (with its phase and slider, extras) from 20 ms before
+    each counted impact to θ = 0, and 20 ms after it back: it must land on the model's impact
+    time and velocities wherever the phase holds over that window."""
+    from isorock.analytic.isolator_map import map_to_impact
+    motion = load_motion(pulse)
+    tr = get_engine("analytic-reference").simulate(system, motion, duration=motion.end_time + 2.0)
+    phase, slider = tr.extras["isolator_phase"], tr.extras["isolator_slider"]
+    checked = 0
+    for imp in tr.counted_impacts:
+        for offset, backward, want in ((-0.02, False, imp.theta_dot_pre), (0.02, True, imp.theta_dot_post)):
+            k = int(np.argmin(np.abs(tr.t - (imp.t + offset))))
+            span = slice(min(k, np.searchsorted(tr.t, imp.t)), max(k, np.searchsorted(tr.t, imp.t)))
+            if len(set(phase[span])) > 1 or tr.mode[k] == 0:
+                continue  # the phase changes in the window (or the block rests): no single-phase map
+            got = map_to_impact(system, motion, float(tr.t[k]), (tr.u[k], tr.u_dot[k], tr.theta[k], tr.theta_dot[k]),
+                                phase=int(phase[k]), u_p=float(slider[k]), backward=backward)
+            assert got is not None
+            assert abs(got[0] - imp.t) < 1e-6 and abs(got[1] - want) < 1e-6 * abs(want)
+            checked += 1
+    assert checked >= 3

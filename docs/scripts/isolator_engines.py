@@ -21,7 +21,7 @@ checks = [("pendulum free swing (R 1.5 m, μ_f 0.01)", T.measure_pendulum_free),
           ("bearing yield time (k0 3e5, r 0.5, u_y 5 mm, step 0.05 g)", T.measure_yield),
           ("bearing peaks and loops (same, after a 0.1 g sine)", T.measure_loops)]
 checks += [(f"{device} {params} under {pulse}", lambda e, d=device, p=params, q=pulse: T.measure_rocking(e, d, p, q))
-           for device, params, pulse in T.ROCKING]
+           for device, params, pulse, _ in T.ROCKING]
 for engine in T.ENGINES:
     print(f"== {engine}")
     for name, fn in checks:
