@@ -96,7 +96,8 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
         "m_b = {base_mass:g} kg, {base}; to reproduce a run, tilt the block by θ0 about its corner "
         "and apply −m ẍg(t) to block_x and −m_b ẍg(t) to base_slide (qfrc_applied) ".format(
             base="fixed base" if system.fixed_base else
-            f"k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N·s/m", **sd)))
+            f"k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N·s/m" if system.isolator_kind == "linear" else
+            _isolator_words(system), **sd)))
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode") + "\n"
 
@@ -121,6 +122,17 @@ FRICTION_SOLIMP = (0.9999, 0.9999, 0.001)
 #: "The contact engines" (docs/scripts/isolator_engines.py).
 SLIDER_PERIOD_STEPS = 50
 SLIDER_DAMPING = 0.1
+
+
+def _isolator_words(system) -> str:
+    """The header's account of a non-linear isolator (what _isolator_element built)."""
+    parts = isolator_parts(system)
+    words = (f"{system.isolator_kind} isolator: base_slide stiffness {parts.stiffness:.6g} N/m, damping "
+             f"{parts.damping:.6g} N·s/m, ")
+    if parts.kind == "friction-pendulum":
+        return words + f"frictionloss {parts.slip_force:.6g} N"
+    return words + (f"in parallel with the tendon isolator_element (k_e {parts.element_stiffness:.6g} N/m) to "
+                    f"the slider slider_slide (frictionloss {parts.slip_force:.6g} N)")
 
 
 def _isolator_element(root, named, system, settings):

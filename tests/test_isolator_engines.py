@@ -14,6 +14,7 @@ Limits: validate/core/tolerances.py, keyed (engine, metric), each with its measu
 """
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -249,3 +250,44 @@ def test_the_isolator_map_lands_where_the_analytic_model_impacts(system, pulse):
             assert abs(got[0] - imp.t) < 1e-6 and abs(got[1] - want) < 1e-6 * abs(want)
             checked += 1
     assert checked >= 3
+
+
+def test_mujoco_scene_is_the_device():
+    """The compiled scene holds the device's parts, computed here from their definitions: the
+    pendulum's joint spring M g/R and dry friction μ_f M g; the bearing's joint spring r k0 and
+    dashpot c, and a slider joint with friction (1 − r) k0 u_y tied to the base by a tendon of
+    stiffness (1 − r) k0."""
+    from isorock.mujoco_models import build_model
+    M = 2 * BLOCK["mass"]
+    model = build_model(pendulum(1.0, 0.06))
+    base = model.joint("base_slide")
+    assert math.isclose(model.jnt_stiffness[base.id], M * G / 1.0, rel_tol=1e-12)
+    assert math.isclose(model.dof_frictionloss[base.dofadr[0]], 0.06 * M * G, rel_tol=1e-12)
+    model = build_model(bearing(3e5, 0.1, 0.005, 1000.0))
+    base, slider = model.joint("base_slide"), model.joint("slider_slide")
+    assert math.isclose(model.jnt_stiffness[base.id], 0.1 * 3e5, rel_tol=1e-12)
+    assert math.isclose(model.dof_damping[base.dofadr[0]], 1000.0, rel_tol=1e-12)
+    assert model.dof_frictionloss[base.dofadr[0]] == 0.0
+    assert math.isclose(model.dof_frictionloss[slider.dofadr[0]], 0.9 * 3e5 * 0.005, rel_tol=1e-12)
+    tendon = model.tendon("isolator_element")
+    assert math.isclose(model.tendon_stiffness[tendon.id], 0.9 * 3e5, rel_tol=1e-12)
+    assert "slider_slide" in get_engine("mujoco").scene_text(bearing(3e5, 0.1, 0.005, 1000.0))
+
+
+def test_bullet_scene_file_names_the_device():
+    """The SDF's header says what simulate() adds to the joint's spring and dashpot: never a
+    linear spring in the device's place."""
+    text = get_engine("bullet").scene_text(pendulum(1.0, 0.06))
+    assert "friction pendulum" in text and f"F_s = {0.06 * 2 * BLOCK['mass'] * G!r}"[:12] in text
+    assert "Jenkins element" in get_engine("bullet").scene_text(bearing(3e5, 0.1, 0.005))
+
+
+def test_run_command_takes_a_device_on_a_contact_engine(capsys):
+    """`isorock run --engine mujoco --isolator friction-pendulum` runs, and says how it stepped."""
+    from isorock.validate.cli.main import main
+    code = main(["run", "--engine", "mujoco", "--height", "2", "--width", "0.7", "--mass", "3800", "--base-mass",
+                 "3800", "--isolator", "friction-pendulum", "--radius", "0.3", "--friction-coefficient", "0.1",
+                 "--motion", "sine:amp=0.5,freq=1.5,cycles=1", "--duration", "2", "--quiet", "--json", "-"])
+    d = json.loads(capsys.readouterr().out)
+    assert code == 0 and d["engine"] == "mujoco" and d["impacts"] >= 2
+    assert d["stepping"].startswith("throughout")
