@@ -58,6 +58,7 @@ with _c_output_silenced(fds=(1, 2)):
     from pybullet_utils.bullet_client import BulletClient
 
 from isorock.analytic import kinematics
+from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.system import System
 
 from .settings import Settings
@@ -204,6 +205,22 @@ _ANCHOR = """      <link name="anchor">
 _NO_INERTIA = "<inertia><ixx>0</ixx><iyy>0</iyy><izz>0</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia>"
 
 
+def _element_text(parts, k, c) -> str:
+    """The header's account of a non-linear isolator: the file holds its parallel spring and
+    dashpot like the linear one's; the element is what simulate() adds (stepping.Element)."""
+    common = (f"spring k = {k} N/m and dashpot c = {c} N s/m on the prismatic joint, as for the linear isolator "
+              "(c in <dynamics><damping>, which loadSDF applies; k in <spring_stiffness>, which it ignores: apply "
+              "-k u yourself each step)")
+    if parts.kind == "friction-pendulum":
+        return (f"Isolator: friction pendulum (docs/isolators.md): {common}, and dry friction F_s = "
+                f"{parts.slip_force} N: simulate() keeps the joint's velocity motor on with target 0 and force "
+                "F_s / substeps (PyBullet's impulse is force x the control step, applied at each sub-step).")
+    return (f"Isolator: bilinear bearing (docs/isolators.md): {common}, and a Jenkins element, spring k_e = "
+            f"{parts.element_stiffness} N/m in series with a slider of slip force F_s = {parts.slip_force} N, which "
+            "simulate() applies as a joint force each control step (q = k_e (u - u_p), the slider u_p moving to "
+            "u - sgn(q) F_s/k_e where |q| > F_s).")
+
+
 def scene_text(system: System, settings: Settings | None = None) -> str:
     """The scene as an SDF world (block upright at rest), loadable with `p.loadSDF`.
     SDF rather than URDF because a URDF holds one tree and the block is a second, free
@@ -214,9 +231,12 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     surface = _SURFACE.format(mu=settings.friction)
     plate = _PLATE.format(z=-0.5 * PLATE_THICKNESS, mass=plate_mass, inertia=_NO_INERTIA, w=w, t=PLATE_THICKNESS,
                           surface=surface)
-    base_links = plate if system.fixed_base else _ANCHOR.format(inertia=_NO_INERTIA, plate=plate,
-                                                                c=system.damping, k=system.stiffness)
-    isolator = ("Isolator: none, the plate is static (fixed base)." if system.fixed_base else
+    linear = system.fixed_base or system.isolator_kind == "linear"
+    parts = None if linear else isolator_parts(system)
+    k, c = (system.stiffness, system.damping) if linear else (parts.stiffness, parts.damping)
+    base_links = plate if system.fixed_base else _ANCHOR.format(inertia=_NO_INERTIA, plate=plate, c=c, k=k)
+    isolator = (_element_text(parts, k, c) if parts is not None else
+                "Isolator: none, the plate is static (fixed base)." if system.fixed_base else
                 f"Isolator: spring k = {system.stiffness} N/m and dashpot c = {system.damping} N s/m on the "
                 "prismatic joint. simulate() switches the joint motor off (setJointMotorControl2 VELOCITY_CONTROL, "
                 "force 0) and applies -(k u + c u_dot) as a joint force every control step. In this file c is the "

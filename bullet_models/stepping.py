@@ -22,6 +22,7 @@ import numpy as np
 from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
+from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator, isolator_parts
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
@@ -42,8 +43,11 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     +x) for `duration` s (default: motion end + 5 s, or 10 s without motion).
     progress: callable(t, duration), called about once a second."""
     settings = (settings or Settings()).for_system(system)
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
+                                  isolators=CONTACT_ISOLATORS)
+    check_contact_isolator(system, ENGINE)
     settings.check_isolator(system)
+    linear = system.fixed_base or system.isolator_kind == "linear"
 
     dt = settings.control_step
     n_steps = int(math.floor(duration / dt + 1e-9))
@@ -59,6 +63,9 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     xg = np.asarray(motion(mids), dtype=float).tolist()
     g = system.gravity
     k, c_dash = system.stiffness, system.damping
+    element = None if linear else Element(isolator_parts(system))
+    if element is not None:
+        k, c_dash = element.parts.stiffness, element.parts.damping  # the springs in parallel with it
     n = settings.substeps
     lead = (n - 1) / (2 * n) * dt  # the held isolator force acts at the sub-steps' mean time
     rocking = REST_FRACTION * system.alpha
@@ -76,13 +83,17 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         pose, velocity = c.getBasePositionAndOrientation, c.getBaseVelocity
         torque = p.TORQUE_CONTROL
         rows = []  # (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y)
+        slider = []  # a bearing's slider position u_p at each row
         status, message, stop_reason = Status.COMPLETED, "reached the end time", None
         u = ud = 0.0
         ud_prev = udd = 0.0  # base velocity one step back; base acceleration estimate
         side_prev = 0.0  # sin θ (≈ R₀₂) one step back
         a_set = 0.0  # build() set gravity (0, 0, −g)
         checked = 0  # rows already looked at by the stop rules
-        rest = _rest(system, settings, theta0, xg, dt, lead)
+        # the rest phase's map is the linear isolator's: a non-linear one is stepped throughout
+        rest = _rest(system, settings, theta0, xg, dt, lead) if linear else None
+        if element is not None:
+            element.start(c, base, settings.substeps)
         rest_end = n_steps - (1 if last else 0)  # the shorter last step is stepped by Bullet
         resumed = False  # the state of step i came from a rest phase (already in rows)
         start = time.perf_counter()
@@ -94,6 +105,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
             if (i % every == 0 or i == n_steps) and not resumed:
                 pos, orn = pose(block)
                 rows.append((times[i], u, ud, *pos, *orn, velocity(block)[1][1]))
+                if element is not None:
+                    slider.append(element.u_p)
             resumed = False
             if i % check_every == 0 or i == n_steps:  # the stop rules, over the rows since the last look
                 stop, reason = _stop_in(system, rows, checked, motion_end)
@@ -134,6 +147,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 m = math.ceil(last / settings.timestep - 1e-9)
                 c.setPhysicsEngineParameter(fixedTimeStep=last, numSubSteps=m)
                 lead = (m - 1) / (2 * m) * last
+                if element is not None:
+                    element.start(c, base, m)  # the friction's impulse per sub-step follows the step
             a = xg[i]
             if a != a_set:  # gravity persists in Bullet: set it only when ẍg changes
                 set_gravity(-a, 0.0, -g)
@@ -146,14 +161,56 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 if i and ((side > 0) == (side_prev > 0) or max(abs(side), abs(side_prev)) < rocking):
                     udd = (ud - ud_prev) / dt
                 ud_prev, side_prev = ud, side
-                motor(base, 0, torque, force=-(k * (u + lead * ud) + c_dash * (ud + lead * udd)))
+                q = 0.0 if element is None else element.force(u + lead * ud)
+                motor(base, 0, torque, force=-(k * (u + lead * ud) + c_dash * (ud + lead * udd) + q))
             step()
             i += 1
         runtime = time.perf_counter() - start
     raw = raw_history(system, np.array(rows), runtime, status, message, stop_reason)
     # the numbers this run used (Settings.for_system may have made them finer than asked)
     raw.extras.update(timestep=float(settings.timestep), control_step=float(settings.control_step))
+    if not linear:
+        raw.extras.update(stepping="throughout (no rest phase: non-linear isolator)")
+        if element.parts.kind == "bilinear":
+            raw.extras.update(isolator_slider=np.array(slider[:len(rows)], dtype=float))
     return raw
+
+
+class Element:
+    """A non-linear isolator's element (analytic/isolator_parts.py) in Bullet. The friction
+    pendulum's rigid slider is the base joint's own dry friction: Bullet's standard joint
+    friction, a velocity motor with target 0 whose force is limited to F_s, solved with the
+    contacts at every sub-step (it holds the base still exactly, or slides at F_s). The
+    bilinear bearing's elastic–plastic element is a state update at each control step, the
+    return map of a Jenkins element: q = k_e (u − u_p), and where |q| > F_s the slider moves to
+    u − sgn(q)·u_y and q = sgn(q)·F_s; the force is held over the control step like the
+    spring's."""
+
+    def __init__(self, parts):
+        self.parts = parts
+        self.u_p = 0.0  # the bearing's slider, from its virgin state (docs/isolators.md)
+
+    def start(self, client, base, substeps):
+        """Switch the pendulum's dry friction on (again after the sub-steps change).
+        PyBullet turns a motor force into the impulse force × fixedTimeStep, the whole
+        control step, but applies it at every one of its `substeps` sub-steps: the force
+        is given divided by them, so that each sub-step's impulse is F_s × its own length."""
+        if self.parts.kind == "friction-pendulum":
+            client.setJointMotorControl2(base, 0, p.VELOCITY_CONTROL, targetVelocity=0.0,
+                                         force=self.parts.slip_force / substeps)
+
+    def force(self, u: float) -> float:
+        """q (N) on the base at displacement u (m): the bearing's element; 0 for the pendulum,
+        whose friction is the motor's."""
+        if self.parts.kind != "bilinear":
+            return 0.0
+        k_e, f_s = self.parts.element_stiffness, self.parts.slip_force
+        q = k_e * (u - self.u_p)
+        if abs(q) > f_s:
+            side = 1.0 if q > 0 else -1.0
+            self.u_p = u - side * self.parts.yield_displacement
+            q = side * f_s
+        return q
 
 
 def _rest(system, settings, theta0, xg, dt, lead):

@@ -8,12 +8,14 @@ a fixed base); the block moves on planar joints (slide x, slide z, hinge y) or, 
 """
 from __future__ import annotations
 
+import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import mujoco
 
 from isorock.analytic.errors import require
+from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.system import System
 
 from .settings import Settings
@@ -64,9 +66,11 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     slide = named["base_slide"]
     if system.fixed_base:
         named["base"].remove(slide)  # a body without joints is welded to the ground
-    else:
+    elif system.isolator_kind == "linear":
         slide.set("stiffness", repr(system.stiffness))
         slide.set("damping", repr(system.damping))
+    else:
+        _isolator_element(root, named, system, settings)
 
     # Block: a homogeneous box, centroid h above the base top; I_y = m(b² + h²)/3.
     block = named["block"]
@@ -94,9 +98,78 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
         "m_b = {base_mass:g} kg, {base}; to reproduce a run, tilt the block by θ0 about its corner "
         "and apply −m ẍg(t) to block_x and −m_b ẍg(t) to base_slide (qfrc_applied) ".format(
             base="fixed base" if system.fixed_base else
-            f"k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N·s/m", **sd)))
+            f"k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N·s/m" if system.isolator_kind == "linear" else
+            _isolator_words(system), **sd)))
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode") + "\n"
+
+
+#: Dry friction (MuJoCo's joint `frictionloss`) is a soft constraint: a stuck joint under a
+#: load below its limit creeps at v = a0·(1 − d)/d·dmax·τ/2 (a0 the acceleration the load
+#: would give, d = solimpfriction's dmin, τ solreffriction's time constant). At MuJoCo's
+#: floor τ = 2·timestep and d = 0.9999 that is ~1e-8 m/s at a0 = 1 m/s², 0.5 ms: the stick
+#: holds to microns over a record (MuJoCo's default, τ 0.02 s and d 0.9, creeps at ~1 mm/s).
+#: Measured in docs/mujoco.md, "Non-linear isolators".
+FRICTION_TIMECONST_STEPS = 2
+FRICTION_SOLIMP = (0.9999, 0.9999, 0.001)
+#: The bilinear bearing's slider is a body (a joint needs inertia): light, its own period
+#: against the element spring k_e SLIDER_PERIOD_STEPS timesteps (MuJoCo steps a spring
+#: explicitly: ω_s·dt = 0.13, far from the semi-implicit step's limit of 2), damped by the
+#: tendon at SLIDER_DAMPING of critical so that it does not ring once it slips. Both cost
+#: something: the dry friction's creep before a yield grows as ω_s² (frictionloss holds a
+#: light body by the acceleration it would get: 20 steps crept 18 µm, yielding 62 ms early;
+#: 50 steps 3 µm), and the tendon's dashpot 2·SLIDER_DAMPING·k_e/ω_s damps the elastic bearing
+#: (at 0.5 of critical it doubled the dashpot of a stiff bearing, k0 3e6 N/m, c 1000 N·s/m:
+#: its base history 1.9% off the analytic model's, 0.6% at 0.1). Measured in docs/isolators.md,
+#: "The contact engines" (docs/scripts/isolator_engines.py).
+SLIDER_PERIOD_STEPS = 50
+SLIDER_DAMPING = 0.1
+
+
+def _isolator_words(system) -> str:
+    """The header's account of a non-linear isolator (what _isolator_element built)."""
+    parts = isolator_parts(system)
+    words = (f"{system.isolator_kind} isolator: base_slide stiffness {parts.stiffness:.6g} N/m, damping "
+             f"{parts.damping:.6g} N·s/m, ")
+    if parts.kind == "friction-pendulum":
+        return words + f"frictionloss {parts.slip_force:.6g} N"
+    return words + (f"in parallel with the tendon isolator_element (k_e {parts.element_stiffness:.6g} N/m) to "
+                    f"the slider slider_slide (frictionloss {parts.slip_force:.6g} N)")
+
+
+def _isolator_element(root, named, system, settings):
+    """A non-linear isolator from MuJoCo's own parts (docs/isolators.md; the parts derived
+    once, analytic/isolator_parts.py): the base joint's stiffness and damping are the
+    parallel spring k and dashpot c; the friction pendulum's rigid slider is the base joint's
+    own dry friction `frictionloss` F_s = μ_f·M·g (the model keeps the normal force at M·g,
+    so a constant one is the same model); the bilinear bearing's Jenkins element is a light
+    slider body on its own slide joint with frictionloss F_s, tied to the base by a fixed
+    tendon (base joint − slider joint) of stiffness k_e."""
+    parts = isolator_parts(system)
+    slide = named["base_slide"]
+    slide.set("stiffness", repr(parts.stiffness))
+    slide.set("damping", repr(parts.damping))
+    friction = dict(frictionloss=repr(parts.slip_force),
+                    solreffriction=_fmt(FRICTION_TIMECONST_STEPS * settings.timestep, 1.0),
+                    solimpfriction=_fmt(*FRICTION_SOLIMP))
+    if parts.element_stiffness == float("inf"):  # the pendulum: the base itself sticks
+        for key, value in friction.items():
+            slide.set(key, value)
+        return
+    k_e = parts.element_stiffness
+    omega = 2 * math.pi / (SLIDER_PERIOD_STEPS * settings.timestep)
+    mass = k_e / omega**2
+    world = root.find("worldbody")
+    slider = ET.SubElement(world, "body", name="isolator_slider", pos=_fmt(0, 0, -2 * BASE_HALF_THICKNESS))
+    ET.SubElement(slider, "joint", name="slider_slide", type="slide", axis="1 0 0", **friction)
+    ET.SubElement(slider, "inertial", pos="0 0 0", mass=repr(mass), diaginertia=_fmt(mass, mass, mass))
+    tendon = root.find("tendon")
+    if tendon is None:
+        tendon = ET.SubElement(root, "tendon")
+    fixed = ET.SubElement(tendon, "fixed", name="isolator_element", stiffness=repr(k_e),
+                          damping=repr(2 * SLIDER_DAMPING * k_e / omega), springlength="0")
+    ET.SubElement(fixed, "joint", joint="base_slide", coef="1")
+    ET.SubElement(fixed, "joint", joint="slider_slide", coef="-1")
 
 
 def _corner_pairs(root, block, pair, b, h, d, free):

@@ -30,6 +30,12 @@ class Layout:
         self.free = joint == "free"
         self.base_v = None if system.fixed_base else model.jnt_dofadr[model.joint("base_slide").id]
         self.base_q = None if system.fixed_base else model.jnt_qposadr[model.joint("base_slide").id]
+        # a bilinear bearing's slider body (scene._isolator_element): it moves in the ground's
+        # frame too, so it takes its own −m_s ẍg
+        slider = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "slider_slide")
+        self.slider_v = None if slider < 0 else model.jnt_dofadr[slider]
+        self.slider_q = None if slider < 0 else model.jnt_qposadr[slider]
+        self.slider_mass = 0.0 if slider < 0 else float(model.body_mass[model.jnt_bodyid[slider]])
         if self.free:
             jid = model.joint("block_free").id
             self.bq, self.bv = model.jnt_qposadr[jid], model.jnt_dofadr[jid]
@@ -58,6 +64,8 @@ class Layout:
         f[:, self.x_v] = -system.mass * xg
         if self.base_v is not None:
             f[:, self.base_v] = -system.base_mass * xg
+        if self.slider_v is not None:
+            f[:, self.slider_v] = -self.slider_mass * xg
         return f
 
     def histories(self, system: System, states: np.ndarray) -> dict:

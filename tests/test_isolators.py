@@ -263,7 +263,7 @@ def test_pinned_pendulum_rocks_on_the_moving_ground(run):
 
 # --- who carries them ---------------------------------------------------------------------------
 
-@pytest.mark.parametrize("engine", ["mujoco", "bullet", "drake"])
+@pytest.mark.parametrize("engine", ["drake"])  # MuJoCo and PyBullet carry both: tests/test_isolator_engines.py
 def test_registry_refuses_what_an_engine_does_not_carry(engine):
     from isorock.validate.core.engines import get_engine
     try:
@@ -324,7 +324,7 @@ def test_run_takes_a_pendulum_on_either_analytic_path(engine, capsys):
     (["--isolator", "bilinear", "--stiffness", "1e5", "--post-yield-ratio", "0.1", "--yield-displacement", "0.01",
       "--friction-rate", "30"], "--friction-rate"),
     (["--isolator", "bilinear", "--stiffness", "1e5", "--post-yield-ratio", "0.1", "--yield-displacement", "0.01",
-      "--engine", "mujoco"], "isolator = bilinear"),
+      "--engine", "drake"], "isolator = bilinear"),
 ])
 def test_run_refuses_bad_isolator_options_in_one_line(args, first, capsys):
     code = main(["run", *PAPER, *args])

@@ -41,6 +41,10 @@ def contact_window(system: System) -> float:
     """The window (s) for `system`: CONTACT_WINDOW_P/p, never shorter than CONTACT_WINDOW
     (engines whose contact time is fixed in seconds need that much at every size)."""
     return max(CONTACT_WINDOW, CONTACT_WINDOW_P / system.p)
+#: The share of the window each side of a crossing that is the contact's transient (5 ms of
+#: 30 ms: the default scenes' time constants are 0.6–1 ms): a non-linear isolator's element
+#: must keep its phase from there to the mapped state (_mapped).
+TRANSIENT_SHARE = 1 / 6
 #: |θ| below this fraction of α counts as "down" when deriving the mode of a contact engine.
 REST_FRACTION = 1e-3
 #: The corner the block stands or rocks on moving along the base by more than this
@@ -78,8 +82,12 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
         message = (f"the block slid {slip * 1000:.3g} mm at its pivot (more than {SLIDING_FRACTION:g}·b): the "
                    f"analytic model assumes no sliding (friction above b/h = {1 / system.slenderness:.3g} is needed)"
                    + (f"; it also {message}" if overturned else ""))
+    # a non-linear isolator's map to θ = 0 holds its element's phase, read from the row (the
+    # bearing's from its slider, extras["isolator_slider"]: without it, no β)
+    slider = raw.extras.get("isolator_slider")
+    mapped = effective_beta and (system.isolator_kind != "bilinear" or slider is not None)
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
-                                impact_threshold=impact_threshold, window=window, mapped=effective_beta)
+                                impact_threshold=impact_threshold, window=window, mapped=mapped, slider=slider)
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
                       mode=mode, impacts=impacts, uplift_times=_uplifts(t, mode, window), overturned=overturned,
                       overturn_time=overturn_time, impact_threshold=impact_threshold, runtime_s=raw.runtime_s,
@@ -106,10 +114,11 @@ def _uplifts(t, mode, rest_time):
 
 
 def effective_impacts(system, motion, t, u, u_dot, theta, theta_dot, *, impact_threshold=DEFAULT_IMPACT_THRESHOLD,
-                      window=CONTACT_WINDOW, mapped: bool = True) -> tuple[Impact, ...]:
+                      window=CONTACT_WINDOW, mapped: bool = True, slider=None) -> tuple[Impact, ...]:
     """One Impact per sign change of θ. Counted ones (model.md's rule) carry the
     rigid-model images at θ = 0 of the states `window` seconds before and after the
-    crossing (mapped=False: they too carry NaN); the others NaN velocities."""
+    crossing (mapped=False: they too carry NaN); the others NaN velocities. `slider`: a
+    bilinear bearing's slider position per row (its phase is read from it)."""
     changes = half_cycles(theta)
     out = []
     for n, (i, peak) in enumerate(changes):
@@ -120,9 +129,11 @@ def effective_impacts(system, motion, t, u, u_dot, theta, theta_dot, *, impact_t
             t_prev = t[changes[n - 1][0]] if n > 0 else t[0]
             t_next = t[changes[n + 1][0]] if n + 1 < len(changes) else t[-1]
             pre = _mapped(system, motion, t, u, u_dot, theta, theta_dot,
-                          t_cross - min(window, 0.5 * (t_cross - t_prev)), backward=False, window=window)
+                          t_cross - min(window, 0.5 * (t_cross - t_prev)), backward=False, window=window,
+                          slider=slider, t_cross=t_cross)
             post = _mapped(system, motion, t, u, u_dot, theta, theta_dot,
-                           t_cross + min(window, 0.5 * (t_next - t_cross)), backward=True, window=window)
+                           t_cross + min(window, 0.5 * (t_next - t_cross)), backward=True, window=window,
+                           slider=slider, t_cross=t_cross)
             if pre:
                 thd_pre, ud_pre = pre
             if post:
@@ -141,14 +152,39 @@ def _crossing_time(t, theta, i):
     return float(t[i - 1] + (t[i] - t[i - 1]) * a / (a - b))
 
 
-def _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_at, *, backward, window):
+def _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_at, *, backward, window, slider=None, t_cross=None):
     k = int(np.clip(np.searchsorted(t, t_at), 0, t.size - 1))
     if theta[k] == 0:
         return None
     # the rigid image lands close to the contact engine's crossing, `window` away: a few
     # windows bound the search (an image that does not land there is not this impact)
-    r = map_to_impact(system, motion, float(t[k]), (u[k], u_dot[k], theta[k], theta_dot[k]),
-                      backward=backward, horizon=5 * window + 0.05)
+    state, horizon = (u[k], u_dot[k], theta[k], theta_dot[k]), 5 * window + 0.05
+    if system.fixed_base or system.isolator_kind == "linear":
+        r = map_to_impact(system, motion, float(t[k]), state, backward=backward, horizon=horizon)
+    else:
+        from isorock.analytic import isolator_map
+
+        def phase(i):
+            j = max(i - 1, 0)
+            step = None if slider is None else float(slider[i] - slider[j])
+            return isolator_map.phase_at(system, float(u_dot[i]), step, float(u[i] - u[j]))
+        # the map holds the phase of row k: it must be the phase of every row between k and the
+        # impact in the engine's own history, outside the contact's transient (TRANSIENT_SHARE of
+        # the window each side of the crossing, where the impact itself kicks the base): a pinned
+        # base kicked loose by the impact and stuck again by k is no single phase to map in
+        edge = TRANSIENT_SHARE * window
+        if t_cross is None:
+            rows = range(k, k + 1)
+        elif t[k] < t_cross:
+            rows = range(k, max(k + 1, int(np.searchsorted(t, t_cross - edge))))
+        else:
+            rows = range(min(k, int(np.searchsorted(t, t_cross + edge, side="right"))), k + 1)
+        held = phase(k)
+        if any(phase(i) != held for i in rows):
+            return None
+        r = isolator_map.map_to_impact(system, motion, float(t[k]), state, phase=held,
+                                       u_p=0.0 if slider is None else float(slider[k]), backward=backward,
+                                       horizon=horizon)
     return None if r is None else (r[1], r[2])
 
 
