@@ -112,12 +112,13 @@ def _first_zero(phi, rate, tau, hi, which, a0, slope, side, alpha, R, I, m, g):
 
 
 @njit(cache=True)
-def _run(acc, dt, substeps, n_pad, alpha, R, I, ratio, rest, m, g):
+def _run(acc, dt, substeps, n_pad, alpha, R, I, ratio, rest, m, g, side, phi):
     """(overturned, peak φ/α of the edge it rocked on, impacts). acc: the record (m/s²) at
     step dt, linear between samples and zero after its end (the exact model's reading); n_pad
-    sample intervals of stillness after it."""
-    side, phi, rate = -1, 0.0, 0.0  # side −1: at rest
-    peak, impacts = 0.0, 0
+    sample intervals of stillness after it; released from rest at φ on edge `side` (−1: at
+    rest on the table)."""
+    rate = 0.0
+    peak, impacts = (phi / alpha[side] if side >= 0 else 0.0), 0
     thr_f, thr_b = g * math.tan(alpha[0]), g * math.tan(alpha[1])
     h = dt / substeps
     for i in range(acc.size - 1 + n_pad):
@@ -201,14 +202,16 @@ def rest_floor(params: dict) -> np.ndarray:
 
 
 def simulate(params: dict, acceleration, dt: float, pad: float = 5.0,
-             substeps: int = SUBSTEPS) -> tuple[bool, float, int]:
+             substeps: int = SUBSTEPS, phi0: float = 0.0) -> tuple[bool, float, int]:
     """(overturned, peak φ/α, impacts) under the table acceleration (m/s², step dt, linear
     between samples, zero after the record), RK4 at dt/substeps between impacts located
-    within their step; `pad` s of stillness after the record."""
+    within their step; `pad` s of stillness after the record. phi0 (rad): released from rest
+    tilted onto the forward edge (> 0) or the backward edge (< 0), for free rocking."""
     p = params
     a = np.ascontiguousarray(np.asarray(acceleration, dtype=float))
+    side = -1 if phi0 == 0.0 else (0 if phi0 > 0.0 else 1)
     out = _run(a, float(dt), int(substeps), int(round(pad / dt)), p["alpha"], p["R"], p["I"],
-               p["ratio"], rest_floor(p), p["m"], p["g"])
+               p["ratio"], rest_floor(p), p["m"], p["g"], side, abs(float(phi0)))
     if out[2] > MAX_IMPACTS:
         raise RuntimeError(f"asymmetric model: more than {MAX_IMPACTS} impacts (an endless chatter)")
     return out
