@@ -202,21 +202,30 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
         rows["pga threshold"] = dict(cv=scores.bootstrap(y, held, pga), thresholds=thr, held=held.tolist())
         result["scores"][s] = rows
     if sensitivity:
-        result["sensitivity"], candidates = processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz)
+        rigid = tuple(e for e in SENSITIVITY_ENGINES if e == "analytic" or e in engines)
+        result["sensitivity"], candidates = processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz,
+                                                                   rigid)
         # the processing is a fitted choice too: chosen with the setting and the threshold on
         # the training folds only, scored on the held-out fold
-        for s, cands in candidates.items():
-            y = np.array([outcomes[t].measured[s] for t in testlist], bool)
-            held, chosen = select_cv(y, cands)
-            result["scores"][s]["analytic (CV-selected processing)"] = dict(
-                cv=scores.bootstrap(y, held), chosen=chosen, held=held.tolist())
+        for eng, by_specimen in candidates.items():
+            for s, cands in by_specimen.items():
+                y = np.array([outcomes[t].measured[s] for t in testlist], bool)
+                held, chosen = select_cv(y, cands)
+                result["scores"][s][f"{eng} (CV-selected processing)"] = dict(
+                    cv=scores.bootstrap(y, held), chosen=chosen, held=held.tolist())
     return result
 
 
-def processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz) -> list[dict]:
-    """The analytic engines' accuracy (own verdict, and held-out threshold) with all the
+#: the engines re-run under each processing variant (cheap enough: the rigid planar models);
+#: analytic always, asymmetric when the study runs it
+SENSITIVITY_ENGINES = ("analytic", "asymmetric")
+
+
+def processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz,
+                           engines=("analytic",)) -> tuple[list[dict], dict]:
+    """The rigid engines' accuracy (own verdict, and held-out threshold) with all the
     chosen steps, each one left out, and none (the raw record); and every (setting,
-    processing) pair's predictions, for the cross-validated choice among them."""
+    processing) pair's predictions per engine, for the cross-validated choice among them."""
     variants = [("all: " + ",".join(steps), tuple(steps))]
     variants += [(f"without {s}", tuple(x for x in steps if x != s)) for s in steps]
     variants += [("none (raw)", ())]
@@ -225,18 +234,21 @@ def processing_sensitivity(outcomes, motions, specimens, steps, lowpass_hz) -> l
     testlist = sorted(outcomes)
     dts = {t: motions[t].dt for t in testlist}
     out = []
-    candidates: dict = {s: {} for s in specimens}
+    candidates: dict = {eng: {s: {} for s in specimens} for eng in engines}
+    runners = dict(analytic=run_analytic, asymmetric=run_asymmetric)
     for label, st in variants:
         accel = {t: _motion(motions[t], st, lowpass_hz) for t in testlist}
         row = dict(variant=label)
         for s, sp in specimens.items():
             y = np.array([outcomes[t].measured[s] for t in testlist], bool)
-            runs = run_analytic(sp, accel, dts)
+            runs = {}
+            for eng in engines:
+                runs.update(runners[eng](sp, accel, dts))
             for name, r in runs.items():
                 pred = np.array([r[t][0] for t in testlist])
                 score = np.array([r[t][1] for t in testlist])
                 held, _ = scores.cross_validated(y, score)
-                candidates[s][f"{name} | {label}"] = (pred, score)
+                candidates[name.split(":")[0]][s][f"{name} | {label}"] = (pred, score)
                 row[f"{name} SP{s} own"] = float((pred == y).mean())
                 row[f"{name} SP{s} cv"] = float((held == y).mean())
         out.append(row)

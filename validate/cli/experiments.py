@@ -34,7 +34,8 @@ def add_parser(sub) -> None:
     p.add_argument("--tests", metavar="N[,N]", help="only these test numbers (default: every test with a file "
                                                     "and an outcome)")
     p.add_argument("--sensitivity", action="store_true",
-                   help="also run the analytic engines with each processing step left out (about 10 s per variant)")
+                   help="also run the rigid engines (analytic, and asymmetric when it runs) with each processing step "
+                        "left out (about 15 s per variant)")
     p.add_argument("--mujoco-friction", type=float, metavar="MU",
                    help="mujoco: table–rock friction coefficient (default 0.5, the data's own simulation's)")
     p.add_argument("--mujoco-dampratio", type=float, metavar="ZETA",
