@@ -211,7 +211,7 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True) -> list[dict]:
                 if progress:
                     r = rows[-1]
                     print(f"  kobe-40s {base:8s} {label:16s} {r['sim_per_wall']:8.3g} sim s/wall s alone, "
-                          f"{r['sim_per_cpu']:.3g} per CPU s ({_pct(r['fraction_of_limit'])} of the step's limit)"
+                          f"{r['sim_per_cpu']:.3g} per CPU s ({_times(r['fraction_of_limit'])} the step's limit)"
                           + (f", batch of {BATCH_RUNS}: {batch:.3g}" if batch and base == "isolated" else ""),
                           file=sys.stderr, flush=True)
     return rows
@@ -227,19 +227,19 @@ def goal_lines(goal_rows: list[dict]) -> list[str]:
              "impact mapped (`validate.core.measure.effective_impacts`, the same for every engine); batch: "
              f"{BATCH_RUNS} runs (half isolated, half fixed) on {BATCH_THREADS} threads; the step's limit: "
              "one physics step of the scene in C with the block at rest (EngineSpec.step_cost), "
-             "timestep / its CPU time, and each run's speed per CPU s as a share of it (above 100%: phased "
+             "timestep / its CPU time, and each run's speed per CPU s as a multiple of it (above 1×: phased "
              "stepping skips the scene where the block rests). Simulated s: as run (a block that overturned "
              "and lies on its side stops early). θmax/α against the analytic model's, within the validation "
              "tolerance (or both overturned).", "",
              "| engine | base | step (ms) | sim s / wall s, alone | per CPU s | alone, β mapped | step's cost (µs) | step's limit (sim s / CPU s) "
-             "| share of the limit | batch, sim s / wall s | θmax/α (analytic) | θ within tolerance |",
+             "| speed per CPU s / the limit | batch, sim s / wall s | θmax/α (analytic) | θ within tolerance |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     def num(x, fmt=".3g"):
         return "—" if x is None else format(x, fmt)
     for r in goal_rows:
         lines.append(f"| {r['engine']} | {r['base']} | {num(1000 * r['timestep'])} | {num(r['sim_per_wall'])} | "
                      f"{num(r['sim_per_cpu'])} | {num(r.get('sim_per_wall_mapped'))} | {num(r['step_us'], '.2f')} | {num(r['limit_sim_per_cpu'])} | "
-                     f"{_pct(r['fraction_of_limit'])} | {num(r['batch_sim_per_wall'])} | "
+                     f"{_times(r['fraction_of_limit'])} | {num(r['batch_sim_per_wall'])} | "
                      f"{r['theta_max_over_alpha']:.4g} ({r['reference_theta_max_over_alpha']:.4g}) | "
                      f"{'yes' if r['theta_ok'] else 'no'} |")
     lines.append("")
@@ -329,6 +329,11 @@ def fastest(rows, engine, level) -> dict | None:
 
 def _pct(x):
     return "—" if x is None else f"{100 * x:.3f}%"
+
+
+def _times(x):
+    """A speed as a multiple of a limit, to 3 figures (11.6×, not 1157.663%)."""
+    return "—" if x is None else f"{x:.3g}×"
 
 
 COLUMNS = ("engine", "setting", "scenario", "sim_per_wall", "sim_per_loop", "wall_s", "loop_s", "beta_error_max", "beta_error_median",
