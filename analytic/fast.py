@@ -178,16 +178,19 @@ _ISO = False
 _NY = 6
 _ISO_N_EV = 7
 _ISO_DIRECTION = np.array([[1, 1, 0, 0, 0, 1, 1], [-1, 1, 0, 0, 1, 1, 1]], dtype=np.int64)
-# iso tuple: physics.isolator_params's I_KIND, I_KEL, I_FSLIP, I_FMAX, I_RATE (so that physics's
-# isolator functions take it as their ip), then the bearing's u_y, the pendulum's stick limit
-# (physics.stick_limit), the phase (0 stuck, ±1 slipping), the slider's position u_p, whether
-# a slip started from u̇ = 0 at the piece's start, and σ·ü there
-_IS_UY, _IS_FLIM, _IS_PH, _IS_UP, _IS_REST, _IS_START = 5, 6, 7, 8, 9, 10
+# iso tuple: physics.isolator_params's ip, I_KIND … I_FCONE (so that physics's isolator
+# functions take it as their ip; _IS_UY is its I_UY, the element's u_y), then the rigid slider's
+# stick limit (physics.stick_limit), the phase (0 stuck, ±1 or ±2 slipping: physics), the
+# slider's position u_p, whether a slip started from u̇ = 0 at the piece's start, and σ·ü there
+_IS_UY, _IS_FLIM, _IS_PH, _IS_UP, _IS_REST, _IS_START = physics.I_UY, 7, 8, 9, 10, 11
+assert physics.N_IP == _IS_FLIM  # the tuple's layout above
 _NO_ISO = 0.0
-# ip, the array the isolator kernel takes: physics's ip (I_KIND … I_RATE), then u_y
-_IP_UY, _N_IPK = 5, 6
+# ip, the array the isolator kernel takes: physics's ip
+_IP_UY, _N_IPK = physics.I_UY, physics.N_IP
 _ISO_FRICTION = float(physics.ISO_FRICTION)
 _ISO_BILINEAR = float(physics.ISO_BILINEAR)
+_ISO_CONE = float(physics.ISO_CONE)
+_ISO_DOUBLE = float(physics.ISO_DOUBLE)
 
 
 # --- reference counting off the hot path ----------------------------------------------
@@ -226,7 +229,7 @@ def _compile_physics():
               "free_vibration_change", "rocking_pivot_force_ratio", "_times_a", "base_pinned",
               "isolator_element_force", "isolator_translation_acceleration", "isolator_rocking_accelerations",
               "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
-              "slip_power", "slip_force")
+              "slip_power", "slip_force", "rigid_demand", "slip_phase", "slider_position")
     for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
@@ -239,7 +242,8 @@ def _compile_physics():
                  "translation_velocity_zeros", "translation_u_bound", "base_pinned", "isolator_element_force",
                  "isolator_translation_acceleration", "isolator_rocking_accelerations",
                  "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
-                 "slip_power", "slip_force"):
+                 "slip_power", "slip_force", "rigid_demand", "slip_phase", "slider_position",
+                 "vertex_rest_speed", "kinetic_energy"):
         f = getattr(physics, name)
         rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
         table[name] = njit(inline="always")(rebuilt) if name in inline else njit(rebuilt)
@@ -272,6 +276,11 @@ _iso_tr_acc = _P["isolator_translation_acceleration"]
 _iso_rocking_acc = _P["isolator_rocking_accelerations"]
 _iso_base_acc = _P["isolator_base_acceleration"]
 _stick_demand = _P["stick_demand"]
+_rigid_demand = _P["rigid_demand"]
+_slip_phase = _P["slip_phase"]
+_slider_position = _P["slider_position"]
+_vertex_rest_speed = _P["vertex_rest_speed"]
+_kinetic = _P["kinetic_energy"]
 _stick_limit = _P["stick_limit"]
 _slip_power = _P["slip_power"]
 _lift_order = _P["lift_order"]
@@ -350,15 +359,22 @@ def _impact_fun(s, theta, t, t0, kpow, limit):
 @njit(inline="always")
 def _slider_event(e, mode, t, u, ud, th, thd, xg, t0, sp, iso):
     """Slot 5 or 6 on a non-linear isolator (hybrid._IsolatorIntegrator.slider_events): a
-    slipping slider's σ·u̇ (÷ (t − t0) for a slip that started from rest: STICK_BAND), a
-    pinned pendulum's ±demand − F_s, an elastic bearing's ±(u − u_p) − u_y."""
+    slipping slider's σ·u̇ (÷ (t − t0) for a slip that started from rest: STICK_BAND), and in
+    slot 6 a returning cone's ball reaching its vertex (σ·u) or a double pendulum's second
+    surface starting to slide (σ·(u − u_p) − u_y); a pinned rigid slider's ±demand − F_s, an
+    elastic bearing's ±(u − u_p) − u_y."""
     ph = iso[_IS_PH]
     if ph != 0.0:
+        if e == 6:
+            sigma = 1.0 if ph > 0.0 else -1.0
+            if iso[0] == _ISO_CONE:
+                return sigma * u
+            return sigma * (u - iso[_IS_UP]) - iso[_IS_UY]
         if iso[_IS_REST] != 0.0:
             return ph * ud / (t - t0) if t > t0 else iso[_IS_START]
         return ph * ud
-    if iso[0] == _ISO_FRICTION:
-        demand = _stick_demand(sp, mode, th, thd, u, xg)
+    if iso[0] >= _ISO_FRICTION:
+        demand = _rigid_demand(sp, iso, mode, th, thd, u, iso[_IS_UP], xg)
         return (demand - iso[_IS_FLIM]) if e == 5 else (-demand - iso[_IS_FLIM])
     return (u - iso[_IS_UP] - iso[_IS_UY]) if e == 5 else (iso[_IS_UP] - u - iso[_IS_UY])
 
@@ -718,7 +734,7 @@ def _store(out_t, out_y, out_m, n, t, y, mode, out_ph, out_up, iso):
     if _ISO:
         ph = iso[_IS_PH]
         out_ph[n] = ph
-        out_up[n] = y[0] - ph * iso[_IS_UY] if (ph != 0.0 and iso[0] == _ISO_BILINEAR) else iso[_IS_UP]
+        out_up[n] = _slider_position(iso, ph, y[0], iso[_IS_UP])
     return True
 
 
@@ -743,25 +759,30 @@ def _next_point(kg, odt, grid, t_stop, roots, n_roots, kr, offset):
 def _iso_state(ipk, phase, u_p, rest, start):
     """The iso tuple of a piece (_IS_*) from the run's isolator constants ipk (physics's ip,
     u_y, stick limit: the tuple's first _IS_PH entries)."""
-    return (ipk[0], ipk[1], ipk[2], ipk[3], ipk[4], ipk[5], ipk[6], phase, u_p, rest, start)
+    return (ipk[0], ipk[1], ipk[2], ipk[3], ipk[4], ipk[5], ipk[6], ipk[7], phase, u_p, rest, start)
 
 
 @njit(inline="always")
 def _stick_or_slip(sp, iso, mode, theta, theta_dot, u, xg):
-    """A pendulum's phase at rest (u̇ = 0): 0 if its demand is within the stick limit, else its sign."""
-    demand = _stick_demand(sp, mode, theta, theta_dot, u, xg)
+    """A rigid slider's phase at rest (u̇ = 0): 0 if its demand is within the stick limit, else
+    a slip its way (hybrid._IsolatorIntegrator.stick_or_slip; iso's phase and u_p: now)."""
+    u_p = _slider_position(iso, iso[_IS_PH], u, iso[_IS_UP])
+    demand = _rigid_demand(sp, iso, mode, theta, theta_dot, u, u_p, xg)
     if abs(demand) <= iso[_IS_FLIM]:
         return 0.0
-    return 1.0 if demand > 0 else -1.0
+    return _slip_phase(iso, 1.0 if demand > 0 else -1.0, u, u_p)
 
 
 @njit(inline="always")
 def _phase_after_velocity(sp, iso, phase, mode, theta, theta_dot, u, u_dot, xg):
     """The phase a new base velocity (after an impact) leaves the slider in."""
-    if iso[0] == _ISO_FRICTION:
-        if u_dot != 0.0:
-            return 1.0 if u_dot > 0 else -1.0
-        return _stick_or_slip(sp, iso, mode, theta, theta_dot, u, xg)
+    if iso[0] >= _ISO_FRICTION:
+        if u_dot == 0.0:
+            return _stick_or_slip(sp, iso, mode, theta, theta_dot, u, xg)
+        sigma = 1.0 if u_dot > 0 else -1.0
+        if phase * sigma > 0.0:
+            return phase  # on its way still (a cone's side, a double pendulum's regime)
+        return _slip_phase(iso, sigma, u, _slider_position(iso, phase, u, iso[_IS_UP]))
     if phase != 0.0 and phase * u_dot <= 0:
         return 0.0  # the bearing unloads elastically
     return phase
@@ -783,9 +804,8 @@ def _set_phase(ipk, phase, u_p, u, u_dot, new):
     `new`: a yielding bearing's slider stops where it is, a sticking pendulum's base rests."""
     if new == phase:
         return phase, u_p, u_dot
-    if phase != 0.0 and ipk[0] == _ISO_BILINEAR:
-        u_p = u - phase * ipk[_IS_UY]
-    if new == 0.0 and ipk[0] == _ISO_FRICTION:
+    u_p = _slider_position(ipk, phase, u, u_p)  # a yielded element's slider stops where it is
+    if new == 0.0 and ipk[0] >= _ISO_FRICTION:
         u_dot = 0.0
     return new, u_p, u_dot
 
@@ -842,7 +862,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     also (out_phase, out_slider, n_iso_events, iso_events), its y_init and out_y with the
     slider's loss S as a 7th row, iso_events rows (t, phase after, u).
 
-    ip: the isolator's constants (I_KIND, I_KEL, I_FSLIP, u_y; read by _integrate_iso only).
+    ip: the isolator's constants (physics.isolator_params's ip; read by _integrate_iso only).
 
     history: store points (every odt, at every step end and event) in out_*;
     otherwise only the summary is kept. impacts rows: t, θ̇⁻, θ̇⁺, u̇⁻, u̇⁺, continued,
@@ -929,16 +949,16 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     if not _ISO:
         iso = _NO_ISO
     else:
-        ipk = (ip[0], ip[1], ip[2], ip[3], ip[4], ip[_IP_UY], _stick_limit(sp, ip))
-        iso = _iso_state(ipk, 0.0, 0.0, 0.0, 0.0)
-        if ipk[0] == _ISO_FRICTION:
+        ipk = (ip[0], ip[1], ip[2], ip[3], ip[4], ip[5], ip[6], _stick_limit(sp, ip))
+        if ipk[_IS_UY] > 0.0:  # a bearing's or double pendulum's element pushed to u0 from its virgin state
+            u_p = y[0] - min(max(y[0], -ipk[_IS_UY]), ipk[_IS_UY])
+        iso = _iso_state(ipk, 0.0, u_p, 0.0, 0.0)
+        if ipk[0] >= _ISO_FRICTION:
             if y[1] != 0.0:
-                phase = 1.0 if y[1] > 0.0 else -1.0
+                phase = _slip_phase(iso, 1.0 if y[1] > 0.0 else -1.0, y[0], u_p)
             else:
                 m0 = 0 if y[2] == 0.0 else (1 if y[2] > 0.0 else -1)
                 phase = _stick_or_slip(sp, iso, m0, y[2], y[3], y[0], _xg(0.0, mp, acc))
-        else:
-            u_p = y[0] - min(max(y[0], -ipk[_IS_UY]), ipk[_IS_UY])
         iso = _iso_state(ipk, phase, u_p, 0.0, 0.0)
     if y[2] != 0.0:
         mode = 1 if y[2] > 0.0 else -1
@@ -1100,9 +1120,11 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                                                             or (fixed and tp0 >= motion_end)))
             if _ISO:
                 terminal[e] = terminal[e] or e >= 5
-                if e == 6:
-                    use[e] = phase == 0.0  # a slipping slider has one event (it stops), a stuck one two
-                if e == 3 and phase == 0.0 and ipk[0] == _ISO_FRICTION:
+                if e == 6:  # a stuck slider has two events (it slips either way), a slipping one
+                    # one (it stops), and a returning cone's ball or a double pendulum in regime I two
+                    use[e] = (phase == 0.0 or (ipk[0] == _ISO_CONE and abs(phase) == 2.0)
+                              or (ipk[0] == _ISO_DOUBLE and abs(phase) == 1.0 and ipk[_IS_UY] > 0.0))
+                if e == 3 and phase == 0.0 and ipk[0] >= _ISO_FRICTION:
                     use[e] = False  # a pinned base: u̇ ≡ 0, no extremes of u to locate
         # piece start: f, first step, events
         if carry:
@@ -1313,11 +1335,29 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 if term == 5 and phase != 0.0:  # a slip's u̇ crossed 0: located to rounding, made exact
                     y[1] = 0.0
                     new = 0.0
-                    if ipk[0] == _ISO_FRICTION:
+                    if ipk[0] >= _ISO_FRICTION:
                         new = _stick_or_slip(sp, iso, mode, y[2], y[3], y[0], _xgp(t, mpt))
-                    if new == phase:
+                    if new * phase > 0.0:
                         new = 0.0  # slipping on the same way is rounding: the slider holds
-                else:
+                elif phase == 0.0 and ipk[0] >= _ISO_FRICTION:  # a pinned slider slips
+                    new = _slip_phase(iso, 1.0 if term == 5 else -1.0, y[0], u_p)
+                elif phase != 0.0 and ipk[0] == _ISO_CONE:  # the returning ball reaches the vertex
+                    y[0] = 0.0
+                    new = 1.0 if phase > 0.0 else -1.0
+                    if abs(y[1]) < _vertex_rest_speed(sp, ipk):  # its Zeno tail: it rests there
+                        sv = 1.0 if mode >= 0 else -1.0
+                        y[6] += _kinetic(sp, sv, y[1], y[2], y[3]) - _kinetic(sp, sv, 0.0, y[2], y[3])
+                        y[1] = 0.0
+                        phase = 0.0
+                        n_iev = _log_phase(iev, n_iev, t, phase, y[0])
+                        if n_iev < 0:
+                            room = False
+                            break
+                        new = _stick_or_slip(sp, _iso_state(ipk, phase, u_p, 0.0, 0.0), mode, y[2], y[3], y[0],
+                                             _xgp(t, mpt))
+                elif phase != 0.0:  # a double pendulum's second surface starts to slide
+                    new = 2.0 if phase > 0.0 else -2.0
+                else:  # the bearing yields
                     new = 1.0 if term == 5 else -1.0
                 nph, u_p, y[1] = _set_phase(ipk, phase, u_p, y[0], y[1], new)
                 if nph != phase:
@@ -1469,10 +1509,7 @@ def _kernel_for(system: System, settings: AnalyticSettings):
     if system.fixed_base or system.isolator is None:
         return _integrate, _system_params(system, settings), _LINEAR_IP, 6
     sp, ip = physics.isolator_params(system, settings.rest_velocity)
-    ipk = np.zeros(_N_IPK)
-    ipk[:physics.N_IP] = ip
-    ipk[_IP_UY] = system.isolator.yield_displacement if ip[physics.I_KIND] == physics.ISO_BILINEAR else 0.0
-    return _integrate_iso, sp, ipk, 7
+    return _integrate_iso, sp, ip, 7
 
 
 _FAILED_MESSAGE = "Required step size is less than spacing between numbers."
@@ -1502,9 +1539,9 @@ def _check_settings(settings: AnalyticSettings | None) -> AnalyticSettings:
 
 
 def _check_isolator(system) -> None:
-    """The kernel carries the isolators of ISOLATOR_KINDS (the linear one, the bilinear bearing
-    and the single concave pendulum: _integrate and _integrate_iso); any other is refused,
-    never run as linear."""
+    """The kernel carries the isolators of ISOLATOR_KINDS (the linear one in _integrate; the
+    bilinear bearing, the single and double concave pendulums and the rolling balls in
+    _integrate_iso); any other is refused, never run as linear."""
     if isinstance(system, System):
         check_isolator_kind(system, ISOLATOR_KINDS, "the compiled kernel (engine 'analytic')")
 

@@ -395,19 +395,21 @@ S_LOSS = 6
 
 
 class _IsolatorIntegrator(_Integrator):
-    """The hybrid model on a bilinear bearing or a friction pendulum (docs/isolators.md):
-    the linear path's modes, events and impacts, with the isolator's element force q in
-    the base's equation and its slider's phase (stuck 0, slipping ±1) changed at events
-    located like the others: stick when u̇ crosses 0 with the demand within F_s, slip when
-    the demand (the pendulum's) or the elastic force (the bearing's) reaches F_s. The state
-    carries the slip loss S (hysteretic or friction work) beside the dashpot's D."""
+    """The hybrid model on a non-linear isolator (docs/isolators.md): the linear path's modes,
+    events and impacts, with the isolator's element force q in the base's equation and its
+    slider's phase (stuck 0, slipping ±1, or ±2: physics) changed at events located like the
+    others: stick when u̇ crosses 0 with the demand within F_s, slip when the demand (a rigid
+    slider's) or the elastic force (the bearing's) reaches F_s; a cone's ball returning to its
+    vertex, a double pendulum's second surface starting to slide. The state carries the slip
+    loss S (hysteretic, friction or rolling work) beside the dashpot's D."""
 
     def __init__(self, system, motion, settings, duration, progress, impact_threshold):
         super().__init__(system, motion, settings, duration, progress, impact_threshold)
         sp, ip = physics.isolator_params(system, settings.rest_velocity)
         self.sp, self.ip = tuple(sp.tolist()), tuple(ip.tolist())
-        self.friction = ip[physics.I_KIND] == physics.ISO_FRICTION
-        self.u_y = 0.0 if self.friction else float(system.isolator.yield_displacement)
+        self.kind = ip[physics.I_KIND]
+        self.friction = physics.rigid_slider(ip)  # the base itself sticks (a pendulum, a ball)
+        self.u_y = self.ip[physics.I_UY]
         self.phase, self.u_p = 0, 0.0
         self.out_phase, self.out_up = [], []
         self.isolator_log = []  # (t, phase after, u) at every change of the slider's phase
@@ -422,23 +424,32 @@ class _IsolatorIntegrator(_Integrator):
         its slider sits at u0 − clip(u0, ±u_y); a pendulum moving slips its way, at rest
         it sticks unless its demand exceeds F_s."""
         y = np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0, 0.0])
+        # a double pendulum's element, like the bearing, was pushed to u0 from its virgin state
+        self.u_p = u0 - min(max(u0, -self.u_y), self.u_y) if self.u_y > 0.0 else 0.0
         if self.friction:
             mode = 0 if theta0 == 0 else (1 if theta0 > 0 else -1)
-            self.phase = int(np.sign(u_dot0)) if u_dot0 != 0 else self.stick_or_slip(0.0, y, mode)
-        else:
-            self.u_p = u0 - min(max(u0, -self.u_y), self.u_y)
+            self.phase = (self.slip_phase(1 if u_dot0 > 0 else -1, u0) if u_dot0 != 0
+                          else self.stick_or_slip(0.0, y, mode))
         return y
 
+    def slip_phase(self, sigma, u):
+        """physics.slip_phase with the element's slider where it is now."""
+        u_p = physics.slider_position(self.ip, self.phase, u, self.u_p)
+        return int(physics.slip_phase(self.ip, float(sigma), float(u), u_p))
+
     def stick_or_slip(self, t, y, mode):
-        """A pendulum's phase at rest (u̇ = 0): 0 if its demand is within F_s, else its sign."""
-        demand = physics.stick_demand(self.sp, mode, y[TH], y[THD], y[U], self.xg(t))
-        return 0 if abs(demand) <= physics.stick_limit(self.sp, self.ip) else (1 if demand > 0 else -1)
+        """A rigid slider's phase at rest (u̇ = 0): 0 if its demand is within F_s, else a slip its way."""
+        u_p = physics.slider_position(self.ip, self.phase, y[U], self.u_p)
+        demand = physics.rigid_demand(self.sp, self.ip, mode, y[TH], y[THD], y[U], u_p, self.xg(t))
+        if abs(demand) <= physics.stick_limit(self.sp, self.ip):
+            return 0
+        return self.slip_phase(1 if demand > 0 else -1, y[U])
 
     def set_phase(self, t, y, phase):
         if phase == self.phase:
             return
-        if self.phase != 0 and not self.friction:  # the bearing's slider stops where it is
-            self.u_p = float(y[U]) - self.phase * self.u_y
+        # a yielded element's slider (the bearing's, the double pendulum's) stops where it is
+        self.u_p = float(physics.slider_position(self.ip, self.phase, float(y[U]), self.u_p))
         if phase == 0 and self.friction:
             y[UD] = 0.0  # the base rests on the ground exactly
         self.phase = phase
@@ -448,7 +459,11 @@ class _IsolatorIntegrator(_Integrator):
         """The phase that a new base velocity u̇ (after an impact) leaves the slider in."""
         ud = y[UD]
         if self.friction:
-            return (1 if ud > 0 else -1) if ud != 0 else self.stick_or_slip(t, y, mode)
+            if ud == 0:
+                return self.stick_or_slip(t, y, mode)
+            sigma = 1 if ud > 0 else -1
+            # on its way still: the same phase (a cone's side, a double pendulum's regime)
+            return self.phase if self.phase * sigma > 0 else self.slip_phase(sigma, y[U])
         if self.phase != 0 and self.phase * ud <= 0:
             return 0  # the bearing unloads elastically
         return self.phase
@@ -460,11 +475,25 @@ class _IsolatorIntegrator(_Integrator):
         if ev.side == 0:  # a slipping slider's u̇ crossed 0: located to rounding, made exact
             y[UD] = 0.0
             new = self.stick_or_slip(t, y, mode) if self.friction else 0
-            if new == self.phase:
+            if new * self.phase > 0:
                 # u̇ fell through 0, so σ·demand ≤ F_s: slipping on the same way is rounding
                 # (it would start and end at once, without end); the slider holds
                 new = 0
-        else:
+        elif self.phase == 0 and self.friction:  # a pinned slider slips
+            new = self.slip_phase(ev.side, y[U])
+        elif self.kind == physics.ISO_CONE:  # the returning ball reaches the vertex: made exact
+            y[U] = 0.0
+            new = ev.side
+            if abs(y[UD]) < physics.vertex_rest_speed(self.sp, self.ip):
+                # the Zeno tail of returns (physics.vertex_rest_speed): the ball rests at the
+                # vertex, its kinetic energy left to the rolling resistance
+                s = 1.0 if mode >= 0 else -1.0
+                y[S_LOSS] += (physics.kinetic_energy(self.sp, s, y[UD], y[TH], y[THD])
+                              - physics.kinetic_energy(self.sp, s, 0.0, y[TH], y[THD]))
+                y[UD] = 0.0
+                self.set_phase(t, y, 0)
+                new = self.stick_or_slip(t, y, mode)
+        else:  # the bearing yields; the double pendulum's second surface starts to slide
             new = ev.side
         self.set_phase(t, y, new)
         if mode == 0:  # the base's acceleration may have jumped (the pendulum sticking)
@@ -523,14 +552,22 @@ class _IsolatorIntegrator(_Integrator):
         ph = self.phase
         if ph != 0:
             if y0[UD] != 0.0:
-                return [_event(lambda t, y: ph * y[UD], "isolator", -1, side=0)]
-            start = ph * fun(t0, y0)[1]
-            return [_event(lambda t, y: ph * y[UD] / (t - t0) if t > t0 else start, "isolator", -1, side=0)]
+                evs = [_event(lambda t, y: ph * y[UD], "isolator", -1, side=0)]
+            else:
+                start = ph * fun(t0, y0)[1]
+                evs = [_event(lambda t, y: ph * y[UD] / (t - t0) if t > t0 else start, "isolator", -1, side=0)]
+            sigma = 1 if ph > 0 else -1
+            if self.kind == physics.ISO_CONE and abs(ph) == 2:  # the returning ball reaches the vertex
+                evs.append(_event(lambda t, y: sigma * y[U], "isolator", +1, side=sigma))
+            elif self.kind == physics.ISO_DOUBLE and abs(ph) == 1 and self.u_y > 0.0:  # both surfaces slide
+                up, uy = self.u_p, self.u_y
+                evs.append(_event(lambda t, y: sigma * (y[U] - up) - uy, "isolator", +1, side=2 * sigma))
+            return evs
         if self.friction:
-            sp, f_s = self.sp, physics.stick_limit(self.sp, self.ip)
+            sp, ip, f_s, up = self.sp, self.ip, physics.stick_limit(self.sp, self.ip), self.u_p
 
             def demand(t, y):
-                return physics.stick_demand(sp, mode, y[TH], y[THD], y[U], self.xg(t))
+                return physics.rigid_demand(sp, ip, mode, y[TH], y[THD], y[U], up, self.xg(t))
             return [_event(lambda t, y: demand(t, y) - f_s, "isolator", +1, side=1),
                     _event(lambda t, y: -demand(t, y) - f_s, "isolator", +1, side=-1)]
         up, uy = self.u_p, self.u_y
@@ -557,8 +594,9 @@ class _IsolatorIntegrator(_Integrator):
         super().store(sol, t0, t1, mode)
         ts, ys = self.out_t[-1], self.out_y[-1]
         self.out_phase.append(np.full(ts.size, self.phase, dtype=np.int8))
-        if self.phase != 0 and not self.friction:
-            self.out_up.append(ys[U] - self.phase * self.u_y)  # the slider moves with the base
+        if self.phase != 0 and (self.kind == physics.ISO_BILINEAR
+                                or (self.kind == physics.ISO_DOUBLE and abs(self.phase) == 2)):
+            self.out_up.append(ys[U] - np.sign(self.phase) * self.u_y)  # the slider moves with the base
         else:
             self.out_up.append(np.full(ts.size, self.u_p))
 

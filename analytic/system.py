@@ -19,7 +19,8 @@ STANDARD_GRAVITY = 9.81  # m/s², the value the paper's β and thresholds are qu
 #: isolator kinds, as a System's `isolator_kind`, the CLI's --isolator and the engines'
 #: Capabilities.isolators name them
 LINEAR, BILINEAR, FRICTION_PENDULUM = "linear", "bilinear", "friction-pendulum"
-ISOLATOR_KINDS = (LINEAR, BILINEAR, FRICTION_PENDULUM)
+BALL_IN_CONE, BALL_IN_BOWL, DOUBLE_PENDULUM = "ball-in-cone", "ball-in-bowl", "double-friction-pendulum"
+ISOLATOR_KINDS = (LINEAR, BILINEAR, FRICTION_PENDULUM, BALL_IN_CONE, BALL_IN_BOWL, DOUBLE_PENDULUM)
 
 
 @dataclass(frozen=True)
@@ -122,6 +123,112 @@ class FrictionPendulum:
         return d
 
 
+def _friction(name, value):
+    """A friction (or rolling-resistance) coefficient in [0, MAX_FRICTION_COEFFICIENT]."""
+    mu = require_nonnegative_finite(name, value)
+    require(mu <= MAX_FRICTION_COEFFICIENT, name, value,
+            f"a friction coefficient in [0, {MAX_FRICTION_COEFFICIENT:g}]")
+    return mu
+
+
+#: steepest cone a ball-in-cone isolator may be given (tanφ): above it the "isolator"
+#: transmits more than g, no isolation at all
+MAX_CONE_SLOPE = 1.0
+
+
+@dataclass(frozen=True)
+class BallInCone:
+    """A rolling isolator, ball in a conical dish: a constant restoring force
+    M·g·tanφ·sgn(u) (`slope` = tanφ, the cone's rise over run) and a rolling resistance
+    `rolling_resistance` μ_r that acts as Coulomb friction μ_r·M·g (the base holds while its
+    demand is within it; at the cone's vertex, u = 0, within M·g·(tanφ + μ_r)). The force
+    switches sign at u = 0, an event. No linear stiffness: its free period
+    4√(2u₀/(g·tanφ)) grows with the amplitude u₀ (System.period is inf)."""
+
+    slope: float
+    rolling_resistance: float = 0.0
+    kind = BALL_IN_CONE
+
+    def __post_init__(self):
+        tan_phi = require_positive_finite("slope", self.slope)
+        require(tan_phi <= MAX_CONE_SLOPE, "slope", self.slope,
+                f"tanφ in (0, {MAX_CONE_SLOPE:g}] (the cone's rise over run)")
+        object.__setattr__(self, "slope", tan_phi)
+        object.__setattr__(self, "rolling_resistance", _friction("rolling_resistance", self.rolling_resistance))
+
+    def describe(self, total_mass: float, gravity: float) -> dict:
+        return {"isolator": BALL_IN_CONE, "slope": self.slope, "rolling_resistance": self.rolling_resistance,
+                "restoring_force": self.slope * total_mass * gravity,
+                "friction_force": self.rolling_resistance * total_mass * gravity}
+
+
+@dataclass(frozen=True)
+class BallInBowl:
+    """A rolling isolator, ball in a spherical bowl of effective radius `radius` R_eff (m):
+    restoring force M·g·u/R_eff and rolling resistance μ_r·M·g. Its equations are the
+    friction pendulum's with μ_f = μ_r (`as_pendulum`), and it runs as one."""
+
+    radius: float
+    rolling_resistance: float = 0.0
+    kind = BALL_IN_BOWL
+
+    def __post_init__(self):
+        object.__setattr__(self, "radius", require_positive_finite("radius", self.radius))
+        object.__setattr__(self, "rolling_resistance", _friction("rolling_resistance", self.rolling_resistance))
+
+    @property
+    def as_pendulum(self) -> FrictionPendulum:
+        """The friction pendulum of the same equations (radius R_eff, μ_f = μ_r)."""
+        return FrictionPendulum(self.radius, self.rolling_resistance)
+
+    def describe(self, total_mass: float, gravity: float) -> dict:
+        return {"isolator": BALL_IN_BOWL, "radius": self.radius, "rolling_resistance": self.rolling_resistance,
+                "friction_force": self.rolling_resistance * total_mass * gravity}
+
+
+@dataclass(frozen=True)
+class DoubleFrictionPendulum:
+    """A double concave friction pendulum (Fenz & Constantinou 2008): two spherical surfaces
+    of radii `radius_1`, `radius_2` (m) and friction `friction_1`, `friction_2`, in series
+    through an articulated slider: F = W·u1/R1 + μ1·W·sgn(u̇1) = W·u2/R2 + μ2·W·sgn(u̇2),
+    u = u1 + u2, W = M·g. Equal frictions: one pendulum of radius R1 + R2. Otherwise the
+    surface of lower friction slides alone (stiffness W/R_lo) until the force reaches the
+    other's μ·W, then both (stiffness W/(R1 + R2)); docs/isolators.md gives the equivalent
+    the model runs: a rigid slider μ_lo·W, a spring W/(R1 + R2) and a Jenkins element."""
+
+    radius_1: float
+    friction_1: float
+    radius_2: float
+    friction_2: float
+    kind = DOUBLE_PENDULUM
+
+    def __post_init__(self):
+        for name in ("radius_1", "radius_2"):
+            object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
+        for name in ("friction_1", "friction_2"):
+            object.__setattr__(self, name, _friction(name, getattr(self, name)))
+
+    @property
+    def series(self) -> tuple[float, float, float, float]:
+        """(R_lo, μ_lo, R_hi, μ_hi): the surfaces ordered by friction (the series is symmetric)."""
+        if self.friction_1 <= self.friction_2:
+            return self.radius_1, self.friction_1, self.radius_2, self.friction_2
+        return self.radius_2, self.friction_2, self.radius_1, self.friction_1
+
+    @property
+    def transition_displacement(self) -> float:
+        """2(μ_hi − μ_lo)·R_lo (m): the stroke of the lower-friction surface alone, after a
+        reversal, before the other starts to slide (the loop's kink)."""
+        r_lo, mu_lo, _, mu_hi = self.series
+        return 2.0 * (mu_hi - mu_lo) * r_lo
+
+    def describe(self, total_mass: float, gravity: float) -> dict:
+        return {"isolator": DOUBLE_PENDULUM, "radius_1": self.radius_1, "friction_1": self.friction_1,
+                "radius_2": self.radius_2, "friction_2": self.friction_2}
+
+
+NONLINEAR_ISOLATORS = (BilinearIsolator, FrictionPendulum, BallInCone, BallInBowl, DoubleFrictionPendulum)
+
 
 @dataclass(frozen=True)
 class System:
@@ -148,15 +255,17 @@ class System:
     damping: float = 0.0
     fixed_base: bool = False
     gravity: float = STANDARD_GRAVITY
-    isolator: LinearIsolator | BilinearIsolator | FrictionPendulum | None = None
+    isolator: (LinearIsolator | BilinearIsolator | FrictionPendulum | BallInCone | BallInBowl
+               | DoubleFrictionPendulum | None) = None
 
     def __post_init__(self):
         for name in ("height", "width", "mass", "base_mass", "gravity"):
             object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
         iso = self.isolator
         if iso is not None:
-            require(isinstance(iso, (LinearIsolator, BilinearIsolator, FrictionPendulum)), "isolator", iso,
-                    "a LinearIsolator, BilinearIsolator or FrictionPendulum")
+            require(isinstance(iso, (LinearIsolator,) + NONLINEAR_ISOLATORS), "isolator", iso,
+                    "a LinearIsolator, BilinearIsolator, FrictionPendulum, BallInCone, BallInBowl or "
+                    "DoubleFrictionPendulum")
             require(not self.fixed_base, "isolator", iso.kind, "absent on a fixed base")
             if isinstance(iso, LinearIsolator):  # the default, held as stiffness and damping
                 object.__setattr__(self, "stiffness", iso.stiffness)
@@ -165,12 +274,16 @@ class System:
             elif isinstance(iso, BilinearIsolator):
                 object.__setattr__(self, "stiffness", iso.stiffness)
                 object.__setattr__(self, "damping", iso.damping)
-            else:  # the pendulum's restoring stiffness M·g/R_fp, no dashpot
-                object.__setattr__(self, "stiffness", (self.mass + self.base_mass) * self.gravity / iso.radius)
+            elif iso.kind == BALL_IN_CONE:  # a constant restoring force: no stiffness, no period
+                object.__setattr__(self, "stiffness", 0.0)
+                object.__setattr__(self, "damping", 0.0)
+            else:  # a pendulum's (or bowl's) restoring stiffness M·g/R, no dashpot
+                radius = iso.radius_1 + iso.radius_2 if iso.kind == DOUBLE_PENDULUM else iso.radius
+                object.__setattr__(self, "stiffness", (self.mass + self.base_mass) * self.gravity / radius)
                 object.__setattr__(self, "damping", 0.0)
         for name in ("stiffness", "damping"):
             object.__setattr__(self, name, require_nonnegative_finite(name, getattr(self, name)))
-        if not self.fixed_base:
+        if not self.fixed_base and self.isolator_kind != BALL_IN_CONE:
             require(self.stiffness > 0, "stiffness", self.stiffness,
                     "positive for an isolated base (use System.fixed for a fixed base)")
 
@@ -268,17 +381,20 @@ class System:
     @property
     def omega(self) -> float:
         """Isolation circular frequency √(k/M) (rad/s); inf on a fixed base."""
-        return math.inf if self.fixed_base else math.sqrt(self.stiffness / self.total_mass)
+        return math.inf if self.fixed_base else math.sqrt(self.stiffness / self.total_mass)  # 0: the cone
 
     @property
     def period(self) -> float:
-        """Isolation period 2π√(M/k) (s); 0 on a fixed base."""
-        return 0.0 if self.fixed_base else 2 * math.pi / self.omega
+        """Isolation period 2π√(M/k) (s); 0 on a fixed base; inf on a ball-in-cone isolator
+        (no stiffness: its period depends on the amplitude)."""
+        if self.fixed_base:
+            return 0.0
+        return math.inf if self.stiffness == 0.0 else 2 * math.pi / self.omega
 
     @property
     def damping_ratio(self) -> float:
         """ξ = c / (2Mω); 0 on a fixed base."""
-        return 0.0 if self.fixed_base else self.damping / (2 * self.total_mass * self.omega)
+        return 0.0 if self.fixed_base or self.stiffness == 0.0 else self.damping / (2 * self.total_mass * self.omega)
 
     @property
     def rocking_rate(self) -> float:
@@ -291,8 +407,7 @@ class System:
 
     @property
     def isolator_kind(self) -> str:
-        """"linear", "bilinear" or "friction-pendulum" ("linear" on a fixed base too: no
-        isolator to refuse)."""
+        """One of ISOLATOR_KINDS ("linear" on a fixed base too: no isolator to refuse)."""
         return LINEAR if self.isolator is None else self.isolator.kind
 
     @property
@@ -339,6 +454,7 @@ def paper_system(*, fixed_base: bool = False, period: float = PAPER_PERIOD,
     return System.isolated(**PAPER_BLOCK, period=period, damping_ratio=damping_ratio)
 
 
-__all__ = ["System", "InputError", "LinearIsolator", "BilinearIsolator", "FrictionPendulum", "ISOLATOR_KINDS",
-           "LINEAR", "BILINEAR", "FRICTION_PENDULUM", "paper_system", "STANDARD_GRAVITY", "PAPER_PERIOD",
+__all__ = ["System", "InputError", "LinearIsolator", "BilinearIsolator", "FrictionPendulum", "BallInCone",
+           "BallInBowl", "DoubleFrictionPendulum", "ISOLATOR_KINDS", "BALL_IN_CONE", "BALL_IN_BOWL",
+           "DOUBLE_PENDULUM", "LINEAR", "BILINEAR", "FRICTION_PENDULUM", "paper_system", "STANDARD_GRAVITY", "PAPER_PERIOD",
            "PAPER_DAMPING_RATIO", "PAPER_BLOCK", "PAPER_TEXT"]

@@ -28,7 +28,8 @@ import numpy as np
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.motion import GroundMotion
-from isorock.analytic.system import FRICTION_PENDULUM, LINEAR, FrictionPendulum, System
+from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, BallInBowl, BallInCone,
+                                     FrictionPendulum, System)
 from isorock.validate.core.cases import Case, _LazyScaled, record_factor
 
 #: The engine that answers the design question (the compiled kernel).
@@ -109,8 +110,42 @@ class FrictionPendulumFamily:
                                     isolator=FrictionPendulum(radius=x, friction_coefficient=y))
 
 
+@dataclass(frozen=True)
+class BallInConeFamily:
+    """Rolling balls in cones: slope tanφ × rolling resistance μ_r (docs/isolators.md). A block
+    with tanφ + μ_r < tanα cannot lift on it, whatever the hazard."""
+
+    x_values: tuple[float, ...]
+    y_values: tuple[float, ...]
+    kind = BALL_IN_CONE
+    x_name, y_name = "slope", "rolling_resistance"
+    x_label, y_label = "cone slope tanφ", "rolling resistance μ_r"
+    x_unit, y_unit = "", ""
+
+    def system(self, statue: Statue, x: float, y: float) -> System:
+        return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
+                                    base_mass=statue.base_mass, isolator=BallInCone(slope=x, rolling_resistance=y))
+
+
+@dataclass(frozen=True)
+class BallInBowlFamily:
+    """Rolling balls in spherical bowls: effective radius R_eff (m) × rolling resistance μ_r."""
+
+    x_values: tuple[float, ...]
+    y_values: tuple[float, ...]
+    kind = BALL_IN_BOWL
+    x_name, y_name = "radius", "rolling_resistance"
+    x_label, y_label = "bowl radius R_eff (m)", "rolling resistance μ_r"
+    x_unit, y_unit = "m", ""
+
+    def system(self, statue: Statue, x: float, y: float) -> System:
+        return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
+                                    base_mass=statue.base_mass, isolator=BallInBowl(radius=x, rolling_resistance=y))
+
+
 #: isolator kind → its family (what `--isolator` names)
-FAMILIES = {LINEAR: LinearFamily, FRICTION_PENDULUM: FrictionPendulumFamily}
+FAMILIES = {LINEAR: LinearFamily, FRICTION_PENDULUM: FrictionPendulumFamily, BALL_IN_CONE: BallInConeFamily,
+            BALL_IN_BOWL: BallInBowlFamily}
 
 
 def check_family_runs(family) -> None:

@@ -81,12 +81,14 @@ def compare_paths(cases, settings: AnalyticSettings | None = None) -> dict:
 # --- non-linear isolators (docs/isolators.md): the isolator kernel against the reference ---
 
 def isolator_cases(seed: int, n: int, kind: str) -> list[tuple[System, GroundMotion]]:
-    """n cases on a bilinear bearing or a single concave friction pendulum (kind: System's
-    isolator_kind, or "velocity-friction": a pendulum with μ_f(v)): blocks of slenderness 2–8 and height 0.5–4 m, μ = m/m_b 0.2–5; a pendulum
+    """n cases on a bilinear bearing, a single concave friction pendulum, a rolling ball in a
+    cone or a bowl, or a double concave pendulum (kind: System's isolator_kind, or
+    "velocity-friction": a pendulum with μ_f(v)): blocks of slenderness 2–8 and height 0.5–4 m, μ = m/m_b 0.2–5; a pendulum
     of R_fp 0.5–4 m and μ_f 0–0.15, or a bearing of initial period 0.3–2 s, post-yield ratio
     0–0.5, u_y 1–20 mm and ξ 0–0.2 on its initial stiffness; a sine, cosine or Ricker pulse of
     ω_p/p 0.5–12 and 0.8–12 × g·tanα (so that many lift, slip and stick, some overturn)."""
-    from isorock.analytic.system import BilinearIsolator, FrictionPendulum
+    from isorock.analytic.system import (BallInBowl, BallInCone, BilinearIsolator, DoubleFrictionPendulum,
+                                         FrictionPendulum)
     rng = np.random.default_rng(seed)
     cases = []
     for _ in range(n):
@@ -98,6 +100,13 @@ def isolator_cases(seed: int, n: int, kind: str) -> list[tuple[System, GroundMot
             mu_min = rng.uniform(0, 0.1)
             iso = FrictionPendulum(radius=rng.uniform(0.5, 4), friction_coefficient=mu_min,
                                    friction_max=mu_min + rng.uniform(0, 0.1), friction_rate=rng.uniform(5, 200))
+        elif kind == "ball-in-cone":  # tanφ 0.02–0.3, μ_r 0–0.1 (some balls never move)
+            iso = BallInCone(slope=rng.uniform(0.02, 0.3), rolling_resistance=rng.uniform(0, 0.1))
+        elif kind == "ball-in-bowl":
+            iso = BallInBowl(radius=rng.uniform(0.5, 4), rolling_resistance=rng.uniform(0, 0.1))
+        elif kind == "double-friction-pendulum":  # R1, R2 0.3–3 m, μ1, μ2 0–0.15
+            iso = DoubleFrictionPendulum(radius_1=rng.uniform(0.3, 3), friction_1=rng.uniform(0, 0.15),
+                                         radius_2=rng.uniform(0.3, 3), friction_2=rng.uniform(0, 0.15))
         else:
             w0 = 2 * math.pi / rng.uniform(0.3, 2)
             k0 = (m + m_b) * w0 ** 2

@@ -135,6 +135,26 @@ def test_no_uplift_possible_by_the_closed_form_bound_gives_p_zero():
     assert settled.sum() == d.overturned[1:].size  # every isolated run settled at rest
 
 
+def test_a_cone_family_cannot_lift_the_block_where_slope_and_resistance_stay_below_tan_alpha():
+    """A ball in a cone transmits at most g(tanφ + μ_r) (docs/isolators.md): in every cell with
+    tanφ + μ_r < tanα nothing rocks at any level, whatever the record; cells above it do rock
+    (so the check can fail)."""
+    from isorock.campaign.design import BallInConeFamily
+    family = BallInConeFamily((0.1, 0.4), (0.02, 0.1))
+    d = run_design(STATUE, family, Hazard(RECORDS, (0.4, 1.0)), tail=TAIL, threads=1)
+    tan_alpha = STATUE.width / STATUE.height
+    below = 0
+    for iy, mu_r in enumerate(family.y_values):
+        for ix, slope in enumerate(family.x_values):
+            cell = d.theta_max[1 + iy * len(family.x_values) + ix]
+            if slope + mu_r < tan_alpha:
+                below += 1
+                assert np.all(cell == 0) and not d.overturned[1 + iy * len(family.x_values) + ix].any()
+            else:
+                assert np.any(cell > 0)
+    assert below == 2
+
+
 def test_a_hazard_refuses_bad_levels_and_weights():
     from isorock.analytic.errors import InputError
     with pytest.raises(InputError, match="increasing"):
@@ -164,6 +184,8 @@ def records_folder(tmp_path_factory):
     (["--slenderness", "3"], "--slenderness"),
     (["--target", "1.5"], "--target"),
     (["--radii", "1,2"], "--radii"),
+    (["--isolator", "ball-in-cone", "--radii", "1,2"], "--radii"),
+    (["--isolator", "ball-in-bowl", "--radii", "1,2", "--rolling-resistances", "0,0.1"], "--rolling-resistances"),
     (["--level-weights", "1,2"], "level-weights"),
     (["--check", "analytic"], "--check"),
 ])

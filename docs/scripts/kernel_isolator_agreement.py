@@ -2,7 +2,7 @@
 isolators (issue 22's goal: 1e-9 on a few hundred cases per type): θ and u on the output
 grid, impact, uplift and stick–slip/yield times, the slider's loss, counts and statuses.
 
-    python docs/scripts/kernel_isolator_agreement.py [--cases 300] [--seed 22] [--json FILE]
+    python docs/scripts/kernel_isolator_agreement.py [--cases 300] [--seed 22] [--kinds A,B] [--json FILE]
 
 Prints, per isolator type, the worst of each measure (rad, m, s; the loss relative to the
 energy involved) and every case whose counts or status differ or that exceeds 1e-9.
@@ -26,9 +26,11 @@ def main(argv=None):
     p.add_argument("--cases", type=int, default=300)
     p.add_argument("--seed", type=int, default=22)
     p.add_argument("--json", help="write every case's row here")
+    p.add_argument("--kinds", default="friction-pendulum,velocity-friction,bilinear,ball-in-cone,ball-in-bowl,"
+                                      "double-friction-pendulum", help="isolator kinds, comma-separated")
     a = p.parse_args(argv)
     report = {}
-    for kind in ("friction-pendulum", "velocity-friction", "bilinear"):
+    for kind in a.kinds.split(","):
         start = time.perf_counter()
         out = compare_isolator_paths(isolator_cases(a.seed, a.cases, kind))
         out["wall_s"] = round(time.perf_counter() - start, 1)

@@ -10,14 +10,16 @@ import time
 import numpy as np
 
 from isorock.analytic.errors import InputError
-from isorock.analytic.system import FRICTION_PENDULUM, LINEAR, PAPER_BLOCK
+from isorock.analytic.system import BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK
 from isorock.validate.cli.options import number
 
 DEFAULT_OUT = "isorock-design"
 DEFAULT_PGA = "0.1:1.0:10"
 #: the family's axes when not given: (option, default grid) per isolator kind
 DEFAULT_AXES = {LINEAR: (("periods", "1:4:20"), ("damping_ratios", "0.02:0.4:20")),
-                FRICTION_PENDULUM: (("radii", "0.5:4:20"), ("friction_coefficients", "0.02:0.2:20"))}
+                FRICTION_PENDULUM: (("radii", "0.5:4:20"), ("friction_coefficients", "0.02:0.2:20")),
+                BALL_IN_CONE: (("slopes", "0.02:0.3:15"), ("rolling_resistances", "0.005:0.1:20")),
+                BALL_IN_BOWL: (("radii", "0.5:4:20"), ("rolling_resistances", "0.005:0.1:20"))}
 #: the most values one axis (or the PGA levels) may take
 MAX_AXIS = 200
 
@@ -52,15 +54,19 @@ def add_parser(sub) -> None:
                    help="each level's weight in P(overturn) over the hazard, e.g. from a hazard curve (normalised; "
                         "default: equal)")
     g = p.add_argument_group("the isolators (each axis: a list A,B,C or a range FROM:TO:NUM)")
-    g.add_argument("--isolator", choices=(LINEAR, FRICTION_PENDULUM), default=LINEAR,
-                   help="the family (default: %(default)s; friction-pendulum runs once the compiled kernel carries it)")
+    g.add_argument("--isolator", choices=tuple(DEFAULT_AXES), default=LINEAR, help="the family (default: %(default)s)")
     g.add_argument("--periods", metavar="T", help=f"linear: periods, s (default: {DEFAULT_AXES[LINEAR][0][1]})")
     g.add_argument("--damping-ratios", metavar="XI",
                    help=f"linear: damping ratios (default: {DEFAULT_AXES[LINEAR][1][1]})")
-    g.add_argument("--radii", metavar="R", help=f"friction-pendulum: radii, m (default: "
+    g.add_argument("--radii", metavar="R", help=f"friction-pendulum, ball-in-bowl: radii, m (default: "
                                                 f"{DEFAULT_AXES[FRICTION_PENDULUM][0][1]})")
     g.add_argument("--friction-coefficients", metavar="MU",
                    help=f"friction-pendulum: friction coefficients (default: {DEFAULT_AXES[FRICTION_PENDULUM][1][1]})")
+    g.add_argument("--slopes", metavar="TAN",
+                   help=f"ball-in-cone: cone slopes tanφ (default: {DEFAULT_AXES[BALL_IN_CONE][0][1]})")
+    g.add_argument("--rolling-resistances", metavar="MU",
+                   help=f"ball-in-cone, ball-in-bowl: rolling resistances μ_r (default: "
+                        f"{DEFAULT_AXES[BALL_IN_CONE][1][1]})")
     g = p.add_argument_group("the decision")
     g.add_argument("--target", type=number, default=0.05,
                    help="largest acceptable P(overturn) over the hazard (default: %(default)g)")
@@ -161,7 +167,7 @@ def family_from_args(a):
         if kind == a.isolator:
             continue
         for opt, _ in axes:
-            if getattr(a, opt) is not None:
+            if opt not in (x_opt, y_opt) and getattr(a, opt) is not None:  # --radii: two families' axis
                 raise InputError(f"--{opt.replace('_', '-')}: not an axis of --isolator {a.isolator}")
     xs = parse_grid(x_opt.replace("_", "-"), getattr(a, x_opt) or x_default)
     ys = parse_grid(y_opt.replace("_", "-"), getattr(a, y_opt) or y_default,

@@ -78,7 +78,7 @@ def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=No
 
 #: the options of a non-linear isolator (add_isolator_options), argparse dests
 ISOLATOR_KEYS = ("radius", "friction_coefficient", "friction_max", "friction_rate", "post_yield_ratio",
-                 "yield_displacement")
+                 "yield_displacement", "slope", "rolling_resistance", "radius_2", "friction_coefficient_2")
 
 
 def add_isolator_options(p: argparse.ArgumentParser) -> None:
@@ -90,7 +90,8 @@ def add_isolator_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--isolator", choices=ISOLATOR_KINDS, default=LINEAR,
                    help="the isolator under the base (default: %(default)s; bilinear: --stiffness/--period set its "
                         "initial stiffness)")
-    g.add_argument("--radius", type=number, help="friction-pendulum: radius of curvature R_fp, m")
+    g.add_argument("--radius", type=number, help="friction-pendulum: radius of curvature R_fp, m; ball-in-bowl: "
+                                                 "its effective radius R_eff; double-friction-pendulum: R1, surface 1's")
     g.add_argument("--friction-coefficient", type=number,
                    help="friction-pendulum: the slider's friction coefficient μ_f (not --friction, the block–base "
                         "contact's); with --friction-rate, μ_min, its value at rest")
@@ -101,34 +102,59 @@ def add_isolator_options(p: argparse.ArgumentParser) -> None:
                    help="friction-pendulum: a, s/m, of that velocity-dependent friction (with --friction-max)")
     g.add_argument("--post-yield-ratio", type=number, help="bilinear: post-yield over initial stiffness, in [0, 1)")
     g.add_argument("--yield-displacement", type=number, help="bilinear: yield displacement u_y, m")
+    g.add_argument("--slope", type=number, help="ball-in-cone: the cone's slope tanφ (rise over run), in (0, 1]")
+    g.add_argument("--rolling-resistance", type=number,
+                   help="ball-in-cone, ball-in-bowl: the rolling resistance μ_r (a Coulomb friction μ_r·M·g)")
+    g.add_argument("--radius-2", type=number, help="double-friction-pendulum: R2, surface 2's radius, m")
+    g.add_argument("--friction-coefficient-2", type=number,
+                   help="double-friction-pendulum: μ2, surface 2's friction (--friction-coefficient is μ1)")
 
 
 def _isolator_from_args(a, common):
     """The System of a non-linear --isolator, or None for the linear one (every option of
     another isolator refused with one line naming it)."""
-    from isorock.analytic.system import BILINEAR, FRICTION_PENDULUM, BilinearIsolator, FrictionPendulum, System
+    from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, DOUBLE_PENDULUM, FRICTION_PENDULUM,
+                                         BallInBowl, BallInCone, BilinearIsolator, DoubleFrictionPendulum,
+                                         FrictionPendulum, ISOLATOR_KINDS, System)
     kind = getattr(a, "isolator", None) or "linear"
     wants = {"linear": (), FRICTION_PENDULUM: ("radius", "friction_coefficient"),
-             BILINEAR: ("post_yield_ratio", "yield_displacement")}[kind]
-    optional = ("friction_max", "friction_rate") if kind == FRICTION_PENDULUM else ()
+             BILINEAR: ("post_yield_ratio", "yield_displacement"), BALL_IN_CONE: ("slope",),
+             BALL_IN_BOWL: ("radius",),
+             DOUBLE_PENDULUM: ("radius", "friction_coefficient", "radius_2", "friction_coefficient_2")}[kind]
+    optional = {FRICTION_PENDULUM: ("friction_max", "friction_rate"), BALL_IN_CONE: ("rolling_resistance",),
+                BALL_IN_BOWL: ("rolling_resistance",)}.get(kind, ())
     for key in ISOLATOR_KEYS:
         if key in optional:
             continue
         given = getattr(a, key, None) is not None
         if given and key not in wants:
             raise InputError(f"--{key.replace('_', '-')}: not an option of --isolator {kind}"
-                             + ("" if kind != "linear" else " (give --isolator friction-pendulum or bilinear)"))
+                             + ("" if kind != "linear" else " (give --isolator with one of "
+                                f"{', '.join(k for k in ISOLATOR_KINDS if k != 'linear')})"))
         if not given and key in wants:
             raise InputError(f"--{key.replace('_', '-')}: needed by --isolator {kind}")
     if kind == "linear":
         return None
     if a.fixed_base:
         raise InputError(f"--fixed-base: cannot be combined with --isolator {kind}")
-    if kind == FRICTION_PENDULUM:
+    if kind != BILINEAR:  # a pendulum's or a ball's restoring force is its geometry's, with no dashpot
         given = [k for k in ("period", "damping_ratio", "stiffness", "dashpot") if getattr(a, k) is not None]
         if given:
-            raise InputError(f"--{given[0].replace('_', '-')}: not an option of --isolator {kind} (its period is "
-                             "2π√(R_fp/g), set by --radius)")
+            why = {FRICTION_PENDULUM: "its period is 2π√(R_fp/g), set by --radius",
+                   BALL_IN_BOWL: "its period is 2π√(R_eff/g), set by --radius",
+                   BALL_IN_CONE: "its restoring force is M·g·tanφ, set by --slope",
+                   DOUBLE_PENDULUM: "its stiffness is M·g/(R1 + R2), set by --radius and --radius-2"}[kind]
+            raise InputError(f"--{given[0].replace('_', '-')}: not an option of --isolator {kind} ({why})")
+    resistance = 0.0 if a.rolling_resistance is None else a.rolling_resistance
+    if kind == BALL_IN_CONE:
+        return System.with_isolator(**common, isolator=BallInCone(slope=a.slope, rolling_resistance=resistance))
+    if kind == BALL_IN_BOWL:
+        return System.with_isolator(**common, isolator=BallInBowl(radius=a.radius, rolling_resistance=resistance))
+    if kind == DOUBLE_PENDULUM:
+        return System.with_isolator(**common, isolator=DoubleFrictionPendulum(
+            radius_1=a.radius, friction_1=a.friction_coefficient, radius_2=a.radius_2,
+            friction_2=a.friction_coefficient_2))
+    if kind == FRICTION_PENDULUM:
         if (a.friction_max is None) != (a.friction_rate is None):
             missing = "--friction-rate" if a.friction_rate is None else "--friction-max"
             raise InputError(f"{missing}: needed with {'--friction-max' if a.friction_rate is None else '--friction-rate'}"

@@ -45,6 +45,10 @@ def describe_system(system) -> str:
     block = f"block {_g(system.height)} × {_g(system.width)} m (λ {system.slenderness:.3g})"
     if system.fixed_base:
         return f"{block}, fixed base"
+    if system.isolator_kind == "ball-in-cone":  # no period: a constant restoring force
+        iso = system.isolator
+        return (f"{block}, isolated base on a ball in a cone, tanφ {_g(iso.slope)}, μ_r {_g(iso.rolling_resistance)}, "
+                f"μ {_g(system.mu)}")
     return (f"{block}, isolated base T {_g(system.period)} s, ξ {_g(system.damping_ratio)}, "
             f"μ {_g(system.mu)}")
 
