@@ -19,7 +19,14 @@ from scipy.integrate import solve_ivp
 
 from . import physics
 from .errors import require
-from .system import BILINEAR, FRICTION_PENDULUM
+from .system import BALL_IN_BOWL, BILINEAR, FRICTION_PENDULUM
+
+#: the kinds whose phase a contact engine's row tells (the ball in a bowl is the friction
+#: pendulum's equations: physics.isolator_params runs it as one). Not the double pendulum: its
+#: three phases (pinned, one surface sliding, both) are not read off the rows yet, so a contact
+#: engine's impacts on it carry no effective β (NaN: not measured)
+PENDULUMS = (FRICTION_PENDULUM, BALL_IN_BOWL)
+MAPPED = (BILINEAR, *PENDULUMS)
 
 #: m/s; a pendulum's base slower than this is taken as pinned: above the engines' creep of a
 #: stuck base (MuJoCo ~1e-8, PyBullet ~5e-5 while the block settles), far below a slip's speed
@@ -30,7 +37,7 @@ def phase_at(system, u_dot: float, slider_step: float | None, base_step: float |
     """The element's phase (0 stuck or elastic, ±1 slipping that way) of a contact engine's row:
     from the base's speed (pendulum), or from how the slider moved against the base over the
     last row (bearing: `slider_step`, `base_step`, m)."""
-    if system.isolator_kind == FRICTION_PENDULUM:
+    if system.isolator_kind in PENDULUMS:
         return 0 if abs(u_dot) <= SLIP_SPEED else (1 if u_dot > 0 else -1)
     if slider_step is None or base_step is None or base_step == 0.0:
         return 0
@@ -44,14 +51,14 @@ def map_to_impact(system, motion, t: float, state, *, phase: int, u_p: float, ba
     `phase` (slider at u_p, m), forward to the landing or backward to the lift-off; None when θ
     = 0 is not reached within `horizon` s, or the phase would change first."""
     kind = system.isolator_kind
-    require(kind in (BILINEAR, FRICTION_PENDULUM), "isolator", kind, "bilinear or friction-pendulum")
+    require(kind in MAPPED, "isolator", kind, " or ".join(MAPPED))
     sp, ip = physics.isolator_params(system, 0.0)
     u, ud, th, thd = (float(x) for x in state)
     if th == 0:
         return t, thd, ud
     s = 1.0 if th > 0 else -1.0
     u_y = ip[physics.I_FSLIP] / ip[physics.I_KEL] if kind == BILINEAR else 0.0
-    pinned = kind == FRICTION_PENDULUM and phase == 0
+    pinned = kind in PENDULUMS and phase == 0
     if pinned:
         ud = 0.0
         demand = physics.stick_demand(sp, s, th, thd, u, motion.at(t))
@@ -93,4 +100,4 @@ def map_to_impact(system, motion, t: float, state, *, phase: int, u_p: float, ba
     return t0, float(ye[3]), float(ye[1])
 
 
-__all__ = ["SLIP_SPEED", "phase_at", "map_to_impact"]
+__all__ = ["MAPPED", "PENDULUMS", "SLIP_SPEED", "phase_at", "map_to_impact"]

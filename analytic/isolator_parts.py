@@ -1,53 +1,77 @@
 """The isolator as the parts a contact engine builds it from (docs/isolators.md, "The
-equations"): a parallel spring k and dashpot c on the base, and a Jenkins element — a spring
-k_e in series with a Coulomb slider of slip force F_s (k_e infinite for the friction
-pendulum: the base itself sticks). Derived once, from the same `physics.isolator_params` the
-analytic model integrates, so MuJoCo's scene and PyBullet's force law cannot read the
-isolator differently from the model they are judged against.
+equations"): a parallel spring k and dashpot c on the base, the base's own dry friction (the
+pendulum's rigid slider: the base itself sticks), and a Jenkins element — a spring k_e in
+series with a Coulomb slider of slip force F_s. The friction pendulum and the ball in a bowl
+(the same equations, `BallInBowl.as_pendulum`) have the base's friction alone, the bilinear
+bearing the element alone, and the double concave pendulum both at once. Derived once, from
+the same `physics.isolator_params` the analytic model integrates, so MuJoCo's scene and
+PyBullet's force law cannot read the isolator differently from the model they are judged
+against.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 from .errors import InputError
-from .system import BILINEAR, FRICTION_PENDULUM, LINEAR
+from .system import BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, DOUBLE_PENDULUM, FRICTION_PENDULUM, LINEAR
 
 #: the isolator kinds a contact engine can build from its own parts (a joint spring, a
-#: dashpot, a dry-friction joint, a fixed tendon or a held force): every kind the model has
-CONTACT_ISOLATORS = (LINEAR, BILINEAR, FRICTION_PENDULUM)
+#: dashpot, a dry-friction joint, a fixed tendon or a held force). Not the ball in a cone: its
+#: restoring force M·g·tanφ·sgn(u) is none of these in MuJoCo's C stepping (docs/isolators.md,
+#: "Who carries what")
+CONTACT_ISOLATORS = (LINEAR, BILINEAR, FRICTION_PENDULUM, BALL_IN_BOWL, DOUBLE_PENDULUM)
+#: ... and with the cone: an engine that applies the isolator's force itself every control step
+#: (PyBullet) holds the cone's sign force over the step, read at the step's displacement
+HELD_FORCE_ISOLATORS = CONTACT_ISOLATORS + (BALL_IN_CONE,)
 
 
 @dataclass(frozen=True)
 class IsolatorParts:
     """kind: System.isolator_kind; stiffness k and damping c: the spring and dashpot in
-    parallel with the element (N/m, N·s/m); element_stiffness k_e (N/m; inf for the
-    pendulum's rigid slider, 0 without an element); slip_force F_s (N; 0 without one)."""
+    parallel with the rest (N/m, N·s/m); base_friction F_b (N): the base's own dry friction,
+    a rigid slider that holds the base still within it (0 without one); element_stiffness k_e
+    (N/m) and slip_force F_s (N): the Jenkins element's spring and slider (both 0 without
+    one); cone_force F_c (N): the ball in a cone's restoring force F_c·sgn(u) (0 but on a cone)."""
 
     kind: str
     stiffness: float
     damping: float
+    base_friction: float
     element_stiffness: float
     slip_force: float
+    cone_force: float
 
     @property
     def has_element(self) -> bool:
-        return self.kind != LINEAR
+        """Whether there is a Jenkins element (the bearing, a double pendulum of μ1 ≠ μ2)."""
+        return self.element_stiffness > 0.0
 
     @property
     def yield_displacement(self) -> float:
-        """u_y = F_s/k_e (m): the element's stretch at which its slider slips (0 for a rigid one)."""
-        return self.slip_force / self.element_stiffness if 0 < self.element_stiffness < math.inf else 0.0
+        """u_y = F_s/k_e (m): the element's stretch at which its slider slips (0 without one)."""
+        return self.slip_force / self.element_stiffness if self.has_element else 0.0
+
+    @property
+    def initial_stiffness(self) -> float:
+        """k + k_e (N/m): the stiffness while the element is elastic and the base slides (the
+        bearing's k0, the double pendulum's regime I W/R_lo): what an explicit step must follow."""
+        return self.stiffness + self.element_stiffness
 
 
 def isolator_parts(system) -> IsolatorParts:
     """The parts of `system`'s isolator (an isolated base: a fixed base has none)."""
-    from .physics import C_DAMP, I_FSLIP, I_KEL, K, isolator_params
-    sp, ip = isolator_params(system, 0.0)
+    from .physics import C_DAMP, I_FCONE, I_FSLIP, I_KEL, I_UY, K, isolator_params, rigid_slider
     kind = system.isolator_kind
-    k_e = math.inf if kind == FRICTION_PENDULUM else float(ip[I_KEL])
-    return IsolatorParts(kind=kind, stiffness=float(sp[K]), damping=float(sp[C_DAMP]), element_stiffness=k_e,
-                         slip_force=float(ip[I_FSLIP]))
+    if kind not in HELD_FORCE_ISOLATORS:
+        raise InputError(f"isolator = {kind}: no contact-engine parts (docs/isolators.md, 'Who carries what')")
+    sp, ip = isolator_params(system, 0.0)
+    rigid = kind != LINEAR and bool(rigid_slider(ip))
+    # the element's slip force k_e·u_y: for the bearing the same product as ip[I_FSLIP] (bit for
+    # bit); for the double pendulum ip[I_FSLIP] is the base's μ_lo·W and the element's is k_e·u_y
+    k_e = float(ip[I_KEL])
+    return IsolatorParts(kind=kind, stiffness=float(sp[K]), damping=float(sp[C_DAMP]),
+                         base_friction=float(ip[I_FSLIP]) if rigid else 0.0, element_stiffness=k_e,
+                         slip_force=float(ip[I_KEL] * ip[I_UY]) if k_e > 0.0 else 0.0, cone_force=float(ip[I_FCONE]))
 
 
 def check_contact_isolator(system, engine: str) -> None:
@@ -63,4 +87,4 @@ def check_contact_isolator(system, engine: str) -> None:
                          "and 'analytic-reference'; docs/isolators.md)")
 
 
-__all__ = ["CONTACT_ISOLATORS", "IsolatorParts", "isolator_parts", "check_contact_isolator"]
+__all__ = ["CONTACT_ISOLATORS", "HELD_FORCE_ISOLATORS", "IsolatorParts", "isolator_parts", "check_contact_isolator"]

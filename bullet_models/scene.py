@@ -211,14 +211,19 @@ def _element_text(parts, k, c) -> str:
     common = (f"spring k = {k} N/m and dashpot c = {c} N s/m on the prismatic joint, as for the linear isolator "
               "(c in <dynamics><damping>, which loadSDF applies; k in <spring_stiffness>, which it ignores: apply "
               "-k u yourself each step)")
-    if parts.kind == "friction-pendulum":
-        return (f"Isolator: friction pendulum (docs/isolators.md): {common}, and dry friction F_s = "
-                f"{parts.slip_force} N: simulate() keeps the joint's velocity motor on with target 0 and force "
-                "F_s / substeps (PyBullet's impulse is force x the control step, applied at each sub-step).")
-    return (f"Isolator: bilinear bearing (docs/isolators.md): {common}, and a Jenkins element, spring k_e = "
-            f"{parts.element_stiffness} N/m in series with a slider of slip force F_s = {parts.slip_force} N, which "
-            "simulate() applies as a joint force each control step (q = k_e (u - u_p), the slider u_p moving to "
-            "u - sgn(q) F_s/k_e where |q| > F_s).")
+    words = [f"Isolator: {parts.kind.replace('-', ' ')} (docs/isolators.md): {common}"]
+    if parts.base_friction > 0.0:
+        words.append(f"dry friction F_s = {parts.base_friction} N: simulate() keeps the joint's velocity motor on "
+                     "with target 0 and force F_s / substeps (PyBullet's impulse is force x the control step, "
+                     "applied at each sub-step)")
+    if parts.has_element:
+        words.append(f"a Jenkins element, spring k_e = {parts.element_stiffness} N/m in series with a slider of "
+                     f"slip force F_s = {parts.slip_force} N, which simulate() applies as a joint force each control "
+                     "step (q = k_e (u - u_p), the slider u_p moving to u - sgn(q) F_s/k_e where |q| > F_s)")
+    if parts.cone_force:
+        words.append(f"the cone's force F_c sgn(u), F_c = {parts.cone_force} N, which simulate() applies as a joint "
+                     "force each control step with the sign of the step's displacement")
+    return ", and ".join(words) + "."
 
 
 def scene_text(system: System, settings: Settings | None = None) -> str:

@@ -120,7 +120,14 @@ class Settings:
                 f"at most {MAX_MASS_RATIO:g} for PyBullet (m/m_b: a base lighter than 1/{MAX_MASS_RATIO:g} of the "
                 "block loses the rocking in Bullet's contact solver; measured, docs/bullet.md)")
         shortest = 2 * math.pi * self.control_step / MAX_ISOLATOR_PHASE
-        require(system.period >= shortest, "period", round(system.period, 6),
+        period = system.period
+        if system.isolator_kind != "linear":
+            # the explicit step follows the stiffest branch: k + k_e while the element is elastic
+            # (the bearing's k0; the double pendulum's regime I, W/R_lo, stiffer than its W/(R1 + R2))
+            from isorock.analytic.isolator_parts import isolator_parts
+            stiffness = isolator_parts(system).initial_stiffness  # 0 on a cone: no period to follow
+            period = 2 * math.pi * math.sqrt(system.total_mass / stiffness) if stiffness else math.inf
+        require(period >= shortest, "period", round(period, 6),
                 f"at least {shortest:.3g} s for PyBullet with a control step of {self.control_step:g} s "
                 f"(ω·dt ≤ {MAX_ISOLATOR_PHASE:g}: the isolator force is applied explicitly once per control step); "
                 "give fewer --substeps or a shorter --timestep")

@@ -22,7 +22,7 @@ import numpy as np
 from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator, isolator_parts
+from isorock.analytic.isolator_parts import HELD_FORCE_ISOLATORS, check_contact_isolator, isolator_parts
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
@@ -44,7 +44,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: callable(t, duration), called about once a second."""
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  isolators=CONTACT_ISOLATORS)
+                                  isolators=HELD_FORCE_ISOLATORS)
     check_contact_isolator(system, ENGINE)
     settings.check_isolator(system)
     linear = system.fixed_base or system.isolator_kind == "linear"
@@ -171,38 +171,44 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     raw.extras.update(timestep=float(settings.timestep), control_step=float(settings.control_step))
     if not linear:
         raw.extras.update(stepping="throughout (no rest phase: non-linear isolator)")
-        if element.parts.kind == "bilinear":
+        if element.parts.has_element:
             raw.extras.update(isolator_slider=np.array(slider[:len(rows)], dtype=float))
     return raw
 
 
 class Element:
-    """A non-linear isolator's element (analytic/isolator_parts.py) in Bullet. The friction
-    pendulum's rigid slider is the base joint's own dry friction: Bullet's standard joint
-    friction, a velocity motor with target 0 whose force is limited to F_s, solved with the
-    contacts at every sub-step (it holds the base still exactly, or slides at F_s). The
-    bilinear bearing's elastic–plastic element is a state update at each control step, the
-    return map of a Jenkins element: q = k_e (u − u_p), and where |q| > F_s the slider moves to
+    """A non-linear isolator's parts besides its spring and dashpot (analytic/isolator_parts.py)
+    in Bullet. A pendulum's rigid slider (the friction pendulum's, the ball in a bowl's, the
+    double pendulum's μ_lo·W) is the base joint's own dry friction: Bullet's standard joint
+    friction, a velocity motor with target 0 whose force is limited to F_b, solved with the
+    contacts at every sub-step (it holds the base still exactly, or slides at F_b). A Jenkins
+    element (the bilinear bearing's, the double pendulum's of μ1 ≠ μ2) is a state update at each
+    control step, its return map: q = k_e (u − u_p), and where |q| > F_s the slider moves to
     u − sgn(q)·u_y and q = sgn(q)·F_s; the force is held over the control step like the
-    spring's."""
+    spring's. The double pendulum has both. The ball in a cone has the base's friction (its
+    rolling resistance) and the cone's force F_c·sgn(u), held over the control step with the
+    sign of the step's displacement (at a vertex the base chatters within about g·tanφ·dt²:
+    measured, docs/isolators.md)."""
 
     def __init__(self, parts):
         self.parts = parts
-        self.u_p = 0.0  # the bearing's slider, from its virgin state (docs/isolators.md)
+        self.u_p = 0.0  # the element's slider, from its virgin state (docs/isolators.md)
 
     def start(self, client, base, substeps):
-        """Switch the pendulum's dry friction on (again after the sub-steps change).
+        """Switch the base's dry friction on (again after the sub-steps change).
         PyBullet turns a motor force into the impulse force × fixedTimeStep, the whole
         control step, but applies it at every one of its `substeps` sub-steps: the force
-        is given divided by them, so that each sub-step's impulse is F_s × its own length."""
-        if self.parts.kind == "friction-pendulum":
+        is given divided by them, so that each sub-step's impulse is F_b × its own length."""
+        if self.parts.base_friction > 0.0:
             client.setJointMotorControl2(base, 0, p.VELOCITY_CONTROL, targetVelocity=0.0,
-                                         force=self.parts.slip_force / substeps)
+                                         force=self.parts.base_friction / substeps)
 
     def force(self, u: float) -> float:
-        """q (N) on the base at displacement u (m): the bearing's element; 0 for the pendulum,
-        whose friction is the motor's."""
-        if self.parts.kind != "bilinear":
+        """q (N) on the base at displacement u (m): the Jenkins element's, or the cone's; 0
+        without either (the base's friction is the motor's)."""
+        if self.parts.cone_force:  # sgn(0) = 0: a ball resting on the vertex feels no push
+            return math.copysign(self.parts.cone_force, u) if u else 0.0
+        if not self.parts.has_element:
             return 0.0
         k_e, f_s = self.parts.element_stiffness, self.parts.slip_force
         q = k_e * (u - self.u_p)

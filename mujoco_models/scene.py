@@ -129,39 +129,44 @@ SLIDER_DAMPING = 0.1
 def _isolator_words(system) -> str:
     """The header's account of a non-linear isolator (what _isolator_element built)."""
     parts = isolator_parts(system)
-    words = (f"{system.isolator_kind} isolator: base_slide stiffness {parts.stiffness:.6g} N/m, damping "
-             f"{parts.damping:.6g} N·s/m, ")
-    if parts.kind == "friction-pendulum":
-        return words + f"frictionloss {parts.slip_force:.6g} N"
-    return words + (f"in parallel with the tendon isolator_element (k_e {parts.element_stiffness:.6g} N/m) to "
-                    f"the slider slider_slide (frictionloss {parts.slip_force:.6g} N)")
+    words = [f"{system.isolator_kind} isolator: base_slide stiffness {parts.stiffness:.6g} N/m, damping "
+             f"{parts.damping:.6g} N·s/m"]
+    if parts.base_friction > 0.0:
+        words.append(f"frictionloss {parts.base_friction:.6g} N")
+    if parts.has_element:
+        words.append(f"in parallel with the tendon isolator_element (k_e {parts.element_stiffness:.6g} N/m) to "
+                     f"the slider slider_slide (frictionloss {parts.slip_force:.6g} N)")
+    return ", ".join(words)
 
 
 def _isolator_element(root, named, system, settings):
     """A non-linear isolator from MuJoCo's own parts (docs/isolators.md; the parts derived
     once, analytic/isolator_parts.py): the base joint's stiffness and damping are the
-    parallel spring k and dashpot c; the friction pendulum's rigid slider is the base joint's
-    own dry friction `frictionloss` F_s = μ_f·M·g (the model keeps the normal force at M·g,
-    so a constant one is the same model); the bilinear bearing's Jenkins element is a light
-    slider body on its own slide joint with frictionloss F_s, tied to the base by a fixed
-    tendon (base joint − slider joint) of stiffness k_e."""
+    parallel spring k and dashpot c; a pendulum's rigid slider (the friction pendulum's, the
+    ball in a bowl's, the double pendulum's μ_lo·W) is the base joint's own dry friction
+    `frictionloss` (the model keeps the normal force at M·g, so a constant one is the same
+    model); a Jenkins element (the bilinear bearing's, the double pendulum's of μ1 ≠ μ2) is a
+    light slider body on its own slide joint with frictionloss F_s, tied to the base by a fixed
+    tendon (base joint − slider joint) of stiffness k_e. The double pendulum has both."""
     parts = isolator_parts(system)
     slide = named["base_slide"]
     slide.set("stiffness", repr(parts.stiffness))
     slide.set("damping", repr(parts.damping))
-    friction = dict(frictionloss=repr(parts.slip_force),
-                    solreffriction=_fmt(FRICTION_TIMECONST_STEPS * settings.timestep, 1.0),
+
+    def friction(force):
+        return dict(frictionloss=repr(force), solreffriction=_fmt(FRICTION_TIMECONST_STEPS * settings.timestep, 1.0),
                     solimpfriction=_fmt(*FRICTION_SOLIMP))
-    if parts.element_stiffness == float("inf"):  # the pendulum: the base itself sticks
-        for key, value in friction.items():
+    if parts.base_friction > 0.0:  # a pendulum's rigid slider: the base itself sticks
+        for key, value in friction(parts.base_friction).items():
             slide.set(key, value)
+    if not parts.has_element:
         return
     k_e = parts.element_stiffness
     omega = 2 * math.pi / (SLIDER_PERIOD_STEPS * settings.timestep)
     mass = k_e / omega**2
     world = root.find("worldbody")
     slider = ET.SubElement(world, "body", name="isolator_slider", pos=_fmt(0, 0, -2 * BASE_HALF_THICKNESS))
-    ET.SubElement(slider, "joint", name="slider_slide", type="slide", axis="1 0 0", **friction)
+    ET.SubElement(slider, "joint", name="slider_slide", type="slide", axis="1 0 0", **friction(parts.slip_force))
     ET.SubElement(slider, "inertial", pos="0 0 0", mass=repr(mass), diaginertia=_fmt(mass, mass, mass))
     tendon = root.find("tendon")
     if tendon is None:

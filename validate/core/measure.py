@@ -83,9 +83,12 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
                    f"analytic model assumes no sliding (friction above b/h = {1 / system.slenderness:.3g} is needed)"
                    + (f"; it also {message}" if overturned else ""))
     # a non-linear isolator's map to θ = 0 holds its element's phase, read from the row (the
-    # bearing's from its slider, extras["isolator_slider"]: without it, no β)
+    # bearing's from its slider, extras["isolator_slider"]: without it, no β); a kind whose
+    # phase the rows do not tell (analytic.isolator_map.MAPPED) gets no β
     slider = raw.extras.get("isolator_slider")
-    mapped = effective_beta and (system.isolator_kind != "bilinear" or slider is not None)
+    from isorock.analytic.isolator_map import MAPPED
+    kind = "linear" if system.fixed_base else system.isolator_kind
+    mapped = effective_beta and (kind == "linear" or (kind in MAPPED and (kind != "bilinear" or slider is not None)))
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
                                 impact_threshold=impact_threshold, window=window, mapped=mapped, slider=slider)
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
