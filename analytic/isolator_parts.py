@@ -13,16 +13,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .errors import InputError
-from .system import BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, DOUBLE_PENDULUM, FRICTION_PENDULUM, LINEAR
+from .system import BALL_IN_BOWL, BILINEAR, DOUBLE_PENDULUM, FRICTION_PENDULUM, LINEAR
 
 #: the isolator kinds a contact engine can build from its own parts (a joint spring, a
 #: dashpot, a dry-friction joint, a fixed tendon or a held force). Not the ball in a cone: its
-#: restoring force M·g·tanφ·sgn(u) is none of these in MuJoCo's C stepping (docs/isolators.md,
-#: "Who carries what")
+#: restoring force M·g·tanφ·sgn(u) is none of these (docs/isolators.md, "Who carries what")
 CONTACT_ISOLATORS = (LINEAR, BILINEAR, FRICTION_PENDULUM, BALL_IN_BOWL, DOUBLE_PENDULUM)
-#: ... and with the cone: an engine that applies the isolator's force itself every control step
-#: (PyBullet) holds the cone's sign force over the step, read at the step's displacement
-HELD_FORCE_ISOLATORS = CONTACT_ISOLATORS + (BALL_IN_CONE,)
 
 
 @dataclass(frozen=True)
@@ -31,7 +27,7 @@ class IsolatorParts:
     parallel with the rest (N/m, N·s/m); base_friction F_b (N): the base's own dry friction,
     a rigid slider that holds the base still within it (0 without one); element_stiffness k_e
     (N/m) and slip_force F_s (N): the Jenkins element's spring and slider (both 0 without
-    one); cone_force F_c (N): the ball in a cone's restoring force F_c·sgn(u) (0 but on a cone)."""
+    one)."""
 
     kind: str
     stiffness: float
@@ -39,7 +35,6 @@ class IsolatorParts:
     base_friction: float
     element_stiffness: float
     slip_force: float
-    cone_force: float
 
     @property
     def has_element(self) -> bool:
@@ -60,9 +55,9 @@ class IsolatorParts:
 
 def isolator_parts(system) -> IsolatorParts:
     """The parts of `system`'s isolator (an isolated base: a fixed base has none)."""
-    from .physics import C_DAMP, I_FCONE, I_FSLIP, I_KEL, I_UY, K, isolator_params, rigid_slider
+    from .physics import C_DAMP, I_FSLIP, I_KEL, I_UY, K, isolator_params, rigid_slider
     kind = system.isolator_kind
-    if kind not in HELD_FORCE_ISOLATORS:
+    if kind not in CONTACT_ISOLATORS:
         raise InputError(f"isolator = {kind}: no contact-engine parts (docs/isolators.md, 'Who carries what')")
     sp, ip = isolator_params(system, 0.0)
     rigid = kind != LINEAR and bool(rigid_slider(ip))
@@ -71,7 +66,7 @@ def isolator_parts(system) -> IsolatorParts:
     k_e = float(ip[I_KEL])
     return IsolatorParts(kind=kind, stiffness=float(sp[K]), damping=float(sp[C_DAMP]),
                          base_friction=float(ip[I_FSLIP]) if rigid else 0.0, element_stiffness=k_e,
-                         slip_force=float(ip[I_KEL] * ip[I_UY]) if k_e > 0.0 else 0.0, cone_force=float(ip[I_FCONE]))
+                         slip_force=float(ip[I_KEL] * ip[I_UY]) if k_e > 0.0 else 0.0)
 
 
 def check_contact_isolator(system, engine: str) -> None:
@@ -87,4 +82,4 @@ def check_contact_isolator(system, engine: str) -> None:
                          "and 'analytic-reference'; docs/isolators.md)")
 
 
-__all__ = ["CONTACT_ISOLATORS", "HELD_FORCE_ISOLATORS", "IsolatorParts", "isolator_parts", "check_contact_isolator"]
+__all__ = ["CONTACT_ISOLATORS", "IsolatorParts", "isolator_parts", "check_contact_isolator"]

@@ -220,9 +220,6 @@ def _element_text(parts, k, c) -> str:
         words.append(f"a Jenkins element, spring k_e = {parts.element_stiffness} N/m in series with a slider of "
                      f"slip force F_s = {parts.slip_force} N, which simulate() applies as a joint force each control "
                      "step (q = k_e (u - u_p), the slider u_p moving to u - sgn(q) F_s/k_e where |q| > F_s)")
-    if parts.cone_force:
-        words.append(f"the cone's force F_c sgn(u), F_c = {parts.cone_force} N, which simulate() applies as a joint "
-                     "force each control step with the sign of the step's displacement")
     return ", and ".join(words) + "."
 
 

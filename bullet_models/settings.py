@@ -125,8 +125,7 @@ class Settings:
             # the explicit step follows the stiffest branch: k + k_e while the element is elastic
             # (the bearing's k0; the double pendulum's regime I, W/R_lo, stiffer than its W/(R1 + R2))
             from isorock.analytic.isolator_parts import isolator_parts
-            stiffness = isolator_parts(system).initial_stiffness  # 0 on a cone: no period to follow
-            period = 2 * math.pi * math.sqrt(system.total_mass / stiffness) if stiffness else math.inf
+            period = 2 * math.pi * math.sqrt(system.total_mass / isolator_parts(system).initial_stiffness)
         require(period >= shortest, "period", round(period, 6),
                 f"at least {shortest:.3g} s for PyBullet with a control step of {self.control_step:g} s "
                 f"(ω·dt ≤ {MAX_ISOLATOR_PHASE:g}: the isolator force is applied explicitly once per control step); "

@@ -22,7 +22,7 @@ import numpy as np
 from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
-from isorock.analytic.isolator_parts import HELD_FORCE_ISOLATORS, check_contact_isolator, isolator_parts
+from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator, isolator_parts
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
@@ -44,7 +44,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: callable(t, duration), called about once a second."""
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  isolators=HELD_FORCE_ISOLATORS)
+                                  isolators=CONTACT_ISOLATORS)
     check_contact_isolator(system, ENGINE)
     settings.check_isolator(system)
     linear = system.fixed_base or system.isolator_kind == "linear"
@@ -185,10 +185,7 @@ class Element:
     element (the bilinear bearing's, the double pendulum's of μ1 ≠ μ2) is a state update at each
     control step, its return map: q = k_e (u − u_p), and where |q| > F_s the slider moves to
     u − sgn(q)·u_y and q = sgn(q)·F_s; the force is held over the control step like the
-    spring's. The double pendulum has both. The ball in a cone has the base's friction (its
-    rolling resistance) and the cone's force F_c·sgn(u), held over the control step with the
-    sign of the step's displacement (at a vertex the base chatters within about g·tanφ·dt²:
-    measured, docs/isolators.md)."""
+    spring's. The double pendulum has both."""
 
     def __init__(self, parts):
         self.parts = parts
@@ -204,10 +201,8 @@ class Element:
                                          force=self.parts.base_friction / substeps)
 
     def force(self, u: float) -> float:
-        """q (N) on the base at displacement u (m): the Jenkins element's, or the cone's; 0
-        without either (the base's friction is the motor's)."""
-        if self.parts.cone_force:  # sgn(0) = 0: a ball resting on the vertex feels no push
-            return math.copysign(self.parts.cone_force, u) if u else 0.0
+        """q (N) on the base at displacement u (m): the Jenkins element's; 0 without one (the
+        base's friction is the motor's)."""
         if not self.parts.has_element:
             return 0.0
         k_e, f_s = self.parts.element_stiffness, self.parts.slip_force

@@ -28,7 +28,7 @@ import pytest
 from isorock.analytic.errors import InputError
 from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.motion import GroundMotion, load_motion
-from isorock.analytic.system import BallInBowl, BallInCone, BilinearIsolator, DoubleFrictionPendulum, FrictionPendulum, System
+from isorock.analytic.system import BallInBowl, BilinearIsolator, DoubleFrictionPendulum, FrictionPendulum, System
 from isorock.validate.core.compare import compare
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.tolerances import tolerance
@@ -59,11 +59,7 @@ def double(r1, mu1, r2, mu2):
     return System.with_isolator(**BLOCK, isolator=DoubleFrictionPendulum(r1, mu1, r2, mu2))
 
 
-def cone(slope, mu):
-    return System.with_isolator(**BLOCK, isolator=BallInCone(slope=slope, rolling_resistance=mu))
-
-
-DEVICES = {"pendulum": pendulum, "bowl": bowl, "bearing": bearing, "double": double, "cone": cone}
+DEVICES = {"pendulum": pendulum, "bowl": bowl, "bearing": bearing, "double": double}
 
 
 @functools.lru_cache(maxsize=None)
@@ -310,70 +306,10 @@ def test_velocity_dependent_friction_and_drake_refuse_with_one_line(engine):
             get_engine(engine).simulate(bearing(3e5, 0.5, 0.005), None, duration=1.0)
 
 
-def measure_cone_free(engine) -> dict:
-    """After a one-cycle sine (0.15 g, 0.5 Hz; the block stays down) the ball (tanφ 0.1, μ_r 0.02)
-    rolls free through its vertex: each turn's amplitude ρ = (tanφ − μ_r)/(tanφ + μ_r) of the last,
-    each return from a turn A to the vertex √(2A/(g(tanφ − μ_r))) long and each climb from the vertex
-    to A √(2A/(g(tanφ + μ_r))) (docs/isolators.md, "Rolling balls"): the first 7 turns (A 0.24 m
-    down to 14 mm), turns where u̇ and crossings where u change sign between rows."""
-    tp, mu = 0.1, 0.02
-    motion = load_motion("sine:amp=0.15,freq=0.5,cycles=1")
-    tr = get_engine(engine).simulate(cone(tp, mu), motion, duration=8.0)
-    assert tr.uplifts == 0
-    t, u, ud = tr.t, tr.u, tr.u_dot
-    turns, amp = reversals(t, u, ud, motion.end_time)
-    turns, amp = turns[:7], np.abs(amp[:7])
-    i = np.nonzero((t[1:] > motion.end_time) & (np.sign(u[1:]) != np.sign(u[:-1])) & (u[:-1] != 0))[0] + 1
-    crossings = t[i - 1] + (t[i] - t[i - 1]) * u[i - 1] / (u[i - 1] - u[i])
-    rho = (tp - mu) / (tp + mu)
-    legs = []
-    for t_turn, a in zip(turns, amp):
-        back, out = crossings[crossings > t_turn], crossings[crossings < t_turn]
-        legs.append(abs((back[0] - t_turn) / math.sqrt(2 * a / (G * (tp - mu))) - 1))
-        if len(out) and out[-1] > motion.end_time:
-            legs.append(abs((t_turn - out[-1]) / math.sqrt(2 * a / (G * (tp + mu))) - 1))
-    assert len(amp) == 7 and len(legs) >= 12
-    return {"isolator_cone_ratio_rel_error": float(np.max(np.abs(amp[1:] / amp[:-1] / rho - 1))),
-            "isolator_cone_leg_rel_error": max(legs)}
-
-
-def measure_cone_vertex(engine) -> dict:
-    """At its vertex the cone holds the ball against any load within F_c + μ_r·W (the analytic
-    model's ball never leaves it then: u ≡ 0). A two-cycle sine of 0.1 g, above μ_r (0.02: the
-    rolling resistance alone gives way) and below tanφ + μ_r (0.12): an engine whose cone force
-    is held per step with the sign of u chatters about the vertex; how far it strays is this."""
-    tr = get_engine(engine).simulate(cone(0.1, 0.02), load_motion("sine:amp=0.1,freq=1,cycles=2"), duration=3.0)
-    assert tr.uplifts == 0
-    return {"isolator_vertex_chatter": float(np.max(np.abs(tr.u)))}
-
-
-@pytest.mark.parametrize("measure", [measure_cone_free, measure_cone_vertex])
-def test_cone_in_bullet_against_its_closed_forms(measure):
-    for metric, value in measure("bullet").items():
-        assert value <= limit("bullet", metric), metric
-
-
-def test_cone_rocking_in_bullet_agrees_with_the_analytic_model():
-    """A ball in a cone (tanφ 0.3, μ_r 0.1) under a pulse that rocks the block (4 impacts): its u
-    history's limit is the cone's own (the chatter at the vertex while the block rocks on it)."""
-    got = measure_rocking("bullet", "cone", (0.3, 0.1), "sine:amp=0.5,freq=1.5,cycles=1")
-    got["isolator_cone_u_history"] = got.pop("isolator_u_history")
-    for metric, value in got.items():
-        assert value <= limit("bullet", metric), metric
-
-
-def test_mujoco_refuses_the_cone_with_one_line():
-    """MuJoCo steps its scene in C: no part of it is a force of constant size that changes sign
-    at u = 0 (docs/isolators.md, "Who carries what")."""
-    with pytest.raises(InputError, match="isolator = ball-in-cone") as e:
-        get_engine("mujoco").simulate(cone(0.1, 0.02), load_motion("sine:amp=0.1,freq=1,cycles=1"), duration=1.0)
-    assert "\n" not in str(e.value)
-
-
 def test_the_engines_declare_the_devices():
-    both = {"linear", "bilinear", "friction-pendulum", "ball-in-bowl", "double-friction-pendulum"}
-    assert set(get_engine("mujoco").capabilities.isolators) == both
-    assert set(get_engine("bullet").capabilities.isolators) == both | {"ball-in-cone"}
+    for engine in ENGINES:
+        assert set(get_engine(engine).capabilities.isolators) == {
+            "linear", "bilinear", "friction-pendulum", "ball-in-bowl", "double-friction-pendulum"}
     assert get_engine("drake").capabilities.isolators == ("linear",)
 
 

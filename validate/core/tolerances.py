@@ -23,10 +23,6 @@ Metrics (units):
     isolator_u_history             max |Δu| / u_max against the analytic model on a pulse that rocks the block
     isolator_transition_rel_error  a contact engine's double pendulum: |travel from a reversal to regime II /
                                    2(μ_hi − μ_lo)·R_lo − 1| in a free swing
-    isolator_cone_ratio_rel_error  a contact engine's ball in a cone, free: |A' / A / ((tanφ − μ_r)/(tanφ + μ_r)) − 1|
-    isolator_cone_leg_rel_error    the same: |leg time / √(2A/(g(tanφ ∓ μ_r))) − 1|, turn to vertex and back
-    isolator_vertex_chatter        max |u| (m) of a ball the cone's vertex holds (the model's u ≡ 0)
-    isolator_cone_u_history        isolator_u_history on a ball in a cone (the vertex's chatter under the block)
     isolator_stiffness_rel_error   the same swing: |slope of −M·ü against u / (W/R_lo in regime I, W/(R1 + R2)
                                    in regime II) − 1|
     theta_max_diff                 |Δ θmax/α| of a single history (robust references only)
@@ -251,23 +247,6 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("bullet", "isolator_transition_rel_error"): Tolerance(
         0.04, "the element's return map runs once per control step (1.1 ms): regime II starts up to a step's "
               "travel late or early (~0.3 mm of the 20 mm transition); measured 1.3e-2–1.9e-2"),
-    ("bullet", "isolator_cone_ratio_rel_error"): Tolerance(
-        0.02, "the cone's force held over a control step with the sign of its displacement: the step that "
-              "straddles the vertex pushes the wrong way for part of it, an energy error ~ F_c·v·dt per crossing, "
-              "so the ratio's error grows as 1/√A; measured ≤ 3.8e-3 over 7 turns (A 0.24 m to 21 mm; 8.0e-3 at the "
-              "8th, 14 mm)"),
-    ("bullet", "isolator_cone_leg_rel_error"): Tolerance(
-        3e-3, "leg times, turn to vertex and back, read between rows of 1.1 ms; measured 9.1e-4 (1.4e-3 "
-              "on the 8th turn's legs, 0.4 s)"),
-    ("bullet", "isolator_vertex_chatter"): Tolerance(
-        5e-5, "the vertex is no constraint in Bullet: the sign force, held a control step, flips each step about "
-              "u = 0 and the base strays by steps of ~g(tanφ + a)dt²/2; measured 1.4e-5 m under 0.1 g"),
-    ("bullet", "isolator_cone_u_history"): Tolerance(
-        0.04, "as isolator_u_history, on a cone: the ball returns to its vertex and chatters there (≤ 14 µm) "
-              "under the rocking block, whose impacts kick it off again at slightly other times; measured "
-              "0.020 of a 16 mm u_max (tanφ 0.3, μ_r 0.1). Where the ball sits at the vertex through most of "
-              "the rocking (tanφ 0.4, μ_r 0.05, u_max 3 mm) it was 0.42: not a case this engine is judged on "
-              "(docs/isolators.md)"),
     ("bullet", "isolator_stiffness_rel_error"): Tolerance(
         5e-3, "as for MuJoCo: a slope of −M·ü against u; the spring and element forces held over a control "
               "step; measured 1.4e-3 (regime I), 2.4e-5 (II)"),
