@@ -77,70 +77,74 @@ class Statue:
 # --- isolator families: two axes, and the System at each cell ----------------------------
 
 @dataclass(frozen=True)
-class LinearFamily:
-    """The seed paper's isolator: period T (s) × damping ratio ξ."""
+class Family:
+    """A family of isolators on two axes (x_values × y_values); a kind names its axes and
+    builds its isolator at each cell (`isolator`), or its System (`system`)."""
 
     x_values: tuple[float, ...]
     y_values: tuple[float, ...]
+
+    def isolator(self, x: float, y: float):
+        raise NotImplementedError
+
+    def system(self, statue: Statue, x: float, y: float) -> System:
+        return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
+                                    base_mass=statue.base_mass, isolator=self.isolator(x, y))
+
+
+@dataclass(frozen=True)
+class LinearFamily(Family):
+    """The seed paper's isolator: period T (s) × damping ratio ξ."""
+
     kind = LINEAR
     x_name, y_name = "period", "damping_ratio"
     x_label, y_label = "isolation period T (s)", "damping ratio ξ"
     x_unit, y_unit = "s", ""
 
     def system(self, statue: Statue, x: float, y: float) -> System:
+        # given by period and damping ratio, which the System derives k and c from
         return System.isolated(height=statue.height, width=statue.width, mass=statue.mass,
                                base_mass=statue.base_mass, period=x, damping_ratio=y)
 
 
 @dataclass(frozen=True)
-class FrictionPendulumFamily:
-    """The friction pendulum: radius of curvature R_fp (m) × friction coefficient μ_f. Runs
-    once the compiled kernel carries it (its Capabilities.isolators name it)."""
+class FrictionPendulumFamily(Family):
+    """The friction pendulum: radius of curvature R_fp (m) × friction coefficient μ_f."""
 
-    x_values: tuple[float, ...]
-    y_values: tuple[float, ...]
     kind = FRICTION_PENDULUM
     x_name, y_name = "radius", "friction_coefficient"
     x_label, y_label = "radius of curvature R_fp (m)", "friction coefficient μ_f"
     x_unit, y_unit = "m", ""
 
-    def system(self, statue: Statue, x: float, y: float) -> System:
-        return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
-                                    base_mass=statue.base_mass,
-                                    isolator=FrictionPendulum(radius=x, friction_coefficient=y))
+    def isolator(self, x: float, y: float):
+        return FrictionPendulum(radius=x, friction_coefficient=y)
 
 
 @dataclass(frozen=True)
-class BallInConeFamily:
+class BallInConeFamily(Family):
     """Rolling balls in cones: slope tanφ × rolling resistance μ_r (docs/isolators.md). A block
     with tanφ + μ_r < tanα cannot lift on it, whatever the hazard."""
 
-    x_values: tuple[float, ...]
-    y_values: tuple[float, ...]
     kind = BALL_IN_CONE
     x_name, y_name = "slope", "rolling_resistance"
     x_label, y_label = "cone slope tanφ", "rolling resistance μ_r"
     x_unit, y_unit = "", ""
 
-    def system(self, statue: Statue, x: float, y: float) -> System:
-        return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
-                                    base_mass=statue.base_mass, isolator=BallInCone(slope=x, rolling_resistance=y))
+    def isolator(self, x: float, y: float):
+        return BallInCone(slope=x, rolling_resistance=y)
 
 
 @dataclass(frozen=True)
-class BallInBowlFamily:
+class BallInBowlFamily(Family):
     """Rolling balls in spherical bowls: effective radius R_eff (m) × rolling resistance μ_r."""
 
-    x_values: tuple[float, ...]
-    y_values: tuple[float, ...]
     kind = BALL_IN_BOWL
     x_name, y_name = "radius", "rolling_resistance"
     x_label, y_label = "bowl radius R_eff (m)", "rolling resistance μ_r"
     x_unit, y_unit = "m", ""
 
-    def system(self, statue: Statue, x: float, y: float) -> System:
-        return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
-                                    base_mass=statue.base_mass, isolator=BallInBowl(radius=x, rolling_resistance=y))
+    def isolator(self, x: float, y: float):
+        return BallInBowl(radius=x, rolling_resistance=y)
 
 
 #: isolator kind → its family (what `--isolator` names)
