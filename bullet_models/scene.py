@@ -59,7 +59,7 @@ with _c_output_silenced(fds=(1, 2)):
 
 from isorock.analytic import kinematics
 from isorock.analytic.isolator_parts import isolator_parts
-from isorock.analytic.system import System
+from isorock.analytic.system import LINEAR, System
 
 from .settings import Settings
 
@@ -233,7 +233,7 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     surface = _SURFACE.format(mu=settings.friction)
     plate = _PLATE.format(z=-0.5 * PLATE_THICKNESS, mass=plate_mass, inertia=_NO_INERTIA, w=w, t=PLATE_THICKNESS,
                           surface=surface)
-    linear = system.fixed_base or system.isolator_kind == "linear"
+    linear = system.isolator_kind == LINEAR  # a fixed base too
     parts = None if linear else isolator_parts(system)
     k, c = (system.stiffness, system.damping) if linear else (parts.stiffness, parts.damping)
     base_links = plate if system.fixed_base else _ANCHOR.format(inertia=_NO_INERTIA, plate=plate, c=c, k=k)

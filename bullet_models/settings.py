@@ -14,6 +14,7 @@ import numpy as np
 
 from isorock.analytic.engine_protocol import contact_scale
 from isorock.analytic.errors import require, require_nonnegative_finite, require_positive_finite
+from isorock.analytic.system import LINEAR
 
 #: s; the control step (ground motion, isolator force, output) a timestep given alone keeps:
 #: the physics step is what sets the accuracy, and sub-steps in C are cheaper than Python steps.
@@ -121,7 +122,7 @@ class Settings:
                 "block loses the rocking in Bullet's contact solver; measured, docs/bullet.md)")
         shortest = 2 * math.pi * self.control_step / MAX_ISOLATOR_PHASE
         period = system.period
-        if system.isolator_kind != "linear":
+        if system.isolator_kind != LINEAR:
             # the explicit step follows the stiffest branch: k + k_e while the element is elastic
             # (the bearing's k0; the double pendulum's regime I, W/R_lo, stiffer than its W/(R1 + R2))
             from isorock.analytic.isolator_parts import isolator_parts

@@ -24,7 +24,7 @@ from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator, isolator_parts
 from isorock.analytic.status import Status
-from isorock.analytic.system import System
+from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
 from .scene import build, connect, p, run_client
@@ -47,7 +47,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                                   isolators=CONTACT_ISOLATORS)
     check_contact_isolator(system, ENGINE)
     settings.check_isolator(system)
-    linear = system.fixed_base or system.isolator_kind == "linear"
+    linear = system.isolator_kind == LINEAR  # a fixed base too
 
     dt = settings.control_step
     n_steps = int(math.floor(duration / dt + 1e-9))

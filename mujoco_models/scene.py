@@ -16,7 +16,7 @@ import mujoco
 
 from isorock.analytic.errors import require
 from isorock.analytic.isolator_parts import isolator_parts
-from isorock.analytic.system import System
+from isorock.analytic.system import LINEAR, System
 
 from .settings import Settings
 
@@ -66,7 +66,7 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     slide = named["base_slide"]
     if system.fixed_base:
         named["base"].remove(slide)  # a body without joints is welded to the ground
-    elif system.isolator_kind == "linear":
+    elif system.isolator_kind == LINEAR:
         slide.set("stiffness", repr(system.stiffness))
         slide.set("damping", repr(system.damping))
     else:
@@ -98,7 +98,7 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
         "m_b = {base_mass:g} kg, {base}; to reproduce a run, tilt the block by θ0 about its corner "
         "and apply −m ẍg(t) to block_x and −m_b ẍg(t) to base_slide (qfrc_applied) ".format(
             base="fixed base" if system.fixed_base else
-            f"k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N·s/m" if system.isolator_kind == "linear" else
+            f"k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N·s/m" if system.isolator_kind == LINEAR else
             _isolator_words(system), **sd)))
     ET.indent(root, space="  ")
     return ET.tostring(root, encoding="unicode") + "\n"

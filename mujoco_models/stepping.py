@@ -30,13 +30,12 @@ from mujoco import rollout
 
 from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
-
 from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.errors import require
 from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator
 from isorock.analytic.limits import RunBudget
 from isorock.analytic.status import Status
-from isorock.analytic.system import System
+from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
 from .scene import build_model
@@ -100,7 +99,7 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     raw = raw_history(lay, system, states, dt, runtime, status, message, stop_reason, t=states[:, 0])
     # the numbers this run used (Settings.for_system may have made them finer than asked)
     raw.extras.update(timestep=float(dt), solref_0=float(settings.solref[0]), solref_1=float(settings.solref[1]))
-    if system.isolator_kind != "linear":  # how a non-linear isolator's run was stepped (_inputs)
+    if system.isolator_kind != LINEAR:  # how a non-linear isolator's run was stepped (_inputs)
         raw.extras.update(stepping="throughout at the timestep (no rest phase, no coarse steps: non-linear isolator)")
         if lay.slider_q is not None:  # the bearing's slider position u_p per row, as the analytic run's
             raw.extras.update(isolator_slider=states[:, 1 + lay.slider_q].copy())
@@ -140,7 +139,7 @@ def _inputs(given: Settings, system: System, motion, duration, theta0):
                                   settings=given.for_system(system), isolators=CONTACT_ISOLATORS)
     check_contact_isolator(system, "mujoco")
     derived = given.for_system(system, duration)
-    if system.isolator_kind != "linear":
+    if system.isolator_kind != LINEAR:
         require(derived.impact_timestep is None, "impact_timestep", derived.impact_timestep,
                 "None with a non-linear isolator (its dry friction's time constant follows the one timestep)")
         if derived.phased:

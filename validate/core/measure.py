@@ -23,7 +23,7 @@ from isorock.analytic.kinematics import LYING, LYING_SLACK
 from isorock.analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.status import Status
-from isorock.analytic.system import System
+from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, RawHistory, Trajectory, half_cycles
 
 #: How far (s) before and after a sign change the states are taken: well outside the
@@ -87,8 +87,8 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
     # phase the rows do not tell (analytic.isolator_map.MAPPED) gets no β
     slider = raw.extras.get("isolator_slider")
     from isorock.analytic.isolator_map import MAPPED
-    kind = "linear" if system.fixed_base else system.isolator_kind
-    mapped = effective_beta and (kind == "linear" or (kind in MAPPED and (kind != "bilinear" or slider is not None)))
+    kind = system.isolator_kind  # LINEAR on a fixed base too
+    mapped = effective_beta and (kind == LINEAR or (kind in MAPPED and (kind != "bilinear" or slider is not None)))
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
                                 impact_threshold=impact_threshold, window=window, mapped=mapped, slider=slider)
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
@@ -162,7 +162,7 @@ def _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_at, *, backward, wi
     # the rigid image lands close to the contact engine's crossing, `window` away: a few
     # windows bound the search (an image that does not land there is not this impact)
     state, horizon = (u[k], u_dot[k], theta[k], theta_dot[k]), 5 * window + 0.05
-    if system.fixed_base or system.isolator_kind == "linear":
+    if system.isolator_kind == LINEAR:  # a fixed base too
         r = map_to_impact(system, motion, float(t[k]), state, backward=backward, horizon=horizon)
     else:
         from isorock.analytic import isolator_map
