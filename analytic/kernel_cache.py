@@ -20,6 +20,7 @@ stamps a cache with the source file of the jitted function only. Here:
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import pickle
 import sys
@@ -360,6 +361,18 @@ def _build_module(dispatcher, name: str) -> str:
 _BUILD_LOCK = threading.Lock()
 
 
+def prepare(dispatcher) -> bool:
+    """Load, or build and load, dispatcher's ahead-of-time module without running it (a
+    process that readies the cache for others, e.g. the test session's background build);
+    True where that module serves, False where the JIT kernel will."""
+    return _aot_function(dispatcher) is not None
+
+
+def is_built(dispatcher) -> bool:
+    """Whether dispatcher's ahead-of-time module is in a cache folder already."""
+    return _find_module(_module_name(dispatcher)) is not None
+
+
 def _aot_function(dispatcher):
     """The extension module's function for dispatcher, built first if needed; None where
     the JIT kernel is to be used instead (said once)."""
@@ -376,36 +389,71 @@ def _aot_function_locked(dispatcher):
     if os.environ.get("ISOROCK_KERNEL", "aot") != "jit":
         try:
             name = _module_name(dispatcher)
-            damaged = []
-            for path in _find_modules(name):  # a damaged copy must not hide a good one further on
-                try:
-                    fn = _load_module(name, path).run
-                    break
-                except (ImportError, OSError):
-                    damaged.append(path)
-                    try:
-                        os.remove(path)
-                    except OSError:
-                        pass  # an unwritable folder: the next copy, or a build elsewhere, serves
-            why = (f"the compiled kernel {damaged[0]}{f' (and {len(damaged) - 1} more)' if len(damaged) > 1 else ''}"
-                   " does not load" if damaged else "")
-            if damaged and fn is not None:  # one line: a good copy further on serves
-                _say(f"{why}; using another cached copy")
+            fn, why = _load_cached(name)
             if fn is None:
                 _pycc()  # a numba without numba.pycc: said (below) before any build is announced
-            if fn is None:  # the reason and the build in one line (and its end in another)
-                _say(f"{why + '; ' if why else ''}compiling the analytic kernel {dispatcher.__name__} ahead of "
-                     f"time ({'again' if why else 'first use'}, cached in {writable_cache_dir() or '?'}; "
-                     "about 1-2 minutes)...")
-                start = time.perf_counter()
-                fn = _load_module(name, _build_module(dispatcher, name)).run
-                _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")
+                with _build_lock(writable_cache_dir(), name):
+                    fn, again = _load_cached(name)  # built by another process while this one waited
+                    why = why or again
+                    if fn is None:  # the reason and the build in one line (and its end in another)
+                        _say(f"{why + '; ' if why else ''}compiling the analytic kernel {dispatcher.__name__} "
+                             f"ahead of time ({'again' if why else 'first use'}, cached in "
+                             f"{writable_cache_dir() or '?'}; about 1-2 minutes)...")
+                        start = time.perf_counter()
+                        fn = _load_module(name, _build_module(dispatcher, name)).run
+                        _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")
         except Exception as e:  # noqa: BLE001 - any failure to build leaves the JIT kernel, which always works
             _say(f"cannot compile the analytic kernel ahead of time ({type(e).__name__}: {e}); "
                  "using numba's JIT kernel (its disk cache costs each new process ~0.2-0.4 s more)")
             fn = None
     _aot_loaded[dispatcher] = fn
     return fn
+
+
+def _load_cached(name: str):
+    """(the cached module's function or None, why a copy did not load or ""): damaged
+    copies are removed, and a good copy further on still serves (said in one line)."""
+    fn, damaged = None, []
+    for path in _find_modules(name):  # a damaged copy must not hide a good one further on
+        try:
+            fn = _load_module(name, path).run
+            break
+        except (ImportError, OSError):
+            damaged.append(path)
+            try:
+                os.remove(path)
+            except OSError:
+                pass  # an unwritable folder: the next copy, or a build elsewhere, serves
+    why = (f"the compiled kernel {damaged[0]}{f' (and {len(damaged) - 1} more)' if len(damaged) > 1 else ''}"
+           " does not load" if damaged else "")
+    if damaged and fn is not None:
+        _say(f"{why}; using another cached copy")
+    return fn, why
+
+
+@contextlib.contextmanager
+def _build_lock(folder: str | None, name: str):
+    """One build of `name` at a time over every process sharing `folder` (the worker
+    processes of a campaign on a fresh install would otherwise each spend the same
+    minutes): an advisory lock on a file beside the modules, released by the system if
+    its holder dies. Where there is none (no fcntl, an unwritable folder) builds may run
+    side by side, each leaving a whole file (_build_module)."""
+    try:
+        import fcntl
+        handle = open(os.path.join(folder, f".{name}.lock"), "a")  # noqa: SIM115 - held across the yield
+    except (ImportError, OSError, TypeError):
+        yield
+        return
+    with handle:
+        try:
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            _say(f"waiting for another process building the analytic kernel {name}...")
+            fcntl.flock(handle, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(handle, fcntl.LOCK_UN)
 
 
 def _c_writable(a):

@@ -61,14 +61,39 @@ def char_device(tmp_path):
     return make
 
 
+#: a session of at least this many tests starts the isolator kernel's build in a second
+#: process at its start (its own run would wait for it there, a minute or two on a fresh
+#: checkout, with the machine's second core idle)
+BACKGROUND_BUILD_FROM = 200
+
+
+def _build_in_background(session):
+    """A process building the non-linear isolators' kernel (`fast._integrate_iso`) while
+    this one builds the linear one and runs the tests before any needs it; a test that
+    needs it first waits for that build (kernel_cache's build lock) instead of starting
+    its own. None where it is built already, the session is short, or the JIT is asked for."""
+    import os
+    import subprocess
+    import sys
+    if len(session.items) < BACKGROUND_BUILD_FROM or os.environ.get("ISOROCK_KERNEL") == "jit":
+        return None
+    from isorock.analytic import fast, kernel_cache
+    if kernel_cache.is_built(fast._integrate_iso):
+        return None
+    code = "from isorock.analytic import fast, kernel_cache\nkernel_cache.prepare(fast._integrate_iso)\n"
+    return subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
 @pytest.fixture(scope="session", autouse=True)
-def compiled_analytic_kernel():
+def compiled_analytic_kernel(request):
     """Load (on a new machine: compile, ~1–2 min) the analytic kernel once, before any test
     reads what a command printed: its one-time 'compiling …' lines on stderr belong to no
-    test's output."""
+    test's output. The isolator kernel is built beside it in a second process."""
+    builder = None
     try:
         import numpy as np
 
+        builder = _build_in_background(request.session)
         from isorock.analytic.motion import GroundMotion, load_motion
         from isorock.analytic.system import paper_system
         from isorock.validate.core.engines import get_engine
@@ -80,3 +105,7 @@ def compiled_analytic_kernel():
                 get_engine("analytic").simulate(system, motion, duration=0.5, theta0=0.3 * system.alpha)
     except ImportError:  # numba missing: the tests that need the kernel say so themselves
         pass
+    yield
+    if builder is not None and builder.poll() is None:  # a session that never needed it
+        builder.kill()  # its half build's folder goes with the next build (clear_leftovers)
+        builder.wait()

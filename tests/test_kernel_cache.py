@@ -169,7 +169,9 @@ def test_a_failed_ahead_of_time_build_falls_back_to_the_jit_kernel(tmp_path, aot
     err = capsys.readouterr().err
     assert "cannot compile the analytic kernel ahead of time (OSError: no C compiler)" in err
     assert "JIT" in err and "Traceback" not in err
-    assert not list(aot_cache.iterdir())  # nothing half-built left behind
+    # nothing half-built left behind (the empty lock file of the build stays: removing it
+    # while another process opens it would let a third build beside that one)
+    assert [p.name for p in aot_cache.iterdir()] == [f".{kernel_cache._module_name(halve)}.lock"]
 
 
 def test_a_numba_without_pycc_falls_back_to_the_jit_kernel(tmp_path, aot_cache, monkeypatch, capsys):
@@ -255,3 +257,44 @@ def test_a_build_leaves_no_temporary_files_outside_its_own_folder(tmp_path, aot_
     assert kernel_cache.call_kernel(halve, 3.0, np.zeros(2)) == 1.5 + 2  # the JIT kernel
     assert "linker was killed" in capsys.readouterr().err
     assert list(system_tmp.iterdir()) == [] and not list(aot_cache.glob(".build-*"))
+
+
+def test_two_processes_that_need_the_same_kernel_build_it_once(tmp_path, aot_cache):
+    """A campaign's worker processes (and the test session's background build) all ask for
+    the kernel on a fresh install: one builds it, the others wait for it and load what it
+    built, instead of each spending the same minutes. The builder is held midway by its
+    stdin, so the order is fixed without any clock."""
+    import subprocess
+    load_tiny(tmp_path, "tiny_aot_once", TINY_AOT)
+    env = {k: v for k, v in os.environ.items() if k != "ISOROCK_KERNEL"}
+    setup = (
+        "import importlib.util, sys\nimport numpy as np\nfrom numba import types as nt\n"
+        "from isorock.analytic import kernel_cache as kc\n"
+        f"kc.cache_dirs = lambda: [{str(aot_cache)!r}]\n"
+        f"spec = importlib.util.spec_from_file_location('tiny_aot_once', {str(tmp_path / 'tiny_aot_once.py')!r})\n"
+        "m = importlib.util.module_from_spec(spec); spec.loader.exec_module(m)\n"
+        "f = kc.ahead_of_time(nt.float64(nt.float64, nt.float64[::1]))(m.halve)\n")
+    held = (setup + "build = kc._build_module\n"
+            "def held(*a):\n    print('building', flush=True)\n    sys.stdin.readline()\n    return build(*a)\n"
+            "kc._build_module = held\nprint(kc.call_kernel(f, 3.0, np.zeros(3)), flush=True)\n")
+    first = subprocess.Popen([sys.executable, "-c", held], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                             stderr=subprocess.PIPE, text=True, env=env)
+    second = None
+    try:
+        assert first.stdout.readline().strip() == "building"  # it holds the build
+        second = subprocess.Popen([sys.executable, "-c", setup + "print(kc.call_kernel(f, 1.0, np.zeros(3)))\n"],
+                                  stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+        waiting = second.stderr.readline()
+        assert "waiting for another process" in waiting, waiting
+        first.stdin.write("\n")
+        first.stdin.flush()
+        out1, err1 = first.communicate(timeout=300)
+        out2, err2 = second.communicate(timeout=300)
+    finally:
+        for p in (first, second):
+            if p is not None and p.poll() is None:
+                p.kill()
+    assert first.returncode == 0 and out1.strip() == "4.5", err1
+    assert second.returncode == 0 and out2.strip() == "3.5", err2
+    assert "compiled" in err1 and "compil" not in err2, (err1, err2)  # built once, loaded once
+    assert len(list(aot_cache.glob("isorock_halve_*"))) == 1
