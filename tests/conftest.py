@@ -67,6 +67,12 @@ def char_device(tmp_path):
 BACKGROUND_BUILD_FROM = 200
 
 
+def pytest_collection_modifyitems(items):
+    """Tests marked isolator_kernel run last (their order otherwise kept): on a fresh
+    checkout they would wait for the kernel's background build with this process idle."""
+    items.sort(key=lambda item: item.get_closest_marker("isolator_kernel") is not None)
+
+
 def _build_in_background(session):
     """A process building the non-linear isolators' kernel (`fast._integrate_iso`) while
     this one builds the linear one and runs the tests before any needs it; a test that

@@ -27,6 +27,8 @@ from isorock.analytic.hybrid import simulate
 from isorock.analytic.system import STANDARD_GRAVITY, BilinearIsolator, System
 from isorock.validate.core.tolerances import tolerance
 
+pytestmark = pytest.mark.isolator_kernel
+
 try:
     from isorock.analytic.fast import simulate_fast
 except ImportError:  # numba missing: the reference path alone
