@@ -17,6 +17,8 @@ from isorock.analytic.system import System
 from isorock.campaign.design import SETTLED_AT_REST, Hazard, LinearFamily, Statue, run_design, unit_scaled
 from isorock.validate.cli.main import main
 
+pytestmark = pytest.mark.isolator_kernel  # its isolator families need the isolator kernel (tests/conftest.py)
+
 DT = 0.01
 
 
