@@ -445,15 +445,34 @@ def _build_lock(folder: str | None, name: str):
         yield
         return
     with handle:
-        try:
-            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            _say(f"waiting for another process building the analytic kernel {name}...")
-            fcntl.flock(handle, fcntl.LOCK_EX)
+        held = _try_lock(fcntl, handle)
+        if not held:
+            _say(f"waiting for another process building the analytic kernel {name} "
+                 f"(at most {BUILD_WAIT_S / 60:g} min)...")
+            deadline = time.monotonic() + BUILD_WAIT_S
+            while not held and time.monotonic() < deadline:
+                time.sleep(0.2)
+                held = _try_lock(fcntl, handle)
+            if not held:  # a build that hangs must not hang this process too
+                _say(f"the other build of {name} did not end within {BUILD_WAIT_S / 60:g} min; building it here")
         try:
             yield
         finally:
-            fcntl.flock(handle, fcntl.LOCK_UN)
+            if held:
+                fcntl.flock(handle, fcntl.LOCK_UN)
+
+
+#: the longest a process waits for another's build of the same kernel (builds take 1–2
+#: min; past this one it builds its own copy, which replaces the file whole)
+BUILD_WAIT_S = 600.0
+
+
+def _try_lock(fcntl, handle) -> bool:
+    try:
+        fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        return True
+    except OSError:
+        return False
 
 
 def _c_writable(a):

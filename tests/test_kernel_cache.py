@@ -298,3 +298,28 @@ def test_two_processes_that_need_the_same_kernel_build_it_once(tmp_path, aot_cac
     assert second.returncode == 0 and out2.strip() == "3.5", err2
     assert "compiled" in err1 and "compil" not in err2, (err1, err2)  # built once, loaded once
     assert len(list(aot_cache.glob("isorock_halve_*"))) == 1
+
+
+def test_a_build_held_past_the_wait_bound_is_built_here_too(tmp_path, aot_cache, monkeypatch, capsys):
+    """Waiting for another process's build is bounded (BUILD_WAIT_S): a build that hangs,
+    here one holding the lock until told, does not hang this process; it says so and
+    builds its own copy."""
+    import subprocess
+
+    import numpy as np
+    halve = tiny_aot(tmp_path, "tiny_aot_bound")
+    name = kernel_cache._module_name(halve)
+    holder = subprocess.Popen(
+        [sys.executable, "-c", "import fcntl, sys\n"
+         f"f = open({str(aot_cache / ('.' + name + '.lock'))!r}, 'a')\nfcntl.flock(f, fcntl.LOCK_EX)\n"
+         "print('held', flush=True)\nsys.stdin.readline()\n"],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "held"
+        monkeypatch.setattr(kernel_cache, "BUILD_WAIT_S", 0.0)
+        assert kernel_cache.call_kernel(halve, 5.0, np.zeros(3)) == 2.5 + 3
+    finally:
+        holder.communicate("\n", timeout=60)
+    err = capsys.readouterr().err
+    assert "waiting for another process" in err and "building it here" in err and "compiled" in err, err
+    assert len(list(aot_cache.glob("isorock_halve_*"))) == 1
