@@ -144,3 +144,29 @@ def test_a_script_without_a_main_guard_is_told_what_to_do_and_code_without_a_fil
     code = SCRIPT.format(spec=str(spec), out=str(tmp_path / "b"))
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
     assert r.returncode == 0 and "rows 18" in r.stdout, r.stderr[-3000:]
+
+
+REPORT_SCRIPT = """
+import isorock
+r = isorock.report(quick=True, engines=["analytic", "mujoco"], motion={motion!r}, pga=0.5)
+print("passed", r.passed)
+"""
+
+
+@pytest.mark.slow
+def test_a_report_from_a_script_without_a_main_guard_is_told_what_to_do(tmp_path):
+    """The README's notebook example run as a script (found running it so): isorock.report
+    starts worker processes for the contact engines by "spawn", which runs the script again
+    in each; without `if __name__ == "__main__":` that was a wall of Python's bootstrapping
+    tracebacks and a BrokenPipeError. Now one line says what to do, as isorock.sweep does;
+    with workers=1 (one process) or from code without a file it runs."""
+    script = tmp_path / "no_guard_report.py"
+    script.write_text(textwrap.dedent(REPORT_SCRIPT.format(motion=SINE)))
+    r = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode != 0
+    assert r.stderr.count("Traceback") == 1, r.stderr[-3000:]
+    last = r.stderr.strip().splitlines()[-1]
+    assert 'if __name__ == "__main__":' in last and "workers=1" in last, last
+    code = REPORT_SCRIPT.format(motion=SINE)
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode == 0 and "passed" in r.stdout, r.stderr[-3000:]

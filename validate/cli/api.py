@@ -179,14 +179,8 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
 
 
 def _check_not_bootstrapping() -> None:
-    """A script that starts a cluster at import time (no `__main__` guard) is run again in
-    each worker process as it starts ("spawn"), which would start a cluster in each, and
-    Python and Dask answer with a wall of tracebacks. Here such a worker stops at once,
-    quietly; the cluster then fails to start, and sweep says what to do in one line. (A
-    notebook's code is not run again in a worker: there is nothing to guard.)"""
-    import multiprocessing
-    import os
-    import sys
-    # a process started by "spawn" runs the parent's script again as the module __mp_main__
-    if multiprocessing.current_process().name != "MainProcess" and "__mp_main__" in sys.modules:
-        os._exit(3)
+    """In a Dask worker that is running a script's unguarded top level again, stop at once
+    and quietly (core.executor.exit_if_bootstrapping, the one rule for every worker); the
+    cluster then fails to start, and sweep says what to do in one line."""
+    from isorock.validate.core.executor import exit_if_bootstrapping
+    exit_if_bootstrapping()

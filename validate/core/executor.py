@@ -27,7 +27,9 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
 import socket
+import sys
 import time
 from dataclasses import dataclass, field
 
@@ -420,6 +422,33 @@ class _Worker:
         self.conn.close()
 
 
+#: The exit code of a worker process that found itself running a script's unguarded
+#: top level (exit_if_bootstrapping).
+BOOTSTRAP_EXIT = 3
+
+
+def exit_if_bootstrapping() -> None:
+    """A script that starts worker processes at its top level, without the `__main__`
+    guard, is run again in each worker as it starts ("spawn"), which would start workers in
+    each, and Python answers with a wall of tracebacks. Such a worker stops here at once,
+    quietly (BOOTSTRAP_EXIT); the process that started it then says what to do in one line
+    (_refuse_if_bootstrapped; isorock.sweep for its Dask workers). A notebook's code, or
+    `python -c`, is not run again in a worker: there is nothing to guard."""
+    import multiprocessing
+    # a process started by "spawn" runs the parent's script again as the module __mp_main__
+    if multiprocessing.current_process().name != "MainProcess" and "__mp_main__" in sys.modules:
+        os._exit(BOOTSTRAP_EXIT)
+
+
+def _refuse_if_bootstrapped(worker: "_Worker") -> None:
+    """Raise the one line of a worker that stopped at exit_if_bootstrapping."""
+    worker.process.join(5.0)
+    if worker.process.exitcode == BOOTSTRAP_EXIT:
+        raise InputError("the worker processes for the contact engines could not start: this script starts "
+                         "them at its top level, and each runs it again; call isorock under "
+                         "`if __name__ == \"__main__\":`, or run in one process (workers=1, --workers 1)") from None
+
+
 #: How often (s) the executor reads its worker processes' CPU clocks under a CPU budget.
 CPU_POLL = 0.25
 CLOCKS = ("wall", "cpu")
@@ -473,6 +502,7 @@ class Executor:
         self.workers: list[_Worker] = []
         if processes:
             import multiprocessing as mp
+            exit_if_bootstrapping()
             context = mp.get_context("spawn")
             ready_kernel()  # built here once, not inside a task's budget in each worker
             self.workers = [_Worker(context) for _ in range(processes)]
@@ -578,7 +608,11 @@ class Executor:
             for w in self.workers:
                 if w not in busy and pending and not state["stopped"]:
                     i = pending.pop()
-                    w.conn.send((fn, tasks[i]))
+                    try:
+                        w.conn.send((fn, tasks[i]))
+                    except OSError:  # it died before reading a task (a broken pipe)
+                        _refuse_if_bootstrapped(w)
+                        raise
                     busy[w] = (i, time.perf_counter(), None, 0.0)  # (task, sent, started, CPU s then)
             if local and not state["stopped"]:
                 self._here(fn, tasks, [local.pop()], arrived, state)
@@ -598,7 +632,7 @@ class Executor:
                     try:
                         kind, value = w.conn.recv()
                     except (EOFError, OSError):
-                        w.process.join(1.0)
+                        _refuse_if_bootstrapped(w)
                         code = w.process.exitcode
                         w.restart()
                         outcome = Outcome("crashed", code, elapsed)
