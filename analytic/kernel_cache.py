@@ -392,13 +392,14 @@ def _aot_function_locked(dispatcher):
             fn, why = _load_cached(name)
             if fn is None:
                 _pycc()  # a numba without numba.pycc: said (below) before any build is announced
-                with _build_lock(writable_cache_dir(), name):
+                folder = writable_cache_dir()
+                with _build_lock(folder, name):
                     fn, again = _load_cached(name)  # built by another process while this one waited
                     why = why or again
                     if fn is None:  # the reason and the build in one line (and its end in another)
                         _say(f"{why + '; ' if why else ''}compiling the analytic kernel {dispatcher.__name__} "
                              f"ahead of time ({'again' if why else 'first use'}, cached in "
-                             f"{writable_cache_dir() or '?'}; about 1-2 minutes)...")
+                             f"{folder or '?'}; about 1-2 minutes)...")
                         start = time.perf_counter()
                         fn = _load_module(name, _build_module(dispatcher, name)).run
                         _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")

@@ -165,7 +165,10 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
         raise InputError(f"workers = {workers!r}: must be 0 (serial) or a positive number of processes")
     if workers > 0 or scheduler:
-        _check_not_bootstrapping()
+        # in a Dask worker rerunning a script's unguarded top level: stop it quietly; the
+        # cluster then fails to start, and the except below says what to do in one line
+        from isorock.validate.core.executor import exit_if_bootstrapping
+        exit_if_bootstrapping()
     try:
         return run_campaign(load_spec(spec), out, workers=workers, scheduler=scheduler, products=products,
                             progress=progress)
@@ -177,10 +180,3 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
                              "script, call it under `if __name__ == \"__main__\":`, or pass workers=0") from None
         raise
 
-
-def _check_not_bootstrapping() -> None:
-    """In a Dask worker that is running a script's unguarded top level again, stop at once
-    and quietly (core.executor.exit_if_bootstrapping, the one rule for every worker); the
-    cluster then fails to start, and sweep says what to do in one line."""
-    from isorock.validate.core.executor import exit_if_bootstrapping
-    exit_if_bootstrapping()

@@ -442,7 +442,7 @@ def exit_if_bootstrapping() -> None:
 
 def _refuse_if_bootstrapped(worker: "_Worker") -> None:
     """Raise the one line of a worker that stopped at exit_if_bootstrapping."""
-    worker.process.join(5.0)
+    worker.process.join(1.0)
     if worker.process.exitcode == BOOTSTRAP_EXIT:
         raise InputError("the worker processes for the contact engines could not start: this script starts "
                          "them at its top level, and each runs it again; call isorock under "
