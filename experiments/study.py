@@ -77,13 +77,17 @@ def run_analytic(spec: specimen.Specimen, accel: dict, dt: dict, directions=("fo
     return out
 
 
+#: the record's two signs in the rock's frame (the data do not state which it is)
+SIGNS = (("+x", 1.0), ("-x", -1.0))
+
+
 def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
     """The asymmetric rigid model (asymmetric.py) with the rock's own two edges, the
     acceleration along +x and along −x of the rest pose."""
     from . import asymmetric
     params = asymmetric.parameters(spec)
     out = {}
-    for name, sign in (("+x", 1.0), ("-x", -1.0)):
+    for name, sign in SIGNS:
         rows = {}
         for test, a in accel.items():
             start = time.perf_counter()
@@ -97,16 +101,18 @@ def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
 HULL_ENGINES = ("mujoco", "bullet", "drake")
 
 
-def run_body(engine: str, spec: specimen.Specimen, accel: dict, dt: dict, progress=None, **contact) -> dict:
+def run_body(engine: str, spec: specimen.Specimen, accel: dict, dt: dict, progress=None, signs=SIGNS,
+             **contact) -> dict:
     """The engine's rigid body (the rock's hull on a free joint, EngineSpec.simulate_body),
-    through the registry, the acceleration along +x and −x of the rest pose; `contact`: the
-    engine's contact keywords (friction, and MuJoCo's dampratio or PyBullet's restitution),
-    absent for its own defaults. The continuous score: the peak tilt over the smaller α."""
+    through the registry, the acceleration along each of `signs` of the rest pose (both,
+    by default); `contact`: the engine's contact keywords (friction, and MuJoCo's dampratio
+    or PyBullet's restitution), absent for its own defaults. The continuous score: the peak
+    tilt over the smaller α."""
     from isorock.validate.core.engines import get_engine
     simulate_body = get_engine(engine).spec.simulate_body
     alpha = min(spec.direction(1)["alpha"], spec.direction(-1)["alpha"])
     out = {}
-    for name, sign in (("+x", 1.0), ("-x", -1.0)):
+    for name, sign in signs:
         rows = {}
         for test, a in accel.items():
             r = simulate_body(spec.vertices, spec.com, spec.inertia, spec.mass, sign * a, dt[test],

@@ -43,14 +43,9 @@ def _run(job):
     for t in sorted(outcomes):
         tm = data.read_test(files[t], t)
         accel[t], dts[t] = study._motion(tm, study.processing.DEFAULT_STEPS, study.processing.LOWPASS_HZ), tm.dt
-    from isorock.validate.core.engines import get_engine
-    simulate_body = get_engine("mujoco").spec.simulate_body
-    alpha = min(sp.direction(1)["alpha"], sp.direction(-1)["alpha"])
-    start, rows = time.perf_counter(), {}
-    for t, a in accel.items():
-        r = simulate_body(sp.vertices, sp.com, sp.inertia, sp.mass, a, dts[t],
-                          duration=(a.size - 1) * dts[t] + study.PAD, friction=friction, dampratio=dampratio)
-        rows[t] = [bool(r["overturned"]), study.OVERTURNED_SCORE if r["overturned"] else r["tilt_max"] / alpha]
+    start = time.perf_counter()
+    runs = study.run_body("mujoco", sp, accel, dts, signs=study.SIGNS[:1], friction=friction, dampratio=dampratio)
+    rows = {t: [overturned, score] for t, (overturned, score, _) in runs["mujoco:+x"].items()}
     tmp = path.with_suffix(".tmp")
     tmp.write_text(json.dumps(dict(rows=rows, wall_s=time.perf_counter() - start)))
     tmp.replace(path)
