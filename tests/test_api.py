@@ -170,3 +170,17 @@ def test_a_report_from_a_script_without_a_main_guard_is_told_what_to_do(tmp_path
     code = REPORT_SCRIPT.format(motion=SINE)
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=300)
     assert r.returncode == 0 and "passed" in r.stdout, r.stderr[-3000:]
+
+
+@pytest.mark.slow
+def test_a_report_from_code_on_standard_input_is_told_what_to_do(tmp_path):
+    """`python - < script.py`: Python cannot run standard input again in a spawned worker
+    (FileNotFoundError: '<stdin>'), so the workers die before their first task, and the
+    report ended in a BrokenPipeError. Any worker that dies before its first task is said
+    in one line, with what to do."""
+    r = subprocess.run([sys.executable, "-"], input=REPORT_SCRIPT.format(motion=SINE), capture_output=True, text=True,
+                       cwd=tmp_path, timeout=300)
+    assert r.returncode != 0
+    last = r.stderr.strip().splitlines()[-1]
+    assert "InputError" in last and "could not start" in last and "workers=1" in last, r.stderr[-3000:]
+    assert "BrokenPipeError" not in r.stderr

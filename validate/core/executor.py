@@ -396,6 +396,8 @@ class _Worker:
         self.process.start()
         child.close()
         self._cpu = None
+        #: whether it has taken a task (a worker that dies before could not start at all)
+        self.started = False
 
     def cpu_seconds(self) -> float:
         """CPU time the worker process has used (user + system), s."""
@@ -432,7 +434,7 @@ def exit_if_bootstrapping() -> None:
     guard, is run again in each worker as it starts ("spawn"), which would start workers in
     each, and Python answers with a wall of tracebacks. Such a worker stops here at once,
     quietly (BOOTSTRAP_EXIT); the process that started it then says what to do in one line
-    (_refuse_if_bootstrapped; isorock.sweep for its Dask workers). A notebook's code, or
+    (_refuse_if_never_started; isorock.sweep for its Dask workers). A notebook's code, or
     `python -c`, is not run again in a worker: there is nothing to guard."""
     import multiprocessing
     # a process started by "spawn" runs the parent's script again as the module __mp_main__
@@ -440,13 +442,22 @@ def exit_if_bootstrapping() -> None:
         os._exit(BOOTSTRAP_EXIT)
 
 
-def _refuse_if_bootstrapped(worker: "_Worker") -> None:
-    """Raise the one line of a worker that stopped at exit_if_bootstrapping."""
+def _refuse_if_never_started(worker: "_Worker") -> None:
+    """Raise one line for a worker that died before it took its first task: it could not
+    start (it stopped at exit_if_bootstrapping, or Python could not run the program again
+    in it, as for code read from standard input), so no run would ever go to it."""
     worker.process.join(1.0)
-    if worker.process.exitcode == BOOTSTRAP_EXIT:
+    if worker.started:
+        return
+    code = worker.process.exitcode
+    if code == BOOTSTRAP_EXIT:
         raise InputError("the worker processes for the contact engines could not start: this script starts "
                          "them at its top level, and each runs it again; call isorock under "
                          "`if __name__ == \"__main__\":`, or run in one process (workers=1, --workers 1)") from None
+    raise InputError(f"the worker processes for the contact engines could not start (exit code {code}: Python "
+                     "could not run this program again in them, as for code read from standard input, or they "
+                     "could not load their task); run it from a file, or in one process (workers=1, --workers 1)"
+                     ) from None
 
 
 #: How often (s) the executor reads its worker processes' CPU clocks under a CPU budget.
@@ -611,7 +622,7 @@ class Executor:
                     try:
                         w.conn.send((fn, tasks[i]))
                     except OSError:  # it died before reading a task (a broken pipe)
-                        _refuse_if_bootstrapped(w)
+                        _refuse_if_never_started(w)
                         raise
                     busy[w] = (i, time.perf_counter(), None, 0.0)  # (task, sent, started, CPU s then)
             if local and not state["stopped"]:
@@ -632,7 +643,7 @@ class Executor:
                     try:
                         kind, value = w.conn.recv()
                     except (EOFError, OSError):
-                        _refuse_if_bootstrapped(w)
+                        _refuse_if_never_started(w)
                         code = w.process.exitcode
                         w.restart()
                         outcome = Outcome("crashed", code, elapsed)
@@ -640,6 +651,7 @@ class Executor:
                         if kind == "input":
                             raise InputError(value)
                         if kind == "started":
+                            w.started = True
                             busy[w] = (i, sent, time.perf_counter(), w.cpu_seconds() if clock == "cpu" else 0.0)
                             continue
                         outcome = Outcome(kind, value, elapsed)
