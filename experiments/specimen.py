@@ -180,8 +180,38 @@ class Specimen:
         return dict(b=float(b), h=h, R=R, alpha=alpha, p=math.sqrt(p2), I_O=I_O, R_eq=R_eq,
                     block_height=2 * R_eq * math.cos(alpha), block_width=2 * R_eq * math.sin(alpha))
 
+    def lift_off(self, sign: int) -> dict:
+        """Where the rock first tips under a table acceleration along x (turning towards +x for
+        sign 1, −x for −1): the resultant of gravity and the inertial force leaves the
+        footprint where the ray from the centre of mass's projection along sign·x crosses the
+        footprint's boundary, b_x from it, so the rock lifts off at |a| = g·b_x/h, turning
+        about the boundary edge it crosses (d: the edge's distance from the projection; cos ψ:
+        its outward normal's cosine with x; α_edge = atan(d/h); p_edge² = m g R / I about the
+        edge, R = √(d² + h²): turning about that edge is planar rocking with these, driven by
+        the acceleration's component a·cos ψ across the edge). For a rectangle b_x = d = the
+        direction's b; for a footprint whose extreme point lies off the x axis through the
+        centre of mass (these rocks stand on triangles) b_x is smaller than b."""
+        pts = self.footprint[:, :2] - self.com[:2]
+        ring = pts[ConvexHull(pts).vertices]  # counter-clockwise
+        h = float(self.com[2])
+        for A, B in zip(ring, np.roll(ring, -1, axis=0)):
+            if (A[1] > 0) == (B[1] > 0):
+                continue
+            x = A[0] + A[1] / (A[1] - B[1]) * (B[0] - A[0])
+            if x * sign > 0:
+                e = (B - A) / np.linalg.norm(B - A)
+                d = abs(A[0] * e[1] - A[1] * e[0])
+                R = math.hypot(d, h)
+                e3 = np.array([e[0], e[1], 0.0])
+                I_edge = float(e3 @ self.inertia @ e3) + self.mass * R * R
+                return dict(b_x=float(abs(x)), accel_g=float(abs(x)) / h, edge_distance=float(d),
+                            cos_psi=float(abs(e[1])), alpha_edge=math.atan2(d, h),
+                            p_edge=math.sqrt(self.mass * STANDARD_GRAVITY * R / I_edge))
+        raise ValueError("the centre of mass does not project inside the footprint")
+
     def describe(self) -> dict:
         fw, bw = self.direction(1), self.direction(-1)
+        fw, bw = dict(fw, lift_off=self.lift_off(1)), dict(bw, lift_off=self.lift_off(-1))
         return dict(specimen=self.number, mass=self.mass, com_height=float(self.com[2]),
                     footprint_x=[float(self.footprint[:, 0].min() - self.com[0]),
                                  float(self.footprint[:, 0].max() - self.com[0])],

@@ -148,7 +148,11 @@ def _prism(lx, lz, w):
 
 
 def _box(a, b, c):
-    v = np.array([[x, y, z] for x in (-a / 2, a / 2) for y in (-b / 2, b / 2) for z in (-c / 2, c / 2)])
+    return _hull(np.array([[x, y, z] for x in (-a / 2, a / 2) for y in (-b / 2, b / 2) for z in (-c / 2, c / 2)]))
+
+
+def _hull(v):
+    """The closed, outward-oriented triangle mesh of a convex point set."""
     from scipy.spatial import ConvexHull
     h = ConvexHull(v)
     f = h.simplices.copy()
@@ -188,6 +192,41 @@ def test_wedge_rocks_forward_and_backward_at_different_alpha():
     assert sp.direction(-1)["alpha"] == pytest.approx(math.atan2(lx / 3, lz / 3), rel=1e-9)
 
 
+#: a vertical prism on a triangle whose centroid is the origin: the ray along +x leaves it
+#: through edge A–C at x = 0.2 (the extreme vertex is at 0.3), along −x through B–C at −1/7
+TRIANGLE = np.array([[0.3, 0.1], [-0.1, 0.3], [-0.2, -0.4]])
+
+
+def test_a_rock_on_a_triangle_lifts_off_where_the_shaking_ray_leaves_it_not_at_its_extreme_vertex():
+    """Closed form: the resultant of gravity and the inertial force m·a leaves the footprint
+    where the ray from the centre of mass's projection along x crosses its boundary."""
+    height = 2.0
+    sp = specimen.resting(*_hull(np.array([[x, y, z] for x, y in TRIANGLE for z in (0.0, height)])), 100.0,
+                          np.eye(3))
+    h = height / 2
+    fw, bw = sp.lift_off(1), sp.lift_off(-1)
+    assert fw["b_x"] == pytest.approx(0.2, rel=1e-9) and bw["b_x"] == pytest.approx(1 / 7, rel=1e-9)
+    assert fw["accel_g"] == pytest.approx(0.2 / h, rel=1e-9)
+    # edge A–C: direction (−0.5, −0.5)/√0.5, its distance from the origin 0.2/√2, normal at 45° to x
+    assert fw["edge_distance"] == pytest.approx(0.2 / math.sqrt(2), rel=1e-9)
+    assert fw["cos_psi"] == pytest.approx(1 / math.sqrt(2), rel=1e-9)
+    assert sp.direction(1)["b"] == pytest.approx(0.3, rel=1e-9)  # the extreme vertex: later than b_x
+
+
+def test_a_hull_on_a_triangle_tips_at_the_ray_s_lift_off_in_mujoco():
+    """Measured by the contact engine: pushed forward (the table accelerating along −x) at 0.9
+    of g·b_x/h it stays; at 1.25 (still below g·b/h of the extreme vertex, 1.5) it falls."""
+    height = 2.0
+    sp = specimen.resting(*_hull(np.array([[x, y, z] for x, y in TRIANGLE for z in (0.0, height)])), 100.0,
+                          np.eye(3))
+    lift = sp.lift_off(1)["accel_g"] * G  # 0.2 g
+    simulate = _simulate_body("mujoco")
+    stay = simulate(sp.vertices, sp.com, sp.inertia, sp.mass, np.full(201, -0.9 * lift), 0.01)
+    fall = simulate(sp.vertices, sp.com, sp.inertia, sp.mass, np.full(201, -1.25 * lift), 0.01)
+    assert not stay["overturned"] and stay["tilt_max"] < 0.02
+    assert fall["overturned"]
+
+
 def test_real_specimens_rest_on_a_face_near_the_data_placement_and_match_its_com(vsr_dir):
     for n in (1, 2):
         sp = specimen.load_specimen(vsr_dir, n)
@@ -223,6 +262,23 @@ def test_cross_validated_prediction_never_sees_its_own_label():
         flipped = y.copy()
         flipped[i] = ~flipped[i]
         assert scores.cross_validated(flipped, score)[0][i] == pred[i]
+
+
+def test_logistic_boundary_in_two_features_is_learned_held_out_without_its_own_label():
+    """Outcomes set by a line in two features (no threshold on either alone separates them):
+    the held-out logistic regression recovers it, and a test's prediction does not change
+    when its own label is flipped (its fold's regression never saw it)."""
+    rng = np.random.default_rng(2)
+    a, b = rng.normal(size=200), rng.normal(size=200)
+    y = a - 0.8 * b > 0.1
+    pred, prob = scores.logistic_cv(y, [a, b])
+    assert (pred == y).mean() >= 0.95 and ((prob > 0.5) == pred).all()
+    best_single = max(((f >= scores.best_threshold(y, f)) == y).mean() for f in (a, -b))
+    assert best_single < 0.85  # the oracle needs both features
+    for i in (3, 77, 150):
+        flipped = y.copy()
+        flipped[i] = ~flipped[i]
+        assert scores.logistic_cv(flipped, [a, b])[1][i] == pytest.approx(prob[i], abs=1e-12)
 
 
 # --- the MuJoCo hull scene ------------------------------------------------------------------
@@ -317,6 +373,55 @@ def test_command_runs_bullet_on_a_real_test_and_refuses_a_bad_restitution(vsr_di
     for r in rows:
         score = float(r["score"])
         assert (score == 100.0) == (r["predicted"] == "1") and score >= 0
+
+
+def test_overturning_scale_of_a_constant_push_is_the_first_scale_past_g_tan_alpha():
+    """Closed form: under a constant table acceleration A a rigid block overturns iff A > g tanα
+    (the tilted gravity then points past its edge; nothing pulls it back). So the first
+    overturning scale of A = k·g tanα is the smallest 2^(j/8) above 1/k, and none when 2k ≤ 1."""
+    from isorock.experiments import study
+    sp = specimen.resting(*_box(0.4, 0.3, 1.2), 500.0, np.eye(3))
+    alpha = sp.direction(1)["alpha"]
+    dt, n = 0.01, 1001
+    ks = {1: 1.1, 2: 0.6, 3: 0.4}
+    accel = {t: np.full(n, k * 9.80665 * math.tan(alpha)) for t, k in ks.items()}
+    grid = study.overturning_scales()
+    assert grid[0] == pytest.approx(0.5) and grid[-1] == pytest.approx(2.0) and (np.diff(grid) > 0).all()
+    runs = study.run_overturning_scale(sp, accel, {t: dt for t in ks})[study.SCALE_SETTING]
+    for t, k in ks.items():
+        over_at_one, score, _ = runs[t]
+        above = grid[grid > 1.0 / k]
+        assert score == (pytest.approx(1.0 / above[0], rel=1e-12) if above.size else 0.0), k
+        assert over_at_one == (k > 1.0)
+
+
+def test_overturning_scale_needs_the_analytic_engine_and_is_scored_by_the_command(vsr_dir, tmp_path, capsys):
+    from isorock.validate.cli.main import main
+    tests = ",".join(str(t) for t in sorted(data.test_files(vsr_dir))[:3])
+    bad = tmp_path / "bad"
+    assert main(["experiments", "--data", str(vsr_dir), "--engines", "asymmetric", "--overturning-scale",
+                 "--tests", tests, "--out", str(bad)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "overturning-scale" in err[0] and "analytic" in err[0] and not bad.exists()
+    out = tmp_path / "o"
+    assert main(["experiments", "--data", str(vsr_dir), "--engines", "analytic", "--overturning-scale",
+                 "--tests", tests, "--out", str(out)]) == 0
+    import csv
+    rows = [r for r in csv.DictReader((out / "runs.csv").open()) if r["engine"] == "analytic:forward, overturning scale"]
+    forward = {(r["specimen"], r["test"]): r for r in csv.DictReader((out / "runs.csv").open())
+               if r["engine"] == "analytic:forward"}
+    assert len(rows) == 2 * 3
+    for r in rows:
+        # its verdict at scale 1 is the forward block's own; its score 1/s of a grid scale, or 0
+        assert r["predicted"] == forward[r["specimen"], r["test"]]["predicted"]
+        score = float(r["score"])
+        assert score == 0 or 0.5 <= score <= 2
+        if r["predicted"] == "1":
+            assert score >= 1
+    period = [r for r in csv.DictReader((out / "scores.csv").open())
+              if r["predictor"] == "analytic:forward, overturning scale × PGV/PGA (logistic)"]
+    assert [(r["specimen"], r["verdict"]) for r in period] == [("1", "held-out"), ("2", "held-out")]
+    assert all(int(r["tp"]) + int(r["fp"]) + int(r["fn"]) + int(r["tn"]) == 3 for r in period)
 
 
 # --- the asymmetric rigid model -----------------------------------------------------------

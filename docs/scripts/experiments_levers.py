@@ -112,22 +112,8 @@ def held_out(y, candidates):
 
 
 def logistic_cv(y, features, k=scores.FOLDS):
-    """Held-out predictions of a logistic regression (features standardized on the training folds)."""
-    from scipy.optimize import minimize
-    X = np.column_stack(features)
-    f = scores.folds(y.size, k)
-    out = np.zeros(y.size, bool)
-    for j in range(k):
-        tr = f != j
-        mu, sd = X[tr].mean(0), X[tr].std(0)
-        Z = np.column_stack((np.ones(y.size), (X - mu) / sd))
-
-        def nll(w):
-            z = Z[tr] @ w
-            return float(np.sum(np.logaddexp(0, z) - y[tr] * z) + 1e-3 * w @ w)
-        w = minimize(nll, np.zeros(Z.shape[1]), method="BFGS").x
-        out[f == j] = Z[f == j] @ w > 0
-    return out
+    """Held-out predictions of a logistic regression (scores.logistic_cv)."""
+    return scores.logistic_cv(y, features, k)[0]
 
 
 def fmt(m):

@@ -36,6 +36,9 @@ def add_parser(sub) -> None:
     p.add_argument("--sensitivity", action="store_true",
                    help="also run the rigid engines (analytic, and asymmetric when it runs) with each processing step "
                         "left out (about 15 s per variant)")
+    p.add_argument("--overturning-scale", action="store_true",
+                   help="also score the analytic forward block by the record scale (0.5 to 2, 17 scales) at which it "
+                        "first overturns: a better ranking than θmax/α (about 1 min of CPU per specimen)")
     p.add_argument("--mujoco-friction", type=float, metavar="MU",
                    help="mujoco: table–rock friction coefficient (default 0.5, the data's own simulation's)")
     p.add_argument("--mujoco-dampratio", type=float, metavar="ZETA",
@@ -77,6 +80,9 @@ def main(a) -> int:
     if not (a.lowpass_hz > 0 and math.isfinite(a.lowpass_hz)):
         raise InputError(f"lowpass-hz = {a.lowpass_hz!r}: must be a positive number of Hz below the Nyquist frequency")
     tests = _tests(a.tests)
+    if a.overturning_scale and "analytic" not in engines:
+        raise InputError(f"overturning-scale: scores the analytic engine's forward block; engines = {a.engines!r} "
+                         "must include analytic")
     contact: dict = {}
     for engine, name, value, allowed in (
             ("mujoco", "friction", a.mujoco_friction, "a positive number"),
@@ -91,7 +97,7 @@ def main(a) -> int:
     with Outputs() as outputs:
         out = outputs.folder("out", a.out)  # refused before the runs, not after
         result = study.build(a.data, engines=engines, steps=steps, lowpass_hz=a.lowpass_hz, tests=tests,
-                             sensitivity=a.sensitivity, contact=contact)
+                             sensitivity=a.sensitivity, contact=contact, overturning_scale=a.overturning_scale)
         from isorock.validate.io.provenance import provenance
         result["provenance"] = provenance()
         out.write(lambda folder: write(result, folder))
