@@ -38,7 +38,8 @@ def add_parser(sub) -> None:
                         "left out (about 15 s per variant)")
     p.add_argument("--overturning-scale", action="store_true",
                    help="also score the analytic forward block by the record scale (0.5 to 2, 17 scales) at which it "
-                        "first overturns: a better ranking than θmax/α (about 1 min of CPU per specimen)")
+                        "first overturns, and its threshold following the record's PGV/PGA: the best predictor here "
+                        "(about 15 s more per specimen on 2 cores)")
     p.add_argument("--mujoco-friction", type=float, metavar="MU",
                    help="mujoco: table–rock friction coefficient (default 0.5, the data's own simulation's)")
     p.add_argument("--mujoco-dampratio", type=float, metavar="ZETA",
