@@ -278,8 +278,8 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
         pga = np.array([outcomes[t].scaled_pga_g for t in testlist])
         held, thr = scores.cross_validated(y, pga)
         rows["pga threshold"] = dict(cv=scores.bootstrap(y, held, pga), thresholds=thr, held=held.tolist())
-        # the control of the row above with PGV/PGA: the same logistic boundary on the record's
-        # intensity alone (log PGA, log PGV/PGA), no model of the rock: what the physics adds
+        # the control of the SCALE_BY_PERIOD row: the same logistic boundary on the record's
+        # intensity alone (log PGA, log PGV/PGA), no model of the rock: what the model adds
         held, prob = scores.logistic_cv(y, [np.log(pga), np.log(period)])
         rows[INTENSITY_ONLY] = dict(cv=scores.bootstrap(y, held, prob), held=held.tolist())
         result["scores"][s] = rows
