@@ -54,31 +54,38 @@ def _motion(tm: data.TableMotion, steps, lowpass_hz):
     return processing.process(tm.acceleration, tm.dt, steps, lowpass_hz=lowpass_hz)
 
 
+def equivalent_block(spec: specimen.Specimen, sign: int):
+    """The exact model's System of the specimen's equivalent block forward (sign 1) or
+    backward (−1) on a fixed base."""
+    from isorock.analytic.system import System
+    d = spec.direction(sign)
+    return System.fixed(height=d["block_height"], width=d["block_width"], mass=spec.mass)
+
+
+def run_block(system, accel: dict, dt: dict) -> dict:
+    """{test: (overturned, θmax/α, wall s)} of the exact rigid model (the registry's analytic
+    engine) of `system` under each record."""
+    from isorock.analytic.motion import GroundMotion
+    from isorock.validate.core.engines import get_engine
+    engine = get_engine("analytic")
+    rows = {}
+    for test, a in accel.items():
+        motion = GroundMotion.from_array(a, dt=dt[test], units="m/s2", name=f"Test{test:03d}")
+        start = time.perf_counter()
+        tr = engine.simulate(system, motion, duration=motion.end_time + PAD)
+        wall = time.perf_counter() - start
+        if tr.status.is_failure:
+            raise RuntimeError(f"analytic run failed on test {test}: {tr.message}")
+        score = OVERTURNED_SCORE if tr.overturned else float(tr.theta_max_over_alpha)
+        rows[test] = (bool(tr.overturned), score, wall)
+    return rows
+
+
 def run_analytic(spec: specimen.Specimen, accel: dict, dt: dict, directions=("forward", "backward")) -> dict:
     """{setting: {test: (overturned, θmax/α, wall s)}} of the rigid model on the specimen's
     forward and backward equivalent blocks (those of `directions`)."""
-    from isorock.analytic.motion import GroundMotion
-    from isorock.analytic.system import System
-    from isorock.validate.core.engines import get_engine
-    engine = get_engine("analytic")
-    out = {}
-    for name, sign in (("forward", 1), ("backward", -1)):
-        if name not in directions:
-            continue
-        d = spec.direction(sign)
-        system = System.fixed(height=d["block_height"], width=d["block_width"], mass=spec.mass)
-        rows = {}
-        for test, a in accel.items():
-            motion = GroundMotion.from_array(a, dt=dt[test], units="m/s2", name=f"Test{test:03d}")
-            start = time.perf_counter()
-            tr = engine.simulate(system, motion, duration=motion.end_time + PAD)
-            wall = time.perf_counter() - start
-            if tr.status.is_failure:
-                raise RuntimeError(f"analytic run failed on test {test}: {tr.message}")
-            score = OVERTURNED_SCORE if tr.overturned else float(tr.theta_max_over_alpha)
-            rows[test] = (bool(tr.overturned), score, wall)
-        out[f"analytic:{name}"] = rows
-    return out
+    return {f"analytic:{name}": run_block(equivalent_block(spec, sign), accel, dt)
+            for name, sign in (("forward", 1), ("backward", -1)) if name in directions}
 
 
 #: the record scales of the overturning-scale score: 2^(k/n), k = −n..n (0.5 to 2, 9% apart at
@@ -112,9 +119,7 @@ def run_overturning_scale(spec: specimen.Specimen, accel: dict, dt: dict,
     cores); a test's wall time is its share of each batch it was in."""
     from isorock.analytic.fast import simulate_batch
     from isorock.analytic.motion import GroundMotion
-    from isorock.analytic.system import System
-    d = spec.direction(1)
-    system = System.fixed(height=d["block_height"], width=d["block_width"], mass=spec.mass)
+    system = equivalent_block(spec, 1)
     first: dict = {t: None for t in accel}
     at_one, wall = {}, dict.fromkeys(accel, 0.0)
     for scale in overturning_scales(per_octave):

@@ -44,12 +44,9 @@ def main(folder):
         for sign, name in ((1, "forward"), (-1, "backward")):
             e, old = sp.lift_off(sign), sp.direction(sign)
             r_eq = 3 * STANDARD_GRAVITY / (4 * e["p_edge"] ** 2)  # the rectangle of the same α and p
-            block = dict(block_height=2 * r_eq * math.cos(e["alpha_edge"]),
-                         block_width=2 * r_eq * math.sin(e["alpha_edge"]))
-            # study.run_analytic on a specimen whose direction() is this edge's block
-            edge_spec = _EdgeSpecimen(sp, block)
-            runs = study.run_analytic(edge_spec, {t: e["cos_psi"] * a for t, a in accel.items()}, dts,
-                                      directions=("forward",))["analytic:forward"]
+            block = System.fixed(height=2 * r_eq * math.cos(e["alpha_edge"]),
+                                 width=2 * r_eq * math.sin(e["alpha_edge"]), mass=sp.mass)
+            runs = study.run_block(block, {t: e["cos_psi"] * a for t, a in accel.items()}, dts)
             pred = np.array([runs[t][0] for t in tests], bool)
             score = np.array([runs[t][1] for t in tests], float)
             cands[name] = (pred, score)
@@ -61,16 +58,6 @@ def main(folder):
         held, chosen = study.select_cv(y, cands)
         print(f"| SP{s} | chosen on the training folds ({', '.join(c[0] for c in chosen)}) | | | | | | | "
               f"{fmt(scores.bootstrap(y, held))} | |")
-
-
-class _EdgeSpecimen:
-    """A specimen whose forward equivalent block is the given one (for study.run_analytic)."""
-
-    def __init__(self, sp, block):
-        self.mass, self._block = sp.mass, block
-
-    def direction(self, sign):
-        return self._block
 
 
 if __name__ == "__main__":

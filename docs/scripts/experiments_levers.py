@@ -111,11 +111,6 @@ def held_out(y, candidates):
     return m, chosen
 
 
-def logistic_cv(y, features, k=scores.FOLDS):
-    """Held-out predictions of a logistic regression (scores.logistic_cv)."""
-    return scores.logistic_cv(y, features, k)[0]
-
-
 def fmt(m):
     lo, hi = m["accuracy_ci"]
     return f"{m['accuracy']:.3f} [{lo:.3f}, {hi:.3f}]"
@@ -152,7 +147,7 @@ def main(folder, runs_json=None):
         # the statistical correction: fitted on the training folds' forward-block score at 20 Hz and none
         for hz in (20.0, None):
             sc = np.log(np.minimum(fwd["housner", hz][1], study.OVERTURNED_SCORE) + 1e-3)
-            held = logistic_cv(y, [sc, ratio])
+            held = scores.logistic_cv(y, [sc, ratio])[0]
             rows.setdefault(f"logistic on (log θmax/α forward block at {hz or 'no'} low-pass, log PGV/PGA)",
                             {})[s] = (scores.bootstrap(y, held), None)
         if runs_json:
@@ -164,7 +159,7 @@ def main(folder, runs_json=None):
             for eng in engines:
                 feats = [base] + [np.log(np.array([runs[n][str(t)][1] for t in tests]) + 1e-3)
                                   for n in sorted(runs) if n.split(":")[0] == eng]
-                held = logistic_cv(y, feats)
+                held = scores.logistic_cv(y, feats)[0]
                 rows.setdefault(f"ensemble: logistic on (log θmax/α forward block, log {eng} ±x scores)",
                                 {})[s] = (scores.bootstrap(y, held), None)
     for name, keep in (("forward block, one β × low-pass for both specimens", lambda k: True),
