@@ -171,7 +171,7 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     motion = motion or GroundMotion.zero()
     given = duration is not None
     if not given:
-        duration = FREE_DURATION if motion.is_zero else motion.end_time + TAIL_AFTER_MOTION
+        duration = FREE_DURATION if motion.is_zero else motion.last_time + TAIL_AFTER_MOTION
     duration = require_positive_finite("duration", duration)
     check_duration("duration", duration, "" if given else f" (the motion's end + {TAIL_AFTER_MOTION:g} s)")
     check_isolator(system, duration)

@@ -229,7 +229,7 @@ def _compile_physics():
               "free_vibration_change", "rocking_pivot_force_ratio", "_times_a", "base_pinned",
               "isolator_element_force", "isolator_translation_acceleration", "isolator_rocking_accelerations",
               "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
-              "slip_power", "slip_force", "rigid_demand", "slip_phase", "slider_position")
+              "slip_power", "slip_force", "rigid_demand", "element_hold", "slip_phase", "slider_position")
     for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
@@ -242,7 +242,7 @@ def _compile_physics():
                  "translation_velocity_zeros", "translation_u_bound", "base_pinned", "isolator_element_force",
                  "isolator_translation_acceleration", "isolator_rocking_accelerations",
                  "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
-                 "slip_power", "slip_force", "rigid_demand", "slip_phase", "slider_position",
+                 "slip_power", "slip_force", "rigid_demand", "element_hold", "slip_phase", "slider_position",
                  "vertex_rest_speed", "kinetic_energy"):
         f = getattr(physics, name)
         rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)

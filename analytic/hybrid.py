@@ -31,6 +31,15 @@ from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory,
 U, UD, TH, THD, W, D = range(6)
 
 
+class StopRun(Exception):
+    """Raised by a model's event handling when it cannot go on: the run ends at t with
+    `status` and `message` (the state stored so far stands)."""
+
+    def __init__(self, status, message, t):
+        super().__init__(message)
+        self.status, self.message, self.t = status, message, t
+
+
 # --- the physics, for callers holding a System (analytic.physics has it all) -----------
 
 def _params(sys: System) -> tuple:
@@ -74,9 +83,20 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: An
     settings = settings or AnalyticSettings()
     motion, duration = run_inputs(system, motion, duration, theta0, impact_threshold,
                                   theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS)
+    if needs_contact_model(system, motion):  # the statue may slip, or the ground heaves: docs/sliding.md
+        from .slide_hybrid import simulate as simulate_sliding
+        return simulate_sliding(system, motion, settings, duration, progress, impact_threshold, theta0, theta_dot0,
+                                u0, u_dot0)
     integrator = _Integrator if system.fixed_base or system.isolator is None else _IsolatorIntegrator
     return integrator(system, motion, settings, duration, progress, impact_threshold).run(
         theta0, theta_dot0, u0, u_dot0)
+
+
+def needs_contact_model(system: System, motion: GroundMotion) -> bool:
+    """Whether a run needs the model of a contact that may slip (docs/sliding.md): a statue with
+    friction, or a motion with a vertical component. Otherwise the no-slip model runs, as it
+    always has, to the last digit."""
+    return system.friction is not None or motion.vertical is not None
 
 
 class _Integrator:
@@ -176,16 +196,34 @@ class _Integrator:
             if mode:
                 self.uplifts.append(0.0)
         status, message = Status.COMPLETED, "reached the end time"
+        past_alpha_rule = cfg.overturn == physics.PAST_ALPHA
+        verdict = 0
+        try:
+            mode = self.begin(t, y, mode)
+            verdict, t, y, status, message = self.integrate(t, y, mode, status, message, past_alpha_rule, start)
+        except StopRun as stop:  # the model cannot go on (a sliding block's free flight, say)
+            status, message, t = stop.status, stop.message, stop.t
+            y = self.out_y[-1][:, -1] if self.out_y else y
+        if status == Status.COMPLETED and verdict == 0:
+            verdict = physics.overturn_code(not past_alpha_rule, float(y[TH]), sys.alpha, False)
+        overturn_time = None
+        if verdict:
+            status, overturn_time = Status.OVERTURNED, self.last_past_alpha
+            message = describe(verdict, t, overturn_time, float(y[TH]) / sys.alpha)
+        return self.trajectory(status, message, overturn_time, time.perf_counter() - start)
+
+    def integrate(self, t, y, mode, status, message, past_alpha_rule, start):
+        """The event loop from (t, y) in `mode`: (verdict, t, y, status, message) where it ended."""
+        sys, cfg = self.sys, self.cfg
         verdict = 0
         events = 0
         ibreak = 1
         last_report = start
-        past_alpha_rule = cfg.overturn == physics.PAST_ALPHA
         while t < self.T:
             while ibreak < len(self.breaks) and self.breaks[ibreak] <= t + 1e-12:
                 ibreak += 1
             t_end = self.breaks[ibreak] if ibreak < len(self.breaks) else self.T
-            if mode == 0 and sys.fixed_base:
+            if mode == 0 and self.rests_still():
                 # the state cannot change: the first uplift is found from the motion itself
                 margin = physics.GRAZE_MARGIN if self.graze else 0.0
                 t_up, side = physics.first_uplift(self.sp, self.mp, self.acc, t, t_end, margin)
@@ -245,18 +283,26 @@ class _Integrator:
                 mode, y = self.impact(t, y, mode)
             elif kind == "isolator":  # a non-linear isolator's slider sticks or slips
                 mode, y = self.isolator_event(t, y, mode, evs[k])
-            else:  # uplift
+            elif kind == "uplift":
                 mode = self.lift(t, evs[k].side)
+            else:  # a model's own event (a sliding block's: slide_hybrid)
+                mode, y = self.transition(t, y, mode, evs[k])
             if self.progress and time.perf_counter() - last_report > 1.0:
                 self.progress(t, self.T)
                 last_report = time.perf_counter()
-        if status == Status.COMPLETED and verdict == 0:
-            verdict = physics.overturn_code(not past_alpha_rule, float(y[TH]), sys.alpha, False)
-        overturn_time = None
-        if verdict:
-            status, overturn_time = Status.OVERTURNED, self.last_past_alpha
-            message = describe(verdict, t, overturn_time, float(y[TH]) / sys.alpha)
-        return self.trajectory(status, message, overturn_time, time.perf_counter() - start)
+        return verdict, t, y, status, message
+
+    def rests_still(self):
+        """Whether the state cannot change while the block rests (a fixed base): the run then
+        finds the first uplift from the motion itself (physics.first_uplift)."""
+        return self.sys.fixed_base
+
+    def begin(self, t, y, mode):
+        """The mode the run starts in (a model that tells more than the corner refines it)."""
+        return mode
+
+    def transition(self, t, y, mode, ev):
+        raise NotImplementedError(ev.kind)
 
     def initial_state(self, u0, u_dot0, theta0, theta_dot0):
         return np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0])

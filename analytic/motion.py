@@ -103,6 +103,9 @@ class GroundMotion:
     scale: float = 1.0
     _pulse_shift: float = field(default=0.0, repr=False)  # time trimmed off a pulse's start
     units: str = "m/s2"  # the units the source was read in (its samples are always m/s²)
+    #: the vertical component üv(t) (m/s², positive up) as a motion of its own, or None: a
+    #: paired record or a pulse; the base carries it rigidly (docs/sliding.md, "Vertical")
+    vertical: "GroundMotion | None" = None
 
     def __post_init__(self):
         require_positive_finite("dt", self.dt)
@@ -122,6 +125,9 @@ class GroundMotion:
                                  f"must end within {MAX_DURATION:g} s (MAX_DURATION)")
         a.setflags(write=False)
         object.__setattr__(self, "acceleration", a)
+        if self.vertical is not None:
+            require(isinstance(self.vertical, GroundMotion) and self.vertical.vertical is None, "vertical",
+                    self.vertical, "a GroundMotion of one component (the vertical üv, m/s², up positive)")
 
     # --- construction -------------------------------------------------------------
     @classmethod
@@ -166,7 +172,23 @@ class GroundMotion:
 
     @property
     def is_zero(self) -> bool:
-        return self.pulse is None and not np.any(self.acceleration)
+        """No horizontal and no vertical motion."""
+        return (self.pulse is None and not np.any(self.acceleration)
+                and (self.vertical is None or self.vertical.is_zero))
+
+    @property
+    def last_time(self) -> float:
+        """When the last component ends (s): the horizontal's end_time, or the vertical's if later."""
+        return self.end_time if self.vertical is None else max(self.end_time, self.vertical.end_time)
+
+    def with_vertical(self, vertical: "GroundMotion | None") -> "GroundMotion":
+        """This horizontal motion paired with a vertical one (None: without)."""
+        return GroundMotion(dt=self.dt, acceleration=self.acceleration, name=self.name, pulse=self.pulse,
+                            scale=self.scale, _pulse_shift=self._pulse_shift, units=self.units, vertical=vertical)
+
+    def vertical_at(self, t: float) -> float:
+        """Scalar üv(t), m/s² (0 without a vertical component)."""
+        return 0.0 if self.vertical is None else self.vertical.at(t)
 
     @functools.cached_property
     def times(self) -> np.ndarray:
@@ -203,6 +225,8 @@ class GroundMotion:
             pts.append(self.end_time)
         else:
             pts = [0.0]
+        if self.vertical is not None:  # the vertical component's kinks too
+            pts.extend(self.vertical.breakpoints(t_end))
         return np.unique(np.clip(np.array(pts), 0.0, t_end))
 
     @property
@@ -229,12 +253,15 @@ class GroundMotion:
 
     # --- transformations ----------------------------------------------------------
     def scaled(self, factor: float) -> "GroundMotion":
+        """Both components scaled by `factor` (a record scaled to a PGA keeps its V/H ratio)."""
         f = _finite("scale", factor)
+        vertical = None if self.vertical is None else self.vertical.scaled(f)
         if self.pulse is not None:
             return GroundMotion(dt=self.dt, acceleration=self.acceleration * f, name=self.name,
                                 pulse=self.pulse, scale=self.scale * f, _pulse_shift=self._pulse_shift,
-                                units=self.units)
-        return GroundMotion(dt=self.dt, acceleration=self.acceleration * f, name=self.name, units=self.units)
+                                units=self.units, vertical=vertical)
+        return GroundMotion(dt=self.dt, acceleration=self.acceleration * f, name=self.name, units=self.units,
+                            vertical=vertical)
 
     def scaled_to_pga(self, pga_g: float) -> "GroundMotion":
         target = require_positive_finite("pga", pga_g)
@@ -252,6 +279,9 @@ class GroundMotion:
         start = require_nonnegative_finite("start", start)
         end = self.end_time if end is None else require_positive_finite("end", end)
         require(end > start, "end", end, f"greater than start = {start}")
+        if self.vertical is not None:  # the same window of both components
+            vertical = self.vertical.trimmed(start, end) if self.vertical.end_time > start else None
+            return self.with_vertical(None).trimmed(start, end).with_vertical(vertical)
         if self.pulse is not None:
             shift = self._pulse_shift + start
             return GroundMotion(dt=self.dt, acceleration=self.acceleration, name=self.name,
@@ -269,8 +299,11 @@ class GroundMotion:
                             scale=self.scale, _pulse_shift=self._pulse_shift, units=self.units)
 
     def describe(self) -> dict:
-        return {"name": self.name, "dt": self.dt, "points": self.n,
-                "end_time": self.end_time, "pga_g": self.pga_g, "units_read": self.units}
+        out = {"name": self.name, "dt": self.dt, "points": self.n,
+               "end_time": self.end_time, "pga_g": self.pga_g, "units_read": self.units}
+        if self.vertical is not None:  # only then: a horizontal motion's description is as before
+            out["vertical"] = self.vertical.describe()
+        return out
 
 
 # --- readers ----------------------------------------------------------------------

@@ -400,10 +400,15 @@ def stick_demand(sp, mode, theta, theta_dot, u, xg):
 
 def rigid_demand(sp, ip, mode, theta, theta_dot, u, u_p, xg):
     """The force (N) the rigid slider itself must exert to hold a pinned base: stick_demand
-    less what the isolator's other parts hold: the cone's F_c·sgn(u) (at the vertex u = 0,
+    less what the isolator's other parts hold (element_hold)."""
+    return element_hold(ip, stick_demand(sp, mode, theta, theta_dot, u, xg), u, u_p)
+
+
+def element_hold(ip, f, u, u_p):
+    """What is left for the rigid slider of a force f (N) needed to hold a pinned base, once
+    the isolator's other parts hold their share: the cone's F_c·sgn(u) (at the vertex u = 0,
     anything within ±F_c: the demand's excess over F_c), the double pendulum's elastic
-    element k_e·(u − u_p). The pendulum's is stick_demand itself."""
-    f = stick_demand(sp, mode, theta, theta_dot, u, xg)
+    element k_e·(u − u_p). The pendulum's is f itself."""
     kind = ip[I_KIND]
     if kind == ISO_CONE:
         if u > 0.0:

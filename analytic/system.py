@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from types import MappingProxyType
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from .errors import InputError, require, require_nonnegative_finite, require_positive_finite
 
@@ -73,6 +73,10 @@ class BilinearIsolator:
         return {"isolator": BILINEAR, "post_yield_ratio": self.post_yield_ratio,
                 "yield_displacement": self.yield_displacement, "yield_force": self.yield_force}
 
+
+#: largest statue–base friction coefficient (System.friction): stone on stone, wood or metal
+#: lies at 0.2–0.8; beyond 10 a coefficient means "it cannot slip", which None says exactly
+MAX_STATUE_FRICTION = 10.0
 
 #: largest friction coefficient a friction pendulum may be given: measured sliders lie far
 #: below it (0.01–0.2); above it a "friction" pendulum is a fixed base with extra steps
@@ -236,6 +240,12 @@ class System:
     mass `base_mass` with isolator stiffness `stiffness` (N/m) and dashpot `damping`
     (N·s/m). `fixed_base=True` means the base is welded to the ground (μ = 0).
 
+    `friction`: the Coulomb coefficient μ_s between the statue and its base (the static one:
+    what holds a statue at rest or a corner while it rocks); None (the default) is the seed
+    paper's no-slip assumption, and every result is then the no-slip model's to the last
+    digit. `kinetic_friction`: μ_k while it slips (None: μ_s; at most μ_s). A statue with
+    friction slides, rocks or slides and rocks (docs/sliding.md).
+
     `isolator`: None (the default) is the linear spring–dashpot of `stiffness` and
     `damping`; a BilinearIsolator or a FrictionPendulum replaces it, and then `stiffness`
     and `damping` are derived from it (its initial stiffness k0 and dashpot; the
@@ -257,10 +267,13 @@ class System:
     gravity: float = STANDARD_GRAVITY
     isolator: (LinearIsolator | BilinearIsolator | FrictionPendulum | BallInCone | BallInBowl
                | DoubleFrictionPendulum | None) = None
+    friction: float | None = None
+    kinetic_friction: float | None = None
 
     def __post_init__(self):
         for name in ("height", "width", "mass", "base_mass", "gravity"):
             object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
+        self._check_friction()
         iso = self.isolator
         if iso is not None:
             require(isinstance(iso, (LinearIsolator,) + NONLINEAR_ISOLATORS), "isolator", iso,
@@ -286,6 +299,30 @@ class System:
         if not self.fixed_base and self.isolator_kind != BALL_IN_CONE:
             require(self.stiffness > 0, "stiffness", self.stiffness,
                     "positive for an isolated base (use System.fixed for a fixed base)")
+
+    def _check_friction(self):
+        if self.friction is None:
+            require(self.kinetic_friction is None, "kinetic_friction", self.kinetic_friction,
+                    "absent unless friction (μ_s, the static coefficient) is given")
+            return
+        mu_s = require_positive_finite("friction", self.friction)
+        require(mu_s <= MAX_STATUE_FRICTION, "friction", self.friction,
+                f"a friction coefficient in (0, {MAX_STATUE_FRICTION:g}] (None: no slip)")
+        mu_k = mu_s if self.kinetic_friction is None else require_positive_finite(
+            "kinetic_friction", self.kinetic_friction)
+        require(mu_k <= mu_s, "kinetic_friction", self.kinetic_friction,
+                f"a kinetic coefficient in (0, friction = {mu_s:g}] (μ_k ≤ μ_s)")
+        object.__setattr__(self, "friction", mu_s)
+        object.__setattr__(self, "kinetic_friction", mu_k)
+
+    @property
+    def slides(self) -> bool:
+        """Whether the statue may slip on its base (a finite friction μ_s)."""
+        return self.friction is not None
+
+    def with_friction(self, friction: float | None, kinetic_friction: float | None = None) -> "System":
+        """The same system with statue–base friction μ_s (and μ_k; None: μ_s), or none (no slip)."""
+        return replace(self, friction=friction, kinetic_friction=kinetic_friction)
 
     # --- constructors -----------------------------------------------------------
     @classmethod
@@ -322,14 +359,15 @@ class System:
                    fixed_base=True, gravity=gravity)
 
     def on_fixed_base(self) -> "System":
-        """The same block on a fixed base (its base mass kept for a scene's plate)."""
+        """The same block (and its friction) on a fixed base (its base mass kept for a scene's plate)."""
         return System.fixed(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
-                            gravity=self.gravity)
+                            gravity=self.gravity).with_friction(self.friction, self.kinetic_friction)
 
     def on_isolator(self, period: float, damping_ratio: float) -> "System":
-        """The same block and base mass on an isolator of period T (s) and damping ratio ξ."""
+        """The same block (and its friction) and base mass on an isolator of period T (s) and damping ratio ξ."""
         return System.isolated(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
-                               period=period, damping_ratio=damping_ratio, gravity=self.gravity)
+                               period=period, damping_ratio=damping_ratio,
+                               gravity=self.gravity).with_friction(self.friction, self.kinetic_friction)
 
     # --- geometry ---------------------------------------------------------------
     @property
@@ -432,6 +470,9 @@ class System:
             "alpha": self.alpha, "slenderness": self.slenderness, "mass_ratio": self.mu,
             "R": self.R, "p": self.p, "gravity": self.gravity,
             **({} if self.isolator is None else self.isolator.describe(self.total_mass, self.gravity)),
+            # only where the statue may slip: a no-slip system's description is as before
+            **({} if self.friction is None else {"friction": self.friction,
+                                                 "kinetic_friction": self.kinetic_friction}),
         }
 
 

@@ -47,7 +47,8 @@ class EnergyLog:
     (velocities relative to the ground, gravity and the isolator's springs in `potential`):
     E(t) − E(0) = ground_work − dashpot_loss − impact_loss − isolator_loss, and `residual`
     is what is left of that balance. `isolator_loss`: the hysteretic or friction work of a
-    non-linear isolator (None for the linear one)."""
+    non-linear isolator (None for the linear one); `slip_loss`: the friction work of a statue
+    that slips on its base (None where it cannot slip)."""
 
     kinetic: np.ndarray
     potential: np.ndarray
@@ -56,6 +57,7 @@ class EnergyLog:
     impact_loss: np.ndarray  # cumulative
     per_impact: tuple[float, ...] = ()  # energy lost in each impact, in the order of Trajectory.impacts
     isolator_loss: np.ndarray | None = None  # cumulative slip work of a non-linear isolator
+    slip_loss: np.ndarray | None = None  # cumulative friction work of a statue slipping on its base
 
     @property
     def total(self) -> np.ndarray:
@@ -64,6 +66,8 @@ class EnergyLog:
     @property
     def residual(self) -> np.ndarray:
         r = self.total - self.total[0] - self.ground_work + self.dashpot_loss + self.impact_loss
+        if self.slip_loss is not None:
+            r = r + self.slip_loss
         return r if self.isolator_loss is None else r + self.isolator_loss
 
     @property
@@ -72,7 +76,8 @@ class EnergyLog:
         return float(max(np.max(np.abs(self.ground_work)), np.max(np.abs(self.total)),
                          np.max(self.impact_loss) if self.impact_loss.size else 0.0,
                          np.max(self.isolator_loss) if self.isolator_loss is not None and self.isolator_loss.size
-                         else 0.0))
+                         else 0.0,
+                         np.max(self.slip_loss) if self.slip_loss is not None and self.slip_loss.size else 0.0))
 
     @property
     def relative_residual(self) -> float:
@@ -123,6 +128,11 @@ class Trajectory:
     message: str = ""
     energy: EnergyLog | None = None
     extras: dict = field(default_factory=dict)  # engine-specific histories (lift-off, drift…)
+    #: where the statue may slip on its base (System.friction): its slide x (m), the position
+    #: on the base of the middle of its bottom face (docs/sliding.md), and ẋ (m/s); None where
+    #: the model assumes no slip
+    slide: np.ndarray | None = None
+    slide_dot: np.ndarray | None = None
 
     # --- summary metrics ----------------------------------------------------------
     @property
@@ -198,10 +208,23 @@ class Trajectory:
             out["ground_work"] = float(self.energy.ground_work[-1])
             if self.energy.isolator_loss is not None:
                 out["energy_lost_in_isolator"] = float(self.energy.isolator_loss[-1])
+        if self.energy is not None and self.energy.slip_loss is not None:
+            out["energy_lost_in_slip"] = float(self.energy.slip_loss[-1])
+        if self.slide is not None:
+            out.update(self.slide_summary())
         for key, value in self.extras.items():
             if np.isscalar(value):
                 out[key] = value
         return out
+
+    def slide_summary(self) -> dict:
+        """The slide's metrics (m, s): how far the statue walked on its base at most and at the
+        end, and when it first slipped (None: never)."""
+        x = self.slide
+        moving = np.flatnonzero(np.abs(self.slide_dot) > 0) if self.slide_dot is not None else np.empty(0, int)
+        return {"slide_max": float(np.max(np.abs(x))) if x.size else 0.0,
+                "slide_final": float(x[-1]) if x.size else 0.0,
+                "slide_onset": float(self.t[moving[0]]) if moving.size else None}
 
     # --- resampling -----------------------------------------------------------------
     def resample(self, dt: float) -> "Trajectory":
