@@ -69,6 +69,7 @@ import os
 import threading
 import time
 import types
+from dataclasses import replace
 
 import numpy as np
 
@@ -91,6 +92,7 @@ from .overturning import describe, theta_max_over_alpha
 from .settings import AnalyticSettings
 from .motion import GroundMotion
 from .engine_protocol import check_isolator_kind, run_inputs
+from .slide_physics import needs_contact_model
 from .status import Status
 from .system import ISOLATOR_KINDS, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
@@ -1572,6 +1574,10 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
     motion, duration = _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0,
                                   impact_threshold)
     odt = settings.output_dt if output_dt is None else require_positive_finite("output_dt", output_dt)
+    if needs_contact_model(system, motion):  # the statue may slip, or the ground heaves: docs/sliding.md
+        from . import slide_fast
+        return slide_fast.simulate(system, motion, replace(settings, output_dt=odt), duration, theta0, theta_dot0,
+                                   u0, u_dot0, impact_threshold, ENGINE)
     kernel, sp, ip, n_y = _kernel_for(system, settings)
     mp, acc = _motion_params(motion)
     y0 = np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0, 0.0][:n_y])  # W, D (, S) from 0
@@ -1721,7 +1727,44 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
     require(0 <= impact_threshold < 1, "impact_threshold", impact_threshold, "in [0, 1)")
     if workers is not None:
         require(isinstance(workers, int) and workers >= 1, "workers", workers, "a positive integer")
-    return _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers)
+    contact = np.array([needs_contact_model(systems[i], motions[j]) for i, j in zip(case_sys, case_mot)], bool)
+    if not contact.any():
+        return _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers)
+    # a statue that may slip, or a heaving ground: the sliding model's kernel (docs/sliding.md)
+    rows = [None] * n
+    rest = np.flatnonzero(~contact)
+    if rest.size:
+        for c, row in zip(rest, _batch_threads(systems, motions, case_sys[rest], case_mot[rest], T[rest], th0[rest],
+                                               impact_threshold, settings, workers)):
+            rows[c] = row
+    for c, row in _contact_rows(systems, motions, case_sys, case_mot, T, th0, np.flatnonzero(contact),
+                                impact_threshold, settings, workers):
+        rows[c] = row
+    return rows
+
+
+def _contact_rows(systems, motions, case_sys, case_mot, T, th0, cases, impact_threshold, settings, workers):
+    """(case, row) of the cases that need the sliding model, on threads over its GIL-free kernel."""
+    from concurrent.futures import ThreadPoolExecutor
+    from . import slide_fast
+
+    def one(c):
+        i, j = int(case_sys[c]), int(case_mot[c])
+        try:
+            row = slide_fast.summary(systems[i], motions[j], settings, float(T[c]), float(th0[c]), impact_threshold)
+        except Exception as e:  # noqa: BLE001 - one case's failure is its row's status, never the batch's
+            row = {"status": Status.FAILED, "theta_max_over_alpha": math.nan, "impacts": 0, "impacts_all": 0,
+                   "uplifts": 0, "overturned": False, "overturn_time": None, "u_max": math.nan,
+                   "duration": math.nan, "overturn_rule": settings.overturn, "friction_demand": math.nan,
+                   "message": f"the compiled kernel failed: {type(e).__name__}: {e}"}
+        return c, {"system": i, "motion": j, **row}
+    if cases.size == 1 or workers == 1:
+        return [one(c) for c in cases]
+    pool = ThreadPoolExecutor(max_workers=workers or available_cores())
+    try:
+        return list(pool.map(one, cases))
+    finally:
+        pool.shutdown(wait=False, cancel_futures=True)  # as _batch_pool: a signal drops what is left
 
 
 def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers):

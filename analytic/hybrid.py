@@ -23,6 +23,7 @@ from .overturning import describe
 from .engine_protocol import run_inputs
 from .errors import require
 from .settings import AnalyticSettings
+from .slide_physics import needs_contact_model
 from .status import Status
 from .system import ISOLATOR_KINDS, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
@@ -91,12 +92,6 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: An
     return integrator(system, motion, settings, duration, progress, impact_threshold).run(
         theta0, theta_dot0, u0, u_dot0)
 
-
-def needs_contact_model(system: System, motion: GroundMotion) -> bool:
-    """Whether a run needs the model of a contact that may slip (docs/sliding.md): a statue with
-    friction, or a motion with a vertical component. Otherwise the no-slip model runs, as it
-    always has, to the last digit."""
-    return system.friction is not None or motion.vertical is not None
 
 
 class _Integrator:
@@ -187,18 +182,18 @@ class _Integrator:
         start = time.perf_counter()
         t = 0.0
         y = self.initial_state(u0, u_dot0, theta0, theta_dot0)
-        if theta0 != 0:
-            mode = 1 if theta0 > 0 else -1
-        elif theta_dot0 != 0:
-            mode = 1 if theta_dot0 > 0 else -1
-        else:
-            mode = self.uplift_mode(t, y)
-            if mode:
-                self.uplifts.append(0.0)
         status, message = Status.COMPLETED, "reached the end time"
         past_alpha_rule = cfg.overturn == physics.PAST_ALPHA
         verdict = 0
         try:
+            if theta0 != 0:
+                mode = 1 if theta0 > 0 else -1
+            elif theta_dot0 != 0:
+                mode = 1 if theta_dot0 > 0 else -1
+            else:
+                mode = self.uplift_mode(t, y)
+                if mode:
+                    self.uplifts.append(0.0)
             mode = self.begin(t, y, mode)
             verdict, t, y, status, message = self.integrate(t, y, mode, status, message, past_alpha_rule, start)
         except StopRun as stop:  # the model cannot go on (a sliding block's free flight, say)
@@ -306,6 +301,10 @@ class _Integrator:
 
     def initial_state(self, u0, u_dot0, theta0, theta_dot0):
         return np.array([u0, u_dot0, theta0, theta_dot0, 0.0, 0.0])
+
+    def kinetic(self, s, u_dot, y):
+        """The kinetic energy (J) of state y with the base's velocity u_dot (physics.kinetic_energy)."""
+        return physics.kinetic_energy(self.sp, s, u_dot, y[TH], y[THD])
 
     def lift(self, t, side):
         self.uplifts.append(t)
@@ -534,8 +533,7 @@ class _IsolatorIntegrator(_Integrator):
                 # the Zeno tail of returns (physics.vertex_rest_speed): the ball rests at the
                 # vertex, its kinetic energy left to the rolling resistance
                 s = 1.0 if mode >= 0 else -1.0
-                y[S_LOSS] += (physics.kinetic_energy(self.sp, s, y[UD], y[TH], y[THD])
-                              - physics.kinetic_energy(self.sp, s, 0.0, y[TH], y[THD]))
+                y[S_LOSS] += self.kinetic(s, y[UD], y) - self.kinetic(s, 0.0, y)
                 y[UD] = 0.0
                 self.set_phase(t, y, 0)
                 new = self.stick_or_slip(t, y, mode)

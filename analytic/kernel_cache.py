@@ -31,6 +31,11 @@ import time
 _HERE = os.path.dirname(os.path.abspath(__file__))
 #: the sources compiled into the kernel: a change to any of them invalidates the cache
 KERNEL_SOURCES = tuple(os.path.join(_HERE, f) for f in ("fast.py", "physics.py"))
+#: every kernel file and the sources compiled into its kernels (the sliding model's kernel,
+#: analytic/slide_fast.py, compiles slide_physics.py and physics.py too)
+KERNEL_FILES = {KERNEL_SOURCES[0]: KERNEL_SOURCES,
+                os.path.join(_HERE, "slide_fast.py"): tuple(os.path.join(_HERE, f) for f in
+                                                            ("slide_fast.py", "slide_physics.py", "physics.py"))}
 
 
 def _say(message: str) -> None:
@@ -83,7 +88,7 @@ def _locator_class():
 
         def get_source_stamp(self):
             stamps = []
-            for path in KERNEL_SOURCES:
+            for path in KERNEL_FILES[os.path.abspath(self._py_file)]:
                 st = os.stat(path)
                 stamps.append(_hash_source_file(path, st.st_mtime, st.st_size))
             return tuple(stamps)
@@ -93,7 +98,7 @@ def _locator_class():
 
         @classmethod
         def from_function(cls, py_func, py_file):
-            if os.path.abspath(py_file) not in KERNEL_SOURCES:
+            if os.path.abspath(py_file) not in KERNEL_FILES:
                 return None  # not ours: numba's own locators decide
             path = writable_cache_dir()
             return None if path is None else cls(py_func, py_file, path)

@@ -57,6 +57,7 @@ class SlidingIntegrator(_IsolatorIntegrator):
         self.linear = self.kind == physics.ISO_LINEAR  # no element: no slider events
         self.slips = math.isfinite(self.cp[sl.C_MUS])
         self.sigma = 0
+        self.chosen = False  # whether the run's first mode has its slip yet (uplift_mode, begin)
         self.slip_start = (0.0, 1, 0.0)  # (t0, k, limit) of a slip that started from ẋ = 0
         self.out_sigma = []
         self.slip_log = []  # (t, σ after) at every change of the contact's slip
@@ -89,16 +90,20 @@ class SlidingIntegrator(_IsolatorIntegrator):
         if s == sl.NO_MODE:
             raise stop(why, t, " (at the start)")
         self.set_sigma(t, y, sigma, mode=int(s))
+        self.chosen = True
         return int(s)
 
     def begin(self, t, y, mode):
-        if mode != 0 and not self.slip_log:  # an initial tilt: its corner sticks if it can
+        if not self.chosen:  # an initial tilt or spin: its corner sticks if it can
             sigma, why = sl.rock_mode(self.sp, self.ip, self.cp, float(mode), self.phase, self.u_p, y[TH], y[THD],
                                       y[U], y[UD], self.xg(t), self.ge(t), True)
             if sigma == sl.NO_MODE:
                 raise stop(why, t, " (at the start)")
             self.set_sigma(t, y, sigma, mode=mode)
         return mode
+
+    def kinetic(self, s, u_dot, y):
+        return sl.kinetic_energy(self.sp, s, u_dot, y[XD], y[TH], y[THD])
 
     def set_sigma(self, t, y, sigma, mode):
         """The contact slips the way σ (0: sticks) from t on."""

@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from .physics import (B_HALF, C_DAMP, FIXED, G, GRAZE_MARGIN, H, INERTIA, INV_J, INV_M, J, K, M_BASE, M_BLOCK,
-                      M_TOTAL, base_pinned, element_hold, isolator_element_force, lifts_clearly)
+                      M_TOTAL, REST, base_pinned, element_hold, isolator_element_force, lifts_clearly)
 
 # --- packed contact parameters ------------------------------------------------------------
 (C_MUS, C_MUK, C_VERT, C_TAN, N_CP) = range(5)
@@ -45,6 +45,13 @@ NO_MODE = 9
 #: flight, which the model does not carry), or Coulomb friction admits no solution (a
 #: Painlevé paradox: the slide-rock equations' denominator is not positive)
 FLIGHT, PAINLEVE = 1, 2
+
+
+def needs_contact_model(system, motion) -> bool:
+    """Whether a run needs the model of a contact that may slip: a statue with friction, or a
+    motion with a vertical component. Otherwise the no-slip model runs, as it always has, to
+    the last digit (both analytic paths dispatch on this)."""
+    return system.friction is not None or motion.vertical is not None
 
 
 def contact_params(system, vertical: bool) -> np.ndarray:
@@ -311,6 +318,12 @@ def impact(sp, cp, s, theta_dot_pre, x_dot_pre, u_dot_pre, continued):
         kappa = 1.0 if px > 0.0 else -1.0
         px = kappa * cp[C_MUK] * pz
         xd = x_dot_pre + h * theta_dot_pre + px * (1.0 / m + inv_mb)
+        if abs(xd) < sp[REST] * h:
+            # the rocking's rest floor as a speed (θ̇ at the floor times h): below it the block
+            # lands and stays (its kinetic energy is the impact's loss). Above μ_k > tanα a flat
+            # block that slides tips over its leading corner, lands, slides and tips again: a
+            # Zeno sequence of ever smaller slips that this floor ends, as it ends rocking's
+            xd = 0.0
     return 0.0, xd, u_dot_pre - inv_mb * px, px, pz, pz >= 0.0  # P_z = 0: it lands at rest
 
 

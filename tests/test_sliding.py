@@ -31,7 +31,12 @@ def reference(system, motion, **kw):
     return hybrid.simulate(system, motion, **kw)
 
 
-PATHS = {"reference": reference}
+def kernel(system, motion, **kw):
+    from isorock.analytic.fast import simulate_fast
+    return simulate_fast(system, motion, **kw)
+
+
+PATHS = {"reference": reference, "kernel": kernel}
 
 
 def constant(a, duration=1.0, dt=0.5):
