@@ -311,7 +311,7 @@ class System:
         mu_k = mu_s if self.kinetic_friction is None else require_positive_finite(
             "kinetic_friction", self.kinetic_friction)
         require(mu_k <= mu_s, "kinetic_friction", self.kinetic_friction,
-                f"a kinetic coefficient in (0, friction = {mu_s:g}] (μ_k ≤ μ_s)")
+                f"a kinetic coefficient in (0, μ_s = {mu_s:g}] (μ_k ≤ μ_s)")
         object.__setattr__(self, "friction", mu_s)
         object.__setattr__(self, "kinetic_friction", mu_k)
 

@@ -74,6 +74,11 @@ def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=No
     g.add_argument("--stiffness", type=number, help="isolator stiffness k, N/m (instead of --period)")
     g.add_argument("--dashpot", type=number, help="isolator dashpot c, N·s/m (with --stiffness)")
     g.add_argument("--fixed-base", action="store_true", help="fixed (non-isolated) base: μ = 0")
+    g.add_argument("--statue-friction", type=number, metavar="MU",
+                   help="Coulomb friction μ_s between the statue and its base (static): the statue may then slide, "
+                        "rock or slide and rock (docs/sliding.md); omitted: it cannot slip (model.md)")
+    g.add_argument("--kinetic-friction", type=number, metavar="MU_K",
+                   help="μ_k while the statue slips, at most --statue-friction (default: --statue-friction)")
 
 
 #: the options of a non-linear isolator (add_isolator_options), argparse dests
@@ -172,10 +177,20 @@ def system_from_args(a, *, default_isolator=None):
     """The System the options describe; `default_isolator` (period, damping ratio)
     is used when no isolator option is given (the scene command's paper defaults)."""
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
-    nonlinear = _isolator_from_args(a, common)
-    if nonlinear is not None:
-        return nonlinear
-    return _linear_from_args(a, common, default_isolator=default_isolator)
+    system = _isolator_from_args(a, common)
+    if system is None:
+        system = _linear_from_args(a, common, default_isolator=default_isolator)
+    mu_s, mu_k = getattr(a, "statue_friction", None), getattr(a, "kinetic_friction", None)
+    if mu_k is not None and mu_s is None:
+        raise InputError(f"--kinetic-friction = {mu_k:g}: needs --statue-friction (μ_s, the static coefficient)")
+    if mu_s is None:
+        return system
+    try:
+        return system.with_friction(mu_s, mu_k)
+    except InputError as e:  # the System's field, named as its option
+        text = str(e)
+        field = "--kinetic-friction" if text.startswith("kinetic_friction") else "--statue-friction"
+        raise InputError(field + text[text.index(" = "):]) from None
 
 
 def _linear_from_args(a, common, *, default_isolator=None):
@@ -200,7 +215,7 @@ def _linear_from_args(a, common, *, default_isolator=None):
 
 #: The system options, as argparse names them (and a TOML [system] table does).
 SYSTEM_KEYS = ("height", "width", "mass", "base_mass", "period", "damping_ratio", "stiffness", "dashpot",
-               "fixed_base")
+               "fixed_base", "statue_friction", "kinetic_friction")
 
 
 def system_from_options(a, defaults: dict | None = None):
@@ -215,6 +230,9 @@ def system_from_options(a, defaults: dict | None = None):
             values[k] = v
     if not any(v not in (None, False) for v in values.values()):
         return None
+    if not any(values[k] not in (None, False) for k in SYSTEM_KEYS if k not in ("statue_friction", "kinetic_friction")):
+        raise InputError("--statue-friction: give the block's height, width and mass (and its base) with it: "
+                         "friction is a property of your own system")
     missing = [k for k in ("height", "width", "mass") if values[k] is None]
     if missing:
         raise InputError(f"--{missing[0].replace('_', '-')}: give the block's height, width and mass "
@@ -233,6 +251,12 @@ def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
                    help="record format: at2 (PEER, g), jma (gal), csv (two columns t, a); "
                         "guessed from the file when omitted")
     add_units_option(g)
+    g.add_argument("--vertical", metavar="SPEC",
+                   help="the vertical component üv (up positive): a record file (its pair, e.g. the UP of a suite) or "
+                        "a pulse as --motion takes it; the base carries it rigidly (docs/sliding.md). --scale, --pga "
+                        "and --pgv scale both components by the same factor (set by the horizontal one)")
+    g.add_argument("--vertical-units", choices=("m/s2", "g", "gal", "cm/s2"),
+                   help="units of the --vertical record when it does not state them (default: --units)")
     g.add_argument("--scale", type=number, default=1.0, help="factor applied to the motion (default: 1)")
     g.add_argument("--pga", type=number, metavar="G",
                    help="scale the motion to this peak ground acceleration, g (instead of --scale)")
@@ -256,6 +280,12 @@ def motion_from_args(a):
         given = ", ".join(f"--{k} {v:g}" for k, v in targets) + (f", --scale {a.scale:g}" if a.scale != 1.0 else "")
         raise InputError(f"{given}: give one of --scale, --pga and --pgv")
     m = load_motion(a.motion, format=a.format, units=a.units)
+    vertical = getattr(a, "vertical", None)
+    if vertical is not None:
+        if not vertical.strip() or vertical.strip().lower() == "none":
+            raise InputError(f"--vertical = {vertical!r}: a record file or a pulse (omit it for horizontal shaking only)")
+        units = getattr(a, "vertical_units", None) or a.units
+        m = m.with_vertical(load_motion(vertical, units=units))
     if targets:
         key, value = targets[0]
         if m.is_zero:

@@ -95,23 +95,40 @@ def plot_format(path) -> str:
 
 def comparison_table(runs: dict, comparisons: dict) -> str:
     """Each engine's metrics, then each engine against the reference (the first)."""
+    import numpy as np
+
     from isorock.validate.io.naming import cell
     ref_label = next(iter(runs))
-    head = f"{'engine':<18}{'status':<12}{'θmax/α':>8}{'impacts':>9}{'overturned':>12}{'u_max cm':>10}{'wall s':>8}"
+    width = max(18, 2 + max(len(label) for label in runs))
+    slides = any(tr.slide is not None for tr in runs.values())  # the statue may slip: its walk beside
+    head = (f"{'engine':<{width}}{'status':<12}{'θmax/α':>8}{'impacts':>9}{'overturned':>12}{'u_max cm':>10}"
+            + (f"{'slide cm':>10}{'final cm':>10}" if slides else "") + f"{'wall s':>8}")
     lines = [head]
     for label, tr in runs.items():
-        lines.append(f"{label:<18}{str(tr.status):<12}{tr.theta_max_over_alpha:>8.3f}{tr.impact_count:>9d}"
-                     f"{'yes' if tr.overturned else 'no':>12}{tr.u_max * 100:>10.3g}{tr.runtime_s:>8.2f}")
+        walk = ""
+        if slides:
+            x = None if tr.slide is None else tr.slide - tr.slide[0]
+            walk = (f"{cell(None if x is None else 100 * np.max(np.abs(x)), '{:.3g}'):>10}"
+                    f"{cell(None if x is None else 100 * x[-1], '{:.3g}'):>10}")
+        lines.append(f"{label:<{width}}{str(tr.status):<12}{tr.theta_max_over_alpha:>8.3f}{tr.impact_count:>9d}"
+                     f"{'yes' if tr.overturned else 'no':>12}{tr.u_max * 100:>10.3g}{walk}{tr.runtime_s:>8.2f}")
     if comparisons:
         lines.append("")
         lines.append(f"against {ref_label}:")
-        lines.append(f"{'engine':<18}{'Δθmax/α':>9}{'horizon s':>11}{'parted':>8}{'|β err| median %':>18}"
-                     f"{'Δuplift s':>11}{'overturn agree':>16}")
+        lines.append(f"{'engine':<{width}}{'Δθmax/α':>9}{'horizon s':>11}{'parted':>8}{'|β err| median %':>18}"
+                     f"{'Δuplift s':>11}{'overturn agree':>16}"
+                     + (f"{'Δslide %':>10}{'Δslide onset s':>16}  modes" if slides else ""))
         for label, c in comparisons.items():
             beta = None if c.beta_error_median is None else 100 * c.beta_error_median
-            lines.append(f"{label:<18}{c.theta_max_diff:>+9.3f}{c.horizon:>11.3f}{'yes' if c.parted else 'no':>8}"
+            walk = ""
+            if slides:
+                rel = None if c.slide_rel_error is None else 100 * c.slide_rel_error
+                walk = (f"{cell(rel, '{:+.3g}'):>10}{cell(c.slide_onset_diff, '{:+.3g}'):>16}  "
+                        f"{' → '.join(c.modes or ()) or 'rest'}"
+                        + ("" if c.modes == c.modes_ref else f" (reference: {' → '.join(c.modes_ref or ()) or 'rest'})"))
+            lines.append(f"{label:<{width}}{c.theta_max_diff:>+9.3f}{c.horizon:>11.3f}{'yes' if c.parted else 'no':>8}"
                          f"{cell(beta, '{:.3g}'):>18}{cell(c.first_uplift_diff, '{:+.3g}'):>11}"
-                         f"{'yes' if c.overturn_agree else 'NO':>16}")
+                         f"{'yes' if c.overturn_agree else 'NO':>16}{walk}")
     return "\n".join(lines)
 
 

@@ -17,7 +17,7 @@ from scipy.integrate import quad
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import Trajectory
-from isorock.validate.core.measure import REST_FRACTION, beta_errors
+from isorock.validate.core.measure import REST_FRACTION, beta_errors, mode_sequence, slide_onset
 from isorock.validate.core.tolerances import limit
 
 #: Histories have parted once |Δθ| exceeds this fraction of α (the tolerance table's, with its reason).
@@ -56,6 +56,26 @@ class Comparison:
     u_max_rel_error: float | None    # None on a fixed base (u ≡ 0)
     beta_errors: tuple[float, ...]   # effective β / closed form − 1, per counted impact
     runtime_s: float
+    # where the statue may slip (docs/sliding.md; None where the reference carries no slide):
+    # its largest and final slide (m), when it started to slide (s, measure.slide_onset), and
+    # the modes each run reached in order (measure.mode_sequence)
+    slide_max: float | None = None
+    slide_max_ref: float | None = None
+    slide_final: float | None = None
+    slide_final_ref: float | None = None
+    slide_onset: float | None = None
+    slide_onset_ref: float | None = None
+    slide_onset_diff: float | None = None  # None unless both slid
+    modes: tuple[str, ...] | None = None
+    modes_ref: tuple[str, ...] | None = None
+
+    @property
+    def slide_rel_error(self) -> float | None:
+        """The largest slide's relative error (None without a slide to compare, or where the
+        reference barely slides: below SLIDE_ONSET_FRACTION·b both read as "did not slide")."""
+        if self.slide_max is None or self.slide_max_ref is None:
+            return None
+        return None if self.slide_max_ref == 0 else self.slide_max / self.slide_max_ref - 1
 
     @property
     def beta_error_median(self) -> float | None:
@@ -63,7 +83,15 @@ class Comparison:
         return float(np.median(finite)) if finite else None
 
     def as_dict(self) -> dict:
-        return dict(asdict(self), beta_errors=list(self.beta_errors), beta_error_median=self.beta_error_median)
+        out = dict(asdict(self), beta_errors=list(self.beta_errors), beta_error_median=self.beta_error_median)
+        if self.slide_max_ref is None:  # a run that cannot slip: its comparison is as before
+            for key in ("slide_max", "slide_max_ref", "slide_final", "slide_final_ref", "slide_onset",
+                        "slide_onset_ref", "slide_onset_diff", "modes", "modes_ref"):
+                out.pop(key)
+        else:
+            out.update(modes=list(self.modes or ()), modes_ref=list(self.modes_ref or ()),
+                       slide_rel_error=self.slide_rel_error)
+        return out
 
 
 def agreement(traj: Trajectory, ref: Trajectory, *, dt: float = COMPARE_DT,
@@ -102,7 +130,23 @@ def compare(traj: Trajectory, ref: Trajectory, *, dt: float = COMPARE_DT) -> Com
         u_max=traj.u_max, u_max_ref=ref.u_max,
         u_max_rel_error=None if fixed or ref.u_max == 0 else traj.u_max / ref.u_max - 1,
         beta_errors=tuple(beta_errors(traj)), runtime_s=traj.runtime_s,
+        **_slides(traj, ref),
     )
+
+
+def _slides(traj: Trajectory, ref: Trajectory) -> dict:
+    """The slide's fields of a Comparison (empty where the reference carries no slide)."""
+    if ref.slide is None:
+        return {}
+    on, on_ref = slide_onset(traj), slide_onset(ref)
+
+    def largest(tr):
+        return None if tr.slide is None else float(np.max(np.abs(tr.slide - tr.slide[0])))
+    return dict(slide_max=largest(traj), slide_max_ref=largest(ref),
+                slide_final=None if traj.slide is None else float(traj.slide[-1] - traj.slide[0]),
+                slide_final_ref=float(ref.slide[-1] - ref.slide[0]), slide_onset=on, slide_onset_ref=on_ref,
+                slide_onset_diff=None if on is None or on_ref is None else on - on_ref,
+                modes=mode_sequence(traj), modes_ref=mode_sequence(ref))
 
 
 def _peak(traj: Trajectory, other: Trajectory) -> float:

@@ -191,6 +191,61 @@ def _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_at, *, backward, wi
     return None if r is None else (r[1], r[2])
 
 
+#: A statue has started to slide once it has moved this fraction of its half width b on its
+#: base: read off every engine's history alike (the analytic slip event is exact, a contact
+#: engine's soft friction creeps before it slips; measured up to 4e-4·b at the no-slip
+#: defaults, SLIDING_FRACTION's note).
+SLIDE_ONSET_FRACTION = SLIDING_FRACTION
+#: The modes a run passes through are read with the rest band of θ (REST_FRACTION·α) and a
+#: slide speed of SLIDE_SPEED_FRACTION·b·p (p the block's frequency parameter: at that speed
+#: the block moves 1% of b in its own time unit 1/p), and a mode counts once it has lasted
+#: MODE_HOLD/p: shorter ones are a contact's transients (an impact's few time constants).
+SLIDE_SPEED_FRACTION = 0.01
+MODE_HOLD = 0.05
+
+
+def slide_onset(traj: Trajectory, fraction: float = SLIDE_ONSET_FRACTION) -> float | None:
+    """First time (s) the statue has slid `fraction`·b from where it stood, interpolated
+    between samples; None if never (or where the run carries no slide)."""
+    if traj.slide is None:
+        return None
+    level = fraction * traj.system.b
+    moved = np.abs(np.asarray(traj.slide) - traj.slide[0])
+    above = np.nonzero(moved > level)[0]
+    if not above.size:
+        return None
+    i = int(above[0])
+    if i == 0:
+        return float(traj.t[0])
+    t0, t1, a0, a1 = traj.t[i - 1], traj.t[i], moved[i - 1], moved[i]
+    return float(t0 + (t1 - t0) * (level - a0) / (a1 - a0))
+
+
+def mode_sequence(traj: Trajectory) -> tuple[str, ...]:
+    """The contact modes a run reached, in the order it first reached each ("slide", "rock",
+    "slide-rock"; resting is where every run starts): each read at every sample from the
+    tilt (beyond REST_FRACTION·α) and the slide's speed (beyond SLIDE_SPEED_FRACTION·b·p), and
+    counted once held for MODE_HOLD/p. The same reading for every engine (docs/sliding.md)."""
+    system = traj.system
+    t = np.asarray(traj.t, dtype=float)
+    rocks = np.abs(traj.theta) > REST_FRACTION * system.alpha
+    if traj.slide_dot is None:
+        slides = np.zeros(t.size, dtype=bool)
+    else:
+        slides = np.abs(traj.slide_dot) > SLIDE_SPEED_FRACTION * system.b * system.p
+    code = rocks.astype(int) * 2 + slides.astype(int)  # 0 rest, 1 slide, 2 rock, 3 slide-rock
+    names = {1: "slide", 2: "rock", 3: "slide-rock"}
+    hold = MODE_HOLD / system.p
+    seen: list[str] = []
+    starts = np.flatnonzero(np.diff(code, prepend=-1) != 0)
+    ends = np.append(starts[1:], t.size)
+    for a, b in zip(starts, ends):
+        c = int(code[a])
+        if c and names[c] not in seen and t[b - 1] - t[a] >= hold:
+            seen.append(names[c])
+    return tuple(seen)
+
+
 def beta_errors(traj: Trajectory, n: int | None = None) -> list[float]:
     """Relative error of each counted impact's effective β against the closed form."""
     ref = beta_closed_form(traj.system.slenderness, traj.system.mu)
@@ -198,4 +253,4 @@ def beta_errors(traj: Trajectory, n: int | None = None) -> list[float]:
     return errs[:n] if n is not None else errs
 
 
-__all__ = ["measure", "effective_impacts", "beta_errors", "CONTACT_WINDOW", "contact_window", "REST_FRACTION", "OVERTURN_RULES"]
+__all__ = ["measure", "effective_impacts", "beta_errors", "slide_onset", "mode_sequence", "CONTACT_WINDOW", "contact_window", "REST_FRACTION", "OVERTURN_RULES"]
