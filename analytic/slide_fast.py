@@ -1058,11 +1058,11 @@ def _message(system, settings, r):
     if why == STOP_INTEGRATION:
         return Status.FAILED, f"integration failed at t = {t:.6g} s: Required step size is less than spacing between numbers."
     if why == STOP_IMPULSE:
-        return Status.FAILED, (f"the model stops at t = {t:.6g} s: the landing would need a negative normal impulse "
+        return Status.OUTSIDE_MODEL, (f"the model stops at t = {t:.6g} s: the landing would need a negative normal impulse "
                                f"(P_z = {pz:.3g} N·s; docs/sliding.md, \"Impact\")")
     if why != STOP_NONE:
         where = " (at the start)" if events == 0 and t == 0.0 else ""
-        return Status.FAILED, f"the model stops at t = {t:.6g} s{where}: {_WHY[why]}"
+        return Status.OUTSIDE_MODEL, f"the model stops at t = {t:.6g} s{where}: {_WHY[why]}"
     if status == _EVENT_LIMIT:
         return Status.EVENT_LIMIT, f"stopped after {settings.max_events} events at t = {t:.6g} s (max_events)"
     if status == _OVERTURNED:

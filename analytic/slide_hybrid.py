@@ -40,7 +40,7 @@ _WHY = {sl.FLIGHT: "free flight (the base's normal force on the block fell to ze
 
 
 def stop(why: int, t: float, what: str = "") -> StopRun:
-    return StopRun(Status.FAILED, f"the model stops at t = {t:.6g} s{what}: {_WHY[why]}", t)
+    return StopRun(Status.OUTSIDE_MODEL, f"the model stops at t = {t:.6g} s{what}: {_WHY[why]}", t)
 
 
 class SlidingIntegrator(_IsolatorIntegrator):
@@ -276,7 +276,7 @@ class SlidingIntegrator(_IsolatorIntegrator):
         continued = physics.impact_continues(sp, thd_pre)
         thd, xd, ud, px, pz, ok = sl.impact(sp, self.cp, s, thd_pre, xd_pre, ud_pre, continued)
         if not ok:
-            raise StopRun(Status.FAILED, f"the model stops at t = {t:.6g} s: the landing would need a negative "
+            raise StopRun(Status.OUTSIDE_MODEL, f"the model stops at t = {t:.6g} s: the landing would need a negative "
                                          f"normal impulse (P_z = {pz:.3g} N·s; docs/sliding.md, \"Impact\")", t)
         loss = (sl.kinetic_energy(sp, s, ud_pre, xd_pre, 0.0, thd_pre)
                 - sl.kinetic_energy(sp, -s, ud, xd, 0.0, thd))

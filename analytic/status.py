@@ -12,6 +12,10 @@ class Status(StrEnum):
     EVENT_LIMIT = "event-limit"  #: the analytic model stopped after `max_events` events
     FAILED = "failed"            #: the integration or the engine failed; the message says why
     SLID = "slid"                #: a contact engine's block slid on its base: not the no-sliding model
+    #: the exact model's assumptions broke and it stopped there, saying which (the block would
+    #: leave its base, Coulomb friction admits no mode, a landing needs a negative normal
+    #: impulse: docs/sliding.md): no answer, and no fault of the integration
+    OUTSIDE_MODEL = "outside-model"
 
     @property
     def ended_normally(self) -> bool:
@@ -20,8 +24,9 @@ class Status(StrEnum):
 
     @property
     def is_failure(self) -> bool:
-        """True when the run produced no answer to trust (failed, or stopped at the event limit)."""
-        return self in (Status.FAILED, Status.EVENT_LIMIT)
+        """True when the run produced no answer to trust (failed, stopped at the event limit, or
+        beyond the model's assumptions)."""
+        return self in (Status.FAILED, Status.EVENT_LIMIT, Status.OUTSIDE_MODEL)
 
 
 __all__ = ["Status"]

@@ -5,8 +5,8 @@ import pytest
 
 from isorock.analytic import System
 from isorock.validate.core.scenarios import Scenario
-from isorock.validate.tools.stress import (ENERGY_TOLERANCE, StressCase, compare_engines, drawn_cases, edge_cases,
-                                    run_case, run_stress, stress_verdict, verdict)
+from isorock.validate.tools.stress import (ENERGY_TOLERANCE, OUTSIDE, StressCase, compare_engines, drawn_cases,
+                                           edge_cases, run_case, run_stress, stress_verdict, verdict)
 
 
 def test_quick_edges_and_draws_pass_on_every_grid_engine():
@@ -19,12 +19,21 @@ def test_quick_edges_and_draws_pass_on_every_grid_engine():
     edges, draws = edge_cases(quick=True), drawn_cases(4)
     assert len(results) == len(edges) * len(engines) + len(draws) * len([e for e in engines if e in ENGINE_NAMES])
     bad = [(r["engine"], r["case"], r["status"], r.get("error"), r.get("energy_residual"))
-           for r in results if r["verdict"] != "pass"]
+           for r in results if r["verdict"] not in ("pass", OUTSIDE)]
     assert not bad
-    assert {r["cross"] for r in results if r["case"] in {c.name for c in draws} and r["engine"] != "analytic"} <= {
-        "agree", "slid", "chaotic"}
+    # the exact model may stop where its assumptions break (drawn-0001: a squat block under 6.9 g
+    # thrown off its pivot), saying so; then no engine is judged on that case
+    outside = {r["case"] for r in results if r["verdict"] == OUTSIDE}
     for r in results:
-        if r["engine"].startswith("analytic"):
+        if r["case"] in outside:
+            assert r["engine"].startswith("analytic") or r["cross"] == ""
+            if r["verdict"] == OUTSIDE:
+                assert r["status"] == "outside-model" and ("free flight" in r["message"] or "Painlevé" in r["message"])
+    assert len(outside) <= 1
+    assert {r["cross"] for r in results if r["case"] in {c.name for c in draws} and r["engine"] != "analytic"} <= {
+        "agree", "chaotic", ""}
+    for r in results:
+        if r["engine"].startswith("analytic") and r["verdict"] == "pass":
             assert r["energy_residual"] < ENERGY_TOLERANCE
     # the grid does exercise rocking, impacts and overturning
     assert any(r["overturned"] for r in results) and any(r["impacts"] > 3 and not r["overturned"] for r in results)
@@ -176,8 +185,12 @@ def test_a_reference_whose_outcome_flips_near_the_motion_is_chaotic_not_a_disagr
     9 of 41 scales 0.95–1.05 in steps of 0.25%, as MuJoCo does at 9 and PyBullet at 8:
     docs/robustness.md). A disagreement now reruns the reference on that finer step, nearest
     first, and one flip makes it chaotic; the engine's runs (stubbed here) are not needed."""
+    from dataclasses import replace
+
     from isorock.validate.tools import stress
     case = drawn_cases(1407)[1406]
+    # as it was drawn before the statue's friction joined the draws (issue 33): no slip
+    case = replace(case, scenario=case.scenario.with_system(case.scenario.system.with_friction(None)))
     ref = dict(engine="analytic", case=case.name, verdict="pass", overturned=False, robust=True, status="completed")
     mine = dict(engine="mujoco", case=case.name, verdict="pass", overturned=True, status="overturned")
     results = [ref, mine]

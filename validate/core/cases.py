@@ -65,8 +65,22 @@ class Case:
         return replace(self, system=system, theta0=self.theta0_over_alpha * system.alpha, name=name or self.name)
 
 
+#: A spec's vertical component follows this separator: "HORIZONTAL + vertical VERTICAL", each
+#: a spec of its own (a pulse, a record, a synthetic record): a two-component motion that a
+#: named case can carry as a string (docs/sliding.md)
+VERTICAL_SEPARATOR = " + vertical "
+
+
+def with_vertical_spec(spec: str, vertical: str | None) -> str:
+    """The spec of `spec`'s motion with the vertical component `vertical` (a spec; None: none)."""
+    return spec if vertical is None else f"{spec}{VERTICAL_SEPARATOR}{vertical}"
+
+
 @functools.lru_cache(maxsize=64)
 def _load(spec, window, format, units) -> GroundMotion:
+    if VERTICAL_SEPARATOR in spec:
+        horizontal, vertical = spec.split(VERTICAL_SEPARATOR, 1)
+        return _load(horizontal, window, format, units).with_vertical(_load(vertical, window, format, units))
     if spec.startswith("noise:"):
         p = dict(kv.split("=") for kv in spec[len("noise:"):].split(","))
         m = synthetic_record(float(p["dt"]), float(p["pga"]), float(p["seconds"]), int(p["seed"]))
@@ -94,15 +108,17 @@ def synthetic_record(dt: float, pga_g: float, seconds: float, seed: int) -> Grou
 
 
 def block_system(*, height: float, slenderness: float, mass: float, mass_ratio: float,
-                 period: float = PAPER_PERIOD, damping_ratio: float = PAPER_DAMPING_RATIO) -> System:
+                 period: float = PAPER_PERIOD, damping_ratio: float = PAPER_DAMPING_RATIO,
+                 friction: float | None = None) -> System:
     """A block of height H (m) and slenderness λ = H/B of mass m (kg), on a base of mass
     m/μ tied by the isolator (T s, ξ; the paper's by default), or on a fixed base when
-    μ = 0: the one place a System is built from the numbers that are varied."""
+    μ = 0, with the statue–base friction μ_s (None: it cannot slip): the one place a
+    System is built from the numbers that are varied."""
     width = height / slenderness
     if mass_ratio == 0:
-        return System.fixed(height=height, width=width, mass=mass)
+        return System.fixed(height=height, width=width, mass=mass).with_friction(friction)
     return System.isolated(height=height, width=width, mass=mass, base_mass=mass / mass_ratio, period=period,
-                           damping_ratio=damping_ratio)
+                           damping_ratio=damping_ratio).with_friction(friction)
 
 
 def build_system(inputs: dict) -> System:

@@ -63,10 +63,10 @@ def paper_bases() -> tuple[tuple[str, System], ...]:
 
 
 def block(height=2.0, slenderness=2.857, mass_ratio=1.0, period=PAPER_PERIOD, damping_ratio=PAPER_DAMPING_RATIO,
-          fixed=False, mass=3800.0) -> System:
+          fixed=False, mass=3800.0, friction=None) -> System:
     """A block of the paper's kind varied in one or more of its numbers (cases.block_system)."""
     return block_system(height=height, slenderness=slenderness, mass=mass, mass_ratio=0.0 if fixed else mass_ratio,
-                        period=period, damping_ratio=damping_ratio)
+                        period=period, damping_ratio=damping_ratio, friction=friction)
 
 
 def free_rocking_grid(mass_ratios, slenderness, *, duration: float,
