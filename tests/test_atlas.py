@@ -230,3 +230,40 @@ def test_an_atlas_row_carries_the_one_summary_row():
     for key, value in direct.items():
         assert row[key] == value or (isinstance(value, float) and math.isnan(value) and math.isnan(row[key])), key
     assert "beta_errors_counted" in row and "sim_s" in row
+
+
+# --- the statue's friction as an axis (issue 33) ---------------------------------------------
+
+def test_friction_axis_values_and_refusals():
+    from isorock.analytic.errors import InputError
+    from isorock.validate.tools.atlas import axis_values
+    assert axis_values("frictions", "0.3,none,0.1") == (0.1, 0.3, None)
+    for bad in ("0", "11", "x", "0.3,0.3"):
+        with pytest.raises(InputError, match="--frictions"):
+            axis_values("frictions", bad)
+
+
+def test_peak_beta_is_housners_where_nothing_slips():
+    """On a fixed base without slip the energy of a half-cycle is kept, so β read from the
+    peaks either side of an impact is the closed form 1 − 1.5 sin²α (model.md)."""
+    from isorock.analytic.coefficients import beta
+    from isorock.analytic.fast import simulate_fast
+    from isorock.analytic.system import System
+    from isorock.validate.tools.atlas import peak_betas
+    system = System.fixed(height=2.0, width=0.5, mass=100.0).with_friction(10.0)
+    tr = simulate_fast(system, None, theta0=0.5 * system.alpha, duration=6.0)
+    betas = peak_betas(tr)
+    assert len(betas) >= 5
+    assert betas == pytest.approx([beta(system.slenderness, 0.0)] * len(betas), rel=1e-9)
+
+
+def test_a_friction_cell_is_judged_against_the_exact_models_peaks():
+    """A cell whose impacts slip (μ_s 0.1 below the paper-like block's 0.25 a landing needs):
+    its reference is the exact model's own peaks, and the reference path meets it."""
+    from isorock.validate.tools.atlas import Cell, Grid, build
+    grid = Grid((6.0,), (0.0,), (1.0,), frictions=(0.1,))
+    atlas = build(["analytic-reference"], grid, workers=1)
+    (r,) = [r for r in atlas["rows"] if r["preset"] == "default"]
+    assert r["status"] == "ok" and r["friction"] == 0.1 and "peaks" in r["beta_from"]
+    assert abs(r["beta_error"]) < 1e-9 and r["t1_reference_from"] == "analytic model"
+    assert Cell(6.0, 0.0, 1.0, 0.1).system().friction == 0.1

@@ -22,7 +22,7 @@ def add_parser(sub) -> None:
                         f"μ {', '.join(map(str, QUICK_MASS_RATIOS))}, H {', '.join(map(str, QUICK_HEIGHTS))} m) "
                         f"instead of the full {len(FULL.cells())}")
     for option, (name, (lo, hi), meaning, _) in AXES.items():
-        default = ", ".join(f"{x:g}" for x in getattr(FULL, option))
+        default = ", ".join("none" if x is None else f"{x:g}" for x in getattr(FULL, option))
         p.add_argument("--" + option.replace("_", "-"), metavar="X,Y,…",
                        help=f"your grid's {option.replace('_', ' ')}, {meaning}, comma-separated, {lo:g} to {hi:g}"
                             + (" or 0" if option == "mass_ratios" else "")
@@ -66,7 +66,7 @@ def cmd_atlas(a) -> int:
     if not (a.run_budget > 0 and math.isfinite(a.run_budget)):
         raise InputError(f"run-budget = {a.run_budget!r}: must be a positive number of seconds")
     grid = user_grid(QUICK if a.quick else FULL, slenderness=a.slenderness, mass_ratios=a.mass_ratios,
-                     heights=a.heights)
+                     heights=a.heights, frictions=a.frictions)
     check_folder(a.out)  # a folder we may not write is refused before the runs, not after
     bars = []
 

@@ -79,13 +79,19 @@ class Grid:
     slenderness: tuple[float, ...]
     mass_ratios: tuple[float, ...]
     heights: tuple[float, ...]
+    #: the statue's friction μ_s (docs/sliding.md); None: it cannot slip (the grid as before)
+    frictions: tuple[float | None, ...] = (None,)
 
     def cells(self) -> list["Cell"]:
-        return [Cell(lam, mu, h) for mu in self.mass_ratios for h in self.heights for lam in self.slenderness]
+        return [Cell(lam, mu, h, f) for f in self.frictions for mu in self.mass_ratios for h in self.heights
+                for lam in self.slenderness]
 
     def describe(self) -> dict:
-        return {"slenderness": list(self.slenderness), "mass_ratios": list(self.mass_ratios),
-                "heights_m": list(self.heights)}
+        out = {"slenderness": list(self.slenderness), "mass_ratios": list(self.mass_ratios),
+               "heights_m": list(self.heights)}
+        if self.frictions != (None,):
+            out["frictions"] = list(self.frictions)
+        return out
 
 
 FULL = Grid(FULL_SLENDERNESS, FULL_MASS_RATIOS, FULL_HEIGHTS)
@@ -97,7 +103,10 @@ QUICK = Grid(QUICK_SLENDERNESS, QUICK_MASS_RATIOS, QUICK_HEIGHTS)
 #: (the paper's isolated statues sit at 0.25–4); H from 1 cm to 100 m (a statue to a tower).
 AXES = {"slenderness": ("slenderness", (1.0, 100.0), "λ = H/B", "3,8"),
         "mass_ratios": ("mass ratio", (0.01, 100.0), "μ = m/m_b, 0 for a fixed base", "0,0.5"),
-        "heights": ("height", (0.01, 100.0), "H, m", "0.3,3")}
+        "heights": ("height", (0.01, 100.0), "H, m", "0.3,3"),
+        # the statue's friction μ_s (docs/sliding.md), "none" for no slip: from a polished plinth
+        # to a coefficient no landing's impulse exceeds (System.friction's range)
+        "frictions": ("friction", (0.01, 10.0), "the statue's μ_s, or none for no slip", "0.1,0.3,none")}
 #: Values per axis and cells in all: four times the full grid's 60 cells, each run by every
 #: preset asked for (minutes per preset on 2 cores for the full grid, docs/atlas.md).
 MAX_AXIS_VALUES, MAX_CELLS = 20, 240
@@ -114,6 +123,9 @@ def axis_values(option: str, text: str) -> tuple[float, ...]:
     items = [x.strip() for x in str(text).split(",")]
     values = []
     for item in items:
+        if option == "frictions" and item.lower() == "none":
+            values.append(None)
+            continue
         try:
             x = float(item)
         except ValueError:
@@ -126,20 +138,21 @@ def axis_values(option: str, text: str) -> tuple[float, ...]:
         raise InputError(f"{flag} = {text!r}: lists {dup:g} twice; each value once (a repeat runs its cells twice)")
     if len(values) > MAX_AXIS_VALUES:
         raise InputError(f"{flag} = {text!r}: {len(values)} values; must be at most {MAX_AXIS_VALUES}")
-    return tuple(sorted(values))
+    return tuple(sorted(values, key=lambda x: math.inf if x is None else x))
 
 
 def user_grid(base: Grid, *, slenderness: str | None = None, mass_ratios: str | None = None,
-              heights: str | None = None) -> Grid:
+              heights: str | None = None, frictions: str | None = None) -> Grid:
     """`base` with each axis the user gave replaced by theirs (axis_values), at most
     MAX_CELLS cells in all."""
-    given = {"slenderness": slenderness, "mass_ratios": mass_ratios, "heights": heights}
+    given = {"slenderness": slenderness, "mass_ratios": mass_ratios, "heights": heights, "frictions": frictions}
     axes = {k: (axis_values(k, v) if v is not None else getattr(base, k)) for k, v in given.items()}
     grid = Grid(**axes)
     n = len(grid.cells())
     if n > MAX_CELLS:
-        raise InputError(f"--slenderness × --mass-ratios × --heights = {len(grid.slenderness)} × "
-                         f"{len(grid.mass_ratios)} × {len(grid.heights)} = {n} cells: must be at most {MAX_CELLS}")
+        raise InputError(f"--slenderness × --mass-ratios × --heights × --frictions = {len(grid.slenderness)} × "
+                         f"{len(grid.mass_ratios)} × {len(grid.heights)} × {len(grid.frictions)} = {n} cells: "
+                         f"must be at most {MAX_CELLS}")
     return grid
 
 
@@ -151,6 +164,7 @@ class Cell:
     slenderness: float
     mass_ratio: float
     height: float
+    friction: float | None = None  # the statue's μ_s (None: it cannot slip)
 
     def system(self):
         from isorock.analytic.system import System
@@ -159,11 +173,27 @@ class Cell:
         mass = DENSITY * self.height * width * width
         p = System.fixed(height=self.height, width=width, mass=mass).p
         return block_system(height=self.height, slenderness=self.slenderness, mass=mass,
-                            mass_ratio=self.mass_ratio, period=PERIOD_TIMES_P / p)
+                            mass_ratio=self.mass_ratio, period=PERIOD_TIMES_P / p, friction=self.friction)
 
     @property
     def key(self) -> tuple:
-        return (self.slenderness, self.mass_ratio, self.height)
+        return (self.slenderness, self.mass_ratio, self.height) + (() if self.friction is None else (self.friction,))
+
+
+def peak_betas(traj) -> list[float]:
+    """Effective β of each counted impact read from the rocking peaks on either side of it:
+    the half-cycle's energy before and after it, on a fixed base
+    cos(α − θp) − cos α ∝ θ̇² at θ = 0, so β = √[(cos(α − θp⁺) − cos α)/(cos(α − θp⁻) − cos α)].
+    Where the statue may slip (a friction cell) the rigid map of a contact engine's states
+    to θ = 0 no longer holds (its pivot may slide after the impact); the peaks are read alike
+    from every engine's history and the exact model's, and compared with each other."""
+    import numpy as np
+    a = traj.alpha
+    amps = [i.amplitude for i in traj.counted_impacts]
+
+    def energy(p):
+        return np.cos(a - p) - np.cos(a)
+    return [float(np.sqrt(energy(amps[k + 1]) / energy(amps[k]))) for k in range(len(amps) - 1)]
 
 
 # --- the reference of each cell -------------------------------------------------------
@@ -191,8 +221,13 @@ def reference(cell: Cell) -> dict:
     # a contact run must have counted as many impacts by then: half a half-cycle past the
     # rigid model's last kept impact, room for its impacts to come a little early or late
     kept_by = impacts[last].t + 0.5 * (impacts[last].t - (impacts[last - 1].t if last else 0.0))
-    fixed = system.fixed_base
+    # without slip, the closed forms; where the statue may slip, the exact model's own history
+    # (its impacts may slip, and its pivot slide: docs/sliding.md)
+    fixed = system.fixed_base and cell.friction is None
+    slips = cell.friction is not None
     return {"system": system, "theta0": theta0, "beta_closed": beta(system.slenderness, system.mu),
+            "beta_reference": peak_betas(rigid) if slips else None,
+            "beta_from": "the rocking peaks, against the exact model's" if slips else "the closed form",
             "judged_impacts": order, "impacts_expected": len(order),
             # every impact up to the rigid model's last one above KEPT_AMPLITUDE·α must be counted
             "impacts_kept": last + 1, "impacts_kept_by": kept_by,
@@ -227,9 +262,12 @@ def run_cell(task) -> dict:
     else:
         counted = traj.counted_impacts
         out.update(row_of_trajectory(traj))  # the one summary row every table shares, then the atlas's own
+        slips = task.system.friction is not None
         out.update(status=str(traj.status), message=traj.message or "",
                    sim_s=float(traj.t[-1]) if len(traj.t) else 0.0, loop_s=float(traj.runtime_s),
-                   impacts_counted=len(counted), beta_errors_counted=beta_errors(traj, KEPT_IMPACTS),
+                   impacts_counted=len(counted),
+                   beta_errors_counted=None if slips else beta_errors(traj, KEPT_IMPACTS),
+                   peak_betas=peak_betas(traj)[:KEPT_IMPACTS] if slips else None,
                    first_impact_time=counted[0].t if counted else None,
                    impact_times=[i.t for i in counted],
                    lift_off_after_impact=traj.extras.get("lift_off_max_after_impact"),
@@ -267,7 +305,13 @@ def judge(measured: dict, ref: dict) -> tuple[str, str]:
 
 def judged_errors(measured: dict, ref: dict) -> list[float] | None:
     """β errors of the run's counted impacts in the places the reference judges; None when
-    the run has fewer counted impacts than that."""
+    the run has fewer counted impacts than that. A friction cell's are its peak β against the
+    exact model's (peak_betas)."""
+    if ref.get("beta_reference") is not None:
+        mine, theirs = measured.get("peak_betas") or [], ref["beta_reference"]
+        if len(mine) <= max(ref["judged_impacts"]) or len(theirs) <= max(ref["judged_impacts"]):
+            return None
+        return [mine[k] / theirs[k] - 1 for k in ref["judged_impacts"]]
     errors = measured.get("beta_errors_counted") or []
     if len(errors) <= max(ref["judged_impacts"]):
         return None
@@ -285,9 +329,10 @@ def row(label: str, cell: Cell, ref: dict, measured: dict) -> dict:
     return {
         "engine": label, "engine_name": name, "preset": preset or "default",
         "slenderness": cell.slenderness, "mass_ratio": cell.mass_ratio, "height": cell.height,
+        "friction": cell.friction,
         "width": system.width, "mass": system.mass, "base": "fixed" if system.fixed_base else "isolated",
         "status": status, "note": note,
-        "beta_closed": ref["beta_closed"],
+        "beta_closed": ref["beta_closed"], "beta_from": ref["beta_from"],
         # signed, the impact of largest |error|; only for a judged run (others are no error at all)
         "beta_error": max(errors, key=abs) if errors else None,
         "impacts_counted": measured.get("impacts_counted"), "impacts_judged": ref["impacts_expected"],
@@ -304,8 +349,8 @@ def row(label: str, cell: Cell, ref: dict, measured: dict) -> dict:
     }
 
 
-COLUMNS = ("engine", "engine_name", "preset", "slenderness", "mass_ratio", "height", "width", "mass", "base",
-           "status", "note", "beta_closed", "beta_error", "impacts_counted", "impacts_judged", "impacts_kept",
+COLUMNS = ("engine", "engine_name", "preset", "slenderness", "mass_ratio", "height", "friction", "width", "mass",
+           "base", "status", "note", "beta_closed", "beta_from", "beta_error", "impacts_counted", "impacts_judged", "impacts_kept",
            "impacts_lost", "first_impact_time",
            "t1_reference", "t1_reference_from", "t1_error", "sim_s", "loop_s", "wall_s", "cpu_s",
            "lift_off_after_impact", "pivot_slip")
@@ -428,7 +473,7 @@ def similarity(judged: list[dict]) -> dict:
     exactly with the block; None with fewer than two sizes judged."""
     cases = {}
     for r in judged:
-        cases.setdefault((r["slenderness"], r["mass_ratio"]), []).append(r)
+        cases.setdefault((r["slenderness"], r["mass_ratio"], r.get("friction")), []).append(r)
     spread_beta = [max(r["beta_error"] for r in rs) - min(r["beta_error"] for r in rs)
                    for rs in cases.values() if len(rs) > 1]
     t1 = [[r["t1_error"] for r in rs if r["t1_error"] is not None] for rs in cases.values()]
@@ -483,7 +528,8 @@ def verdict(summaries: list[dict]) -> list[dict]:
 
 
 def _cell_text(r: dict) -> str:
-    return f"λ {r['slenderness']:g}, μ {r['mass_ratio']:g}, H {r['height']:g} m"
+    friction = "" if r.get("friction") is None else f", μ_s {r['friction']:g}"
+    return f"λ {r['slenderness']:g}, μ {r['mass_ratio']:g}, H {r['height']:g} m{friction}"
 
 
 # --- writing it -------------------------------------------------------------------------
@@ -599,6 +645,11 @@ def markdown(atlas: dict, *, quick: bool) -> str:
               f"of each block's 1/p; ξ {PAPER_DAMPING_RATIO:g})",
               f"- height H: {', '.join(f'{x:g}' for x in grid.heights)} m; square footprint B × B, density "
               f"{DENSITY:.0f} kg/m³ (the paper's block)",
+              *([f"- the statue's friction μ_s: {', '.join('none' if x is None else f'{x:g}' for x in grid.frictions)}"
+                 " (docs/sliding.md). A cell with friction is judged on β read from the rocking peaks either side "
+                 "of each impact, in the engine's history and the exact model's alike (`peak_betas`: a pivot that "
+                 "slides after an impact breaks the rigid map), and on t₁ against the exact model"]
+                if grid.frictions != (None,) else []),
               "- free rocking from θ0 = 0.5α; each run lasts 1.2 × the time of the rigid model's last impact "
               f"above {KEPT_AMPLITUDE:g}α (or its last judged one, if later) + 0.1 s",
               f"- a run past {atlas['budget_s']:g} CPU s stops and is reported 'too slow'",

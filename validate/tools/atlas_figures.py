@@ -27,14 +27,16 @@ SHORT = {"missing impacts": "missing", "too slow": "slow", "unmeasured": "unmeas
 
 
 def error_map(rows: list[dict], grid, summary: dict, path) -> None:
-    lams, mus, heights = grid.slenderness, grid.mass_ratios, grid.heights
+    lams, heights = grid.slenderness, grid.heights
+    # one panel per mass ratio, and per statue friction where the grid has that axis
+    mus = [(mu, f) for f in grid.frictions for mu in grid.mass_ratios]
     fig = Figure(figsize=(2.0 + 2.3 * len(mus) + 0.4 * len(lams), 1.6 + 1.05 * len(heights) * 2))
     # laid out by hand: a layout engine costs as much as drawing the figure, once per preset
     fig.subplots_adjust(left=0.07, right=0.82, bottom=0.08, top=0.88, wspace=0.25, hspace=0.35)
     axes = np.atleast_2d(fig.subplots(2, len(mus), squeeze=False))
     norm = SymLogNorm(linthresh=LINEAR_PCT, vmin=-SATURATE_PCT, vmax=SATURATE_PCT, base=10)
     cmap = _cmap()
-    by_cell = {(r["slenderness"], r["mass_ratio"], r["height"]): r for r in rows}
+    by_cell = {(r["slenderness"], (r["mass_ratio"], r.get("friction")), r["height"]): r for r in rows}
     image = None
     for k, (metric, what) in enumerate((("beta_error", "β error"), ("t1_error", "t₁ error"))):
         for j, mu in enumerate(mus):
@@ -53,7 +55,7 @@ def error_map(rows: list[dict], grid, summary: dict, path) -> None:
             image = ax.imshow(values, origin="lower", cmap=cmap, norm=norm, aspect="auto")
             ax.set_xticks(range(len(lams)), [f"{x:g}" for x in lams], fontsize=8)
             ax.set_yticks(range(len(heights)), [f"{x:g}" for x in heights], fontsize=8)
-            base = "fixed base" if mu == 0 else f"μ = {mu:g}"
+            base = ("fixed base" if mu[0] == 0 else f"μ = {mu[0]:g}") + ("" if mu[1] is None else f", μ_s {mu[1]:g}")
             ax.set_title(f"{what}, {base}", fontsize=9)
             if k == 1:
                 ax.set_xlabel("λ = H/B", fontsize=8)
