@@ -229,7 +229,8 @@ def _compile_physics():
               "free_vibration_change", "rocking_pivot_force_ratio", "_times_a", "base_pinned",
               "isolator_element_force", "isolator_translation_acceleration", "isolator_rocking_accelerations",
               "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
-              "slip_power", "slip_force", "rigid_demand", "slip_phase", "slider_position")
+              "slip_power", "slip_force", "rigid_demand", "slip_phase", "slider_position", "hidden_crossing",
+              "vertex_function")
     for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
@@ -243,7 +244,7 @@ def _compile_physics():
                  "isolator_translation_acceleration", "isolator_rocking_accelerations",
                  "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
                  "slip_power", "slip_force", "rigid_demand", "slip_phase", "slider_position",
-                 "vertex_rest_speed", "kinetic_energy"):
+                 "vertex_rest_speed", "kinetic_energy", "hidden_crossing", "vertex_function"):
         f = getattr(physics, name)
         rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
         table[name] = njit(inline="always")(rebuilt) if name in inline else njit(rebuilt)
@@ -285,6 +286,8 @@ _stick_limit = _P["stick_limit"]
 _slip_power = _P["slip_power"]
 _lift_order = _P["lift_order"]
 _lifts_clearly = _P["lifts_clearly"]
+_hidden_crossing = _P["hidden_crossing"]
+_vertex_function = _P["vertex_function"]
 
 
 assert physics.N_SP == 19 and physics.N_MP == 14  # the tuples below
@@ -368,7 +371,7 @@ def _slider_event(e, mode, t, u, ud, th, thd, xg, t0, sp, iso):
         if e == 6:
             sigma = 1.0 if ph > 0.0 else -1.0
             if iso[0] == _ISO_CONE:
-                return sigma * u
+                return _vertex_function(sigma, u, t <= t0)
             return sigma * (u - iso[_IS_UP]) - iso[_IS_UY]
         if iso[_IS_REST] != 0.0:
             return ph * ud / (t - t0) if t > t0 else iso[_IS_START]
@@ -1246,6 +1249,32 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     cut = k  # roots before it are kept; it ends the piece
                     term = root_ev[k]
                     break
+            if _ISO:
+                # a terminal event that the cut hid ends the piece instead, checked again from
+                # the earlier cut (hybrid._IsolatorIntegrator.first_terminal)
+                while term >= 0 and roots[cut] > t_old:
+                    hid = -1
+                    r_hid = roots[cut]
+                    for e in range(_N_EV):
+                        if not use[e] or not terminal[e] or e == term:
+                            continue
+                        d = _DIRECTION[mi, e]
+                        if e == 5 and phase != 0.0:
+                            d = -1  # a slip stops: σ·u̇ falling through 0
+                        g_cut = _event_dense(e, mode, roots[cut], F, y, t_old, h, sp, mpt, tp0, kpow, limit, thr, iso)
+                        if _hidden_crossing(d, g_old[e], g_cut):
+                            r = _brentq(e, mode, t_old, roots[cut], g_old[e], F, y, t_old, h, sp, mpt,
+                                        tp0, kpow, limit, thr, iso)
+                            if r < r_hid:
+                                hid = e
+                                r_hid = r
+                    if hid < 0:
+                        break
+                    while cut > 0 and roots[cut - 1] >= r_hid:
+                        cut -= 1  # the roots after the new cut did not happen
+                    roots[cut] = r_hid
+                    root_ev[cut] = hid
+                    term = hid
             for k in range(cut):
                 if root_ev[k] == 1:
                     t_alpha = roots[k]  # |θ| rose through α, and the run goes on

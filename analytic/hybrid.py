@@ -16,6 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from . import physics
 from .motion import GroundMotion
@@ -29,6 +30,7 @@ from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory,
 
 # state vector: u, u̇, θ, θ̇, ground work W, dashpot loss D
 U, UD, TH, THD, W, D = range(6)
+EPS = np.finfo(float).eps  # solve_ivp's event location: Brent's method to 4·eps
 
 
 # --- the physics, for callers holding a System (analytic.physics has it all) -----------
@@ -543,6 +545,30 @@ class _IsolatorIntegrator(_Integrator):
         return f
 
     # events ----------------------------------------------------------------------------
+    def first_terminal(self, sol, evs):
+        """The first terminal event, or one that it hid (physics.hidden_crossing): a terminal
+        event whose function changed sign, its way, between the last step's start and the cut,
+        located there on the step's dense output as solve_ivp locates any (Brent, 4·eps), ends
+        the piece instead; checked again from the earlier cut until none is left. On a linear
+        isolator the only terminal events are the landing, α and π/2 (the run is unchanged)."""
+        hit = super().first_terminal(sol, evs)
+        dense = sol.sol.interpolants[-1] if hit is not None and sol.sol is not None else None
+        while dense is not None and hit[1] > dense.t_old:
+            k, te, ye = hit
+            t_old = dense.t_old
+            hidden = None
+            for j, ev in enumerate(evs):
+                if j == k or not ev.terminal:
+                    continue
+                if physics.hidden_crossing(ev.direction, ev(t_old, dense.y_old), ev(te, ye)):
+                    r = brentq(lambda t: ev(t, dense(t)), t_old, te, xtol=4 * EPS, rtol=4 * EPS)
+                    if r < te and (hidden is None or r < hidden[1]):
+                        hidden = (j, r)
+            if hidden is None:
+                break
+            hit = (hidden[0], hidden[1], dense(hidden[1]))
+        return hit
+
     def slider_events(self, mode, t0, y0, fun):
         """The slider's phase changes: a slipping one stops (u̇ crosses 0, side 0); a stuck
         one slips (side ±1) when the pendulum's demand, or the bearing's elastic force,
@@ -558,7 +584,8 @@ class _IsolatorIntegrator(_Integrator):
                 evs = [_event(lambda t, y: ph * y[UD] / (t - t0) if t > t0 else start, "isolator", -1, side=0)]
             sigma = 1 if ph > 0 else -1
             if self.kind == physics.ISO_CONE and abs(ph) == 2:  # the returning ball reaches the vertex
-                evs.append(_event(lambda t, y: sigma * y[U], "isolator", +1, side=sigma))
+                evs.append(_event(lambda t, y: physics.vertex_function(sigma, y[U], t <= t0), "isolator", +1,
+                                  side=sigma))
             elif self.kind == physics.ISO_DOUBLE and abs(ph) == 1 and self.u_y > 0.0:  # both surfaces slide
                 up, uy = self.u_p, self.u_y
                 evs.append(_event(lambda t, y: sigma * (y[U] - up) - uy, "isolator", +1, side=2 * sigma))
