@@ -972,6 +972,12 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
         if mode != 0:
             upl[0] = 0.0
             n_upl = 1
+            if _ISO:
+                if ipk[0] >= _ISO_FRICTION and y[1] == 0.0:
+                    # a rigid slider at rest takes its phase from the rocking block's demand
+                    # (hybrid._IsolatorIntegrator.uplift_mode)
+                    phase = _stick_or_slip(sp, iso, mode, y[2], y[3], y[0], _xg(0.0, mp, acc))
+                    iso = _iso_state(ipk, phase, u_p, 0.0, 0.0)
 
     status = _COMPLETED
     verdict = 0

@@ -516,8 +516,16 @@ class _IsolatorIntegrator(_Integrator):
         return side if physics.lifts_clearly(sp, side, thdd) else 0
 
     def uplift_mode(self, t, y):
-        return physics.uplift_direction(self.sp, physics.isolator_base_acceleration(
+        """The corner the block lifts about at t = 0 (0: none). A rigid slider at rest then took
+        its phase from the demand of a block at rest (initial_state); one that lifts at once
+        takes it from the rocking block's (a motion that starts with a jump: the demand in
+        translation drove a cone's ball one way and the block's reaction the base the other,
+        the slip never stopped and ran away, issue 39)."""
+        side = physics.uplift_direction(self.sp, physics.isolator_base_acceleration(
             self.sp, self.ip, self.phase, y[U], y[UD], self.u_p, self.xg(t)))
+        if side and self.friction and y[UD] == 0.0:
+            self.phase = self.stick_or_slip(t, y, side)
+        return side
 
     def function_order(self, s, t0, y0):
         if y0[THD] != 0.0:
