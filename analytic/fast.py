@@ -86,7 +86,7 @@ except ImportError as e:  # pragma: no cover - numba is a declared dependency
 from . import physics
 from .errors import InputError, require, require_positive_finite
 from .kernel_cache import ahead_of_time, cached_jit, call_kernel
-from .limits import available_cores
+from .limits import available_cores, energy_balance_failure
 from .overturning import describe, theta_max_over_alpha
 from .settings import AnalyticSettings
 from .motion import GroundMotion
@@ -177,6 +177,7 @@ _DIRECTION = np.array([[1, 1, 0, 0, 0], [-1, 1, 0, 0, 1]], dtype=np.int64)
 _ISO = False
 _NY = 6
 _ISO_N_EV = 7
+_N_REC = 128  # rows of the isolator kernel's record of its energy residual's growth
 _ISO_DIRECTION = np.array([[1, 1, 0, 0, 0, 1, 1], [-1, 1, 0, 0, 1, 1, 1]], dtype=np.int64)
 # iso tuple: physics.isolator_params's ip, I_KIND … I_FCONE (so that physics's isolator
 # functions take it as their ip; _IS_UY is its I_UY, the element's u_y), then the rigid slider's
@@ -244,7 +245,8 @@ def _compile_physics():
                  "isolator_translation_acceleration", "isolator_rocking_accelerations",
                  "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
                  "slip_power", "slip_force", "rigid_demand", "slip_phase", "slider_position",
-                 "vertex_rest_speed", "kinetic_energy", "hidden_crossing", "vertex_function"):
+                 "vertex_rest_speed", "kinetic_energy", "hidden_crossing", "vertex_function",
+                 "potential_energy", "element_energy", "balance_energy"):
         f = getattr(physics, name)
         rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
         table[name] = njit(inline="always")(rebuilt) if name in inline else njit(rebuilt)
@@ -286,6 +288,7 @@ _stick_limit = _P["stick_limit"]
 _slip_power = _P["slip_power"]
 _lift_order = _P["lift_order"]
 _lifts_clearly = _P["lifts_clearly"]
+_balance_energy = _P["balance_energy"]
 _hidden_crossing = _P["hidden_crossing"]
 _vertex_function = _P["vertex_function"]
 
@@ -863,7 +866,10 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     out_y, out_mode, n_imp, impacts, n_upl, uplifts, theta_max, u_max, verdict,
     friction_demand); the isolator kernel (_integrate_iso: hybrid._IsolatorIntegrator.run)
     also (out_phase, out_slider, n_iso_events, iso_events), its y_init and out_y with the
-    slider's loss S as a 7th row, iso_events rows (t, phase after, u).
+    slider's loss S as a 7th row, iso_events rows (t, phase after, u), and the energy balance
+    read at every step end: (the largest energy involved (J), n_rec, rec) with rec's first
+    n_rec rows (t, |residual| (J)) where |residual| first passed twice its last row, and last
+    its largest (limits.energy_balance_failure reads them).
 
     ip: the isolator's constants (physics.isolator_params's ip; read by _integrate_iso only).
 
@@ -963,6 +969,22 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 m0 = 0 if y[2] == 0.0 else (1 if y[2] > 0.0 else -1)
                 phase = _stick_or_slip(sp, iso, m0, y[2], y[3], y[0], _xg(0.0, mp, acc))
         iso = _iso_state(ipk, phase, u_p, 0.0, 0.0)
+    # the energy balance (EnergyLog), read at every step end: E(0), the impacts' loss so far, the
+    # largest energy involved, and where |residual| first doubled (its growth, in _N_REC rows at
+    # most: from rounding's 1e-20 J a wrong branch's joules are 70 doublings) and its largest
+    e0 = 0.0
+    imp_loss = 0.0
+    e_held = 0.0
+    n_rec = 0
+    if _ISO:
+        e0 = _balance_energy(sp, ipk, 1.0 if y[2] >= 0.0 else -1.0, y[0], y[1], y[2], y[3],
+                             _slider_position(ipk, phase, y[0], u_p))
+        e_held = abs(e0)
+        own_rec = np.zeros((_N_REC, 2))
+        rec = _borrowed(own_rec)
+    else:
+        own_rec = own_imp  # never written (the isolator's part is pruned)
+        rec = imp
     if y[2] != 0.0:
         mode = 1 if y[2] > 0.0 else -1
     elif y[3] != 0.0:
@@ -1346,6 +1368,19 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             for i in range(_NY):
                 y[i] = yq[i]
                 K[0, i] = K[12, i]  # f at the new step start (unused after a terminal event)
+            if _ISO:
+                e_now = _balance_energy(sp, ipk, s if mode != 0 else 1.0, y[0], y[1], y[2], y[3],
+                                        _slider_position(ipk, phase, y[0], u_p))
+                res = abs(e_now - e0 - y[4] + y[5] + imp_loss + y[6])
+                e_held = max(e_held, abs(y[4]), abs(e_now), imp_loss, y[6])
+                if n_rec == 0 or res > 2.0 * rec[n_rec - 1, 1]:
+                    if n_rec < _N_REC - 1:  # the last row is the largest's
+                        rec[n_rec, 0] = t
+                        rec[n_rec, 1] = res
+                        n_rec += 1
+                if res > rec[_N_REC - 1, 1]:
+                    rec[_N_REC - 1, 0] = t
+                    rec[_N_REC - 1, 1] = res
             for e in range(_N_EV):
                 g_old[e] = g_new[e]
             if term >= 0 or finished:
@@ -1437,6 +1472,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             imp[n_imp, 6] = peak
             imp[n_imp, 7] = 1.0 if peak > impact_frac * sp[_ALPHA] else 0.0
             imp[n_imp, 8] = _impact_loss(sp, ud_pre, thd_pre, ud_post, thd_post)
+            imp_loss += imp[n_imp, 8]
             n_imp += 1
             peak = 0.0
             y[3] = thd_post
@@ -1487,7 +1523,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     own[0] = own_flags.size + own_ev.size  # the owners of the borrowed views live until here
     if _ISO:
         return (status, t, t_alpha, n_out, own_t, own_y, own_m, n_imp, own_imp, n_upl, own_upl, th_max,
-                u_max, verdict, demand, own_ph, own_up, n_iev, own_iev)
+                u_max, verdict, demand, own_ph, own_up, n_iev, own_iev, e_held, n_rec, own_rec)
     return (status, t, t_alpha, n_out, own_t, own_y, own_m, n_imp, own_imp, n_upl, own_upl, th_max,
             u_max, verdict, demand)
 
@@ -1535,6 +1571,14 @@ def _call_integrate(*args, kernel=None):
 
 
 _LINEAR_IP = np.zeros(_N_IPK)
+
+
+def _balance_failure(r):
+    """limits.energy_balance_failure of an isolator kernel's run r (its energy balance, read at
+    its step ends, as simulate_batch's rows read it too), or None."""
+    held, n_rec, rec = r[19:22]
+    rows = np.concatenate([rec[:n_rec], rec[-1:]])
+    return energy_balance_failure(rows[:, 0], rows[:, 1], held)
 
 
 def _kernel_for(system: System, settings: AnalyticSettings):
@@ -1657,13 +1701,16 @@ def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start, ip) -
     cum = cumulative_impact_loss(t, imp[:, 0], imp[:, 8])
     extras = {"overturn_rule": settings.overturn, "friction_demand": demand}
     if len(r) > 15:  # a non-linear isolator (hybrid._IsolatorIntegrator.trajectory)
-        out_ph, out_up, n_iev, iev = r[15:]
+        out_ph, out_up, n_iev, iev = r[15:19]
         u_p = out_up[:n_out]
         log = EnergyLog(kinetic=kin, potential=pot + physics.element_energy(ip, y[0], u_p), ground_work=y[4],
                         dashpot_loss=y[5], impact_loss=cum, per_impact=tuple(imp[:, 8].tolist()),
                         isolator_loss=y[6])
         extras.update(isolator=system.isolator_kind, isolator_phase=out_ph[:n_out].copy(), isolator_slider=u_p,
                       isolator_events=tuple((float(a), int(b), float(c)) for a, b, c in iev[:n_iev].tolist()))
+        failure = _balance_failure(r) if status.ended_normally else None
+        if failure:
+            status, message = Status.FAILED, failure
     else:
         log = EnergyLog(kinetic=kin, potential=pot, ground_work=y[4], dashpot_loss=y[5], impact_loss=cum,
                         per_impact=tuple(imp[:, 8].tolist()))
@@ -1794,7 +1841,7 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
             float(settings.max_step), int(settings.max_events), float(impact_threshold),
             settings.overturn == physics.AT_ALPHA, motion_end, out, [k[0] for k in kernels], ips,
             [k[3] for k in kernels])
-    failures = {}  # case: why the kernel raised
+    failures = {}  # case: why it failed (the kernel raised, or its energy balance did)
     if n == 1 or (workers == 1 and threading.current_thread() is not threading.main_thread()):
         _run_cases(args, 0, n, failures)
     else:  # the main thread waits, and so hears signals
@@ -1813,6 +1860,10 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
                 "message": failures.get(c, "the compiled kernel failed"),
             })
             continue
+        # a run on a non-linear isolator whose energy balance failed is no answer (limits.py)
+        failure = failures.get(c)
+        if failure:
+            status = Status.FAILED
         rows.append({
             "system": int(case_sys[c]), "motion": int(case_mot[c]), "status": status,
             "theta_max_over_alpha": float(theta_max_over_alpha(r[1], alphas[case_sys[c]], status == "overturned",
@@ -1822,6 +1873,8 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
             "u_max": float(r[6]), "duration": float(r[7]), "overturn_rule": settings.overturn,
             "friction_demand": float(r[9]),
         })
+        if failure:
+            rows[-1]["message"] = failure
     return rows
 
 
@@ -1844,6 +1897,8 @@ def _run_cases(args, lo, hi, failures):
             continue
         n_imp = r[7]
         out[n] = (r[0], r[11], r[8][:n_imp, 7].sum(), n_imp, r[9], r[2], r[12], r[1], r[13], r[14])
+        if len(r) > 15 and STATUS_NAMES[r[0]].ended_normally:  # a non-linear isolator's energy balance
+            failures[n] = _balance_failure(r)
 
 
 def _batch_pool(args, workers, failures):

@@ -650,6 +650,10 @@ class _IsolatorIntegrator(_Integrator):
         extras["isolator_phase"] = phase
         extras["isolator_slider"] = u_p
         extras["isolator_events"] = tuple(self.isolator_log)
+        failure = log.failure(tr.t) if tr.status.ended_normally else None
+        if failure:  # a history that took a branch the physics did not is no answer (limits.py)
+            return replace(tr, energy=log, extras=extras, status=Status.FAILED, message=failure, overturned=False,
+                           overturn_time=None)
         return replace(tr, energy=log, extras=extras)
 
     def friction_demand(self, t, y, mode):

@@ -514,6 +514,12 @@ def element_energy(ip, u, u_p):
     return e
 
 
+def balance_energy(sp, ip, s, u, u_dot, theta, theta_dot, u_p):
+    """E (J) of the energy balance on an isolator: kinetic and potential energy with the
+    element's (EnergyLog.total on a non-linear isolator's run)."""
+    return kinetic_energy(sp, s, u_dot, theta, theta_dot) + potential_energy(sp, s, u, theta) + element_energy(ip, u, u_p)
+
+
 # --- impact at θ = 0 ----------------------------------------------------------------------
 
 def impact_continues(sp, theta_dot_pre):

@@ -108,3 +108,64 @@ def test_every_isolator_kind_keeps_its_energy_balance_while_the_block_rocks(kind
         tr = simulate(system, motion)
         assert tr.uplifts and str(tr.status) in ("completed", "overturned")
         assert tr.energy.relative_residual <= GRID
+
+
+# --- a run whose balance fails says so ----------------------------------------------------------
+
+@pytest.fixture
+def strict_balance(monkeypatch):
+    """limits.ENERGY_BALANCE_LIMIT lowered below what any run closes its balance to (1e-16 of the
+    energy involved), where the physics is sound: the test is independent of any defect."""
+    from isorock.analytic import limits
+    monkeypatch.setattr(limits, "ENERGY_BALANCE_LIMIT", 1e-16)
+
+
+CONE = dict(height=1.5, width=0.6, mass=2000.0, base_mass=800.0)
+ROCKS = "sine:amp=0.5,freq=2.5,cycles=2"  # the block rocks on the cone below: 18 uplifts, 84 impacts
+
+
+@PATHS
+def test_a_run_whose_energy_balance_fails_is_failed_and_says_where_and_by_how_much(run, strict_balance):
+    system = System.with_isolator(**CONE, isolator=BallInCone(slope=0.4, rolling_resistance=0.1))
+    tr = run(system, load_motion(ROCKS), duration=2.8)
+    assert str(tr.status) == "failed" and not tr.overturned and tr.overturn_time is None
+    assert tr.message.startswith("the energy balance failed at t = ") and "J of the" in tr.message
+    assert "ENERGY_BALANCE_LIMIT" in tr.message
+
+
+def test_a_batch_row_whose_energy_balance_fails_is_failed_and_a_design_leaves_it_out(strict_balance):
+    """simulate_batch (what campaigns and `design` run) reads the balance in the kernel as
+    simulate_fast does; a design counts the run as failed, outside every fraction."""
+    from isorock.analytic.fast import simulate_batch
+    from isorock.campaign.design import BallInConeFamily, Hazard, Statue, run_design
+    system = System.with_isolator(**CONE, isolator=BallInCone(slope=0.4, rolling_resistance=0.1))
+    row, = simulate_batch(system, load_motion(ROCKS), duration=2.8)
+    assert row["status"] == "failed" and row["message"].startswith("the energy balance failed")
+    assert not row["overturned"]
+    statue = Statue(height=1.5, width=0.6, mass=2000.0, base_mass=800.0)
+    d = run_design(statue, BallInConeFamily(x_values=(0.4,), y_values=(0.1,)),
+                   Hazard({"pulse": load_motion(ROCKS)}, (0.5,)), tail=0.3, threads=1)
+    assert list(d.status[:, 0, 0]) == ["completed", "failed"]  # the fixed base has no isolator to check
+    assert d.failed == 1 and np.isnan(d.p_level()[1, 0])
+
+
+@PATHS
+def test_a_sound_run_keeps_its_status(run):
+    """The same run at the real limit: its balance closes to 2e-13, and it keeps its answer."""
+    system = System.with_isolator(**CONE, isolator=BallInCone(slope=0.4, rolling_resistance=0.1))
+    tr = run(system, load_motion(ROCKS), duration=2.8)
+    assert str(tr.status) in ("completed", "overturned") and tr.energy.relative_residual < 1e-12
+
+
+def test_a_campaign_fragility_leaves_a_failed_run_out():
+    """A failed run is missing from a campaign's fragility, not a record that survived: at 0.4 g
+    one record overturns and the other's run failed, so the fraction is 1 of 1, not 1 of 2."""
+    from isorock.campaign.products import fragility_fits
+    n = 4
+    cols = {k: np.array(v) for k, v in dict(
+        base=["isolated"] * n, height=[2.0] * n, width=[0.7] * n, mass_ratio=[1.0] * n, period=[2.0] * n,
+        damping_ratio=[0.1] * n, engine=["analytic"] * n, setting=["default"] * n, scale_by=["pga"] * n,
+        case=list(range(n)), motion=["a", "b", "a", "b"], intensity=[0.2, 0.2, 0.4, 0.4],
+        overturned=[False, False, True, False], status=["completed", "completed", "overturned", "failed"]).items()}
+    fit, = fragility_fits(cols)
+    assert fit["fraction"].tolist() == [0.0, 1.0]

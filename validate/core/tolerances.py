@@ -98,8 +98,8 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("analytic", "isolator_energy_grid"): Tolerance(
         1e-8, "the energy balance over seeded random systems × pulses on every non-linear isolator, the block "
               "rocking (issue 39): DOP853 at rtol 1e-10 between events, its errors carried through hundreds of "
-              "impacts and slider events; measured ≤ 2.6e-10 over 1,199 rocking runs of 3,000 "
-              "(docs/scripts/isolator_energy_grid.py), where the wrong branches it guards against left 2e-5 "
+              "impacts and slider events; measured ≤ 3.9e-10 over the 2,397 rocking runs of "
+              "6,000 (docs/scripts/isolator_energy_grid.py --cases 1000), where the wrong branches it guards against left 2e-5 "
               "to 1.7 of the energy (and a crossing located a step late, ~1e-7); the run's own failure "
               "limit is analytic/limits.py's ENERGY_BALANCE_LIMIT (1e-6)"),
     ("analytic", "bilinear_steady_state"): Tolerance(
