@@ -178,6 +178,7 @@ _ISO = False
 _NY = 6
 _ISO_N_EV = 7
 _N_REC = 128  # rows of the isolator kernel's record of its energy residual's growth
+_DIP = 7  # a pseudo event slot of the isolator kernel: a slipping slider's phase·ü (_event_dense)
 _ISO_DIRECTION = np.array([[1, 1, 0, 0, 0, 1, 1], [-1, 1, 0, 0, 1, 1, 1]], dtype=np.int64)
 # iso tuple: physics.isolator_params's ip, I_KIND … I_FCONE (so that physics's isolator
 # functions take it as their ip; _IS_UY is its I_UY, the element's u_y), then the rigid slider's
@@ -437,6 +438,13 @@ def _dense_all(F, y_old, t_old, h, t, out, full):
 def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr, iso):
     x = (t - t_old) / h
     if _ISO:
+        if e == _DIP:  # phase·ü of a slipping slider (a dip of its stop's function: _dip_root)
+            u, ud = _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1)
+            ph = iso[_IS_PH]
+            if mode == 0:
+                return ph * _iso_tr_acc(sp, iso, ph, u, ud, iso[_IS_UP], _xgp(t, mp))
+            return ph * _iso_rocking_acc(sp, iso, ph, float(mode), _dense1(F, y_old, x, 2), _dense1(F, y_old, x, 3),
+                                         u, ud, iso[_IS_UP], _xgp(t, mp))[0]
         if e >= 5:
             return _slider_event(e, mode, t, _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1),
                                  _dense1(F, y_old, x, 2), _dense1(F, y_old, x, 3), _xgp(t, mp), t0, sp, iso)
@@ -1250,6 +1258,23 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 if (up and d > 0) or (down and d < 0) or ((up or down) and d == 0):
                     active[e] = True
                     need_dense = need_dense or go != 0.0
+            dip = t_new
+            if _ISO:
+                # a slip whose phase·u̇ dips through 0 and back within the step stops at its first
+                # zero, though its sign at the step's ends is the same (hybrid: hidden_stop): where
+                # phase·ü rises through 0 inside the step, at phase·u̇'s least
+                if (phase != 0.0 and use[5] and not active[5] and g_old[5] > 0.0 and g_new[5] > 0.0
+                        and phase * K[0, 1] < 0.0 and phase * K[12, 1] > 0.0):
+                    _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mpt, iso)
+                    need_dense = False
+                    fa = _event_dense(_DIP, mode, t_old, F, y, t_old, h, sp, mpt, tp0, kpow, limit, thr, iso)
+                    fb = _event_dense(_DIP, mode, t_new, F, y, t_old, h, sp, mpt, tp0, kpow, limit, thr, iso)
+                    if fa < 0.0 < fb:
+                        t_m = _brentq(_DIP, mode, t_old, t_new, fa, F, y, t_old, h, sp, mpt, tp0, kpow, limit, thr,
+                                      iso)
+                        if phase * _dense1(F, y, (t_m - t_old) / h, 1) < 0.0:
+                            active[5] = True
+                            dip = t_m
             if need_dense:
                 _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mpt, iso)
             # their roots, in time order (ivp.handle_events, np.argsort)
@@ -1260,8 +1285,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 go = g_old[e]
                 if go == 0.0:
                     r = t_old  # brentq returns the bracket end where f is zero
-                else:
-                    r = _brentq(e, mode, t_old, t_new, go, F, y, t_old, h, sp, mpt,
+                else:  # a dipping slip's stop lies before its least (dip)
+                    r = _brentq(e, mode, t_old, dip if e == 5 else t_new, go, F, y, t_old, h, sp, mpt,
                                 tp0, kpow, limit, thr, iso)
                 k = n_root
                 while k > 0 and roots[k - 1] > r:

@@ -553,14 +553,21 @@ class _IsolatorIntegrator(_Integrator):
         return f
 
     # events ----------------------------------------------------------------------------
+    def solve(self, fun, t0, t1, y0, events):
+        self._fun = fun  # hidden_stop reads the piece's accelerations
+        return super().solve(fun, t0, t1, y0, events)
+
     def first_terminal(self, sol, evs):
-        """The first terminal event, or one that it hid (physics.hidden_crossing): a terminal
-        event whose function changed sign, its way, between the last step's start and the cut,
-        located there on the step's dense output as solve_ivp locates any (Brent, 4·eps), ends
-        the piece instead; checked again from the earlier cut until none is left. On a linear
-        isolator the only terminal events are the landing, α and π/2 (the run is unchanged)."""
-        hit = super().first_terminal(sol, evs)
-        dense = sol.sol.interpolants[-1] if hit is not None and sol.sol is not None else None
+        """The first terminal event, a slip's stop that dipped within one step (hidden_stop), or
+        one that either hid (physics.hidden_crossing): a terminal event whose function changed
+        sign, its way, between the step's start and the cut, located there on the step's dense
+        output as solve_ivp locates any (Brent, 4·eps), ends the piece instead; checked again
+        from the earlier cut until none is left. On a linear isolator the only terminal events
+        are the landing, α and π/2 (the run is unchanged)."""
+        hit = self.hidden_stop(sol, evs, super().first_terminal(sol, evs))
+        dense = None
+        if hit is not None and sol.sol is not None:  # the step that holds the cut
+            dense = next(d for d in sol.sol.interpolants if d.t_old <= hit[1] <= d.t)
         while dense is not None and hit[1] > dense.t_old:
             k, te, ye = hit
             t_old = dense.t_old
@@ -575,6 +582,40 @@ class _IsolatorIntegrator(_Integrator):
             if hidden is None:
                 break
             hit = (hidden[0], hidden[1], dense(hidden[1]))
+        return hit
+
+    def hidden_stop(self, sol, evs, hit):
+        """A slip whose phase·u̇ dips through 0 and back within one step (both ends positive, so
+        solve_ivp never sees its stop): on a cone in translation under a record u̇ is quadratic in
+        a sample interval, DOP853 integrates it exactly and steps across the whole dip, the slip
+        then pushed along by its own friction (issue 39). Where phase·ü rises through 0 within a
+        step (its least, by Brent on the dense output) phase·u̇ is below 0, the stop is the first
+        zero before it, and ends the piece if before the hit (the kernel: its dip)."""
+        ph = self.phase
+        stop = next((k for k, ev in enumerate(evs) if ev.kind == "isolator" and ev.side == 0 and ph != 0), None)
+        if stop is None or sol.sol is None:
+            return hit
+        ev, fun = evs[stop], self._fun
+        for i, dense in enumerate(sol.sol.interpolants):
+            t_old, t_new = dense.t_old, dense.t
+            if hit is not None and t_old >= hit[1]:
+                break
+            y_old = dense.y_old
+            y_new = sol.y[:, i + 1] if i + 1 < sol.t.size and sol.t[i + 1] == t_new else dense(t_new)
+            if not (ev(t_old, y_old) > 0.0 and ev(t_new, y_new) > 0.0
+                    and ph * fun(t_old, y_old)[UD] < 0.0 < ph * fun(t_new, y_new)[UD]):
+                continue
+
+            def rate(t, dense=dense):
+                return ph * fun(t, dense(t))[UD]
+            if not rate(t_old) < 0.0 < rate(t_new):
+                continue
+            t_m = brentq(rate, t_old, t_new, xtol=4 * EPS, rtol=4 * EPS)
+            if ph * dense(t_m)[UD] < 0.0:
+                r = brentq(lambda t: ev(t, dense(t)), t_old, t_m, xtol=4 * EPS, rtol=4 * EPS)
+                if hit is None or r < hit[1]:
+                    hit = (stop, r, dense(r))
+                break
         return hit
 
     def slider_events(self, mode, t0, y0, fun):
