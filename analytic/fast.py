@@ -87,7 +87,7 @@ except ImportError as e:  # pragma: no cover - numba is a declared dependency
 from . import physics
 from .errors import InputError, require, require_positive_finite
 from .kernel_cache import ahead_of_time, cached_jit, call_kernel
-from .limits import available_cores
+from .limits import available_cores, energy_balance_failure
 from .overturning import describe, theta_max_over_alpha
 from .settings import AnalyticSettings
 from .motion import GroundMotion
@@ -179,6 +179,8 @@ _DIRECTION = np.array([[1, 1, 0, 0, 0], [-1, 1, 0, 0, 1]], dtype=np.int64)
 _ISO = False
 _NY = 6
 _ISO_N_EV = 7
+_N_REC = 128  # rows of the isolator kernel's record of its energy residual's growth
+_DIP = 7  # a pseudo event slot of the isolator kernel: a slipping slider's phase·ü (_event_dense)
 _ISO_DIRECTION = np.array([[1, 1, 0, 0, 0, 1, 1], [-1, 1, 0, 0, 1, 1, 1]], dtype=np.int64)
 # iso tuple: physics.isolator_params's ip, I_KIND … I_FCONE (so that physics's isolator
 # functions take it as their ip; _IS_UY is its I_UY, the element's u_y), then the rigid slider's
@@ -231,7 +233,8 @@ def _compile_physics():
               "free_vibration_change", "rocking_pivot_force_ratio", "_times_a", "base_pinned",
               "isolator_element_force", "isolator_translation_acceleration", "isolator_rocking_accelerations",
               "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
-              "slip_power", "slip_force", "rigid_demand", "element_hold", "slip_phase", "slider_position")
+              "slip_power", "slip_force", "rigid_demand", "element_hold", "slip_phase", "slider_position",
+              "hidden_crossing", "vertex_function")
     for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
@@ -245,7 +248,8 @@ def _compile_physics():
                  "isolator_translation_acceleration", "isolator_rocking_accelerations",
                  "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
                  "slip_power", "slip_force", "rigid_demand", "element_hold", "slip_phase", "slider_position",
-                 "vertex_rest_speed", "kinetic_energy"):
+                 "vertex_rest_speed", "kinetic_energy", "hidden_crossing", "vertex_function",
+                 "potential_energy", "element_energy", "balance_energy"):
         f = getattr(physics, name)
         rebuilt = types.FunctionType(f.__code__, table, f.__name__, f.__defaults__, f.__closure__)
         table[name] = njit(inline="always")(rebuilt) if name in inline else njit(rebuilt)
@@ -287,6 +291,9 @@ _stick_limit = _P["stick_limit"]
 _slip_power = _P["slip_power"]
 _lift_order = _P["lift_order"]
 _lifts_clearly = _P["lifts_clearly"]
+_balance_energy = _P["balance_energy"]
+_hidden_crossing = _P["hidden_crossing"]
+_vertex_function = _P["vertex_function"]
 
 
 assert physics.N_SP == 19 and physics.N_MP == 14  # the tuples below
@@ -370,7 +377,7 @@ def _slider_event(e, mode, t, u, ud, th, thd, xg, t0, sp, iso):
         if e == 6:
             sigma = 1.0 if ph > 0.0 else -1.0
             if iso[0] == _ISO_CONE:
-                return sigma * u
+                return _vertex_function(sigma, u, t <= t0)
             return sigma * (u - iso[_IS_UP]) - iso[_IS_UY]
         if iso[_IS_REST] != 0.0:
             return ph * ud / (t - t0) if t > t0 else iso[_IS_START]
@@ -433,6 +440,13 @@ def _dense_all(F, y_old, t_old, h, t, out, full):
 def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr, iso):
     x = (t - t_old) / h
     if _ISO:
+        if e == _DIP:  # phase·ü of a slipping slider (a dip of its stop's function: _dip_root)
+            u, ud = _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1)
+            ph = iso[_IS_PH]
+            if mode == 0:
+                return ph * _iso_tr_acc(sp, iso, ph, u, ud, iso[_IS_UP], _xgp(t, mp))
+            return ph * _iso_rocking_acc(sp, iso, ph, float(mode), _dense1(F, y_old, x, 2), _dense1(F, y_old, x, 3),
+                                         u, ud, iso[_IS_UP], _xgp(t, mp))[0]
         if e >= 5:
             return _slider_event(e, mode, t, _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1),
                                  _dense1(F, y_old, x, 2), _dense1(F, y_old, x, 3), _xgp(t, mp), t0, sp, iso)
@@ -862,7 +876,10 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     out_y, out_mode, n_imp, impacts, n_upl, uplifts, theta_max, u_max, verdict,
     friction_demand); the isolator kernel (_integrate_iso: hybrid._IsolatorIntegrator.run)
     also (out_phase, out_slider, n_iso_events, iso_events), its y_init and out_y with the
-    slider's loss S as a 7th row, iso_events rows (t, phase after, u).
+    slider's loss S as a 7th row, iso_events rows (t, phase after, u), and the energy balance
+    read at every step end: (the largest energy involved (J), n_rec, rec) with rec's first
+    n_rec rows (t, |residual| (J)) where |residual| first passed twice its last row, and last
+    its largest (limits.energy_balance_failure reads them).
 
     ip: the isolator's constants (physics.isolator_params's ip; read by _integrate_iso only).
 
@@ -962,6 +979,22 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 m0 = 0 if y[2] == 0.0 else (1 if y[2] > 0.0 else -1)
                 phase = _stick_or_slip(sp, iso, m0, y[2], y[3], y[0], _xg(0.0, mp, acc))
         iso = _iso_state(ipk, phase, u_p, 0.0, 0.0)
+    # the energy balance (EnergyLog), read at every step end: E(0), the impacts' loss so far, the
+    # largest energy involved, and where |residual| first doubled (its growth, in _N_REC rows at
+    # most: from rounding's 1e-20 J a wrong branch's joules are 70 doublings) and its largest
+    e0 = 0.0
+    imp_loss = 0.0
+    e_held = 0.0
+    n_rec = 0
+    if _ISO:
+        e0 = _balance_energy(sp, ipk, 1.0 if y[2] >= 0.0 else -1.0, y[0], y[1], y[2], y[3],
+                             _slider_position(ipk, phase, y[0], u_p))
+        e_held = abs(e0)
+        own_rec = np.zeros((_N_REC, 2))
+        rec = _borrowed(own_rec)
+    else:
+        own_rec = own_imp  # never written (the isolator's part is pruned)
+        rec = imp
     if y[2] != 0.0:
         mode = 1 if y[2] > 0.0 else -1
     elif y[3] != 0.0:
@@ -971,6 +1004,12 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
         if mode != 0:
             upl[0] = 0.0
             n_upl = 1
+            if _ISO:
+                if ipk[0] >= _ISO_FRICTION and y[1] == 0.0:
+                    # a rigid slider at rest takes its phase from the rocking block's demand
+                    # (hybrid._IsolatorIntegrator.uplift_mode)
+                    phase = _stick_or_slip(sp, iso, mode, y[2], y[3], y[0], _xg(0.0, mp, acc))
+                    iso = _iso_state(ipk, phase, u_p, 0.0, 0.0)
 
     status = _COMPLETED
     verdict = 0
@@ -1221,6 +1260,23 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 if (up and d > 0) or (down and d < 0) or ((up or down) and d == 0):
                     active[e] = True
                     need_dense = need_dense or go != 0.0
+            dip = t_new
+            if _ISO:
+                # a slip whose phase·u̇ dips through 0 and back within the step stops at its first
+                # zero, though its sign at the step's ends is the same (hybrid: hidden_stop): where
+                # phase·ü rises through 0 inside the step, at phase·u̇'s least
+                if (phase != 0.0 and use[5] and not active[5] and g_old[5] > 0.0 and g_new[5] > 0.0
+                        and phase * K[0, 1] < 0.0 and phase * K[12, 1] > 0.0):
+                    _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mpt, iso)
+                    need_dense = False
+                    fa = _event_dense(_DIP, mode, t_old, F, y, t_old, h, sp, mpt, tp0, kpow, limit, thr, iso)
+                    fb = _event_dense(_DIP, mode, t_new, F, y, t_old, h, sp, mpt, tp0, kpow, limit, thr, iso)
+                    if fa < 0.0 < fb:
+                        t_m = _brentq(_DIP, mode, t_old, t_new, fa, F, y, t_old, h, sp, mpt, tp0, kpow, limit, thr,
+                                      iso)
+                        if phase * _dense1(F, y, (t_m - t_old) / h, 1) < 0.0:
+                            active[5] = True
+                            dip = t_m
             if need_dense:
                 _dense_coeffs(mode, t_old, h, y, y_new, K, F, tmp, sp, mpt, iso)
             # their roots, in time order (ivp.handle_events, np.argsort)
@@ -1231,8 +1287,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 go = g_old[e]
                 if go == 0.0:
                     r = t_old  # brentq returns the bracket end where f is zero
-                else:
-                    r = _brentq(e, mode, t_old, t_new, go, F, y, t_old, h, sp, mpt,
+                else:  # a dipping slip's stop lies before its least (dip)
+                    r = _brentq(e, mode, t_old, dip if e == 5 else t_new, go, F, y, t_old, h, sp, mpt,
                                 tp0, kpow, limit, thr, iso)
                 k = n_root
                 while k > 0 and roots[k - 1] > r:
@@ -1248,6 +1304,32 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     cut = k  # roots before it are kept; it ends the piece
                     term = root_ev[k]
                     break
+            if _ISO:
+                # a terminal event that the cut hid ends the piece instead, checked again from
+                # the earlier cut (hybrid._IsolatorIntegrator.first_terminal)
+                while term >= 0 and roots[cut] > t_old:
+                    hid = -1
+                    r_hid = roots[cut]
+                    for e in range(_N_EV):
+                        if not use[e] or not terminal[e] or e == term:
+                            continue
+                        d = _DIRECTION[mi, e]
+                        if e == 5 and phase != 0.0:
+                            d = -1  # a slip stops: σ·u̇ falling through 0
+                        g_cut = _event_dense(e, mode, roots[cut], F, y, t_old, h, sp, mpt, tp0, kpow, limit, thr, iso)
+                        if _hidden_crossing(d, g_old[e], g_cut):
+                            r = _brentq(e, mode, t_old, roots[cut], g_old[e], F, y, t_old, h, sp, mpt,
+                                        tp0, kpow, limit, thr, iso)
+                            if r < r_hid:
+                                hid = e
+                                r_hid = r
+                    if hid < 0:
+                        break
+                    while cut > 0 and roots[cut - 1] >= r_hid:
+                        cut -= 1  # the roots after the new cut did not happen
+                    roots[cut] = r_hid
+                    root_ev[cut] = hid
+                    term = hid
             for k in range(cut):
                 if root_ev[k] == 1:
                     t_alpha = roots[k]  # |θ| rose through α, and the run goes on
@@ -1313,6 +1395,19 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             for i in range(_NY):
                 y[i] = yq[i]
                 K[0, i] = K[12, i]  # f at the new step start (unused after a terminal event)
+            if _ISO:
+                e_now = _balance_energy(sp, ipk, s if mode != 0 else 1.0, y[0], y[1], y[2], y[3],
+                                        _slider_position(ipk, phase, y[0], u_p))
+                res = abs(e_now - e0 - y[4] + y[5] + imp_loss + y[6])
+                e_held = max(e_held, abs(y[4]), abs(e_now), imp_loss, y[6])
+                if n_rec == 0 or res > 2.0 * rec[n_rec - 1, 1]:
+                    if n_rec < _N_REC - 1:  # the last row is the largest's
+                        rec[n_rec, 0] = t
+                        rec[n_rec, 1] = res
+                        n_rec += 1
+                if res > rec[_N_REC - 1, 1]:
+                    rec[_N_REC - 1, 0] = t
+                    rec[_N_REC - 1, 1] = res
             for e in range(_N_EV):
                 g_old[e] = g_new[e]
             if term >= 0 or finished:
@@ -1404,6 +1499,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             imp[n_imp, 6] = peak
             imp[n_imp, 7] = 1.0 if peak > impact_frac * sp[_ALPHA] else 0.0
             imp[n_imp, 8] = _impact_loss(sp, ud_pre, thd_pre, ud_post, thd_post)
+            imp_loss += imp[n_imp, 8]
             n_imp += 1
             peak = 0.0
             y[3] = thd_post
@@ -1454,7 +1550,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     own[0] = own_flags.size + own_ev.size  # the owners of the borrowed views live until here
     if _ISO:
         return (status, t, t_alpha, n_out, own_t, own_y, own_m, n_imp, own_imp, n_upl, own_upl, th_max,
-                u_max, verdict, demand, own_ph, own_up, n_iev, own_iev)
+                u_max, verdict, demand, own_ph, own_up, n_iev, own_iev, e_held, n_rec, own_rec)
     return (status, t, t_alpha, n_out, own_t, own_y, own_m, n_imp, own_imp, n_upl, own_upl, th_max,
             u_max, verdict, demand)
 
@@ -1502,6 +1598,14 @@ def _call_integrate(*args, kernel=None):
 
 
 _LINEAR_IP = np.zeros(_N_IPK)
+
+
+def _balance_failure(r):
+    """limits.energy_balance_failure of an isolator kernel's run r (its energy balance, read at
+    its step ends, as simulate_batch's rows read it too), or None."""
+    held, n_rec, rec = r[19:22]
+    rows = np.concatenate([rec[:n_rec], rec[-1:]])
+    return energy_balance_failure(rows[:, 0], rows[:, 1], held)
 
 
 def _kernel_for(system: System, settings: AnalyticSettings):
@@ -1628,13 +1732,16 @@ def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start, ip) -
     cum = cumulative_impact_loss(t, imp[:, 0], imp[:, 8])
     extras = {"overturn_rule": settings.overturn, "friction_demand": demand}
     if len(r) > 15:  # a non-linear isolator (hybrid._IsolatorIntegrator.trajectory)
-        out_ph, out_up, n_iev, iev = r[15:]
+        out_ph, out_up, n_iev, iev = r[15:19]
         u_p = out_up[:n_out]
         log = EnergyLog(kinetic=kin, potential=pot + physics.element_energy(ip, y[0], u_p), ground_work=y[4],
                         dashpot_loss=y[5], impact_loss=cum, per_impact=tuple(imp[:, 8].tolist()),
                         isolator_loss=y[6])
         extras.update(isolator=system.isolator_kind, isolator_phase=out_ph[:n_out].copy(), isolator_slider=u_p,
                       isolator_events=tuple((float(a), int(b), float(c)) for a, b, c in iev[:n_iev].tolist()))
+        failure = _balance_failure(r) if status.ended_normally else None
+        if failure:
+            status, message = Status.FAILED, failure
     else:
         log = EnergyLog(kinetic=kin, potential=pot, ground_work=y[4], dashpot_loss=y[5], impact_loss=cum,
                         per_impact=tuple(imp[:, 8].tolist()))
@@ -1802,7 +1909,7 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
             float(settings.max_step), int(settings.max_events), float(impact_threshold),
             settings.overturn == physics.AT_ALPHA, motion_end, out, [k[0] for k in kernels], ips,
             [k[3] for k in kernels])
-    failures = {}  # case: why the kernel raised
+    failures = {}  # case: why it failed (the kernel raised, or its energy balance did)
     if n == 1 or (workers == 1 and threading.current_thread() is not threading.main_thread()):
         _run_cases(args, 0, n, failures)
     else:  # the main thread waits, and so hears signals
@@ -1821,6 +1928,10 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
                 "message": failures.get(c, "the compiled kernel failed"),
             })
             continue
+        # a run on a non-linear isolator whose energy balance failed is no answer (limits.py)
+        failure = failures.get(c)
+        if failure:
+            status = Status.FAILED
         rows.append({
             "system": int(case_sys[c]), "motion": int(case_mot[c]), "status": status,
             "theta_max_over_alpha": float(theta_max_over_alpha(r[1], alphas[case_sys[c]], status == "overturned",
@@ -1830,6 +1941,8 @@ def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshol
             "u_max": float(r[6]), "duration": float(r[7]), "overturn_rule": settings.overturn,
             "friction_demand": float(r[9]),
         })
+        if failure:
+            rows[-1]["message"] = failure
     return rows
 
 
@@ -1852,6 +1965,8 @@ def _run_cases(args, lo, hi, failures):
             continue
         n_imp = r[7]
         out[n] = (r[0], r[11], r[8][:n_imp, 7].sum(), n_imp, r[9], r[2], r[12], r[1], r[13], r[14])
+        if len(r) > 15 and STATUS_NAMES[r[0]].ended_normally:  # a non-linear isolator's energy balance
+            failures[n] = _balance_failure(r)
 
 
 def _batch_pool(args, workers, failures):

@@ -16,6 +16,7 @@ from dataclasses import replace
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 from . import physics
 from .motion import GroundMotion
@@ -30,6 +31,7 @@ from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory,
 
 # state vector: u, u̇, θ, θ̇, ground work W, dashpot loss D
 U, UD, TH, THD, W, D = range(6)
+EPS = np.finfo(float).eps  # solve_ivp's event location: Brent's method to 4·eps
 
 
 class StopRun(Exception):
@@ -558,8 +560,16 @@ class _IsolatorIntegrator(_Integrator):
         return side if physics.lifts_clearly(sp, side, thdd) else 0
 
     def uplift_mode(self, t, y):
-        return physics.uplift_direction(self.sp, physics.isolator_base_acceleration(
+        """The corner the block lifts about at t = 0 (0: none). A rigid slider at rest then took
+        its phase from the demand of a block at rest (initial_state); one that lifts at once
+        takes it from the rocking block's (a motion that starts with a jump: the demand in
+        translation drove a cone's ball one way and the block's reaction the base the other,
+        the slip never stopped and ran away, issue 39)."""
+        side = physics.uplift_direction(self.sp, physics.isolator_base_acceleration(
             self.sp, self.ip, self.phase, y[U], y[UD], self.u_p, self.xg(t)))
+        if side and self.friction and y[UD] == 0.0:
+            self.phase = self.stick_or_slip(t, y, side)
+        return side
 
     def function_order(self, s, t0, y0):
         if y0[THD] != 0.0:
@@ -587,6 +597,71 @@ class _IsolatorIntegrator(_Integrator):
         return f
 
     # events ----------------------------------------------------------------------------
+    def solve(self, fun, t0, t1, y0, events):
+        self._fun = fun  # hidden_stop reads the piece's accelerations
+        return super().solve(fun, t0, t1, y0, events)
+
+    def first_terminal(self, sol, evs):
+        """The first terminal event, a slip's stop that dipped within one step (hidden_stop), or
+        one that either hid (physics.hidden_crossing): a terminal event whose function changed
+        sign, its way, between the step's start and the cut, located there on the step's dense
+        output as solve_ivp locates any (Brent, 4·eps), ends the piece instead; checked again
+        from the earlier cut until none is left. On a linear isolator the only terminal events
+        are the landing, α and π/2 (the run is unchanged)."""
+        hit = self.hidden_stop(sol, evs, super().first_terminal(sol, evs))
+        dense = None
+        if hit is not None and sol.sol is not None:  # the step that holds the cut
+            dense = next(d for d in sol.sol.interpolants if d.t_old <= hit[1] <= d.t)
+        while dense is not None and hit[1] > dense.t_old:
+            k, te, ye = hit
+            t_old = dense.t_old
+            hidden = None
+            for j, ev in enumerate(evs):
+                if j == k or not ev.terminal:
+                    continue
+                if physics.hidden_crossing(ev.direction, ev(t_old, dense.y_old), ev(te, ye)):
+                    r = brentq(lambda t: ev(t, dense(t)), t_old, te, xtol=4 * EPS, rtol=4 * EPS)
+                    if r < te and (hidden is None or r < hidden[1]):
+                        hidden = (j, r)
+            if hidden is None:
+                break
+            hit = (hidden[0], hidden[1], dense(hidden[1]))
+        return hit
+
+    def hidden_stop(self, sol, evs, hit):
+        """A slip whose phase·u̇ dips through 0 and back within one step (both ends positive, so
+        solve_ivp never sees its stop): on a cone in translation under a record u̇ is quadratic in
+        a sample interval, DOP853 integrates it exactly and steps across the whole dip, the slip
+        then pushed along by its own friction (issue 39). Where phase·ü rises through 0 within a
+        step (its least, by Brent on the dense output) phase·u̇ is below 0, the stop is the first
+        zero before it, and ends the piece if before the hit (the kernel: its dip)."""
+        ph = self.phase
+        stop = next((k for k, ev in enumerate(evs) if ev.kind == "isolator" and ev.side == 0 and ph != 0), None)
+        if stop is None or sol.sol is None:
+            return hit
+        ev, fun = evs[stop], self._fun
+        for i, dense in enumerate(sol.sol.interpolants):
+            t_old, t_new = dense.t_old, dense.t
+            if hit is not None and t_old >= hit[1]:
+                break
+            y_old = dense.y_old
+            y_new = sol.y[:, i + 1] if i + 1 < sol.t.size and sol.t[i + 1] == t_new else dense(t_new)
+            if not (ev(t_old, y_old) > 0.0 and ev(t_new, y_new) > 0.0
+                    and ph * fun(t_old, y_old)[UD] < 0.0 < ph * fun(t_new, y_new)[UD]):
+                continue
+
+            def rate(t, dense=dense):
+                return ph * fun(t, dense(t))[UD]
+            if not rate(t_old) < 0.0 < rate(t_new):
+                continue
+            t_m = brentq(rate, t_old, t_new, xtol=4 * EPS, rtol=4 * EPS)
+            if ph * dense(t_m)[UD] < 0.0:
+                r = brentq(lambda t: ev(t, dense(t)), t_old, t_m, xtol=4 * EPS, rtol=4 * EPS)
+                if hit is None or r < hit[1]:
+                    hit = (stop, r, dense(r))
+                break
+        return hit
+
     def slider_events(self, mode, t0, y0, fun):
         """The slider's phase changes: a slipping one stops (u̇ crosses 0, side 0); a stuck
         one slips (side ±1) when the pendulum's demand, or the bearing's elastic force,
@@ -602,7 +677,8 @@ class _IsolatorIntegrator(_Integrator):
                 evs = [_event(lambda t, y: ph * y[UD] / (t - t0) if t > t0 else start, "isolator", -1, side=0)]
             sigma = 1 if ph > 0 else -1
             if self.kind == physics.ISO_CONE and abs(ph) == 2:  # the returning ball reaches the vertex
-                evs.append(_event(lambda t, y: sigma * y[U], "isolator", +1, side=sigma))
+                evs.append(_event(lambda t, y: physics.vertex_function(sigma, y[U], t <= t0), "isolator", +1,
+                                  side=sigma))
             elif self.kind == physics.ISO_DOUBLE and abs(ph) == 1 and self.u_y > 0.0:  # both surfaces slide
                 up, uy = self.u_p, self.u_y
                 evs.append(_event(lambda t, y: sigma * (y[U] - up) - uy, "isolator", +1, side=2 * sigma))
@@ -659,6 +735,10 @@ class _IsolatorIntegrator(_Integrator):
         extras["isolator_phase"] = phase
         extras["isolator_slider"] = u_p
         extras["isolator_events"] = tuple(self.isolator_log)
+        failure = log.failure(tr.t) if tr.status.ended_normally else None
+        if failure:  # a history that took a branch the physics did not is no answer (limits.py)
+            return replace(tr, energy=log, extras=extras, status=Status.FAILED, message=failure, overturned=False,
+                           overturn_time=None)
         return replace(tr, energy=log, extras=extras)
 
     def friction_demand(self, t, y, mode):

@@ -232,6 +232,19 @@ def impact_function_order(sp, s, u, u_dot, theta_dot, xg):
     return lift_order(sp, s, rocking_accelerations(sp, s, 0.0, 0.0, u, u_dot, xg)[1])
 
 
+def hidden_crossing(direction, g_start, g_cut):
+    """Whether an event function of `direction` (+1 rising through 0, −1 falling, 0 either)
+    crossed 0 between a step's start (g_start) and the point where another event cut the piece
+    inside the step (g_cut), though its sign at the step's end hid it (issue 39). Events fire by
+    their signs at step ends (solve_ivp's find_active_events), and after the cut the step ran on
+    a branch that never happened: on a non-linear isolator, past a landing, in the rocking
+    equations of the corner that had landed, which carried a cone's ball back over the vertex it
+    had crossed. Strict signs: a function at zero at either end is the event located there."""
+    if direction >= 0 and g_start < 0.0 < g_cut:
+        return True
+    return direction <= 0 and g_start > 0.0 > g_cut
+
+
 def lift_order(sp, s, thdd):
     """impact_function_order of a piece starting at θ = 0 with θ̇ = 0, from θ̈ there."""
     if s * thdd > 1e-9 * sp[THR]:
@@ -446,6 +459,15 @@ def slider_position(ip, phase, u, u_p):
     return u_p
 
 
+def vertex_function(sigma, u, at_start):
+    """The event function of a returning cone's ball (|phase| 2, rolling the way σ) reaching
+    its vertex: σ·u, rising through 0. At the piece's start (at_start) it is at most 0: a ball
+    found there at or past its vertex crossed it at the instant of the event that ended the last
+    piece (a landing within the rounding of time, issue 39), and reaches it at once, instead of
+    rolling on beyond it with a returning ball's force, away from the vertex, without end."""
+    return min(sigma * u, 0.0) if at_start else sigma * u
+
+
 def vertex_rest_speed(sp, ip):
     """|u̇| below which a cone's ball that reaches its vertex rests there (m/s): the speed that
     would climb VERTEX_REST_HEIGHT against g·(tanφ + μ_r). Below it the ball's returns form a
@@ -495,6 +517,12 @@ def element_energy(ip, u, u_p):
     if ip[I_KIND] == ISO_CONE:
         return e + ip[I_FCONE] * np.abs(u)
     return e
+
+
+def balance_energy(sp, ip, s, u, u_dot, theta, theta_dot, u_p):
+    """E (J) of the energy balance on an isolator: kinetic and potential energy with the
+    element's (EnergyLog.total on a non-linear isolator's run)."""
+    return kinetic_energy(sp, s, u_dot, theta, theta_dot) + potential_energy(sp, s, u, theta) + element_energy(ip, u, u_p)
 
 
 # --- impact at θ = 0 ----------------------------------------------------------------------

@@ -10,7 +10,8 @@ class Status(StrEnum):
     COMPLETED = "completed"      #: reached the end time
     OVERTURNED = "overturned"    #: the block overturned (by the run's overturning rule)
     EVENT_LIMIT = "event-limit"  #: the analytic model stopped after `max_events` events
-    FAILED = "failed"            #: the integration or the engine failed; the message says why
+    FAILED = "failed"            #: the integration or the engine failed, or (analytic, a non-linear isolator) its
+    #: energy balance did (limits.ENERGY_BALANCE_LIMIT); the message says why
     SLID = "slid"                #: a contact engine's block slid on its base: not the no-sliding model
     #: the exact model's assumptions broke and it stopped there, saying which (the block would
     #: leave its base, Coulomb friction admits no mode, a landing needs a negative normal

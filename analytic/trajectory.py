@@ -84,6 +84,12 @@ class EnergyLog:
         scale = self.input_energy
         return float(np.max(np.abs(self.residual)) / scale) if scale > 0 else 0.0
 
+    def failure(self, t: np.ndarray) -> str | None:
+        """limits.energy_balance_failure of this balance, sampled at the times t: its message
+        where the relative residual exceeds ENERGY_BALANCE_LIMIT, else None."""
+        from .limits import energy_balance_failure
+        return energy_balance_failure(t, self.residual.tolist(), self.input_energy)
+
 
 @dataclass(frozen=True, eq=False)
 class RawHistory:

@@ -172,8 +172,9 @@ def fragility_fits(cols) -> list[dict]:
         records = sorted(set(g["motion"].tolist()))
         o = np.full((len(records), levels.size), np.nan)
         r_index = {r: i for i, r in enumerate(records)}
-        for m, x, ov in zip(g["motion"], g["intensity"], g["overturned"]):
-            o[r_index[m], np.searchsorted(levels, x)] = float(ov)
+        for m, x, ov, status in zip(g["motion"], g["intensity"], g["overturned"], g["status"]):
+            # a run that failed (its energy balance, say) or stopped at its event limit is missing
+            o[r_index[m], np.searchsorted(levels, x)] = float(ov) if status in ("completed", "overturned") else np.nan
         fit = fit_fragility(levels, o)
         out.append({"system": _system_label(g, 0), "engine": g["engine"][0], "setting": g["setting"][0],
                     "scale_by": g["scale_by"][0], "levels": levels, "fraction": np.nanmean(o, axis=0),

@@ -10,6 +10,8 @@ Metrics (units):
     energy_residual                analytic energy balance, relative to the input energy
     isolator_closed_form           a non-linear isolator's closed forms (relative, or m and s: docs/isolators.md)
     isolator_energy_residual       the energy balance of a non-linear isolator's run, its slip work included
+    isolator_energy_grid           the same over a seeded random grid of every non-linear isolator × pulses
+                                   that rock the block (tests/test_isolator_energy.py)
     bilinear_steady_state          the bilinear bearing's steady state under a harmonic ground acceleration
                                    against an independent closed-form oracle (relative, or m and s)
     kernel_isolator_agreement      the compiled kernel against the reference path on a non-linear isolator:
@@ -93,6 +95,13 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("analytic", "isolator_energy_residual"): Tolerance(
         1e-10, "the energy balance of a non-linear isolator's run with its slip work (issue 22's goal), on "
                "pulses and a record, rocking included: measured 1e-15–2e-12 (docs/isolators.md)"),
+    ("analytic", "isolator_energy_grid"): Tolerance(
+        1e-8, "the energy balance over seeded random systems × pulses on every non-linear isolator, the block "
+              "rocking (issue 39): DOP853 at rtol 1e-10 between events, its errors carried through hundreds of "
+              "impacts and slider events; measured ≤ 3.9e-10 over the 2,397 rocking runs of "
+              "6,000 (docs/scripts/isolator_energy_grid.py --cases 1000), where the wrong branches it guards against left 2e-5 "
+              "to 1.7 of the energy (and a crossing located a step late, ~1e-7); the run's own failure "
+              "limit is analytic/limits.py's ENERGY_BALANCE_LIMIT (1e-6)"),
     ("analytic", "bilinear_steady_state"): Tolerance(
         1e-9, "the bilinear bearing's steady state under ẍg = A sin ωt (tests/test_bilinear_steady_state.py) "
               "against an oracle of its own (tests/bilinear_oracle.py: each linear segment's closed form, "
