@@ -39,7 +39,7 @@ from .status import Status
 _PHYSICS = ("ground_acceleration", "piece_acceleration", "pulse_acceleration", "base_pinned",
             "isolator_element_force", "slip_force", "element_hold", "lifts_clearly", "lift_order",
             "impact_continues", "stick_limit", "slip_phase", "slider_position", "slip_power", "vertex_rest_speed",
-            "potential_energy", "overturn_code")
+            "potential_energy", "element_energy", "overturn_code", "hidden_crossing", "vertex_function")
 _SLIDE = ("levers", "base_held", "isolator_force", "slide_rock_denominator", "accelerations", "held_block_force",
           "held_demand", "kinetic_energy", "ground_power", "friction_power", "sticks", "slip_way", "rock_mode",
           "flat_mode", "slip_start_order", "impact", "effective_gravity")
@@ -81,6 +81,10 @@ _slider_position = _P["slider_position"]
 _vertex_rest_speed = _P["vertex_rest_speed"]
 _base_pinned = _P["base_pinned"]
 _overturn_code = _P["overturn_code"]
+_hidden_crossing = _P["hidden_crossing"]
+_vertex_function = _P["vertex_function"]
+_potential = _P["potential_energy"]
+_element_energy = _P["element_energy"]
 
 _NY = 10
 U, UD, TH, THD, W, D, S_LOSS, X, XD, FL = range(_NY)
@@ -90,7 +94,9 @@ _N_STAGES = 12
 
 # event kinds, in the reference's vocabulary (slide_hybrid.SlidingIntegrator's events)
 (E_IMPACT, E_ALPHA, E_PEAK, E_SIDE, E_BASE_PEAK, E_TIP, E_SLIP_FLAT, E_SLIP_ROCK, E_STOP, E_PAINLEVE, E_FLY_FZ,
- E_FLY_GE, E_ISO_DEMAND, E_ISO_STOP, E_ISO_VERTEX, E_ISO_DYIELD, E_ISO_BYIELD) = range(17)
+ E_FLY_GE, E_ISO_DEMAND, E_ISO_STOP, E_ISO_VERTEX, E_ISO_DYIELD, E_ISO_BYIELD, E_DIP) = range(18)
+# E_DIP is no event of the piece: a slipping isolator slider's phase·ü, whose rise through 0 inside a
+# step marks where its stop's function may have dipped through 0 and back (the reference's hidden_stop)
 _MAX_EV = 16
 
 # the piece's context: what the reference's closures capture when a piece starts
@@ -98,7 +104,10 @@ _MAX_EV = 16
  PC_GRAZE, PC_FS, PC_THR, N_PC) = range(16)
 
 # the run's state between pieces (the reference's attributes)
-(R_PHASE, R_UP, R_SIGMA, R_PEAK, R_GRAZE, R_ST0, R_SK, R_SLIM, R_TALPHA, N_RS) = range(10)
+(R_PHASE, R_UP, R_SIGMA, R_PEAK, R_GRAZE, R_ST0, R_SK, R_SLIM, R_TALPHA, R_E0, R_IMPLOSS, R_HELD, R_NREC,
+ N_RS) = range(14)
+#: rows of a run's record of its energy residual's growth (the reference reads its whole history)
+_N_REC = 128
 
 # statuses and why a run stopped (slide_hybrid's StopRun messages)
 _COMPLETED, _OVERTURNED, _EVENT_LIMIT, _FAILED, _NO_ROOM = 0, 1, 2, 3, 4
@@ -184,7 +193,9 @@ def _event_value(kind, side, t, y, sp, ip, cp, mp, acc, mpv, accv, pc):
             return v / (t - pc[PC_T0]) if t > pc[PC_T0] else pc[PC_ISTART]
         return v
     if kind == E_ISO_VERTEX:
-        return side * y[U]
+        return _vertex_function(side, y[U], t <= pc[PC_T0])
+    if kind == E_DIP:
+        return pc[PC_PHASE] * _forces(t, y, sp, ip, cp, mp, acc, mpv, accv, pc, s, pc[PC_SIGMA])[0]
     if kind == E_ISO_DYIELD:
         sg = 1.0 if pc[PC_PHASE] > 0 else -1.0
         return sg * (y[U] - pc[PC_UP]) - ip[physics.I_UY]
@@ -394,21 +405,44 @@ def _keep(out_t, out_y, out_m, out_sg, out_ph, out_up, n, t, y, mode, rs, histor
 
 
 @njit
-def _note(y, mode, extremes):
-    """The largest |θ|, |u| and |x| met (the summary's, also without a history)."""
+def _energy(y, mode, rs, sp, ip):
+    """E (J) of the energy balance: kinetic, potential and the isolator element's (EnergyLog.total)."""
+    s = float(mode) if mode != 0 else 1.0
+    u_p = _slider_position(ip, rs[R_PHASE], y[U], rs[R_UP])
+    return (_kinetic(sp, s, y[UD], y[XD], y[TH], y[THD]) + _potential(sp, s, y[U], y[TH])
+            + _element_energy(ip, y[U], u_p))
+
+
+@njit
+def _note(t, y, mode, extremes, rs, sp, ip, rec):
+    """What a stored point tells a summary, also without a history: the largest |θ|, |u| and
+    |x| met, and the energy balance's residual there (the reference reads it on its stored
+    points): the largest energy involved (rs[R_HELD]), and in rec the rows (t, |residual|)
+    where it first doubled, its largest in the last row (limits.energy_balance_failure)."""
     if mode != 0 and abs(y[TH]) > extremes[0]:
         extremes[0] = abs(y[TH])
     if abs(y[U]) > extremes[1]:
         extremes[1] = abs(y[U])
     if abs(y[X]) > extremes[2]:
         extremes[2] = abs(y[X])
+    e = _energy(y, mode, rs, sp, ip)
+    res = abs(e - rs[R_E0] - y[W] + y[D] + rs[R_IMPLOSS] + y[S_LOSS] + y[FL])
+    rs[R_HELD] = max(rs[R_HELD], abs(y[W]), abs(e), rs[R_IMPLOSS], y[S_LOSS], y[FL])
+    n = int(rs[R_NREC])
+    if (n == 0 or res > 2.0 * rec[n - 1, 1]) and n < _N_REC - 1:
+        rec[n, 0] = t
+        rec[n, 1] = res
+        rs[R_NREC] = n + 1
+    if res > rec[_N_REC - 1, 1]:
+        rec[_N_REC - 1, 0] = t
+        rec[_N_REC - 1, 1] = res
 
 
 # --- one piece: solve_ivp between two restarts ---------------------------------------------------
 
 @njit
 def _piece(t0, t1, y, mode, evk, evs, evd, evt, nev, rtol, atol, max_step, odt, sp, ip, cp, mp, acc, mpv, accv,
-           pc, rs, extremes, history, out_t, out_y, out_m, out_sg, out_ph, out_up, n_out, wk):
+           pc, rs, extremes, history, out_t, out_y, out_m, out_sg, out_ph, out_up, n_out, wk, rec):
     """solve_ivp(fun, (t0, t1), y, method="DOP853", events=...) as the reference calls it, and
     the reference's store(): t0, the output grid and the non-terminal events' roots, then
     the end. y becomes the end state (the terminal event's, located by Brent on the dense
@@ -426,7 +460,7 @@ def _piece(t0, t1, y, mode, evk, evs, evd, evt, nev, rtol, atol, max_step, odt, 
     n_out = _keep(out_t, out_y, out_m, out_sg, out_ph, out_up, n_out, t, y, mode, rs, history)
     if n_out < 0:
         return -2, t, -1, n_out, t_alpha
-    _note(y, mode, extremes)
+    _note(t, y, mode, extremes, rs, sp, ip, rec)
     if mode != 0 and abs(y[TH]) > rs[R_PEAK]:
         rs[R_PEAK] = abs(y[TH])
     kg = math.floor(t0 / odt + 1e-9) + 1.0  # the next grid point after t0
@@ -479,6 +513,23 @@ def _piece(t0, t1, y, mode, evk, evs, evd, evt, nev, rtol, atol, max_step, odt, 
                                        mpv, accv, pc)
                 order[n_act] = e
                 n_act += 1
+            elif (evk[e] == E_ISO_STOP and g[e] > 0.0 and g_new[e] > 0.0 and pc[PC_PHASE] * f[UD] < 0.0
+                  and pc[PC_PHASE] * K[_N_STAGES, UD] > 0.0):
+                # a slip whose phase·u̇ dips through 0 and back within the step stops at its first
+                # zero, before phase·ü rises through 0 (hybrid._IsolatorIntegrator.hidden_stop)
+                if not dense:
+                    _dense(t_old, h, y_old, y_new, f, K[_N_STAGES], K, F, tmp, sp, ip, cp, mp, acc, mpv, accv, pc)
+                    dense = True
+                fa = _event_at(E_DIP, 0.0, t_old, F, y_old, t_old, h, buf, sp, ip, cp, mp, acc, mpv, accv, pc)
+                fb = _event_at(E_DIP, 0.0, t_new, F, y_old, t_old, h, buf, sp, ip, cp, mp, acc, mpv, accv, pc)
+                if fa < 0.0 < fb:
+                    t_m = _brentq(E_DIP, 0.0, t_old, t_new, F, y_old, t_old, h, buf, sp, ip, cp, mp, acc, mpv, accv, pc)
+                    _at(F, y_old, t_old, h, t_m, buf)
+                    if pc[PC_PHASE] * buf[UD] < 0.0:
+                        roots[n_act] = _brentq(evk[e], evs[e], t_old, t_m, F, y_old, t_old, h, buf, sp, ip, cp, mp,
+                                               acc, mpv, accv, pc)
+                        order[n_act] = e
+                        n_act += 1
         # sorted by root (a stable insertion sort: ties keep the events' order, as numpy's argsort)
         for a in range(1, n_act):
             r, o = roots[a], order[a]
@@ -498,6 +549,26 @@ def _piece(t0, t1, y, mode, evk, evs, evd, evt, nev, rtol, atol, max_step, odt, 
                 t_cut = roots[a]
                 n_keep = a + 1
                 break
+        # a terminal event whose function changed sign its way between the step's start and the
+        # cut, its sign at the step's end hiding it, ends the piece instead: checked again from
+        # the earlier cut (hybrid._IsolatorIntegrator.first_terminal, physics.hidden_crossing)
+        while hit >= 0 and t_cut > t_old:
+            hid = -1
+            r_hid = t_cut
+            for e in range(nev):
+                if e == hit or not evt[e]:
+                    continue
+                g_cut = _event_at(evk[e], evs[e], t_cut, F, y_old, t_old, h, buf, sp, ip, cp, mp, acc, mpv, accv, pc)
+                if _hidden_crossing(evd[e], g[e], g_cut):
+                    r = _brentq(evk[e], evs[e], t_old, t_cut, F, y_old, t_old, h, buf, sp, ip, cp, mp, acc, mpv, accv,
+                                pc)
+                    if r < r_hid:
+                        hid = e
+                        r_hid = r
+            if hid < 0:
+                break
+            hit = hid
+            t_cut = r_hid
         # the stored points of this step: grid points and the non-terminal roots before t_cut
         if not dense and (n_keep > 0 or (history and kg * odt <= t_cut)):
             _dense(t_old, h, y_old, y_new, f, K[_N_STAGES], K, F, tmp, sp, ip, cp, mp, acc, mpv, accv, pc)
@@ -523,7 +594,7 @@ def _piece(t0, t1, y, mode, evk, evs, evd, evt, nev, rtol, atol, max_step, odt, 
             if mode == 0:
                 buf[TH] = 0.0
                 buf[THD] = 0.0
-            _note(buf, mode, extremes)
+            _note(tn, buf, mode, extremes, rs, sp, ip, rec)
             if mode != 0 and abs(buf[TH]) > rs[R_PEAK]:
                 rs[R_PEAK] = abs(buf[TH])
             n_out = _keep(out_t, out_y, out_m, out_sg, out_ph, out_up, n_out, tn, buf, mode, rs, history)
@@ -537,7 +608,7 @@ def _piece(t0, t1, y, mode, evk, evs, evd, evt, nev, rtol, atol, max_step, odt, 
             if mode == 0:
                 y[TH] = 0.0
                 y[THD] = 0.0
-            _note(y, mode, extremes)
+            _note(t_cut, y, mode, extremes, rs, sp, ip, rec)
             n_out = _keep(out_t, out_y, out_m, out_sg, out_ph, out_up, n_out, t_cut, y, mode, rs, history)
             return (1 if n_out >= 0 else -2), t_cut, hit, n_out, t_alpha
         for i in range(_NY):
@@ -550,7 +621,7 @@ def _piece(t0, t1, y, mode, evk, evs, evd, evt, nev, rtol, atol, max_step, odt, 
             if mode == 0:
                 y[TH] = 0.0
                 y[THD] = 0.0
-            _note(y, mode, extremes)
+            _note(t, y, mode, extremes, rs, sp, ip, rec)
             if mode != 0 and abs(y[TH]) > rs[R_PEAK]:
                 rs[R_PEAK] = abs(y[TH])
             n_out = _keep(out_t, out_y, out_m, out_sg, out_ph, out_up, n_out, t, y, mode, rs, history)
@@ -795,6 +866,9 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
             if mode != 0:
                 upl[n_upl] = 0.0
                 n_upl += 1
+                if friction and y[UD] == 0.0:
+                    # a rigid slider at rest takes its phase from the lifting block's demand (the reference's rule)
+                    rs[R_PHASE] = _stick_or_slip(0.0, y, mode, rs, sp, ip, cp, mp, acc, mpv, accv)
     if why == STOP_NONE and not chosen:
         sigma, w = _rock_mode(sp, ip, cp, float(mode), rs[R_PHASE], rs[R_UP], y[TH], y[THD], y[U], y[UD],
                               _xg(0.0, mp, acc), _gravity(0.0, sp, cp, mpv, accv), True)
@@ -802,6 +876,8 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
             why = w
         else:
             n_slog = _set_sigma(0.0, y, sigma, mode, rs, sp, ip, cp, mp, acc, mpv, accv, slog, n_slog)
+    rec = np.zeros((_N_REC, 2))  # the energy balance's growth (_note)
+    rs[R_E0] = _energy(y, mode, rs, sp, ip)
     events = 0
     ibreak = 1
     nb = breaks.size
@@ -825,7 +901,7 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
                       motion_end, f0)
         code, t_new, hit, n_out, t_al = _piece(t, t_end, y, mode, evk, evs, evd, evt, nev, rtol, atol, max_step,
                                                odt, sp, ip, cp, mp, acc, mpv, accv, pc, rs, extremes, history,
-                                               out_t, out_y, out_m, out_sg, out_ph, out_up, n_out, wk)
+                                               out_t, out_y, out_m, out_sg, out_ph, out_up, n_out, wk, rec)
         if code == -2:
             status = _NO_ROOM
             break
@@ -873,6 +949,7 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
             imp[n_imp, 5] = 1.0 if cont else 0.0
             imp[n_imp, 6] = rs[R_PEAK]
             imp[n_imp, 7] = loss
+            rs[R_IMPLOSS] += loss
             n_imp += 1
             rs[R_PEAK] = 0.0
             y[THD], y[XD], y[UD] = thd, xd, ud
@@ -1008,7 +1085,8 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
     if verdict != 0 and status == _COMPLETED:
         status = _OVERTURNED
     return (status, why, t, rs[R_TALPHA], verdict, pz_fail, y[TH], events, n_out, out_t, out_y, out_m, out_sg,
-            out_ph, out_up, n_imp, imp, n_upl, upl, n_slog, slog, n_ilog, ilog, extremes)
+            out_ph, out_up, n_imp, imp, n_upl, upl, n_slog, slog, n_ilog, ilog, extremes, rs[R_HELD], int(rs[R_NREC]),
+            rec)
 
 
 # --- Python side ------------------------------------------------------------------------------------
@@ -1050,8 +1128,25 @@ def run(system, motion, settings, duration, y0, history: bool):
         cap *= 4
 
 
+def _balance_failure(r):
+    """limits.energy_balance_failure of a run r (its energy balance read at its stored points), or None."""
+    from .limits import energy_balance_failure
+    held, n_rec, rec = r[24:27]
+    rows = np.concatenate([rec[:n_rec], rec[-1:]])
+    return energy_balance_failure(rows[:, 0], rows[:, 1], held)
+
+
 def _message(system, settings, r):
-    """The reference's message for how the run ended (slide_hybrid's, hybrid's)."""
+    """The reference's status and message for how the run ended (slide_hybrid's, hybrid's)."""
+    status, message = _ending(system, settings, r)
+    if status.ended_normally:  # a history that took a branch the physics did not is no answer (limits.py)
+        failure = _balance_failure(r)
+        if failure:
+            return Status.FAILED, failure
+    return status, message
+
+
+def _ending(system, settings, r):
     from .overturning import describe
     from .slide_hybrid import _WHY
     status, why, t, t_alpha, verdict, pz, theta_end, events = r[:8]

@@ -91,6 +91,10 @@ class SlidingIntegrator(_IsolatorIntegrator):
             raise stop(why, t, " (at the start)")
         self.set_sigma(t, y, sigma, mode=int(s))
         self.chosen = True
+        if s != 0 and self.friction and y[UD] == 0.0:
+            # a rigid slider at rest takes its phase from the lifting block's demand, not from a
+            # block at rest's (initial_state): _IsolatorIntegrator.uplift_mode's rule (issue 39)
+            self.phase = self.stick_or_slip(t, y, int(s))
         return int(s)
 
     def begin(self, t, y, mode):
@@ -336,6 +340,9 @@ class SlidingIntegrator(_IsolatorIntegrator):
         if not self.linear:
             extras.update(isolator=sys.isolator_kind, isolator_phase=np.concatenate(self.out_phase),
                           isolator_slider=u_p, isolator_events=tuple(self.isolator_log))
+        failure = log.failure(t) if status.ended_normally else None
+        if failure:  # a history that took a branch the physics did not is no answer (limits.py)
+            status, message, overturn_time = Status.FAILED, failure, None
         return Trajectory(
             engine="analytic-reference", system=sys, t=t, u=y[U], u_dot=y[UD], theta=y[TH], theta_dot=y[THD],
             mode=mode, impacts=tuple(self.impacts), uplift_times=tuple(self.uplifts),
