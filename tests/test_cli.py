@@ -157,7 +157,7 @@ def test_argument_errors_are_one_line(tmp_path, monkeypatch, capsys, args, needl
     (["--engine", "bullet", "--substeps", "1000000"], ["substeps", "control step"]),
     (["--csv-dt", "1e-9", "--csv", "x.csv", "--json", "x.json"], ["csv-dt", "MAX_SAMPLES"]),
     (["--motion", "sine:amp=0.1,amp=5,freq=1"], ["amp", "twice"]),
-    (["--json", ""], ["json", "file path"]),
+    (["--json", ""], ["--json", "an empty value"]),
     (["--json", "same", "--csv", "same"], ["csv", "also given as json"]),
 ])
 def test_run_bad_input_is_refused_before_any_work(tmp_path, monkeypatch, capsys, args, needles):

@@ -29,6 +29,17 @@ class OneLineParser(argparse.ArgumentParser):
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
+    def _get_value(self, action, arg_string):
+        # every value a user types passes here (argparse's one conversion point): an empty
+        # one means nothing any option could take, and commands that read `if a.option:`
+        # ran their default grid, the current folder or no config file in its place (issue 34)
+        # (a sub-command's arguments pass the top parser's on their way to their own: not here)
+        if (isinstance(arg_string, str) and not arg_string.strip() and arg_string is not action.default
+                and action.nargs not in (argparse.PARSER, argparse.REMAINDER)):
+            raise argparse.ArgumentError(action, f"{arg_string!r}: an empty value; give one, or leave the option "
+                                                 "out for its default")
+        return super()._get_value(action, arg_string)
+
 
 def number(text: str) -> float:
     """argparse type: a real number (finite or not; the checks that follow say what is allowed)."""
