@@ -13,7 +13,6 @@ import hashlib
 import itertools
 import json
 import math
-import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -25,6 +24,7 @@ from isorock.analytic.motion import PULSES
 from isorock.validate.core.cases import Case, build_case
 from isorock.validate.core.engines import EngineChoice
 from isorock.validate.core.executor import ANALYTIC_CHUNK, CONTACT_CHUNK
+from isorock.validate.io.schema import read_toml
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).
 AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
@@ -511,10 +511,5 @@ def load_spec(path) -> CampaignSpec:
     path = Path(path)
     if not path.is_file():
         raise InputError(f"campaign file {str(path)!r}: no such file")
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))  # a byte-order mark is UTF-8 too
-    except tomllib.TOMLDecodeError as e:
-        raise InputError(f"campaign file {str(path)!r}: not valid TOML ({e})") from None
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"campaign file {str(path)!r}: cannot be read ({e})") from None
-    return parse_spec(data, path.resolve())
+    # bounded before it is parsed, as every file a user hands a command (issue 34)
+    return parse_spec(read_toml(path, f"campaign file {str(path)!r}"), path.resolve())
