@@ -101,6 +101,11 @@ class LinearFamily(Family):
     x_label, y_label = "isolation period T (s)", "damping ratio ξ"
     x_unit, y_unit = "s", ""
 
+    def __post_init__(self):
+        from isorock.analytic.limits import check_period
+        for period in self.x_values:  # before a stiffness M·(2π/T)² is computed from it
+            check_period("periods", period)
+
     def system(self, statue: Statue, x: float, y: float) -> System:
         # given by period and damping ratio, which the System derives k and c from
         return System.isolated(height=statue.height, width=statue.width, mass=statue.mass,
@@ -183,13 +188,20 @@ class Hazard:
                 raise InputError(f"pga = {x!r}: must be a positive finite PGA (g)")
         if list(self.levels) != sorted(set(self.levels)):
             raise InputError(f"pga = {','.join(f'{x:g}' for x in self.levels)}: must be increasing, each level once")
+        from isorock.analytic.limits import check_acceleration
+        for x in self.levels:
+            check_acceleration("pga", x)  # the kernel spun on accelerations far past it
         w = self.weights or (1.0,) * len(self.levels)
         if len(w) != len(self.levels):
             raise InputError(f"level-weights: {len(w)} given for {len(self.levels)} PGA levels; give one per level")
-        if any(not (x >= 0 and math.isfinite(x)) for x in w) or sum(w) <= 0:
+        if any(not (x >= 0 and math.isfinite(x)) for x in w) or max(w) <= 0:
             raise InputError(f"level-weights = {','.join(f'{x:g}' for x in w)}: must be non-negative finite numbers, "
                              "not all zero")
-        object.__setattr__(self, "weights", tuple(float(x) / sum(w) for x in w))
+        # over the largest first: the sum of weights near a float's top overflowed (1e308 +
+        # 1e308 = inf made every weight 0, and every P over the hazard 0)
+        top = max(w)
+        w = [float(x) / top for x in w]
+        object.__setattr__(self, "weights", tuple(x / sum(w) for x in w))
         for name, r in self.records.items():
             if not r.pga_g > 0:
                 raise InputError(f"records: {name!r} has a PGA of 0 and cannot be scaled to a level")
@@ -336,13 +348,14 @@ def check_size(family, hazard: Hazard, tail: float = DEFAULT_TAIL) -> int:
         raise InputError(f"design size = {n} runs (isolators × records × levels): must be at most {MAX_DESIGN_RUNS}")
     longest = max(r.end_time for r in hazard.records.values()) + tail
     check_duration("records", longest, " (the longest record + tail)")
-    if family.kind == LINEAR:
-        shortest = System.isolated(height=2.0, width=0.7, mass=1.0, base_mass=1.0, period=min(family.x_values),
-                                   damping_ratio=0.1)
+    # every family's isolators, not the linear one's only: a friction pendulum of radius
+    # 1e-12 m (a period of 2 µs) ran as 'P n/a, stroke nan m' with exit 0
+    # (a family's period follows its x axis alone: a period, a radius, a slope)
+    for x in family.x_values:
         try:
-            check_isolator(shortest, longest)
+            check_isolator(family.system(Statue(2.0, 0.7, 1.0, 1.0), x, family.y_values[0]), longest)
         except InputError as e:
-            raise InputError(f"periods: {e}") from None
+            raise InputError(f"{family.x_name} = {x:g}: {e}") from None
     return n
 
 

@@ -433,6 +433,11 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
     from isorock.validate.core.cases import build_system
     from isorock.validate.core.engines import get_engine, settings_used
     systems = [build_system(g) for g in spec.system_grid()]
+    if spec.motions["type"] == "pulse":  # a pulse's peak is amplitude_ratio·g·tanα (a record's: record_factor)
+        from isorock.analytic.limits import check_acceleration
+        steepest = max(math.tan(system.alpha) for system in systems)
+        check_acceleration("motions.amplitude_ratio", max(spec.motions["amplitude_ratio"]) * steepest,
+                           f" (its largest × tanα = {steepest:.3g} of the squattest block)")
     fastest = max(systems, key=lambda system: system.rocking_rate)
     for e in spec.engines:
         try:

@@ -89,20 +89,23 @@ def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[floa
     """'0.5', 'A,B,C' or 'FROM:TO:NUM' (both ends included, evenly spaced): positive,
     finite, increasing values (below 1 for a damping ratio); one line naming the option otherwise."""
     allowed = "a number, a list A,B,C or a range FROM:TO:NUM"
+    parts = text.split(":")
     try:
-        if ":" in text:
-            lo, hi, num = text.split(":")
-            lo, hi = float(lo), float(hi)
-            if float(num) != int(float(num)) or not 1 <= int(float(num)) <= MAX_AXIS:
-                raise InputError(f"--{option} = {text!r}: NUM must be a whole number from 1 to {MAX_AXIS}")
-            num = int(float(num))
-            if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
-                raise InputError(f"--{option} = {text!r}: must be a range FROM:TO:NUM with finite FROM ≤ TO")
-            values = tuple(float(round(v, 12)) for v in np.linspace(lo, hi, num)) if num > 1 else (lo,)
-        else:
+        if len(parts) == 3:
+            lo, hi, num = (float(x) for x in parts)
+        elif len(parts) == 1:
             values = tuple(float(x) for x in text.split(","))
+        else:
+            raise ValueError(text)
     except ValueError:
         raise InputError(f"--{option} = {text!r}: must be {allowed}") from None
+    if len(parts) == 3:
+        # NUM is read as a number first: inf or nan has no whole value to take (an OverflowError)
+        if not (math.isfinite(num) and num == int(num) and 1 <= num <= MAX_AXIS):
+            raise InputError(f"--{option} = {text!r}: NUM must be a whole number from 1 to {MAX_AXIS}")
+        if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
+            raise InputError(f"--{option} = {text!r}: must be a range FROM:TO:NUM with finite FROM ≤ TO")
+        values = tuple(float(round(v, 12)) for v in np.linspace(lo, hi, int(num))) if num > 1 else (lo,)
     if len(values) > MAX_AXIS:
         raise InputError(f"--{option} = {text!r}: {len(values)} values; must be at most {MAX_AXIS}")
     for v in values:

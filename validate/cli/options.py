@@ -200,6 +200,8 @@ def _linear_from_args(a, common, *, default_isolator=None):
         if a.period is None or a.damping_ratio is None or a.stiffness is not None or a.dashpot is not None:
             raise InputError("isolator: give --period with --damping-ratio, or --stiffness with --dashpot, "
                              "or --fixed-base")
+        from isorock.analytic.limits import check_period
+        check_period("period", a.period)  # before its stiffness M·(2π/T)² is computed
         return System.isolated(**common, period=a.period, damping_ratio=a.damping_ratio)
     if a.stiffness is not None:
         return System.from_stiffness(**common, stiffness=a.stiffness,
