@@ -410,7 +410,7 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
     case (its longest motion, `longest_motion` s, and the duration rule), its shortest
     isolator period and each engine setting's steps: an InputError naming the key the
     user wrote, before anything runs."""
-    from isorock.analytic.limits import check_duration, check_isolator, check_settings
+    from isorock.analytic.limits import check_duration, check_isolator
     d = spec.duration
     if "end" in d:
         longest = check_duration("duration.end", d["end"])
@@ -428,26 +428,19 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
             check_isolator(shortest, longest)
         except InputError as e:
             raise InputError(f"systems.period: {str(e).replace(' (stiffness nan N/m)', '')}") from None
-    # an engine whose step follows the block (MuJoCo's, PyBullet's) takes the most steps on
-    # the campaign's fastest-rocking block: its steps are the bound
     from isorock.validate.core.cases import build_system
-    from isorock.validate.core.engines import get_engine, settings_used
+    from isorock.validate.core.engines import check_carries
     systems = [build_system(g) for g in spec.system_grid()]
     if spec.motions["type"] == "pulse":  # a pulse's peak is amplitude_ratio·g·tanα (a record's: record_factor)
         from isorock.analytic.limits import check_acceleration
         steepest = max(math.tan(system.alpha) for system in systems)
         check_acceleration("motions.amplitude_ratio", max(spec.motions["amplitude_ratio"]) * steepest,
                            f" (its largest × tanα = {steepest:.3g} of the squattest block)")
-    fastest = max(systems, key=lambda system: system.rocking_rate)
     for e in spec.engines:
         try:
-            check_settings(settings_used(e.settings(), fastest, longest), longest)
-            # the engine's own bounds (EngineSpec.check_system) on every system of the grid,
-            # as `run` would refuse one: not a chunk of error rows and exit 0
-            engine = get_engine(e.engine)
-            if engine.spec.check_system is not None:
-                for system in systems:
-                    engine.check_system(system, settings_used(e.settings(), system, longest))
+            # the engine's bounds on every system of the grid, as `run` would refuse one:
+            # not a chunk of error rows and exit 0
+            check_carries(e, systems, longest)
         except InputError as err:
             raise InputError(f"{e.where or e.engine}: {err}") from None
 

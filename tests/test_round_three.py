@@ -212,3 +212,94 @@ def test_a_campaign_past_the_acceleration_bound_runs_nothing(tmp_path, motions):
     with pytest.raises(InputError, match="MAX_PGA_G"):
         run_campaign(spec, tmp_path / "out", workers=0, progress=False, products=False)
     assert not (tmp_path / "out").exists()
+
+
+# --- items 1, 2 (and issue 39): design --check asks each engine before any work ----------------
+
+def _records_folder(d):
+    import math
+    (d / "recs").mkdir()
+    for k in range(2):
+        rows = "".join(f"{i * 0.01:.2f} {math.sin(2 * math.pi * (1 + k) * i / 100) * math.exp(-0.003 * i):.6f}\n"
+                       for i in range(300))
+        (d / "recs" / f"r{k}.txt").write_text("# units: g\n" + rows)
+    return d / "recs"
+
+
+DESIGN_SMALL = ["design", "--records", "recs", "--pga", "0.5", "--periods", "2", "--damping-ratios", "0.1",
+                "--height", "1", "--width", "0.35", "--mass", "100", "--base-mass", "100", "--tail", "1", "--quiet",
+                "--out", "out"]
+
+
+@pytest.mark.parametrize("extra, named", [
+    (["--isolator", "ball-in-cone", "--slopes", "0.1", "--rolling-resistances", "0.01", "--check", "mujoco"],
+     "ball-in-cone"),
+    (["--isolator", "friction-pendulum", "--radii", "1", "--friction-coefficients", "0.1", "--check", "drake"],
+     "friction-pendulum"),
+    (["--mass", "1e-30", "--base-mass", "1e-30", "--check", "mujoco"], "mass"),
+    (["--base-mass", "0.02", "--check", "bullet"], "mass_ratio"),
+    (["--periods", "0.001", "--check", "bullet"], "period"),
+    (["--check", "mujoco", "--check", "warp"], "warp"),
+    (["--check", "mujoco,mujoco"], "once"),
+])
+def test_a_check_engine_that_cannot_carry_the_design_is_refused_before_any_run(extra, named, tmp_path,
+                                                                               monkeypatch, capsys):
+    """It was asked after the whole design (30,100 runs, 607 s, then exit 2), or never: a
+    1e-30 kg statue's MuJoCo runs failed, and were counted as agreeing."""
+    import isorock.campaign.design as design
+    monkeypatch.chdir(tmp_path)
+    _records_folder(tmp_path)
+
+    def no_work(*a, **k):
+        raise AssertionError("the design ran before its check engine was asked")
+    monkeypatch.setattr(design, "run_design", no_work)
+    argv = [x for x in DESIGN_SMALL]
+    for opt in ("--periods", "--damping-ratios") if "--isolator" in extra else ():
+        i = argv.index(opt)
+        del argv[i:i + 2]
+    if "--base-mass" in extra or "--mass" in extra:
+        for opt in ("--mass", "--base-mass"):
+            if opt in extra:
+                i = argv.index(opt)
+                del argv[i:i + 2]
+    assert main([*argv, *extra]) == 2
+    assert named in _one_line(capsys)
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_failed_contact_run_is_counted_apart_never_as_agreement(monkeypatch):
+    """Oracle: every picked run fails (the engine's table says so); agreement is then 0 of 0,
+    and the runs are said to have failed."""
+    import numpy as np
+    import pyarrow as pa
+
+    from isorock.analytic.motion import GroundMotion
+    from isorock.campaign import design
+    from isorock.validate.core import executor
+    records = {f"r{k}": GroundMotion.from_array(0.5 * np.sin(np.arange(200) * 0.1 * (k + 1)), dt=0.01, units="g",
+                                                name=f"r{k}") for k in range(2)}
+    d = design.run_design(design.Statue(1.0, 0.35, 100.0, 100.0), design.LinearFamily((2.0,), (0.1,)),
+                          design.Hazard(records, (0.5,)), tail=1.0, threads=1)
+    picks = design.check_points(d, 0.05, None, 4)
+
+    def all_failed(cases, engines, **k):
+        return pa.table({"case": [c.case for c in cases], "overturned": [False] * len(cases),
+                         "u_max": [None] * len(cases), "status": ["failed"] * len(cases),
+                         "theta_max_over_alpha": [None] * len(cases)})
+    monkeypatch.setattr(executor, "run_cases", all_failed)
+    c = design.check_with(d, "mujoco", picks)
+    assert (c["outcomes_agree"], c["outcomes_differ"], c["failed"], c["n"]) == (0, 0, len(picks), len(picks))
+    assert f"{len(picks)} failed" in c["text"] and "in 0 of 0" in c["text"]
+
+
+def test_several_check_engines_each_check_the_design(tmp_path, monkeypatch, capsys):
+    pytest.importorskip("mujoco")
+    pytest.importorskip("pybullet")
+    import json
+    monkeypatch.chdir(tmp_path)
+    _records_folder(tmp_path)
+    assert main([*DESIGN_SMALL, "--check", "mujoco,bullet", "--check-runs", "1"]) == 0
+    doc = json.loads((tmp_path / "out" / "design.json").read_text())
+    assert [c["engine"] for c in doc["checks"]] == ["mujoco", "bullet"] and doc["check"] == doc["checks"][0]
+    out = capsys.readouterr().out
+    assert "mujoco on" in out and "bullet on" in out

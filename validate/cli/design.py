@@ -72,9 +72,10 @@ def add_parser(sub) -> None:
                    help="largest acceptable P(overturn) over the hazard (default: %(default)g)")
     g.add_argument("--max-stroke", type=number, metavar="M",
                    help="largest acceptable 84th-percentile stroke at the highest level, m (default: none)")
-    g.add_argument("--check", metavar="ENGINE",
+    g.add_argument("--check", metavar="ENGINE[,ENGINE]", action="append",
                    help="run a few of the design's runs again with a contact engine (e.g. mujoco) and report how "
-                        "far it agrees")
+                        "far it agrees; several: --check mujoco --check bullet, or --check mujoco,bullet (each is "
+                        "asked before any work whether it carries the statue and every isolator of the family)")
     g.add_argument("--check-runs", type=int, default=12, metavar="N",
                    help="how many runs --check makes (default: %(default)s)")
     p.add_argument("--tail", type=number, default=5.0, help="seconds simulated after each record (default: 5)")
@@ -208,8 +209,40 @@ def hazard_from_args(a):
         [] if "suite" in spec else [str(p) for p in sorted(Path(spec["folder"]).iterdir()) if p.is_file()])
 
 
+def check_engines(given) -> list[str]:
+    """--check as given (repeated, each comma-separated) → the contact engines, each once."""
+    from isorock.validate.core.engines import ALL_ENGINES, choose
+    contact = [e for e in ALL_ENGINES if not e.startswith("analytic")]
+    names = [x.strip() for text in (given or ()) for x in text.split(",")]
+    for name in names:
+        if name not in contact:
+            raise InputError(f"--check = {name!r}: must be a contact engine, one of {', '.join(contact)}")
+    if len(set(names)) != len(names):
+        raise InputError(f"--check = {','.join(names)}: name each engine once")
+    for name in names:
+        choose(name, {}, strict=True).settings()  # not installed: one line naming the extra
+    return names
+
+
+def _check(d, engine: str, picks, hazard, cores: int, quiet: bool) -> dict:
+    """The picked runs again with one contact engine (its estimate first, then its progress)."""
+    from isorock.campaign.design import check_with
+    from isorock.validate.io.progress import Progress
+    if not quiet:
+        from isorock.validate.core.estimate import estimate_s
+        sim = sum(hazard.records[name].end_time + d.tail for _, name, _ in picks)
+        print(f"isorock design: checking {len(picks)} runs with {engine} ({sim:.0f} simulated s, estimated "
+              f"≈ {estimate_s({engine: sim}, workers=cores):.0f} s)", file=sys.stderr, flush=True)
+    bar = None if quiet else Progress(len(picks), f"check {engine}", enabled=True)
+    try:
+        return check_with(d, engine, picks, progress=bar)
+    finally:
+        if bar is not None:
+            bar.close()
+
+
 def cmd_design(a) -> int:
-    from isorock.campaign.design import (check_family_runs, check_points, check_size, check_with, estimate_s,
+    from isorock.campaign.design import (check_engines_carry, check_family_runs, check_points, check_size, estimate_s,
                                          run_design, simulated_seconds)
     from isorock.campaign.design_report import write_design
     from isorock.validate.io.output import Outputs
@@ -222,12 +255,7 @@ def cmd_design(a) -> int:
         raise InputError(f"--tail = {a.tail!r}: must be a non-negative finite number of seconds")
     if a.check_runs < 1 or a.check_runs > 200:
         raise InputError(f"--check-runs = {a.check_runs!r}: must be a whole number from 1 to 200")
-    if a.check is not None:
-        from isorock.validate.core.engines import ALL_ENGINES, choose
-        if a.check not in ALL_ENGINES or a.check.startswith("analytic"):
-            raise InputError(f"--check = {a.check!r}: must be a contact engine, one of "
-                             f"{', '.join(e for e in ALL_ENGINES if not e.startswith('analytic'))}")
-        choose(a.check, {}, strict=True).settings()  # not installed: one line naming the extra
+    checks = check_engines(a.check)
     statue = statue_from_args(a)
     family = family_from_args(a)
     check_family_runs(family)
@@ -235,6 +263,7 @@ def cmd_design(a) -> int:
         folder = outputs.folder("out", a.out)  # a folder we may not write is refused before the work
         hazard, record_paths = hazard_from_args(a)
         n_runs = check_size(family, hazard, a.tail)
+        check_engines_carry(statue, family, hazard, checks, a.tail)  # each --check engine, before any work
         from isorock.analytic.limits import available_cores
         cores = available_cores()
         simulated = simulated_seconds(hazard, 1 + len(family.x_values) * len(family.y_values), a.tail)
@@ -257,26 +286,17 @@ def cmd_design(a) -> int:
         finally:
             for bar in bars:
                 bar.close()
-        if a.check is not None:
+        if checks:
             picks = check_points(d, a.target, a.max_stroke, a.check_runs)
-            if not a.quiet:
-                from isorock.validate.core.estimate import estimate_s
-                sim = sum(hazard.records[name].end_time + a.tail for _, name, _ in picks)
-                print(f"isorock design: checking {len(picks)} runs with {a.check} ({sim:.0f} simulated s, estimated "
-                      f"≈ {estimate_s({a.check: sim}, workers=cores):.0f} s)", file=sys.stderr, flush=True)
-            cbar = None if a.quiet else Progress(len(picks), f"check {a.check}", enabled=True)
-            try:
-                d.check = check_with(d, a.check, picks, progress=cbar)
-            finally:
-                if cbar is not None:
-                    cbar.close()
+            d.checks = [_check(d, engine, picks, hazard, cores, a.quiet) for engine in checks]
+            d.check = d.checks[0]
         answer = {}
         folder.write(lambda tmp: answer.update(write_design(d, a.target, a.max_stroke, tmp, record_paths)))
         outputs.commit()
     total = time.perf_counter() - start
     print(answer["headline"])
-    if d.check is not None:
-        print(d.check["text"])
+    for c in d.checks or ():
+        print(c["text"])
     print(f"isorock design: {n_runs:,} runs in {d.wall_s:.0f} s ({total:.0f} s in all); wrote {a.out}/design.md, "
           "design.png, design.json, design.csv, runs.parquet", file=sys.stderr)
     return 0
