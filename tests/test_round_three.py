@@ -303,3 +303,39 @@ def test_several_check_engines_each_check_the_design(tmp_path, monkeypatch, caps
     assert [c["engine"] for c in doc["checks"]] == ["mujoco", "bullet"] and doc["check"] == doc["checks"][0]
     out = capsys.readouterr().out
     assert "mujoco on" in out and "bullet on" in out
+
+
+# --- item 15: the minor ones ------------------------------------------------------------------
+
+@pytest.mark.parametrize("option", ["--pga", "--pgv"])
+def test_an_all_zero_record_scaled_to_a_peak_is_named(option, tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "zero.txt").write_text("# units: g\n" + "".join(f"{i * 0.01:.2f} 0\n" for i in range(20)))
+    assert main(["run", "--height", "2", "--width", "0.7", "--mass", "3800", "--base-mass", "3800", "--fixed-base",
+                 "--motion", "zero.txt", option, "0.5"]) == 2
+    err = _one_line(capsys)
+    assert "zero.txt" in err and "'none'" not in err
+
+
+@pytest.mark.parametrize("config, argv, levels", [("pga = 0.7\n", [], [0.7]),
+                                                   ("pga = 0.7\n", ["--pga", "0.5"], [0.5]),
+                                                   ("[system]\nheight = 1.0\nwidth = 0.35\n", [], None)])
+def test_design_config_gives_its_pga_unless_the_option_does(config, argv, levels, tmp_path, monkeypatch):
+    import json
+
+    from isorock.validate.cli.design import DEFAULT_PGA, parse_grid
+    monkeypatch.chdir(tmp_path)
+    _records_folder(tmp_path)
+    (tmp_path / "s.toml").write_text(config)
+    assert main(["design", "--records", "recs", "--periods", "2", "--damping-ratios", "0.1", "--tail", "1",
+                 "--quiet", "--config", "s.toml", "--out", "out", *argv]) == 0
+    got = json.loads((tmp_path / "out" / "design.json").read_text())["hazard"]["pga_levels"]
+    assert got == (levels or list(parse_grid("pga", DEFAULT_PGA)))
+
+
+def test_design_config_pgv_is_refused_not_ignored(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    _records_folder(tmp_path)
+    (tmp_path / "s.toml").write_text("pgv = 0.3\n")
+    assert main(["design", "--records", "recs", "--config", "s.toml", "--out", "out"]) == 2
+    assert "pgv" in _one_line(capsys) and not (tmp_path / "out").exists()

@@ -47,9 +47,9 @@ def add_parser(sub) -> None:
     g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
                    help="units of two-column record files that do not state theirs")
     g.add_argument("--limit", type=int, default=0, metavar="N", help="the first N records only (name order; 0: all)")
-    g.add_argument("--pga", default=DEFAULT_PGA, metavar="LEVELS",
+    g.add_argument("--pga", metavar="LEVELS",
                    help="PGA levels (g) every record is scaled to: one (0.5), a list (0.2,0.4,0.6) or a range "
-                        "FROM:TO:NUM (default: %(default)s)")
+                        f"FROM:TO:NUM (default: a --config file's pga, else {DEFAULT_PGA})")
     g.add_argument("--level-weights", metavar="W,…",
                    help="each level's weight in P(overturn) over the hazard, e.g. from a hazard curve (normalised; "
                         "default: equal)")
@@ -118,19 +118,37 @@ def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[floa
     return values
 
 
-def statue_from_args(a):
-    """The Statue the options (over a --config [system] table) describe; the paper's block
-    when none is given."""
+#: the keys of a --config file a design takes: [system]'s statue, pga (the levels) and units
+#: (of the records), each where its option is not given
+DESIGN_CONFIG_KEYS = ("system", "pga", "units")
+
+
+def read_design_config(a) -> dict:
+    """The --config file's keys (none without one). The design takes its [system] statue,
+    its pga as the level (unless --pga is given: it was ignored) and its units for the
+    records (unless --units is given); a pgv is refused (a design scales by PGA); the keys
+    it does not use are noted, not silently dropped."""
+    if a.config is None:
+        return {}
+    from isorock.validate.cli.config_file import read_config
+    config = read_config(a.config)
+    if "pgv" in config:
+        raise InputError(f"config pgv = {config['pgv']!r}: a design scales every record to PGA levels; give pga (g) "
+                         "in the file, or --pga")
+    unused = ([f"[system] {k}" for k in ("period", "damping_ratio", "stiffness", "dashpot", "fixed_base")
+               if k in config.get("system", {})] + [k for k in config if k not in DESIGN_CONFIG_KEYS])
+    if unused and not a.quiet:
+        print(f"isorock design: note: {a.config}: {', '.join(unused)} not used (the design runs the isolator family "
+              "and the fixed base under the record suite)", file=sys.stderr)
+    return config
+
+
+def statue_from_args(a, config: dict):
+    """The Statue the options (over a --config file's [system] table) describe; the paper's
+    block when none is given."""
     from isorock.campaign.design import Statue
-    values = {}
-    if a.config:
-        from isorock.validate.cli.config_file import read_config
-        table = read_config(a.config).get("system", {})
-        isolator = [k for k in ("period", "damping_ratio", "stiffness", "dashpot", "fixed_base") if k in table]
-        if isolator and not a.quiet:
-            print(f"isorock design: note: {a.config}: [system] {', '.join(isolator)} not used (the design runs the "
-                  "isolator family and the fixed base)", file=sys.stderr)
-        values = {k: table[k] for k in ("height", "width", "mass", "base_mass") if k in table}
+    table = config.get("system", {})
+    values = {k: table[k] for k in ("height", "width", "mass", "base_mass") if k in table}
     for k in ("height", "width", "mass", "base_mass"):
         if getattr(a, k) is not None:
             values[k] = getattr(a, k)
@@ -179,14 +197,19 @@ def family_from_args(a):
     return FAMILIES[a.isolator](xs, ys)
 
 
-def hazard_from_args(a):
+def hazard_from_args(a, config: dict):
     from pathlib import Path
 
     from isorock.campaign.design import Hazard
     from isorock.campaign.records import load_suite
     if a.limit < 0:
         raise InputError(f"--limit = {a.limit!r}: must be a whole number ≥ 0 (0: every record)")
-    levels = parse_grid("pga", a.pga)
+    if a.pga is not None:
+        levels = parse_grid("pga", a.pga)
+    elif "pga" in config:
+        levels = (config["pga"],)
+    else:
+        levels = parse_grid("pga", DEFAULT_PGA)
     weights = ()
     if a.level_weights is not None:
         try:
@@ -202,7 +225,8 @@ def hazard_from_args(a):
         folder = Path(a.records).expanduser()
         if not folder.is_dir():
             raise InputError(f"--records = {a.records!r}: must be 'fema-p695' or a folder of record files")
-        spec, source = {"folder": str(folder), "limit": a.limit, "units": a.units}, str(folder)
+        units = a.units if a.units is not None else config.get("units")
+        spec, source = {"folder": str(folder), "limit": a.limit, "units": units}, str(folder)
     from isorock.campaign.records import count_records
     count_records(spec)  # an empty folder: one line
     return Hazard(load_suite(spec), levels, weights, source), (
@@ -256,12 +280,13 @@ def cmd_design(a) -> int:
     if a.check_runs < 1 or a.check_runs > 200:
         raise InputError(f"--check-runs = {a.check_runs!r}: must be a whole number from 1 to 200")
     checks = check_engines(a.check)
-    statue = statue_from_args(a)
+    config = read_design_config(a)
+    statue = statue_from_args(a, config)
     family = family_from_args(a)
     check_family_runs(family)
     with Outputs() as outputs:
         folder = outputs.folder("out", a.out)  # a folder we may not write is refused before the work
-        hazard, record_paths = hazard_from_args(a)
+        hazard, record_paths = hazard_from_args(a, config)
         n_runs = check_size(family, hazard, a.tail)
         check_engines_carry(statue, family, hazard, checks, a.tail)  # each --check engine, before any work
         from isorock.analytic.limits import available_cores

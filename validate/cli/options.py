@@ -271,8 +271,9 @@ def motion_from_args(a):
     m = load_motion(a.motion, format=a.format, units=a.units)
     if targets:
         key, value = targets[0]
-        if m.is_zero:
-            raise InputError(f"--{key} = {value:g}: the motion 'none' has no peak to scale")
+        if m.is_zero:  # 'none', or a record of zeros: named as given
+            raise InputError(f"--{key} = {value:g}: the motion {a.motion!r} is zero throughout; it has no peak to "
+                             "scale")
         return m.scaled_to_pga(value) if key == "pga" else m.scaled_to_pgv(value)
     return m if a.scale == 1.0 else m.scaled(a.scale)
 
