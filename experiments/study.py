@@ -32,6 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
+from isorock.analytic.errors import InputError
+
 from isorock.validate.core.scenarios import shared_folder
 
 from . import data, processing, scores, specimen
@@ -51,7 +53,10 @@ def default_data() -> Path:
 
 
 def _motion(tm: data.TableMotion, steps, lowpass_hz):
-    return processing.process(tm.acceleration, tm.dt, steps, lowpass_hz=lowpass_hz)
+    try:
+        return processing.process(tm.acceleration, tm.dt, steps, lowpass_hz=lowpass_hz)
+    except InputError as e:  # a test too short, a corner past its Nyquist frequency: named
+        raise InputError(f"{tm.source}: {e}") from None
 
 
 def equivalent_block(spec: specimen.Specimen, sign: int):

@@ -339,3 +339,103 @@ def test_design_config_pgv_is_refused_not_ignored(tmp_path, monkeypatch, capsys)
     (tmp_path / "s.toml").write_text("pgv = 0.3\n")
     assert main(["design", "--records", "recs", "--config", "s.toml", "--out", "out"]) == 2
     assert "pgv" in _one_line(capsys) and not (tmp_path / "out").exists()
+
+
+# --- items 7 and 8: experiments' data ------------------------------------------------------------
+
+HEAD = ("test,Experimental Results for response-Specimen 1,Experimental Results for response-Specimen 2,"
+        "ground_motion,pgv_over_pga_s,scaled_pga_g")
+
+
+def _test_file(path, n=4000, spike=None, header="Time [s]\tAcceleration [g]"):
+    import math
+    rows = [f"{i / 800:.6g}\t{(spike if spike is not None and i == n // 2 else 0.2 * math.sin(i / 80)):.7g}"
+            for i in range(n)]
+    path.write_text(header + "\n" + "\n".join(rows) + "\n")
+
+
+def _data(tmp_path, results: bytes | None = None, tests=(11, 13, 15)):
+    folder = tmp_path / "data"
+    (folder / "Shake_Table_Response").mkdir(parents=True)
+    body = HEAD + "\n" + "".join(f"{t},{k % 2},0,'RSN{t}_X.xlsx',0.05,0.3\n" for k, t in enumerate(tests))
+    (folder / "results.csv").write_bytes(body.encode() if results is None else results)
+    for t in tests:
+        _test_file(folder / "Shake_Table_Response" / f"Test{t:03d}.txt")
+    return folder
+
+
+def test_results_csv_with_a_byte_order_mark_is_read(tmp_path):
+    from isorock.experiments import data
+    plain = data.read_results(_data(tmp_path / "a") / "results.csv")
+    bom = data.read_results(_data(tmp_path / "b", ("\ufeff" + HEAD + "\n11,0,0,'RSN11_X.xlsx',0.05,0.3\n13,1,0,"
+                                                  "'RSN13_X.xlsx',0.05,0.3\n15,0,0,'RSN15_X.xlsx',0.05,0.3\n").encode())
+                            / "results.csv")
+    assert bom == plain
+
+
+@pytest.mark.parametrize("raw, named", [(HEAD.encode() + b"\n11,0,0,'RSN\xe9',0.05,0.3\n", "not UTF-8"),
+                                        (bytes(range(256)) * 4, "not UTF-8")])
+def test_results_csv_that_is_not_text_is_one_line(tmp_path, raw, named):
+    from isorock.experiments import data
+    folder = _data(tmp_path, raw)
+    with pytest.raises(InputError, match=named):
+        data.read_results(folder / "results.csv")
+
+
+def test_data_with_one_common_test_is_refused(tmp_path):
+    from isorock.experiments import data
+    folder = _data(tmp_path, tests=(11,))
+    with pytest.raises(InputError, match="at least 2"):
+        data.load(folder)
+
+
+@pytest.mark.parametrize("n", [3, 15])
+def test_a_test_shorter_than_the_filter_pads_is_named(tmp_path, n):
+    from isorock.experiments import data, study
+    folder = _data(tmp_path)
+    _test_file(folder / "Shake_Table_Response" / "Test013.txt", n=n)
+    m = data.read_test(folder / "Shake_Table_Response" / "Test013.txt", 13)
+    with pytest.raises(InputError, match="Test013"):
+        study._motion(m, study.processing.DEFAULT_STEPS, study.processing.LOWPASS_HZ)
+
+
+def test_the_shortest_test_the_filter_pads_is_processed():
+    import numpy as np
+
+    from isorock.experiments import processing
+    a = np.sin(np.arange(processing.MIN_SAMPLES) / 3.0)
+    assert np.isfinite(processing.process(a, 1 / 800, ("offset", "drift", "lowpass"))).all()
+
+
+@pytest.mark.parametrize("hz", [1e-6, 0.01, 0.0])
+def test_a_lowpass_corner_below_the_shaking_is_refused_up_front(hz, tmp_path, monkeypatch, capsys):
+    from isorock.experiments import study
+
+    def no_work(*a, **k):
+        raise AssertionError("the study ran")
+    monkeypatch.setattr(study, "build", no_work)
+    assert main(["experiments", "--data", str(_data(tmp_path)), "--lowpass-hz", str(hz),
+                 "--out", str(tmp_path / "out")]) == 2
+    assert "lowpass" in _one_line(capsys)
+
+
+def test_a_test_with_an_acceleration_no_table_makes_is_named(tmp_path):
+    from isorock.experiments import data
+    folder = _data(tmp_path)
+    _test_file(folder / "Shake_Table_Response" / "Test013.txt", spike=1e300)
+    with pytest.raises(InputError, match="Test013.*MAX_PGA_G"):
+        data.read_test(folder / "Shake_Table_Response" / "Test013.txt", 13)
+
+
+def test_a_clone_of_the_original_repository_is_refused_saying_why(tmp_path):
+    """The original's test files say 'Time [s] - Plot 0 / Amplitude - Plot 0' (no units) and
+    its outcomes are spreadsheets: the docs promised it was read (it never was)."""
+    from isorock.experiments import data
+    folder = tmp_path / "clone" / "data" / "Shake_Table_Response"
+    folder.mkdir(parents=True)
+    head = "\t".join(f"Time [s] - Plot {k}\tAmplitude - Plot {k}" for k in range(4))
+    _test_file(folder / "Test011.txt", header=head)
+    (tmp_path / "clone" / "data" / "Results_Granite.xlsx").write_bytes(b"PK")
+    with pytest.raises(InputError, match="clone of the original repository") as e:
+        data.load(tmp_path / "clone")
+    assert "README" in str(e.value)
