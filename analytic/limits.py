@@ -40,6 +40,10 @@ MIN_REST_VELOCITY = 1e-9
 #: base spun for ever, out of reach of any budget (issue 34). Up to 1e10 g every isolator
 #: ends cleanly (tests/test_round_three.py), so the bound is physics, with a wide margin.
 MAX_PGA_G = 100.0
+#: most worker processes a command may start: each is a Python with NumPy and the engines
+#: (~150 MB); past a few per core they only wait on each other (sweep --workers 1000000000
+#: took 2.2 GB in 45 s before it was killed, issue 34)
+MAX_WORKERS = 64
 #: isolation periods a linear isolator may have (s): below a microsecond its stiffness
 #: M·(2π/T)² leaves a float (an OverflowError at 1e-300 s); above a million seconds (11 days)
 #: it is no spring at all, and its stiffness rounded to 0
@@ -114,6 +118,16 @@ def check_period(field: str, period: float) -> None:
     if not lo <= period <= hi:
         raise InputError(f"{field} = {period!r} s: must be from {lo:g} to {hi:g} s (ISOLATOR_PERIOD_RANGE: a "
                          "stiffness a float holds, and a spring at all)")
+
+
+def check_workers(field: str, workers, *, serial: bool = False) -> int:
+    """A number of worker processes: a whole number from 1 (from 0 where `serial`, this
+    process alone) to MAX_WORKERS."""
+    low = 0 if serial else 1
+    if isinstance(workers, bool) or not isinstance(workers, int) or not low <= workers <= MAX_WORKERS:
+        raise InputError(f"{field} = {workers!r}: must be a whole number of processes from {low} to {MAX_WORKERS} "
+                         f"(MAX_WORKERS){' (0: serially, in this process)' if serial else ''}")
+    return workers
 
 
 def check_isolator(system, duration: float) -> None:

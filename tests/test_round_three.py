@@ -439,3 +439,51 @@ def test_a_clone_of_the_original_repository_is_refused_saying_why(tmp_path):
     with pytest.raises(InputError, match="clone of the original repository") as e:
         data.load(tmp_path / "clone")
     assert "README" in str(e.value)
+
+
+# --- item 10: worker processes are bounded, in one place ---------------------------------------
+
+@pytest.mark.parametrize("argv", [["sweep", "c.toml", "--out", "out", "--workers", "1000000000"],
+                                  ["sweep", "c.toml", "--out", "out", "--workers", "65"],
+                                  ["validate", "--quick", "--out", "rep", "--workers", "1000000000"],
+                                  ["atlas", "--quick", "--out", "at", "--workers", "1000000000"],
+                                  ["calibrate", "--engine", "mujoco", "--workers", "1000000000"],
+                                  ["stress", "--quick", "--out", "st", "--workers", "1000000000"]])
+def test_a_worker_count_past_the_bound_is_one_line_naming_it(argv, tmp_path, monkeypatch, capsys):
+    """sweep --workers 1000000000 started processes until it had taken 2.2 GB in 45 s."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "c.toml").write_text('[systems]\nalpha = 0.25\nsize = 1.0\n\n[motions]\ntype = "pulse"\n'
+                                     'pulse = "sine"\nfrequency_ratio = 2.0\namplitude_ratio = 2.0\n\n'
+                                     '[[engines]]\nname = "analytic"\n')
+    assert main(argv) == 2
+    assert "MAX_WORKERS" in _one_line(capsys)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.toml"]
+
+
+# --- item 14: the notebook API ---------------------------------------------------------------------
+
+@pytest.mark.parametrize("height", ["np.float64(2.0)", "np.float32(2.0)", "np.int64(2)", "Fraction(2)"])
+def test_the_api_takes_numbers_of_any_real_type(height):
+    """NumPy 2's repr (np.float64(2.0)) reached the parser: 'not a number'."""
+    from fractions import Fraction  # noqa: F401 — named by the parameter
+
+    import numpy as np  # noqa: F401 — named by the parameter
+
+    import isorock
+    tr = isorock.run(engine="analytic", height=eval(height), width=0.7, mass=3800, base_mass=3800, fixed_base=True,
+                     theta0_over_alpha=0.5, duration=1.0)
+    assert abs(tr.theta_max_over_alpha - 0.5) < 1e-9  # free rocking from 0.5α peaks at 0.5α
+
+
+@pytest.mark.parametrize("call", ["sweep(123)", "sweep(None)", "sweep(['c.toml'])", "sweep(b'c.toml')",
+                                  "sweep('c.toml', out=123)", "sweep('c.toml', products='yes')",
+                                  "sweep('c.toml', scheduler=5)", "sweep('c.toml', workers=10**9)",
+                                  "sweep('c.toml', progress=1)", "report(out=123, quick=True)"])
+def test_the_api_refuses_a_wrong_type_with_one_line(call, tmp_path, monkeypatch):
+    import isorock
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "c.toml").write_text("x = 1\n")
+    with pytest.raises(InputError) as e:
+        eval(f"isorock.{call}")
+    assert "\n" not in str(e.value)
+    assert list(p.name for p in tmp_path.iterdir()) == ["c.toml"]

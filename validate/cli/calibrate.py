@@ -67,9 +67,8 @@ def cmd_calibrate(a) -> int:
         raise InputError(f"max-evals = {a.max_evals!r}: must be a whole number from 5 to 2000")
     if not 2 <= a.tilts <= 101:
         raise InputError(f"tilts = {a.tilts!r}: must be a whole number from 2 to 101")
-    workers = default_workers() if a.workers is None else a.workers
-    if workers < 1:
-        raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
+    from isorock.analytic.limits import check_workers
+    workers = default_workers() if a.workers is None else check_workers("workers", a.workers)
     system = system_from_options(a) or paper_system(fixed_base=True)
     settings = engine_settings_from_args(engine, a)
     with Outputs() as outputs:  # bad paths are refused before minutes of simulation
