@@ -297,6 +297,12 @@ def main(argv=None) -> int:
         if signum is None and isinstance(error, KeyboardInterrupt):
             signum = signal.SIGINT  # raised without our handler (a thread, an embedding caller)
         if signum is not None:
+            if argv_given is None:
+                import logging
+                # a stopped command's one line is its last: what libraries log while their
+                # loops and clusters are torn down (Dask's "Task exception was never
+                # retrieved", a nanny that failed to start) is not for the user (issue 34)
+                logging.disable(logging.CRITICAL)
             print(_signalled(name, signum, error), file=sys.stderr)
             return _stopped(128 + signum, as_process=argv_given is None)
         if isinstance(error, InputError):

@@ -128,8 +128,20 @@ def signals_end_cleanly():
         nonlocal settled
         settled = True
 
+    def unraisable(report):
+        """The signal's exception raised where Python can only print it ("Exception
+        ignored in", a traceback: inside a garbage-collector callback, as Dask's scheduler
+        installs one, or a finalizer) and then swallows it: not printed; the signal is sent
+        again, to end the command where it can be raised (issue 34)."""
+        if isinstance(report.exc_value, (Terminated, KeyboardInterrupt)) and _received and os.getpid() == owner:
+            if not settled:
+                os.kill(owner, _received[0])
+            return
+        hook(report)
+
     _received.clear()  # a record belongs to one command
     previous = {}
+    hook, sys.unraisablehook = sys.unraisablehook, unraisable
     try:
         for s in (*TERMINATING_SIGNALS, signal.SIGINT):
             previous[s] = signal.signal(s, handler)
@@ -140,6 +152,7 @@ def signals_end_cleanly():
     finally:
         for s, h in previous.items():
             signal.signal(s, h)
+        sys.unraisablehook = hook
 
 
 @contextmanager
