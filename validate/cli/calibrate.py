@@ -55,7 +55,7 @@ def add_parser(sub) -> None:
 
 def cmd_calibrate(a) -> int:
     from isorock.analytic.system import paper_system
-    from isorock.validate.cli.options import SYSTEM_KEYS, engine_settings_from_args, system_from_options
+    from isorock.validate.cli.options import SYSTEM_KEYS, announce_cost, engine_settings_from_args, system_from_options
     from isorock.validate.core.engines import get_engine
     from isorock.validate.io.output import Outputs, to_json
     from isorock.validate.io.progress import Progress
@@ -71,6 +71,13 @@ def cmd_calibrate(a) -> int:
     workers = default_workers() if a.workers is None else check_workers("workers", a.workers)
     system = system_from_options(a) or paper_system(fixed_base=True)
     settings = engine_settings_from_args(engine, a)
+    # the cost before the runs (issue 34): every search point runs the fitted cases, and the
+    # result runs the held-out ones twice (before and after), as tool.calibrate does; on one
+    # worker, a bound: the search's points run one after another, each waiting for its slowest
+    # run (the paper's block, MuJoCo: 57 s said, 52 s taken on 2 workers at load 2–3)
+    fitted, held = tool.cases(system, a.tilts)
+    announce_cost("calibrate", {a.engine: a.max_evals * sum(c.duration for c in fitted)
+                                + 2 * sum(c.duration for c in held)}, quiet=a.quiet)
     with Outputs() as outputs:  # bad paths are refused before minutes of simulation
         # `is not None`: an empty path is refused as bad input, not read as "no output" (it ran for minutes)
         preset = outputs.file("out", a.out, exclusive=True) if a.out is not None else None

@@ -97,8 +97,14 @@ def main(a) -> int:
             contact.setdefault(engine, {})[name] = value
     with Outputs() as outputs:
         out = outputs.folder("out", a.out)  # refused before the runs, not after
+        from isorock.validate.cli.options import announce_cost
+
+        def announce(simulated):  # the hull engines' cost, before their minutes (issue 34)
+            announce_cost("experiments", simulated, budget_s=0, speeds=study.HULL_SPEEDS,
+                          basis="on this study's hull runs, measured loaded (docs/experiments.md, Cost)")
         result = study.build(a.data, engines=engines, steps=steps, lowpass_hz=a.lowpass_hz, tests=tests,
-                             sensitivity=a.sensitivity, contact=contact, overturning_scale=a.overturning_scale)
+                             sensitivity=a.sensitivity, contact=contact, overturning_scale=a.overturning_scale,
+                             announce=announce)
         from isorock.validate.io.provenance import provenance
         result["provenance"] = provenance()
         out.write(lambda folder: write(result, folder))

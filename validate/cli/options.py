@@ -294,12 +294,13 @@ def run_budget(a) -> float:
     return a.budget
 
 
-def announce_cost(command: str, simulated: dict[str, float], budget_s: float, quiet: bool = False) -> None:
+def announce_cost(command: str, simulated: dict[str, float], budget_s: float | None = None, quiet: bool = False, *,
+                  workers: int = 1, speeds: dict | None = None, basis: str | None = None) -> None:
     """The cost estimate of a long command on stderr, before its work (core.estimate)."""
     import sys
 
     from isorock.validate.core.estimate import estimate_line
-    line = estimate_line(simulated, command=command, budget_s=budget_s)
+    line = estimate_line(simulated, workers=workers, command=command, budget_s=budget_s, speeds=speeds, basis=basis)
     if line and not quiet:
         print(line, file=sys.stderr, flush=True)
 
