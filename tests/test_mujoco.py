@@ -28,7 +28,7 @@ from isorock.validate.core.tolerances import tolerance
 
 #: This engine at its default settings, measured: simulate returns the shared Trajectory.
 MUJOCO = get_engine("mujoco")
-#: Limits from the one tolerance table (validate/tolerances.py), each with its reason there.
+#: Limits from the one tolerance table (validate/core/tolerances.py), each with its reason there.
 TOL = {
     "beta": tolerance("mujoco", "beta_rel_error_per_impact").limit,
     "lift_off": tolerance("mujoco", "lift_off_after_impact").limit,

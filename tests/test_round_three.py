@@ -564,3 +564,75 @@ def test_calibrate_says_its_cost_before_running(monkeypatch, capsys):
     assert main(["calibrate", "--engine", "bullet", "--max-evals", "2000"]) == 2  # a search of hours
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 2 and err[0].startswith("calibrate: ") and "at most" in err[0] and "stopped" in err[1], err
+
+
+# --- issue 39's small items ------------------------------------------------------------------------
+
+def test_bench_prints_its_table_on_standard_output_and_its_progress_on_standard_error(tmp_path, capsys,
+                                                                                       monkeypatch):
+    from isorock.analytic import paper_system
+    from isorock.validate.core.scenarios import Scenario
+    from isorock.validate.tools import bench
+    sc = Scenario("free-rocking", paper_system(fixed_base=True), "none", 2.0, 0.5)
+    monkeypatch.setattr(bench, "bench_scenarios", lambda quick: [sc])
+    assert main(["bench", "--quick", "--engines", "analytic", "--out", str(tmp_path / "b")]) == 0
+    out, err = capsys.readouterr()
+    assert (tmp_path / "b" / "bench.md").read_text().strip() in out  # the tables as written
+    assert len([ln for ln in out.splitlines() if ln.startswith("| analytic | rtol=") and "free-rocking" in ln]) == 3
+    assert not [ln for ln in err.splitlines() if ln.startswith("| ")]  # stderr: progress only
+
+
+def test_the_run_plot_names_the_time_it_shows_not_the_record_s_length(tmp_path):
+    """A 150 s record run for 40 s: the title said '150 s'."""
+    import numpy as np
+
+    from isorock.analytic.motion import GroundMotion
+    from isorock.analytic.system import System
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.io.run_plot import runs_figure
+    record = GroundMotion.from_array(0.05 * np.sin(np.arange(15_001) * 0.01), dt=0.01, units="g", name="long")
+    system = System.fixed(height=2, width=0.7, mass=3800)
+    tr = get_engine("analytic").simulate(system, record, duration=40.0)
+    title = runs_figure({"analytic": tr}, record)._suptitle.get_text()
+    assert "150 s" in title and "first 40 s shown" in title
+
+
+def test_run_defaults_to_the_paper_s_block_as_validate_and_design_do(capsys):
+    """It required the block's four options where validate and design take the paper's."""
+    import json
+
+    from isorock.analytic.system import PAPER_BLOCK
+    assert main(["run", "--fixed-base", "--theta0", "0.5", "--duration", "1", "--json", "-"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert got["system"]["height"] == PAPER_BLOCK["height"] and got["system"]["width"] == PAPER_BLOCK["width"]
+    assert got["system"]["mass"] == PAPER_BLOCK["mass"]
+
+
+def test_run_without_an_isolator_option_is_still_told_to_choose_one(capsys):
+    assert main(["run", "--duration", "1"]) == 2
+    assert "--period" in _one_line(capsys)
+
+
+def test_calibrate_keeping_the_current_settings_is_a_result_not_an_error(monkeypatch, capsys):
+    """'keep them' exited 1; its help and docs now say what each exit code means."""
+    from isorock.validate.tools import calibrate as tool
+    monkeypatch.setattr(tool, "calibrate", lambda *a, **k: {"verdict": "keep"})
+    monkeypatch.setattr("isorock.validate.cli.calibrate.preset_worthy", lambda r: False)
+    monkeypatch.setattr("isorock.validate.cli.calibrate.report_lines", lambda *a: ["verdict: keep them"])
+    assert main(["calibrate", "--engine", "mujoco", "--quiet"]) == 0
+    from isorock.validate.cli.main import build_parser
+    import argparse
+    top = build_parser("calibrate")
+    sub = next(x for x in top._actions if isinstance(x, argparse._SubParsersAction)).choices["calibrate"]
+    assert "exit" in (sub.epilog or "") and "0" in sub.epilog and "2" in sub.epilog
+
+
+def test_the_report_cites_the_tolerances_where_they_are():
+    from pathlib import Path
+
+    import isorock.validate.core.tolerances as tolerances
+    from isorock.validate.tools import report_render
+    root = Path(tolerances.__file__).resolve().parents[2]
+    cited = Path(report_render.__file__).read_text()
+    assert "validate/core/tolerances.py" in cited and "validate/tolerances.py" not in cited
+    assert (root / "validate" / "core" / "tolerances.py").is_file()

@@ -30,10 +30,17 @@ def _command(a) -> str:
     return " ".join(words)
 
 
+#: what the exit code says (help, docs/mujoco.md): "keep the current settings" is a result
+EXIT_CODES = ("exit codes: 0, the calibration ran and its verdict is said (better settings, written with --out; or "
+              "keep the current settings: the fit did not hold on the held-out runs beyond the noise); 1, --out was "
+              "given and no preset written (the file asked for is not there: a script that goes on to use it must "
+              "not); 2, bad input, one line")
+
+
 def add_parser(sub) -> None:
     from isorock.validate.cli.options import add_engine_options, add_system_options, whole_number
     p = sub.add_parser("calibrate", help="fit a contact engine's contact parameters to the closed-form β",
-                       description=tool.__doc__.split("\n\n")[0])
+                       description=tool.__doc__.split("\n\n")[0], epilog=EXIT_CODES)
     p.add_argument("--engine", required=True, help="mujoco, bullet or drake")
     add_system_options(p, required=False)
     add_engine_options(p)
@@ -106,4 +113,6 @@ def cmd_calibrate(a) -> int:
         # the JSON on standard output stays parseable: the text goes to stderr then
         print("\n".join(lines), file=sys.stderr if a.json == "-" else sys.stdout)
         outputs.commit()
-    return 0 if ok else 1
+    # keeping the current settings is a verdict, not a failure; only a preset asked for and
+    # not written is (EXIT_CODES)
+    return 0 if ok or a.out is None else 1
