@@ -86,6 +86,23 @@ class Family:
     x_values: tuple[float, ...]
     y_values: tuple[float, ...]
 
+    def __post_init__(self):
+        """Every cell's isolator built once, its parameters checked (a friction coefficient
+        past 1 is one line, not a chunk of failed runs), and its period within
+        ISOLATOR_PERIOD_RANGE: a friction pendulum of radius 1e308 m (a period of 2e154 s)
+        drew a chart whose axis matplotlib could not tick (a traceback). A family's isolator
+        does not depend on the statue: a stand-in carries it."""
+        from isorock.analytic.limits import check_period
+        stand_in = Statue(2.0, 0.7, 1.0, 1.0)
+        for x in self.x_values:
+            for y in self.y_values:
+                period = self.system(stand_in, x, y).period
+                if math.isfinite(period):  # a ball in a cone has none (its force is constant)
+                    try:
+                        check_period("period", period)
+                    except InputError as e:
+                        raise InputError(f"{self.x_name} = {x:g}: {e}") from None
+
     def isolator(self, x: float, y: float):
         raise NotImplementedError
 
@@ -107,6 +124,7 @@ class LinearFamily(Family):
         from isorock.analytic.limits import check_period
         for period in self.x_values:  # before a stiffness M·(2π/T)² is computed from it
             check_period("periods", period)
+        super().__post_init__()
 
     def system(self, statue: Statue, x: float, y: float) -> System:
         # given by period and damping ratio, which the System derives k and c from
@@ -358,7 +376,7 @@ def check_size(family, hazard: Hazard, tail: float = DEFAULT_TAIL) -> int:
         try:
             check_isolator(family.system(Statue(2.0, 0.7, 1.0, 1.0), x, family.y_values[0]), longest)
         except InputError as e:
-            raise InputError(f"{family.x_name} = {x:g}: {e}") from None
+            raise InputError(f"{family.x_name} = {x:g}: {e}") from None  # it names the period it spans
     return n
 
 

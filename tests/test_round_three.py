@@ -636,3 +636,22 @@ def test_the_report_cites_the_tolerances_where_they_are():
     cited = Path(report_render.__file__).read_text()
     assert "validate/core/tolerances.py" in cited and "validate/tolerances.py" not in cited
     assert (root / "validate" / "core" / "tolerances.py").is_file()
+
+
+# --- found by this round's own table ---------------------------------------------------------------
+
+def test_a_range_to_a_huge_value_is_spaced_without_overflow():
+    """NumPy's round multiplies by 1e12 first: 0.5:1e300:2 became (0.5, inf), refused as 'inf'
+    with a RuntimeWarning above the line."""
+    from isorock.validate.cli.design import parse_grid
+    assert parse_grid("pga", "0.5:1e300:2") == (0.5, 1e300)
+
+
+def test_a_family_is_checked_cell_by_cell_when_it_is_made():
+    """A friction pendulum of radius 1e308 m (a period of 2e154 s) ran, and its chart's axis
+    was a matplotlib traceback; a friction coefficient of 5 is named, not prefixed by a radius."""
+    from isorock.campaign.design import FrictionPendulumFamily
+    with pytest.raises(InputError, match="radius = 1e\\+308: period"):
+        FrictionPendulumFamily((1.0, 1e308), (0.1,))
+    with pytest.raises(InputError, match="^friction_coefficient = 5.0"):
+        FrictionPendulumFamily((1.0,), (5.0,))

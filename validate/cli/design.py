@@ -106,7 +106,8 @@ def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[floa
             raise InputError(f"--{option} = {text!r}: NUM must be a whole number from 1 to {MAX_AXIS}")
         if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
             raise InputError(f"--{option} = {text!r}: must be a range FROM:TO:NUM with finite FROM ≤ TO")
-        values = tuple(float(round(v, 12)) for v in np.linspace(lo, hi, int(num))) if num > 1 else (lo,)
+        # rounded as Python floats: NumPy's round multiplies by 1e12 first, and 1e300 became inf
+        values = tuple(round(float(v), 12) for v in np.linspace(lo, hi, int(num))) if num > 1 else (lo,)
     if len(values) > MAX_AXIS:
         raise InputError(f"--{option} = {text!r}: {len(values)} values; must be at most {MAX_AXIS}")
     for v in values:
