@@ -508,6 +508,6 @@ def _check_size(spec: CampaignSpec) -> None:
 def load_spec(path) -> CampaignSpec:
     path = Path(path)
     if not path.is_file():
-        raise InputError(f"campaign file {str(path)!r}: no such file")
+        raise InputError(f"campaign file {str(path)!r}: " + ("not a regular file" if path.exists() else "no such file"))
     # bounded before it is parsed, as every file a user hands a command (issue 34)
     return parse_spec(read_toml(path, f"campaign file {str(path)!r}"), path.resolve())
