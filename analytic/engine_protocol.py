@@ -158,17 +158,18 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     shared checks: `none` motion is zero ground
     acceleration; the default duration is the motion's end + 5 s, or 10 s without motion;
     θ0 (rad) must be a finite tilt below α; the counting threshold in [0, 1). The work
-    bounds of analytic.limits: the duration, the isolator periods it spans and, when the
+    bounds of analytic.limits: the motion's peak acceleration, the duration, the isolator periods it spans and, when the
     engine's `settings` are given, the steps they imply. `isolators`: the isolator kinds the
     calling engine carries (Capabilities.isolators): a System on another is refused, so
     that no engine runs a friction pendulum or a bilinear bearing as a linear spring."""
     from .errors import InputError, require, require_positive_finite
-    from .limits import check_duration, check_isolator, check_settings
+    from .limits import check_acceleration, check_duration, check_isolator, check_settings
     from .motion import GroundMotion
     from .system import System
     require(isinstance(system, System), "system", system, "a System")
     check_isolator_kind(system, isolators)
     motion = motion or GroundMotion.zero()
+    check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
     given = duration is not None
     if not given:
         duration = FREE_DURATION if motion.is_zero else motion.last_time + TAIL_AFTER_MOTION

@@ -34,6 +34,20 @@ MAX_ISOLATOR_CYCLES = 100_000
 #: smallest Zeno floor (× p·α): below it the impact sequence is resolved beneath the
 #: reference integrator's tolerance (rtol 1e-10 on θ ~ α) and never reaches the floor
 MIN_REST_VELOCITY = 1e-9
+#: largest peak ground acceleration a run may be given (g): twenty times the strongest ever
+#: recorded (4.4 g, Iwate–Miyagi 2008). Far past it the compiled kernel's steps shrink to
+#: nothing: one sample of 1e25 g ran 200,000 events, one of 1e40 g or 1e300 g on an isolated
+#: base spun for ever, out of reach of any budget (issue 34). Up to 1e10 g every isolator
+#: ends cleanly (tests/test_round_three.py), so the bound is physics, with a wide margin.
+MAX_PGA_G = 100.0
+#: most worker processes a command may start: each is a Python with NumPy and the engines
+#: (~150 MB); past a few per core they only wait on each other (sweep --workers 1000000000
+#: took 2.2 GB in 45 s before it was killed, issue 34)
+MAX_WORKERS = 64
+#: isolation periods a linear isolator may have (s): below a microsecond its stiffness
+#: M·(2π/T)² leaves a float (an OverflowError at 1e-300 s); above a million seconds (11 days)
+#: it is no spring at all, and its stiffness rounded to 0
+ISOLATOR_PERIOD_RANGE = (1e-6, 1e6)
 
 
 #: wall-clock seconds one run may take, in every command: a run past it fails with that
@@ -119,6 +133,32 @@ def check_record_samples(name: str, n: int) -> None:
     if n > MAX_RECORD_SAMPLES:
         raise InputError(f"{name}: {n} samples: a record must have at most {MAX_RECORD_SAMPLES:.0e} "
                          "(MAX_RECORD_SAMPLES); resample or trim it")
+
+
+def check_acceleration(field: str, pga_g: float, what: str = "") -> None:
+    """A peak ground acceleration (g) within ±MAX_PGA_G."""
+    if not abs(pga_g) <= MAX_PGA_G:
+        raise InputError(f"{field} = {_fmt(pga_g)} g{what}: must be at most {MAX_PGA_G:g} g (MAX_PGA_G, twenty "
+                         "times the strongest ground motion ever recorded)")
+
+
+def check_period(field: str, period: float) -> None:
+    """A linear isolator's period (s) within ISOLATOR_PERIOD_RANGE: asked before its System
+    is built (a stiffness past a float's range cannot be)."""
+    lo, hi = ISOLATOR_PERIOD_RANGE
+    if not lo <= period <= hi:
+        raise InputError(f"{field} = {period!r} s: must be from {lo:g} to {hi:g} s (ISOLATOR_PERIOD_RANGE: a "
+                         "stiffness a float holds, and a spring at all)")
+
+
+def check_workers(field: str, workers, *, serial: bool = False) -> int:
+    """A number of worker processes: a whole number from 1 (from 0 where `serial`, this
+    process alone) to MAX_WORKERS."""
+    low = 0 if serial else 1
+    if isinstance(workers, bool) or not isinstance(workers, int) or not low <= workers <= MAX_WORKERS:
+        raise InputError(f"{field} = {workers!r}: must be a whole number of processes from {low} to {MAX_WORKERS} "
+                         f"(MAX_WORKERS){' (0: serially, in this process)' if serial else ''}")
+    return workers
 
 
 def check_isolator(system, duration: float) -> None:

@@ -44,6 +44,8 @@ DEFAULT_TAIL = 5.0
 #: rounded down (docs/design.md).
 KERNEL_SPEED = 40_000.0
 REST_PHASE_SPEED = 200_000.0
+#: The statuses of a run that gave an answer (overturned or not); any other is counted apart.
+ANSWERED = ("completed", "overturned")
 #: Largest number of runs a design may ask for (the campaigns' bound: campaign.spec.MAX_RUNS).
 MAX_DESIGN_RUNS = 2_000_000
 
@@ -84,6 +86,23 @@ class Family:
     x_values: tuple[float, ...]
     y_values: tuple[float, ...]
 
+    def __post_init__(self):
+        """Every cell's isolator built once, its parameters checked (a friction coefficient
+        past 1 is one line, not a chunk of failed runs), and its period within
+        ISOLATOR_PERIOD_RANGE: a friction pendulum of radius 1e308 m (a period of 2e154 s)
+        drew a chart whose axis matplotlib could not tick (a traceback). A family's isolator
+        does not depend on the statue: a stand-in carries it."""
+        from isorock.analytic.limits import check_period
+        stand_in = Statue(2.0, 0.7, 1.0, 1.0)
+        for x in self.x_values:
+            for y in self.y_values:
+                period = self.system(stand_in, x, y).period
+                if math.isfinite(period):  # a ball in a cone has none (its force is constant)
+                    try:
+                        check_period("period", period)
+                    except InputError as e:
+                        raise InputError(f"{self.x_name} = {x:g}: {e}") from None
+
     def isolator(self, x: float, y: float):
         raise NotImplementedError
 
@@ -100,6 +119,12 @@ class LinearFamily(Family):
     x_name, y_name = "period", "damping_ratio"
     x_label, y_label = "isolation period T (s)", "damping ratio ξ"
     x_unit, y_unit = "s", ""
+
+    def __post_init__(self):
+        from isorock.analytic.limits import check_period
+        for period in self.x_values:  # before a stiffness M·(2π/T)² is computed from it
+            check_period("periods", period)
+        super().__post_init__()
 
     def system(self, statue: Statue, x: float, y: float) -> System:
         # given by period and damping ratio, which the System derives k and c from
@@ -183,13 +208,20 @@ class Hazard:
                 raise InputError(f"pga = {x!r}: must be a positive finite PGA (g)")
         if list(self.levels) != sorted(set(self.levels)):
             raise InputError(f"pga = {','.join(f'{x:g}' for x in self.levels)}: must be increasing, each level once")
+        from isorock.analytic.limits import check_acceleration
+        for x in self.levels:
+            check_acceleration("pga", x)  # the kernel spun on accelerations far past it
         w = self.weights or (1.0,) * len(self.levels)
         if len(w) != len(self.levels):
             raise InputError(f"level-weights: {len(w)} given for {len(self.levels)} PGA levels; give one per level")
-        if any(not (x >= 0 and math.isfinite(x)) for x in w) or sum(w) <= 0:
+        if any(not (x >= 0 and math.isfinite(x)) for x in w) or max(w) <= 0:
             raise InputError(f"level-weights = {','.join(f'{x:g}' for x in w)}: must be non-negative finite numbers, "
                              "not all zero")
-        object.__setattr__(self, "weights", tuple(float(x) / sum(w) for x in w))
+        # over the largest first: the sum of weights near a float's top overflowed (1e308 +
+        # 1e308 = inf made every weight 0, and every P over the hazard 0)
+        top = max(w)
+        w = [float(x) / top for x in w]
+        object.__setattr__(self, "weights", tuple(x / sum(w) for x in w))
         for name, r in self.records.items():
             if not r.pga_g > 0:
                 raise InputError(f"records: {name!r} has a PGA of 0 and cannot be scaled to a level")
@@ -220,7 +252,8 @@ class Design:
     table: object = None  # the executor's pyarrow table, one row per run
     wall_s: float = math.nan
     tail: float = DEFAULT_TAIL  # s simulated after each record
-    check: dict | None = field(default=None)
+    check: dict | None = field(default=None)  # the first contact engine's check (as design.json's `check`)
+    checks: list | None = field(default=None)  # every contact engine's, in the order asked
     _memo: dict = field(default_factory=dict, repr=False)
 
     # --- per system ---------------------------------------------------------------------
@@ -231,7 +264,7 @@ class Design:
     def _valid(self):
         """Runs that gave an answer: a failed run (or one stopped at its event limit) is
         left out of every fraction and counted apart (`failed`)."""
-        return np.isin(self.status, ("completed", "overturned"))
+        return np.isin(self.status, ANSWERED)
 
     @property
     def failed(self) -> int:
@@ -336,13 +369,14 @@ def check_size(family, hazard: Hazard, tail: float = DEFAULT_TAIL) -> int:
         raise InputError(f"design size = {n} runs (isolators × records × levels): must be at most {MAX_DESIGN_RUNS}")
     longest = max(r.end_time for r in hazard.records.values()) + tail
     check_duration("records", longest, " (the longest record + tail)")
-    if family.kind == LINEAR:
-        shortest = System.isolated(height=2.0, width=0.7, mass=1.0, base_mass=1.0, period=min(family.x_values),
-                                   damping_ratio=0.1)
+    # every family's isolators, not the linear one's only: a friction pendulum of radius
+    # 1e-12 m (a period of 2 µs) ran as 'P n/a, stroke nan m' with exit 0
+    # (a family's period follows its x axis alone: a period, a radius, a slope)
+    for x in family.x_values:
         try:
-            check_isolator(shortest, longest)
+            check_isolator(family.system(Statue(2.0, 0.7, 1.0, 1.0), x, family.y_values[0]), longest)
         except InputError as e:
-            raise InputError(f"periods: {e}") from None
+            raise InputError(f"{family.x_name} = {x:g}: {e}") from None  # it names the period it spans
     return n
 
 
@@ -539,6 +573,21 @@ def check_points(d: Design, target: float, max_stroke: float | None, runs: int) 
     return picks[:max(runs, len(systems))]
 
 
+def check_engines_carry(statue: Statue, family, hazard: Hazard, engines, tail: float = DEFAULT_TAIL) -> None:
+    """Each contact engine of a check asked, before any work, whether it carries every run
+    the check may pick (the fixed base and every isolator of the family, for the longest
+    record): the isolator kind, the engine's own bounds, its steps (core.engines.check_carries,
+    as a campaign asks of its grid). It was asked after the whole design, or never."""
+    from isorock.validate.core.engines import check_carries, choose
+    systems = [statue.fixed()] + [family.system(statue, x, y) for y in family.y_values for x in family.x_values]
+    longest = max(r.end_time for r in hazard.records.values()) + tail
+    for name in engines:
+        try:
+            check_carries(choose(name, {}, strict=True), systems, longest)
+        except InputError as e:
+            raise InputError(f"--check {name}: {e}") from None
+
+
 def check_with(d: Design, engine: str, picks, *, progress=None) -> dict:
     """The picked runs with `engine` (through the one executor), against the kernel's
     rows: outcomes agreed (overturned or not), and the stroke's relative difference
@@ -560,30 +609,45 @@ def check_with(d: Design, engine: str, picks, *, progress=None) -> dict:
                                                                          "theta_max_over_alpha")}
     names = h.names
     limit = tolerance(engine, "u_max_rel_error").limit if has_tolerance(engine, "u_max_rel_error") else math.nan
-    rows = []
+    rows, answered = [], []
     for i, (k, name, li) in enumerate(picks):
         j = int(np.flatnonzero(cols["case"] == i)[0])
         r = names.index(name)
+        # a run either engine did not finish (failed, stopped at its budget or event limit)
+        # says nothing of agreement: counted apart and said, never as agreeing (a 1e-30 kg
+        # statue's failed MuJoCo runs read "overturning as the analytic model's in 2 of 2")
+        answered.append(str(cols["status"][j]) in ANSWERED and str(d.status[k, r, li]) in ANSWERED)
         a_over, e_over = bool(d.overturned[k, r, li]), bool(cols["overturned"][j])
-        a_u, e_u = float(d.u_max[k, r, li]), float(cols["u_max"][j])
+        a_u, e_u = float(d.u_max[k, r, li]), _number(cols["u_max"][j])
         both_stand = not a_over and not e_over and k != 0
-        rel = abs(e_u - a_u) / a_u if both_stand and a_u > 0 else math.nan
+        rel = abs(e_u - a_u) / a_u if both_stand and a_u > 0 and math.isfinite(e_u) else math.nan
         rows.append({"system": "fixed base" if k == 0 else _isolator_label(d, k), "record": name,
                      "pga": h.levels[li], "analytic_overturned": a_over, f"{engine}_overturned": e_over,
                      "analytic_u_max": a_u, f"{engine}_u_max": e_u, "u_max_rel_diff": rel,
                      "analytic_theta_max_over_alpha": float(d.theta_max[k, r, li]),
-                     f"{engine}_theta_max_over_alpha": float(cols["theta_max_over_alpha"][j]),
+                     f"{engine}_theta_max_over_alpha": _number(cols["theta_max_over_alpha"][j]),
                      f"{engine}_status": str(cols["status"][j])})
-    agree = sum(row["analytic_overturned"] == row[f"{engine}_overturned"] for row in rows)
-    rels = [row["u_max_rel_diff"] for row in rows if math.isfinite(row["u_max_rel_diff"])]
+    failed = [row for row, ok in zip(rows, answered) if not ok]
+    answered = [row for row, ok in zip(rows, answered) if ok]
+    agree = sum(row["analytic_overturned"] == row[f"{engine}_overturned"] for row in answered)
+    rels = [row["u_max_rel_diff"] for row in answered if math.isfinite(row["u_max_rel_diff"])]
     within = sum(x <= limit for x in rels) if math.isfinite(limit) else None
     text = (f"{engine} on {len(rows)} of the design's runs: overturning as the analytic model's in {agree} of "
-            f"{len(rows)}")
+            f"{len(answered)}")
+    if failed:
+        statuses = sorted({row[f"{engine}_status"] for row in failed})
+        text += f"; {len(failed)} failed ({', '.join(statuses)}), not counted"
     if rels:
         text += (f"; stroke where both stand: worst {100 * max(rels):.2g}% apart, median {100 * float(np.median(rels)):.2g}%"
                  + (f", {within} of {len(rels)} within its tolerance {100 * limit:.2g}%" if within is not None else ""))
-    return {"engine": engine, "runs": rows, "outcomes_agree": agree, "n": len(rows), "stroke_rel_diffs": rels,
-            "stroke_tolerance": limit, "stroke_within": within, "text": text}
+    return {"engine": engine, "runs": rows, "outcomes_agree": agree, "outcomes_differ": len(answered) - agree,
+            "failed": len(failed), "n": len(rows), "stroke_rel_diffs": rels, "stroke_tolerance": limit,
+            "stroke_within": within, "text": text}
+
+
+def _number(x) -> float:
+    """A table cell as a float (a failed run's missing value: nan)."""
+    return math.nan if x is None else float(x)
 
 
 def _isolator_label(d: Design, k: int) -> str:

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .design import Design, _pct, hazard_text, region_rows, verdict
+from .design import ANSWERED, Design, _pct, hazard_text, region_rows, verdict
 
 #: P(overturn) bands of the chart's colours: the decisions an engineer makes sit at 1–10 %
 P_BANDS = (0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0)
@@ -141,8 +141,8 @@ def markdown(d: Design, target: float, max_stroke: float | None, v: dict) -> str
     fam, h = d.family, d.hazard
     n_runs = d.overturned.size
     lines = ["# Which isolator keeps the statue standing?", "", f"**{v['headline']}**", ""]
-    if d.check is not None:  # the contact engine's agreement is part of the answer
-        lines += [f"Checked: {d.check['text']} (details below).", ""]
+    for c in d.checks or ():  # each contact engine's agreement is part of the answer
+        lines += [f"Checked: {c['text']} (details below).", ""]
     lines += ["![design chart](design.png)", "",
              f"- statue: {d.statue.label}",
              f"- hazard: {hazard_text(h)}",
@@ -156,16 +156,16 @@ def markdown(d: Design, target: float, max_stroke: float | None, v: dict) -> str
                 else "; none failed"),
              f"- not monotone in the level: {d.non_monotone()} (system, record) pairs survive a level above "
              "one that overturned them (every level is run; nothing is inferred from another)", ""]
-    if d.check is not None:
-        c = d.check
-        lines += ["## Checked by a contact engine", "", c["text"] + ".", "",
+    for c in d.checks or ():
+        lines += [f"## Checked by {c['engine']}", "", c["text"] + ".", "",
                   f"| system | record | PGA (g) | analytic overturned | {c['engine']} overturned | analytic u_max (m) "
                   f"| {c['engine']} u_max (m) | Δ stroke |", "|---|---|---:|---|---|---:|---:|---:|"]
         for r in c["runs"]:
-            rel = r["u_max_rel_diff"]
+            rel, status = r["u_max_rel_diff"], r[c["engine"] + "_status"]
+            last = status if status not in ANSWERED else "" if not math.isfinite(rel) else f"{100 * rel:.2g}%"
             lines.append(f"| {r['system']} | {r['record']} | {r['pga']:g} | {r['analytic_overturned']} | "
                          f"{r[c['engine'] + '_overturned']} | {r['analytic_u_max']:.4g} | "
-                         f"{r[c['engine'] + '_u_max']:.4g} | {'' if not math.isfinite(rel) else f'{100 * rel:.2g}%'} |")
+                         f"{r[c['engine'] + '_u_max']:.4g} | {last} |")
         lines.append("")
     if v["region_edges"]:
         lines += ["## The recommended region, row by row", "",
@@ -228,7 +228,8 @@ def write_design(d: Design, target: float, max_stroke: float | None, folder: Pat
                       "y_values": list(fam.y_values)},
            "rule": {"target": target, "max_stroke": max_stroke, "overturn_rule": "past-alpha"},
            "runs": int(d.overturned.size), "failed": d.failed, "non_monotone": d.non_monotone(),
-           "wall_s": d.wall_s, "isolators": rows, "check": d.check,
+           # `check`: the first engine's (the field as it was with one); `checks`: each engine's
+           "wall_s": d.wall_s, "isolators": rows, "check": d.check, "checks": d.checks or [],
            "provenance": provenance(record_paths)}
     (folder / "design.json").write_text(to_json(doc) + "\n", encoding="utf-8")
     if d.table is not None:

@@ -133,7 +133,7 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         if bar is not None:
             bar.close()
         if close:
-            close_client(live)
+            close_client(live, stopping=sys.exc_info()[0] is not None)
     if parts_dir is None:
         return CampaignResult(sort_table(rows_to_table(memory)), None, len(tasks), ran)
     # only this campaign's parts: a folder may hold parts of an earlier version of the file

@@ -13,7 +13,6 @@ import hashlib
 import itertools
 import json
 import math
-import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -25,6 +24,7 @@ from isorock.analytic.motion import PULSES
 from isorock.validate.core.cases import Case, build_case
 from isorock.validate.core.engines import EngineChoice
 from isorock.validate.core.executor import ANALYTIC_CHUNK, CONTACT_CHUNK
+from isorock.validate.io.schema import read_toml
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).
 AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
@@ -410,7 +410,7 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
     case (its longest motion, `longest_motion` s, and the duration rule), its shortest
     isolator period and each engine setting's steps: an InputError naming the key the
     user wrote, before anything runs."""
-    from isorock.analytic.limits import check_duration, check_isolator, check_settings
+    from isorock.analytic.limits import check_duration, check_isolator
     d = spec.duration
     if "end" in d:
         longest = check_duration("duration.end", d["end"])
@@ -428,21 +428,19 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
             check_isolator(shortest, longest)
         except InputError as e:
             raise InputError(f"systems.period: {str(e).replace(' (stiffness nan N/m)', '')}") from None
-    # an engine whose step follows the block (MuJoCo's, PyBullet's) takes the most steps on
-    # the campaign's fastest-rocking block: its steps are the bound
     from isorock.validate.core.cases import build_system
-    from isorock.validate.core.engines import get_engine, settings_used
+    from isorock.validate.core.engines import check_carries
     systems = [build_system(g) for g in spec.system_grid()]
-    fastest = max(systems, key=lambda system: system.rocking_rate)
+    if spec.motions["type"] == "pulse":  # a pulse's peak is amplitude_ratio·g·tanα (a record's: record_factor)
+        from isorock.analytic.limits import check_acceleration
+        steepest = max(math.tan(system.alpha) for system in systems)
+        check_acceleration("motions.amplitude_ratio", max(spec.motions["amplitude_ratio"]) * steepest,
+                           f" (its largest × tanα = {steepest:.3g} of the squattest block)")
     for e in spec.engines:
         try:
-            check_settings(settings_used(e.settings(), fastest, longest), longest)
-            # the engine's own bounds (EngineSpec.check_system) on every system of the grid,
-            # as `run` would refuse one: not a chunk of error rows and exit 0
-            engine = get_engine(e.engine)
-            if engine.spec.check_system is not None:
-                for system in systems:
-                    engine.check_system(system, settings_used(e.settings(), system, longest))
+            # the engine's bounds on every system of the grid, as `run` would refuse one:
+            # not a chunk of error rows and exit 0
+            check_carries(e, systems, longest)
         except InputError as err:
             raise InputError(f"{e.where or e.engine}: {err}") from None
 
@@ -510,11 +508,6 @@ def _check_size(spec: CampaignSpec) -> None:
 def load_spec(path) -> CampaignSpec:
     path = Path(path)
     if not path.is_file():
-        raise InputError(f"campaign file {str(path)!r}: no such file")
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8-sig"))  # a byte-order mark is UTF-8 too
-    except tomllib.TOMLDecodeError as e:
-        raise InputError(f"campaign file {str(path)!r}: not valid TOML ({e})") from None
-    except (OSError, UnicodeDecodeError) as e:
-        raise InputError(f"campaign file {str(path)!r}: cannot be read ({e})") from None
-    return parse_spec(data, path.resolve())
+        raise InputError(f"campaign file {str(path)!r}: " + ("not a regular file" if path.exists() else "no such file"))
+    # bounded before it is parsed, as every file a user hands a command (issue 34)
+    return parse_spec(read_toml(path, f"campaign file {str(path)!r}"), path.resolve())

@@ -1,16 +1,18 @@
 """Readers of the shake-table data: the tests' table acceleration and results.csv.
 
-Two layouts of one test are read (README of the data folder): this project's shared folder,
-`Shake_Table_Response/TestNNN.txt.gz` with two columns (time s, acceleration g), and a clone
-of the original repository, `data/Shake_Table_Response/TestNNN.txt` uncompressed with eight
-columns whose first two are these. The units are read from the header line
-("Time [s]  Acceleration [g]"), never guessed: a header that states other or no units is
-refused. Anything malformed is an InputError (exit 2, one line) naming the file and line.
+The layout read is the shared folder's (README of the data folder): `results.csv` (UTF-8, a
+byte-order mark allowed) and `Shake_Table_Response/TestNNN.txt.gz` or `TestNNN.txt`, whose
+first two columns are time and acceleration (more columns are ignored). The units are read
+from the header line ("Time [s]  Acceleration [g]"), never guessed: a header that states
+other or no units is refused. A clone of the original repository is not this layout (its
+test files say "Amplitude - Plot 0", no units; its outcomes are spreadsheets) and is refused
+saying so. Anything malformed is an InputError (exit 2, one line) naming the file and line.
 """
 from __future__ import annotations
 
 import csv
 import gzip
+import io
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -18,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.limits import check_acceleration
 from isorock.analytic.system import STANDARD_GRAVITY
 
 #: Units of the table acceleration this reader knows, as a header states them → m/s².
@@ -27,6 +30,8 @@ TIME_UNITS = {"s": 1.0}
 #: file's rounding of the printed time is < 0.05 of a step; a lost sample is a whole step).
 STEP_TOLERANCE = 0.25
 SPECIMENS = (1, 2)
+#: fewest tests a study can score: each test's threshold is fitted on the others
+MIN_TESTS = 2
 
 
 @dataclass(frozen=True)
@@ -67,13 +72,10 @@ def _units(label: str, known: dict, path, lineno: int, column: str) -> str:
 
 
 def test_files(folder) -> dict[int, Path]:
-    """test number → its file, in either layout under `folder` (the data folder, or a clone
-    of the original repository: its data/Shake_Table_Response)."""
-    folder = Path(folder)
+    """test number → its file under `folder`/Shake_Table_Response (compressed or not)."""
+    sub = Path(folder) / "Shake_Table_Response"
     found: dict[int, Path] = {}
-    for sub in (folder / "Shake_Table_Response", folder / "data" / "Shake_Table_Response"):
-        if not sub.is_dir():
-            continue
+    if sub.is_dir():
         for p in sorted(sub.iterdir()):
             m = re.fullmatch(r"Test(\d+)\.txt(\.gz)?", p.name)
             if m:
@@ -117,6 +119,12 @@ def read_test(path, test: int | None = None) -> TableMotion:
     bad = ~np.isfinite(arr).all(axis=1)
     if bad.any():
         raise InputError(f"{path}:{int(np.argmax(bad)) + 2}: a sample is not a finite number")
+    peak = np.abs(arr[:, 1]) * ACCEL_UNITS[a_unit] / STANDARD_GRAVITY
+    k = int(np.argmax(peak))
+    try:
+        check_acceleration("acceleration", float(peak[k]))  # no table moves so; the kernel spun on such
+    except InputError as e:
+        raise InputError(f"{path}:{k + 2}: {e}") from None
     t = arr[:, 0] * TIME_UNITS[t_unit]
     # the file prints times to 6 significant digits (16.0312 for 16.03125): the step is the
     # fit over the whole test, and each time may sit off its grid point by that rounding
@@ -154,15 +162,25 @@ def _positive(path, lineno, column, text) -> float:
 
 
 def read_results(path) -> dict[int, Outcome]:
-    """results.csv → test number → Outcome."""
+    """results.csv → test number → Outcome. UTF-8, with or without the byte-order mark a
+    spreadsheet saves (it was read as part of the first column's name)."""
     path = Path(path)
     try:
-        with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.reader(f)
-            header = next(reader, None)
-            body = list(reader)
+        raw = path.read_bytes()
     except OSError as e:
         raise InputError(f"{path}: cannot be read ({e.strerror})") from None
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        line = raw.count(b"\n", 0, e.start) + 1
+        raise InputError(f"{path}:{line}: not UTF-8 text (byte {e.start}: {raw[e.start:e.start + 1]!r}); save it "
+                         "as UTF-8") from None
+    try:
+        reader = csv.reader(io.StringIO(text, newline=""))
+        header = next(reader, None)
+        body = list(reader)
+    except csv.Error as e:
+        raise InputError(f"{path}:{reader.line_num}: not a CSV row ({e})") from None
     need = ["test", _MEASURED.format(1), _MEASURED.format(2), "ground_motion", "pgv_over_pga_s", "scaled_pga_g"]
     if header is None:
         raise InputError(f"{path}: empty; expected a header with {', '.join(need)}")
@@ -210,11 +228,19 @@ def load(folder, tests=None):
     folder = Path(folder)
     if not folder.is_dir():
         raise InputError(f"data = {str(folder)!r}: not a folder (expected the shake-table data folder)")
+    if not (folder / "results.csv").is_file() and (folder / "data" / "Shake_Table_Response").is_dir():
+        raise InputError(f"data = {str(folder)!r}: a clone of the original repository is not read as it is: its "
+                         "test files state no units ('Amplitude - Plot 0') and its outcomes are spreadsheets; give "
+                         "the shared data folder made from it (its README says how: results.csv and "
+                         "Shake_Table_Response/TestNNN.txt[.gz] with 'Time [s]  Acceleration [g]')")
     outcomes = read_results(results_path(folder))
     files = test_files(folder)
     if not files:
         raise InputError(f"data = {str(folder)!r}: no Shake_Table_Response/TestNNN.txt[.gz] files there")
     common = sorted(set(outcomes) & set(files))
+    if len(common) < MIN_TESTS:  # each test is scored by a threshold fitted on the others
+        raise InputError(f"data = {str(folder)!r}: {len(common)} test(s) with both a motion file and an outcome; "
+                         f"the study needs at least {MIN_TESTS} (each is scored by a threshold fitted on the others)")
     if tests is not None:
         unknown = [t for t in tests if t not in common]
         if unknown:

@@ -17,6 +17,8 @@ samples (m/s²) at step dt to another; `process` applies the chosen ones and say
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from scipy import signal
 
@@ -31,6 +33,12 @@ LOWPASS_HZ = 20.0
 FILTER_ORDER = 4
 TRIM_FRACTION = 0.05
 TRIM_PAD = 1.0  # s
+#: fewest samples a test may have: more than the zero-phase filter pads each end with
+#: (scipy's sosfiltfilt: 3·(2·sections + 1), 15 for FILTER_ORDER 4), or it cannot run
+MIN_SAMPLES = 3 * (2 * ((FILTER_ORDER + 1) // 2) + 1) + 1
+#: lowest low-pass corner (Hz): below the high-pass corner a low-pass removes the shaking
+#: itself (and at 1e-6 Hz its filter's initial conditions are a singular system)
+MIN_LOWPASS_HZ = HIGHPASS_HZ
 
 
 def remove_offset(a: np.ndarray, dt: float, window: float = OFFSET_WINDOW) -> np.ndarray:
@@ -55,12 +63,21 @@ def _butter(a, dt, hz, kind):
     return signal.sosfiltfilt(sos, a)
 
 
+def check_lowpass(hz: float) -> float:
+    """The low-pass corner, from MIN_LOWPASS_HZ (its upper bound, each test's Nyquist
+    frequency, is asked of the test's step)."""
+    if not (hz >= MIN_LOWPASS_HZ and math.isfinite(hz)):
+        raise InputError(f"lowpass-hz = {hz!r}: must be a finite number of Hz from {MIN_LOWPASS_HZ:g} (MIN_LOWPASS_HZ: "
+                         "a lower corner removes the shaking itself) to the Nyquist frequency")
+    return hz
+
+
 def highpass(a, dt, hz: float = HIGHPASS_HZ):
     return _butter(a, dt, hz, "highpass")
 
 
 def lowpass(a, dt, hz: float = LOWPASS_HZ):
-    return _butter(a, dt, hz, "lowpass")
+    return _butter(a, dt, check_lowpass(hz), "lowpass")
 
 
 def trim(a, dt, fraction: float = TRIM_FRACTION, pad: float = TRIM_PAD):
@@ -89,6 +106,9 @@ def process(a: np.ndarray, dt: float, steps=DEFAULT_STEPS, *, lowpass_hz: float 
     """The steps named in `steps`, in STEPS order (not the order given: trimming before the
     offset would take the offset window from the shaking)."""
     out = np.asarray(a, dtype=float)
+    if out.size < MIN_SAMPLES:
+        raise InputError(f"{out.size} samples: a test must have at least {MIN_SAMPLES} (MIN_SAMPLES: more than the "
+                         "zero-phase filter pads each end with)")
     if "offset" in steps:
         out = remove_offset(out, dt)
     if "drift" in steps:

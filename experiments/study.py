@@ -32,6 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
+from isorock.analytic.errors import InputError
+
 from isorock.validate.core.scenarios import shared_folder
 
 from . import data, processing, scores, specimen
@@ -51,7 +53,10 @@ def default_data() -> Path:
 
 
 def _motion(tm: data.TableMotion, steps, lowpass_hz):
-    return processing.process(tm.acceleration, tm.dt, steps, lowpass_hz=lowpass_hz)
+    try:
+        return processing.process(tm.acceleration, tm.dt, steps, lowpass_hz=lowpass_hz)
+    except InputError as e:  # a test too short, a corner past its Nyquist frequency: named
+        raise InputError(f"{tm.source}: {e}") from None
 
 
 def equivalent_block(spec: specimen.Specimen, sign: int):
@@ -163,6 +168,18 @@ def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
 
 #: the engines with a rigid body of the rock's hull on a table (EngineSpec.simulate_body)
 HULL_ENGINES = ("mujoco", "bullet", "drake")
+#: simulated s per wall s of one hull run on one core, for the estimate said before the runs
+#: (core.estimate): rounded down from the cost measured here (docs/experiments.md, "Cost"):
+#: MuJoCo 1220 runs of ≈ 43 s in 381 s wall (113); PyBullet 1432 s wall at load 6–8 (36);
+#: Drake a run's median 11.2 s wall on SP2, loaded (3.8). Loaded: a bound on an idle machine.
+HULL_SPEEDS = {"mujoco": 40.0, "bullet": 25.0, "drake": 3.0}
+
+
+def hull_seconds(accel: dict, dt: dict, engines) -> dict:
+    """Simulated seconds each hull engine of `engines` will run: every test, both specimens,
+    both signs (the rigid models' runs take under a minute in all: not counted)."""
+    per_engine = sum((a.size - 1) * dt[t] + PAD for t, a in accel.items()) * len(data.SPECIMENS) * len(SIGNS)
+    return {e: per_engine for e in engines if e in HULL_ENGINES}
 
 
 def run_body(engine: str, spec: specimen.Specimen, accel: dict, dt: dict, progress=None, signs=SIGNS,
@@ -222,11 +239,14 @@ def select_cv(y, candidates: dict, k=scores.FOLDS, threshold=True) -> tuple[np.n
 
 
 def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz=processing.LOWPASS_HZ,
-          tests=None, sensitivity=False, progress=None, contact=None, overturning_scale=False) -> dict:
+          tests=None, sensitivity=False, progress=None, contact=None, overturning_scale=False,
+          announce=None) -> dict:
     """contact: engine → its hull scene's contact keywords ({'mujoco': {'friction': μ,
     'dampratio': ζ}, 'bullet': {'friction': μ, 'restitution': e}}; absent: the scene's own).
     overturning_scale: also the forward block scored by the record scale at which it first
-    overturns (run_overturning_scale: 17 runs of a standing test instead of one)."""
+    overturns (run_overturning_scale: 17 runs of a standing test instead of one). announce:
+    called with the hull engines' simulated seconds (hull_seconds) once the tests are read,
+    before any run, to say the cost."""
     outcomes, files = data.load(folder, tests)
     t0 = time.perf_counter()
     motions = {t: data.read_test(files[t], t) for t in outcomes}
@@ -239,6 +259,8 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
                   outcomes={t: dict(measured=outcomes[t].measured, pga=outcomes[t].scaled_pga_g,
                                     pgv_over_pga=outcomes[t].pgv_over_pga_s) for t in testlist})
     accel = {t: _motion(motions[t], steps, lowpass_hz) for t in testlist}
+    if announce is not None:
+        announce(hull_seconds(accel, dts, engines))
     for s, sp in specimens.items():
         y = np.array([outcomes[t].measured[s] for t in testlist], bool)
         runs = {}

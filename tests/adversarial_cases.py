@@ -34,6 +34,9 @@ class Case:
     check: Callable[[Path, str], bool] | None = None  # (folder, stdout) -> the result is right
     in_process: bool = True                     # False: only as a real process (it uses fd 1)
     env: dict = field(default_factory=dict)     # environment variables for the process
+    code: str | None = None                     # Python to run instead of a command (the notebook API)
+    says: str = ""                              # exit 2: what its one line must name
+    needs: tuple[str, ...] = ()                 # "vsr": the shared shake-table folder (skipped without it)
 
 
 def _files(**contents) -> Callable[[Path], None]:
@@ -164,7 +167,7 @@ def cases() -> list[Case]:
 
     # --- argument errors: one line, not the usage block -------------------------------------
     add(Case("arguments", "--height abc", ["run", *BLOCK, "--fixed-base", "--height", "abc"]))
-    add(Case("arguments", "missing options", ["run", "--fixed-base"]))
+    add(Case("arguments", "missing options (the base)", ["run"]))
     add(Case("arguments", "--duration -inf", [*FIXED, "--duration", "-inf"]))
     add(Case("arguments", "--duration nan", [*FIXED, "--duration", "nan"]))
     add(Case("arguments", "--duration 0", [*FIXED, "--duration", "0"]))
@@ -259,6 +262,8 @@ def cases() -> list[Case]:
              "ok", check=lambda d, out: json.loads(out)["status"] in ("completed", "overturned")))
     from adversarial_round_two import round_two  # issue 24: campaigns, config files, calibration, cache
     c += round_two(Case)
+    from adversarial_round_three import round_three  # issue 34: design, file bounds, experiments' data, the API
+    c += round_three(Case)
     return c
 
 
@@ -302,6 +307,8 @@ class Outcome:
                 return f"other: exit {self.code}, expected 2"
             if self.err.count("\n") != 1 or "error" not in self.err:
                 return "other: not one error line"
+            if case.says not in self.err:
+                return f"other: the line does not name {case.says!r}"
             return "exit 2"
         if self.code != 0:
             return f"other: exit {self.code}: {self.err.strip()[-200:]}"
@@ -348,7 +355,7 @@ def run_in_process(case: Case, d: Path) -> Outcome:
     try:
         os.chdir(d)
         with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-            code = main(case.argv)
+            code = main(case.argv) if case.code is None else _run_code(case.code)
     except Hang:
         hung = True
     except BaseException:
@@ -363,14 +370,32 @@ def run_in_process(case: Case, d: Path) -> Outcome:
                    _touched(before, snapshot(d), case.outputs), tb or "Traceback" in err.getvalue(), hung)
 
 
+def _run_code(code: str) -> int:
+    """A notebook-API case: its InputError is the command's exit 2 and one line."""
+    import sys
+
+    from isorock.analytic.errors import InputError
+    try:
+        exec(compile(code, "<case>", "exec"), {"__name__": "__main__"})
+    except InputError as e:
+        print(f"isorock: error: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
 def run_as_process(case: Case, d: Path, python: str) -> Outcome:
-    """The case as a real `python -m isorock.validate.cli.main` process in folder d."""
+    """The case as a real `python -m isorock.validate.cli.main` process in folder d (a
+    notebook-API case: its code in `python -c`, judged as _run_code judges it)."""
     import subprocess
     if case.setup:
         case.setup(d)
     before = snapshot(d)
+    argv = ["-m", "isorock.validate.cli.main", *case.argv]
+    if case.code is not None:
+        argv = ["-c", f"import sys\nsys.path.insert(0, {str(Path(__file__).parent)!r})\n"
+                      f"from adversarial_cases import _run_code\nsys.exit(_run_code({case.code!r}))"]
     try:
-        p = subprocess.run([python, "-m", "isorock.validate.cli.main", *case.argv], cwd=d, capture_output=True,
+        p = subprocess.run([python, *argv], cwd=d, capture_output=True,
                            text=True, timeout=TIME_LIMIT, env={**os.environ, **case.env} if case.env else None)
     except subprocess.TimeoutExpired as e:
         return Outcome(None, "", str(e), _touched(before, snapshot(d), case.outputs), False, True)

@@ -184,3 +184,18 @@ def test_a_report_from_code_on_standard_input_is_told_what_to_do(tmp_path):
     last = r.stderr.strip().splitlines()[-1]
     assert "InputError" in last and "could not start" in last and "workers=1" in last, r.stderr[-3000:]
     assert "BrokenPipeError" not in r.stderr
+    # no worker is started to fail: each printed its FileNotFoundError first (issue 34, item 12)
+    assert "FileNotFoundError" not in r.stderr and r.stderr.count("Traceback") == 1, r.stderr  # the script's own
+
+
+@pytest.mark.slow
+def test_a_sweep_on_workers_from_code_on_standard_input_is_told_what_to_do(tmp_path):
+    """The same for isorock.sweep's Dask workers (spawned, they too run the program again)."""
+    (tmp_path / "c.toml").write_text('[systems]\nalpha = 0.25\nsize = 1.0\n\n[motions]\ntype = "pulse"\n'
+                                     'pulse = "sine"\nfrequency_ratio = 2.0\namplitude_ratio = 2.0\n\n'
+                                     '[[engines]]\nname = "mujoco"\n')
+    r = subprocess.run([sys.executable, "-"], input="import isorock\nisorock.sweep('c.toml', workers=2)\n",
+                       capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    last = r.stderr.strip().splitlines()[-1]
+    assert r.returncode != 0 and "InputError" in last and "could not start" in last, r.stderr[-3000:]
+    assert "FileNotFoundError" not in r.stderr, r.stderr[-3000:]

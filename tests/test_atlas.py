@@ -192,7 +192,7 @@ def test_an_axis_replaces_that_axis_only():
 
 @pytest.mark.parametrize("option,value,named", [
     ("--heights", "0.3,x", "'x' is not a number"),
-    ("--heights", "", "is not a number"),
+    ("--heights", "", "--heights: '': an empty value"),
     ("--heights", "0.3,0.3", "lists 0.3 twice"),
     ("--heights", "nan", "out of range"),
     ("--heights", "0", "out of range"),

@@ -2,7 +2,7 @@
 finiteness, overturning against the analytic model, and the client's lifetime.
 
 Tolerances (at the default Settings: physics step 1/3000 s, 12 per 4 ms control step)
-come from the one table, validate/tolerances.py, each with its reason and measured value
+come from the one table, validate/core/tolerances.py, each with its reason and measured value
 there: β per impact, staying down at 0.99·g·tanα, pivot slip, out-of-plane drift.
 """
 import math

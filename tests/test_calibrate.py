@@ -181,8 +181,9 @@ def test_a_preset_must_hold_on_the_held_out_runs_and_gain_there_beyond_the_noise
         assert not out.exists()
         text = capsys.readouterr().out
         assert verdict in text and "not written" in text and "a preset needs" in text
-    # the whole result as JSON on standard output, the text beside it on stderr
-    assert main(["calibrate", "--engine", "mujoco", "--quiet", "--json", "-"]) == 1
+    # the whole result as JSON on standard output, the text beside it on stderr; without --out
+    # "keep the current settings" is a verdict, exit 0 (issue 39)
+    assert main(["calibrate", "--engine", "mujoco", "--quiet", "--json", "-"]) == 0
     captured = capsys.readouterr()
     assert json.loads(captured.out)["held_out"]["after"]["worst"] == pytest.approx(0.029)  # the last fake
     assert "verdict" in captured.err

@@ -39,18 +39,21 @@ def _write_test(path: Path, t, a, *, columns=2, header="Time [s]\tAcceleration [
         path.write_text(text)
 
 
-def test_both_layouts_read_the_same_motion_in_m_per_s2(tmp_path):
+def test_compressed_and_plain_files_read_the_same_motion_in_m_per_s2(tmp_path):
+    """The shared folder's 2-column TestNNN.txt.gz and an uncompressed file with more columns
+    (only the first two read) give the same motion. (A clone of the original repository is
+    refused: tests/test_round_three.py.)"""
     t = np.arange(4000) / 800.0  # printed to 6 significant digits, as the data are
     a = 0.1 * np.sin(2 * np.pi * 1.5 * t)
-    shared = tmp_path / "shared" / "Shake_Table_Response"
-    clone = tmp_path / "clone" / "data" / "Shake_Table_Response"
-    shared.mkdir(parents=True)
-    clone.mkdir(parents=True)
-    _write_test(shared / "Test007.txt.gz", t, a)
-    _write_test(clone / "Test007.txt", t, a, columns=8, header="Time [s]\tAcceleration [g]\tAy [g]\tx1\tx2\tx3\tx4\tx5",
+    gz = tmp_path / "gz" / "Shake_Table_Response"
+    plain = tmp_path / "plain" / "Shake_Table_Response"
+    gz.mkdir(parents=True)
+    plain.mkdir(parents=True)
+    _write_test(gz / "Test007.txt.gz", t, a)
+    _write_test(plain / "Test007.txt", t, a, columns=8, header="Time [s]\tAcceleration [g]\tAy [g]\tx1\tx2\tx3\tx4\tx5",
                 gz=False)
-    m1 = data.read_test(data.test_files(tmp_path / "shared")[7])
-    m2 = data.read_test(data.test_files(tmp_path / "clone")[7])
+    m1 = data.read_test(data.test_files(tmp_path / "gz")[7])
+    m2 = data.read_test(data.test_files(tmp_path / "plain")[7])
     assert m1.dt == pytest.approx(1 / 800, rel=1e-6) and m2.dt == pytest.approx(1 / 800, rel=1e-6)
     assert np.allclose(m1.acceleration, a * G, rtol=1e-6, atol=1e-9)
     assert np.array_equal(m1.acceleration, m2.acceleration)

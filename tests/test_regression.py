@@ -1,5 +1,5 @@
 """Regression tests: every engine against the analytic model and the closed forms, with
-the limits of validate/tolerances.py, and against the golden metrics in tests/golden/.
+the limits of validate/core/tolerances.py, and against the golden metrics in tests/golden/.
 
 Regenerate the goldens (only after checking that a change of numbers is intended):
 

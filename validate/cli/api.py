@@ -61,7 +61,7 @@ def _argv(parser: argparse.ArgumentParser, name: str, kwargs: dict, positional: 
                 argv.append(flag)
             continue
         values = list(value) if isinstance(value, (list, tuple)) else [value]
-        text = [repr(v) if isinstance(v, float) else str(v) for v in values]
+        text = [_text(v) for v in values]
         if isinstance(action, argparse._AppendAction):
             for t in text:
                 argv += [flag, t]
@@ -70,6 +70,37 @@ def _argv(parser: argparse.ArgumentParser, name: str, kwargs: dict, positional: 
         else:  # a pair or triple (solref, solimp) is one comma-separated value on the command line
             argv += [flag, ",".join(text)]
     return argv
+
+
+def _text(value) -> str:
+    """A keyword's value as the command line would spell it. Any real number (NumPy's,
+    a Fraction, a Decimal) as its float's repr, exact and parseable: NumPy 2's own repr,
+    np.float64(0.6), was refused as 'not a number'; a 0-d array as its item."""
+    import numbers
+    if hasattr(value, "ndim") and getattr(value, "ndim", None) == 0:
+        value = value.item()
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return str(value)
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    return repr(float(value))
+
+
+def _path(key: str, value, *, optional: bool = True):
+    """A path keyword: a str or an os.PathLike (a number would name a folder '123', None a
+    campaign file 'None')."""
+    import os
+    if value is None and optional:
+        return None
+    if isinstance(value, (str, os.PathLike)) and str(value).strip():
+        return value
+    raise InputError(f"{key} = {value!r}: must be a path (a str or a pathlib.Path)")
+
+
+def _flag(key: str, value) -> bool:
+    if not isinstance(value, bool):
+        raise InputError(f"{key} = {value!r}: must be True or False")
+    return value
 
 
 def _keywords(text: str) -> str:
@@ -133,6 +164,7 @@ def report(*, out: str | None = None, progress: bool = False, **options) -> Vali
     from isorock.validate.tools.report_run import build
     if "motion" in options and isinstance(options["motion"], str):
         options["motion"] = [options["motion"]]
+    out, progress = _path("out", out), _flag("progress", progress)
     a = _parse("validate", options)
     if out is not None:
         check_folder(out)
@@ -160,10 +192,14 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
     serially in this process (the default here: a notebook needs nothing more); N > 0
     starts a local Dask cluster of N processes, which a script must call under
     `if __name__ == "__main__":` (said in one line where it is not)."""
+    from isorock.analytic.limits import check_workers
     from isorock.campaign.run import run_campaign
     from isorock.campaign.spec import load_spec
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 0:
-        raise InputError(f"workers = {workers!r}: must be 0 (serial) or a positive number of processes")
+    spec, out = _path("spec", spec, optional=False), _path("out", out)
+    products, progress = _flag("products", products), _flag("progress", progress)
+    check_workers("workers", workers, serial=True)
+    if scheduler is not None and not (isinstance(scheduler, str) and scheduler.strip()):
+        raise InputError(f"scheduler = {scheduler!r}: must be a Dask scheduler's address, e.g. 'tcp://host:8786'")
     if workers > 0 or scheduler:
         # in a Dask worker rerunning a script's unguarded top level: stop it quietly; the
         # cluster then fails to start, and the except below says what to do in one line

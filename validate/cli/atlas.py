@@ -61,8 +61,9 @@ def cmd_atlas(a) -> int:
     from isorock.validate.io.output import check_folder
     from isorock.validate.io.progress import Progress
     engines = expand(a.engines) if a.engines else default_engines()
-    if a.workers is not None and a.workers < 1:
-        raise InputError(f"workers = {a.workers!r}: must be a whole number of processes ≥ 1")
+    if a.workers is not None:
+        from isorock.analytic.limits import check_workers
+        check_workers("workers", a.workers)
     if not (a.run_budget > 0 and math.isfinite(a.run_budget)):
         raise InputError(f"run-budget = {a.run_budget!r}: must be a positive number of seconds")
     grid = user_grid(QUICK if a.quick else FULL, slenderness=a.slenderness, mass_ratios=a.mass_ratios,

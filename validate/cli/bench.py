@@ -50,5 +50,7 @@ def cmd_bench(a) -> int:
         (tmp / "bench.csv").write_text(buf.getvalue())
         plot(rows, tmp / "bench.png")
     write_folder_atomic(a.out, fill)
+    # the tables on standard output (as every command's result); each row's progress was on stderr
+    print(markdown(rows, extra))
     print(f"bench: {len(rows)} runs in {time.perf_counter() - start:.0f} s; table in {a.out}/bench.md")
     return 0

@@ -13,7 +13,6 @@ the key as the user wrote it, the value, and what is allowed:
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import fields
 from typing import Annotated, Literal
 
@@ -26,7 +25,7 @@ from isorock.analytic.errors import InputError
 MAX_DAMPING_RATIO = 1.0
 
 
-from isorock.validate.io.schema import NonNegative, Positive, number as _number  # noqa: F401 (shared)
+from isorock.validate.io.schema import NonNegative, Positive, number as _number, read_toml  # noqa: F401 (shared)
 
 
 def _strings(v):
@@ -150,26 +149,9 @@ def describe(e: ValidationError, prefix: str = "config key") -> InputError:
     return InputError(f"{prefix} {key} = {value!r}: {msg}")
 
 
-def parse_text(data: bytes, path: str) -> dict:
-    """The file's bytes as a TOML table: UTF-8 (a byte-order mark allowed), or an error line."""
-    try:
-        text = data.decode("utf-8-sig")
-    except UnicodeDecodeError as e:
-        raise InputError(f"config = {path!r}: not UTF-8 text (byte {e.start}: {data[e.start:e.start + 1]!r})") from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as e:
-        raise InputError(f"config = {path!r}: not valid TOML ({e})") from None
-
-
 def read_config(path) -> dict:
     """The validated keys of a --config file (only those it gives)."""
-    try:
-        with open(path, "rb") as f:
-            data = f.read()
-    except OSError as e:
-        raise InputError(f"config = {str(path)!r}: cannot be read ({e.strerror or e})") from None
-    raw = parse_text(data, str(path))
+    raw = read_toml(path, f"config = {str(path)!r}")  # bounded before it is parsed (issue 34)
     try:
         model = ConfigFile.model_validate(raw)
     except ValidationError as e:

@@ -47,9 +47,9 @@ def add_parser(sub) -> None:
     g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
                    help="units of two-column record files that do not state theirs")
     g.add_argument("--limit", type=int, default=0, metavar="N", help="the first N records only (name order; 0: all)")
-    g.add_argument("--pga", default=DEFAULT_PGA, metavar="LEVELS",
+    g.add_argument("--pga", metavar="LEVELS",
                    help="PGA levels (g) every record is scaled to: one (0.5), a list (0.2,0.4,0.6) or a range "
-                        "FROM:TO:NUM (default: %(default)s)")
+                        f"FROM:TO:NUM (default: a --config file's pga, else {DEFAULT_PGA})")
     g.add_argument("--level-weights", metavar="W,…",
                    help="each level's weight in P(overturn) over the hazard, e.g. from a hazard curve (normalised; "
                         "default: equal)")
@@ -72,9 +72,10 @@ def add_parser(sub) -> None:
                    help="largest acceptable P(overturn) over the hazard (default: %(default)g)")
     g.add_argument("--max-stroke", type=number, metavar="M",
                    help="largest acceptable 84th-percentile stroke at the highest level, m (default: none)")
-    g.add_argument("--check", metavar="ENGINE",
+    g.add_argument("--check", metavar="ENGINE[,ENGINE]", action="append",
                    help="run a few of the design's runs again with a contact engine (e.g. mujoco) and report how "
-                        "far it agrees")
+                        "far it agrees; several: --check mujoco --check bullet, or --check mujoco,bullet (each is "
+                        "asked before any work whether it carries the statue and every isolator of the family)")
     g.add_argument("--check-runs", type=int, default=12, metavar="N",
                    help="how many runs --check makes (default: %(default)s)")
     p.add_argument("--tail", type=number, default=5.0, help="seconds simulated after each record (default: 5)")
@@ -89,20 +90,24 @@ def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[floa
     """'0.5', 'A,B,C' or 'FROM:TO:NUM' (both ends included, evenly spaced): positive,
     finite, increasing values (below 1 for a damping ratio); one line naming the option otherwise."""
     allowed = "a number, a list A,B,C or a range FROM:TO:NUM"
+    parts = text.split(":")
     try:
-        if ":" in text:
-            lo, hi, num = text.split(":")
-            lo, hi = float(lo), float(hi)
-            if float(num) != int(float(num)) or not 1 <= int(float(num)) <= MAX_AXIS:
-                raise InputError(f"--{option} = {text!r}: NUM must be a whole number from 1 to {MAX_AXIS}")
-            num = int(float(num))
-            if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
-                raise InputError(f"--{option} = {text!r}: must be a range FROM:TO:NUM with finite FROM ≤ TO")
-            values = tuple(float(round(v, 12)) for v in np.linspace(lo, hi, num)) if num > 1 else (lo,)
-        else:
+        if len(parts) == 3:
+            lo, hi, num = (float(x) for x in parts)
+        elif len(parts) == 1:
             values = tuple(float(x) for x in text.split(","))
+        else:
+            raise ValueError(text)
     except ValueError:
         raise InputError(f"--{option} = {text!r}: must be {allowed}") from None
+    if len(parts) == 3:
+        # NUM is read as a number first: inf or nan has no whole value to take (an OverflowError)
+        if not (math.isfinite(num) and num == int(num) and 1 <= num <= MAX_AXIS):
+            raise InputError(f"--{option} = {text!r}: NUM must be a whole number from 1 to {MAX_AXIS}")
+        if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
+            raise InputError(f"--{option} = {text!r}: must be a range FROM:TO:NUM with finite FROM ≤ TO")
+        # rounded as Python floats: NumPy's round multiplies by 1e12 first, and 1e300 became inf
+        values = tuple(round(float(v), 12) for v in np.linspace(lo, hi, int(num))) if num > 1 else (lo,)
     if len(values) > MAX_AXIS:
         raise InputError(f"--{option} = {text!r}: {len(values)} values; must be at most {MAX_AXIS}")
     for v in values:
@@ -114,19 +119,37 @@ def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[floa
     return values
 
 
-def statue_from_args(a):
-    """The Statue the options (over a --config [system] table) describe; the paper's block
-    when none is given."""
+#: the keys of a --config file a design takes: [system]'s statue, pga (the levels) and units
+#: (of the records), each where its option is not given
+DESIGN_CONFIG_KEYS = ("system", "pga", "units")
+
+
+def read_design_config(a) -> dict:
+    """The --config file's keys (none without one). The design takes its [system] statue,
+    its pga as the level (unless --pga is given: it was ignored) and its units for the
+    records (unless --units is given); a pgv is refused (a design scales by PGA); the keys
+    it does not use are noted, not silently dropped."""
+    if a.config is None:
+        return {}
+    from isorock.validate.cli.config_file import read_config
+    config = read_config(a.config)
+    if "pgv" in config:
+        raise InputError(f"config pgv = {config['pgv']!r}: a design scales every record to PGA levels; give pga (g) "
+                         "in the file, or --pga")
+    unused = ([f"[system] {k}" for k in ("period", "damping_ratio", "stiffness", "dashpot", "fixed_base")
+               if k in config.get("system", {})] + [k for k in config if k not in DESIGN_CONFIG_KEYS])
+    if unused and not a.quiet:
+        print(f"isorock design: note: {a.config}: {', '.join(unused)} not used (the design runs the isolator family "
+              "and the fixed base under the record suite)", file=sys.stderr)
+    return config
+
+
+def statue_from_args(a, config: dict):
+    """The Statue the options (over a --config file's [system] table) describe; the paper's
+    block when none is given."""
     from isorock.campaign.design import Statue
-    values = {}
-    if a.config:
-        from isorock.validate.cli.config_file import read_config
-        table = read_config(a.config).get("system", {})
-        isolator = [k for k in ("period", "damping_ratio", "stiffness", "dashpot", "fixed_base") if k in table]
-        if isolator and not a.quiet:
-            print(f"isorock design: note: {a.config}: [system] {', '.join(isolator)} not used (the design runs the "
-                  "isolator family and the fixed base)", file=sys.stderr)
-        values = {k: table[k] for k in ("height", "width", "mass", "base_mass") if k in table}
+    table = config.get("system", {})
+    values = {k: table[k] for k in ("height", "width", "mass", "base_mass") if k in table}
     for k in ("height", "width", "mass", "base_mass"):
         if getattr(a, k) is not None:
             values[k] = getattr(a, k)
@@ -175,14 +198,19 @@ def family_from_args(a):
     return FAMILIES[a.isolator](xs, ys)
 
 
-def hazard_from_args(a):
+def hazard_from_args(a, config: dict):
     from pathlib import Path
 
     from isorock.campaign.design import Hazard
     from isorock.campaign.records import load_suite
     if a.limit < 0:
         raise InputError(f"--limit = {a.limit!r}: must be a whole number ≥ 0 (0: every record)")
-    levels = parse_grid("pga", a.pga)
+    if a.pga is not None:
+        levels = parse_grid("pga", a.pga)
+    elif "pga" in config:
+        levels = (config["pga"],)
+    else:
+        levels = parse_grid("pga", DEFAULT_PGA)
     weights = ()
     if a.level_weights is not None:
         try:
@@ -198,15 +226,48 @@ def hazard_from_args(a):
         folder = Path(a.records).expanduser()
         if not folder.is_dir():
             raise InputError(f"--records = {a.records!r}: must be 'fema-p695' or a folder of record files")
-        spec, source = {"folder": str(folder), "limit": a.limit, "units": a.units}, str(folder)
+        units = a.units if a.units is not None else config.get("units")
+        spec, source = {"folder": str(folder), "limit": a.limit, "units": units}, str(folder)
     from isorock.campaign.records import count_records
     count_records(spec)  # an empty folder: one line
     return Hazard(load_suite(spec), levels, weights, source), (
         [] if "suite" in spec else [str(p) for p in sorted(Path(spec["folder"]).iterdir()) if p.is_file()])
 
 
+def check_engines(given) -> list[str]:
+    """--check as given (repeated, each comma-separated) → the contact engines, each once."""
+    from isorock.validate.core.engines import ALL_ENGINES, choose
+    contact = [e for e in ALL_ENGINES if not e.startswith("analytic")]
+    names = [x.strip() for text in (given or ()) for x in text.split(",")]
+    for name in names:
+        if name not in contact:
+            raise InputError(f"--check = {name!r}: must be a contact engine, one of {', '.join(contact)}")
+    if len(set(names)) != len(names):
+        raise InputError(f"--check = {','.join(names)}: name each engine once")
+    for name in names:
+        choose(name, {}, strict=True).settings()  # not installed: one line naming the extra
+    return names
+
+
+def _check(d, engine: str, picks, hazard, cores: int, quiet: bool) -> dict:
+    """The picked runs again with one contact engine (its estimate first, then its progress)."""
+    from isorock.campaign.design import check_with
+    from isorock.validate.io.progress import Progress
+    if not quiet:
+        from isorock.validate.core.estimate import estimate_s
+        sim = sum(hazard.records[name].end_time + d.tail for _, name, _ in picks)
+        print(f"isorock design: checking {len(picks)} runs with {engine} ({sim:.0f} simulated s, estimated "
+              f"≈ {estimate_s({engine: sim}, workers=cores):.0f} s)", file=sys.stderr, flush=True)
+    bar = None if quiet else Progress(len(picks), f"check {engine}", enabled=True)
+    try:
+        return check_with(d, engine, picks, progress=bar)
+    finally:
+        if bar is not None:
+            bar.close()
+
+
 def cmd_design(a) -> int:
-    from isorock.campaign.design import (check_family_runs, check_points, check_size, check_with, estimate_s,
+    from isorock.campaign.design import (check_engines_carry, check_family_runs, check_points, check_size, estimate_s,
                                          run_design, simulated_seconds)
     from isorock.campaign.design_report import write_design
     from isorock.validate.io.output import Outputs
@@ -219,19 +280,16 @@ def cmd_design(a) -> int:
         raise InputError(f"--tail = {a.tail!r}: must be a non-negative finite number of seconds")
     if a.check_runs < 1 or a.check_runs > 200:
         raise InputError(f"--check-runs = {a.check_runs!r}: must be a whole number from 1 to 200")
-    if a.check is not None:
-        from isorock.validate.core.engines import ALL_ENGINES, choose
-        if a.check not in ALL_ENGINES or a.check.startswith("analytic"):
-            raise InputError(f"--check = {a.check!r}: must be a contact engine, one of "
-                             f"{', '.join(e for e in ALL_ENGINES if not e.startswith('analytic'))}")
-        choose(a.check, {}, strict=True).settings()  # not installed: one line naming the extra
-    statue = statue_from_args(a)
+    checks = check_engines(a.check)
+    config = read_design_config(a)
+    statue = statue_from_args(a, config)
     family = family_from_args(a)
     check_family_runs(family)
     with Outputs() as outputs:
         folder = outputs.folder("out", a.out)  # a folder we may not write is refused before the work
-        hazard, record_paths = hazard_from_args(a)
+        hazard, record_paths = hazard_from_args(a, config)
         n_runs = check_size(family, hazard, a.tail)
+        check_engines_carry(statue, family, hazard, checks, a.tail)  # each --check engine, before any work
         from isorock.analytic.limits import available_cores
         cores = available_cores()
         simulated = simulated_seconds(hazard, 1 + len(family.x_values) * len(family.y_values), a.tail)
@@ -254,26 +312,17 @@ def cmd_design(a) -> int:
         finally:
             for bar in bars:
                 bar.close()
-        if a.check is not None:
+        if checks:
             picks = check_points(d, a.target, a.max_stroke, a.check_runs)
-            if not a.quiet:
-                from isorock.validate.core.estimate import estimate_s
-                sim = sum(hazard.records[name].end_time + a.tail for _, name, _ in picks)
-                print(f"isorock design: checking {len(picks)} runs with {a.check} ({sim:.0f} simulated s, estimated "
-                      f"≈ {estimate_s({a.check: sim}, workers=cores):.0f} s)", file=sys.stderr, flush=True)
-            cbar = None if a.quiet else Progress(len(picks), f"check {a.check}", enabled=True)
-            try:
-                d.check = check_with(d, a.check, picks, progress=cbar)
-            finally:
-                if cbar is not None:
-                    cbar.close()
+            d.checks = [_check(d, engine, picks, hazard, cores, a.quiet) for engine in checks]
+            d.check = d.checks[0]
         answer = {}
         folder.write(lambda tmp: answer.update(write_design(d, a.target, a.max_stroke, tmp, record_paths)))
         outputs.commit()
     total = time.perf_counter() - start
     print(answer["headline"])
-    if d.check is not None:
-        print(d.check["text"])
+    for c in d.checks or ():
+        print(c["text"])
     print(f"isorock design: {n_runs:,} runs in {d.wall_s:.0f} s ({total:.0f} s in all); wrote {a.out}/design.md, "
           "design.png, design.json, design.csv, runs.parquet", file=sys.stderr)
     return 0

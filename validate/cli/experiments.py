@@ -11,7 +11,7 @@ import math
 
 from isorock.analytic.errors import InputError
 
-from isorock.experiments import processing, study
+from isorock.experiments import data, processing, study
 
 DEFAULT_OUT = "isorock-experiments"
 
@@ -21,8 +21,8 @@ def add_parser(sub) -> None:
                                            "measured shake-table tests (overturned or not)",
                        description=__doc__.split("\n\n")[0])
     p.add_argument("--data", default=str(study.default_data()), metavar="DIR",
-                   help="the shake-table data folder, or a clone of the original repository (default: "
-                        "%(default)s)")
+                   help="the shake-table data folder: results.csv and Shake_Table_Response/TestNNN.txt[.gz] (its "
+                        "README; a clone of the original repository is not this layout) (default: %(default)s)")
     p.add_argument("--engines", default="analytic,asymmetric", metavar="E[,E]",
                    help=f"engines to run, comma-separated, from {', '.join(study.ENGINES)} (default: "
                         "%(default)s; mujoco adds about 0.4 s per test, specimen and sign, bullet about 0.7 s)")
@@ -69,8 +69,9 @@ def _tests(text):
         tests = [int(x) for x in text.split(",") if x.strip()]
     except ValueError:
         raise InputError(f"tests = {text!r}: must be comma-separated test numbers") from None
-    if len(set(tests)) < 2:  # one test leaves nothing to fit its held-out threshold on
-        raise InputError(f"tests = {text!r}: name at least 2 tests (each is scored by a threshold fitted on the others)")
+    if len(set(tests)) < data.MIN_TESTS:  # one test leaves nothing to fit its held-out threshold on
+        raise InputError(f"tests = {text!r}: name at least {data.MIN_TESTS} tests (each is scored by a threshold "
+                         "fitted on the others)")
     return tests
 
 
@@ -78,8 +79,7 @@ def main(a) -> int:
     from isorock.validate.io.output import Outputs
     engines = _engines(a.engines)
     steps = processing.parse_steps(a.steps)
-    if not (a.lowpass_hz > 0 and math.isfinite(a.lowpass_hz)):
-        raise InputError(f"lowpass-hz = {a.lowpass_hz!r}: must be a positive number of Hz below the Nyquist frequency")
+    processing.check_lowpass(a.lowpass_hz)  # up front, not after every test is read
     tests = _tests(a.tests)
     if a.overturning_scale and "analytic" not in engines:
         raise InputError(f"overturning-scale: scores the analytic engine's forward block; engines = {a.engines!r} "
@@ -97,8 +97,14 @@ def main(a) -> int:
             contact.setdefault(engine, {})[name] = value
     with Outputs() as outputs:
         out = outputs.folder("out", a.out)  # refused before the runs, not after
+        from isorock.validate.cli.options import announce_cost
+
+        def announce(simulated):  # the hull engines' cost, before their minutes (issue 34)
+            announce_cost("experiments", simulated, budget_s=0, speeds=study.HULL_SPEEDS,
+                          basis="on this study's hull runs, measured loaded (docs/experiments.md, Cost)")
         result = study.build(a.data, engines=engines, steps=steps, lowpass_hz=a.lowpass_hz, tests=tests,
-                             sensitivity=a.sensitivity, contact=contact, overturning_scale=a.overturning_scale)
+                             sensitivity=a.sensitivity, contact=contact, overturning_scale=a.overturning_scale,
+                             announce=announce)
         from isorock.validate.io.provenance import provenance
         result["provenance"] = provenance()
         out.write(lambda folder: write(result, folder))

@@ -96,12 +96,16 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_beta)
 
     p = sub.add_parser("run", help="simulate one system with one engine",
-                       description="Simulate one block on its base with one engine and print its metrics.")
+                       description="Simulate one block on its base with one engine and print its metrics. Without "
+                                   f"block options it is the paper's block (H {PAPER_BLOCK['height']:g} m, B "
+                                   f"{PAPER_BLOCK['width']:g} m, m = m_b = {PAPER_BLOCK['mass']:g} kg), as "
+                                   "validate and design take it; its base is yours to choose: fixed, on a linear "
+                                   "isolator, or on another isolator.")
     p.add_argument("--engine", default=None, metavar="ENGINE[:PRESET][,…]",
                    help=f"one of {', '.join(_registered())}, optionally ENGINE:PRESET (e.g. mujoco:fast); "
                         "several, comma-separated, run on the same system and motion and are compared with "
                         "the first (default: analytic, the compiled kernel, which carries every --isolator)")
-    add_system_options(p)
+    add_system_options(p, defaults=PAPER_BLOCK)
     add_isolator_options(p)
     add_motion_options(p)
     p.add_argument("--duration", type=number,
@@ -297,6 +301,12 @@ def main(argv=None) -> int:
         if signum is None and isinstance(error, KeyboardInterrupt):
             signum = signal.SIGINT  # raised without our handler (a thread, an embedding caller)
         if signum is not None:
+            if argv_given is None:
+                import logging
+                # a stopped command's one line is its last: what libraries log while their
+                # loops and clusters are torn down (Dask's "Task exception was never
+                # retrieved", a nanny that failed to start) is not for the user (issue 34)
+                logging.disable(logging.CRITICAL)
             print(_signalled(name, signum, error), file=sys.stderr)
             return _stopped(128 + signum, as_process=argv_given is None)
         if isinstance(error, InputError):

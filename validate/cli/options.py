@@ -29,6 +29,17 @@ class OneLineParser(argparse.ArgumentParser):
     def error(self, message):
         self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
+    def _get_value(self, action, arg_string):
+        # every value a user types passes here (argparse's one conversion point): an empty
+        # one means nothing any option could take, and commands that read `if a.option:`
+        # ran their default grid, the current folder or no config file in its place (issue 34)
+        # (a sub-command's arguments pass the top parser's on their way to their own: not here)
+        if (isinstance(arg_string, str) and not arg_string.strip() and arg_string is not action.default
+                and action.nargs not in (argparse.PARSER, argparse.REMAINDER)):
+            raise argparse.ArgumentError(action, f"{arg_string!r}: an empty value; give one, or leave the option "
+                                                 "out for its default")
+        return super()._get_value(action, arg_string)
+
 
 def number(text: str) -> float:
     """argparse type: a real number (finite or not; the checks that follow say what is allowed)."""
@@ -204,6 +215,8 @@ def _linear_from_args(a, common, *, default_isolator=None):
         if a.period is None or a.damping_ratio is None or a.stiffness is not None or a.dashpot is not None:
             raise InputError("isolator: give --period with --damping-ratio, or --stiffness with --dashpot, "
                              "or --fixed-base")
+        from isorock.analytic.limits import check_period
+        check_period("period", a.period)  # before its stiffness M·(2π/T)² is computed
         return System.isolated(**common, period=a.period, damping_ratio=a.damping_ratio)
     if a.stiffness is not None:
         return System.from_stiffness(**common, stiffness=a.stiffness,
@@ -288,8 +301,9 @@ def motion_from_args(a):
         m = m.with_vertical(load_motion(vertical, units=units))
     if targets:
         key, value = targets[0]
-        if m.is_zero:
-            raise InputError(f"--{key} = {value:g}: the motion 'none' has no peak to scale")
+        if m.is_zero:  # 'none', or a record of zeros: named as given
+            raise InputError(f"--{key} = {value:g}: the motion {a.motion!r} is zero throughout; it has no peak to "
+                             "scale")
         return m.scaled_to_pga(value) if key == "pga" else m.scaled_to_pgv(value)
     return m if a.scale == 1.0 else m.scaled(a.scale)
 
@@ -310,12 +324,13 @@ def run_budget(a) -> float:
     return a.budget
 
 
-def announce_cost(command: str, simulated: dict[str, float], budget_s: float, quiet: bool = False) -> None:
+def announce_cost(command: str, simulated: dict[str, float], budget_s: float | None = None, quiet: bool = False, *,
+                  workers: int = 1, speeds: dict | None = None, basis: str | None = None) -> None:
     """The cost estimate of a long command on stderr, before its work (core.estimate)."""
     import sys
 
     from isorock.validate.core.estimate import estimate_line
-    line = estimate_line(simulated, command=command, budget_s=budget_s)
+    line = estimate_line(simulated, workers=workers, command=command, budget_s=budget_s, speeds=speeds, basis=basis)
     if line and not quiet:
         print(line, file=sys.stderr, flush=True)
 

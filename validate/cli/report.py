@@ -106,8 +106,9 @@ def report_config(args):
     given = {k: getattr(args, k) for k in ENGINE_OPTIONS if getattr(args, k, None) is not None}
     if given:  # a setting on the command line applies to every engine that has it
         overrides["*"] = {**overrides.get("*", {}), **given}
-    if args.workers is not None and args.workers < 1:
-        raise InputError(f"workers = {args.workers!r}: must be a whole number of processes ≥ 1")
+    if args.workers is not None:
+        from isorock.analytic.limits import check_workers
+        check_workers("workers", args.workers)
     report = ReportConfig(motions=tuple(args.motion or config.get("motions") or DEFAULT_MOTIONS), engines=engines,
                           quick=args.quick or bool(config.get("quick")),
                           duration=args.duration if args.duration is not None else config.get("duration"),

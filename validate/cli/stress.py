@@ -39,8 +39,8 @@ def cmd_stress(a) -> int:
     start = time.perf_counter()
     if a.drawn is not None and not 0 <= a.drawn <= 100_000:
         raise InputError(f"drawn = {a.drawn!r}: must be a number of cases from 0 to 100000")
-    if not 1 <= a.workers <= 64:
-        raise InputError(f"workers = {a.workers!r}: must be a number of processes from 1 to 64")
+    from isorock.analytic.limits import check_workers
+    check_workers("workers", a.workers)
     from isorock.validate.io.progress import Progress
     results = run_stress(quick=a.quick, engines=a.engines, time_limit=a.time_limit, drawn=a.drawn,
                          workers=a.workers, progress=lambda total: Progress(total, "stress"))

@@ -25,13 +25,13 @@ def add_parser(subparsers) -> None:
 
 
 def run(a) -> int:
-    from isorock.analytic.errors import InputError
     from isorock.analytic.limits import available_cores
 
     from isorock.campaign.run import run_campaign
     from isorock.campaign.spec import load_spec
-    if a.workers is not None and a.workers < 0:
-        raise InputError(f"--workers = {a.workers}: must be 0 (serial) or a positive number of processes")
+    if a.workers is not None:
+        from isorock.analytic.limits import check_workers
+        check_workers("--workers", a.workers, serial=True)
     spec = load_spec(a.spec)
     out = Path(a.out) if a.out else Path(f"sweep-{Path(a.spec).stem}")
     workers = available_cores() if a.workers is None else a.workers

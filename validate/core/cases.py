@@ -152,7 +152,13 @@ def record_factor(record: GroundMotion, scale_by: str, level: float) -> float:
         from isorock.analytic.errors import InputError
         raise InputError(f"motions.scale_by = {scale_by!r}: record {record.name!r} has a "
                          f"{'PGA' if scale_by == 'pga' else 'PGV'} of 0 and cannot be scaled to a level")
-    return level / peak
+    from isorock.analytic.limits import check_acceleration
+    factor = level / peak
+    # a level past any earthquake, or a PGV level that scales a record's PGA past it, before
+    # the compiled kernel sees it (issue 34: it spun on such accelerations)
+    check_acceleration(f"level {level:g} ({scale_by})", record.pga_g * factor, f" (record {record.name!r} "
+                                                                                 "scaled to it)")
+    return factor
 
 
 def build_case(case_id: int, inputs: dict, duration_rule: dict, records: dict | None = None) -> Case:

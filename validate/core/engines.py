@@ -315,6 +315,27 @@ def settings_used(settings, system, duration: float | None = None):
     return settings.for_system(system, duration) if hasattr(settings, "for_system") else settings
 
 
+def check_carries(choice: EngineChoice, systems, duration: float) -> None:
+    """Every bound the engine of `choice` puts on each of `systems` for runs of `duration`
+    s, before any work (one line naming the field otherwise): the isolator it carries, its
+    own (EngineSpec.check_system: MuJoCo's representable masses, PyBullet's mass ratio and
+    control step against the isolator), and the steps its settings take on the
+    fastest-rocking system (analytic/limits.py). What `run` asks of its one system, asked by a
+    campaign of its grid and by `design --check` of every system it may pick."""
+    from isorock.analytic.limits import check_settings
+    systems = list(systems)
+    engine = get_engine(choice.engine)
+    settings = choice.settings()
+    # an engine whose step follows the block (MuJoCo's, PyBullet's) takes the most steps on
+    # the fastest-rocking one: its steps are the bound
+    fastest = max(systems, key=lambda system: system.rocking_rate)
+    check_settings(settings_used(settings, fastest, duration), duration)
+    for system in systems:
+        engine.check_isolator(system)
+        if engine.spec.check_system is not None:
+            engine.check_system(system, settings_used(settings, system, duration))
+
+
 def describe_settings(settings, system=None, duration: float | None = None) -> dict:
     """Every setting a run used, as plain values, with those derived from them (properties,
     e.g. PyBullet's control step); for an engine whose settings follow the system

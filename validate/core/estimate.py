@@ -20,33 +20,39 @@ SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.
 ANNOUNCE_AFTER = 120.0
 
 
-def estimate_s(simulated: dict[str, float], workers: int = 1) -> float:
+def estimate_s(simulated: dict[str, float], workers: int = 1, speeds: dict | None = None) -> float:
     """Wall seconds for `simulated` seconds per engine label (ENGINE or ENGINE:PRESET),
-    the contact engines' runs spread over `workers` processes."""
-    slowest = min(SPEEDS.values())
+    the contact engines' runs spread over `workers` processes; `speeds`: simulated s per wall
+    s per engine for work other than a rocking block (SPEEDS by default)."""
+    speeds = speeds or SPEEDS
+    slowest = min(speeds.values())
     total = 0.0
     for label, seconds in simulated.items():
         engine = label.partition(":")[0]
         share = 1 if engine.startswith("analytic") else max(1, workers)
-        total += seconds / SPEEDS.get(engine, slowest) / share
+        total += seconds / speeds.get(engine, slowest) / share
     return total
 
 
 def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = "validate",
-                  budget_s: float | None = None) -> str | None:
+                  budget_s: float | None = None, speeds: dict | None = None, basis: str | None = None
+                  ) -> str | None:
     """One line for stderr, or None when the work is short; `budget_s`: each run's budget
-    (None: limits.RUN_BUDGET_S)."""
+    (None: limits.RUN_BUDGET_S; 0: its runs have none); `speeds`: as estimate_s takes them,
+    and `basis` what they were measured on (default: SPEEDS', a block rocking throughout)."""
     from isorock.analytic.limits import RUN_BUDGET_S
     budget_s = RUN_BUDGET_S if budget_s is None else budget_s
-    wall = estimate_s(simulated, workers)
+    speeds = speeds or SPEEDS
+    basis = basis or ("with the block rocking throughout; a block that mostly rests runs several times faster, and "
+                      "the progress line's ETA follows the runs")
+    wall = estimate_s(simulated, workers, speeds)
     if wall < ANNOUNCE_AFTER:
         return None
-    slowest = max(simulated, key=lambda k: simulated[k] / SPEEDS.get(k.partition(":")[0], min(SPEEDS.values())))
-    speed = SPEEDS.get(slowest.partition(":")[0], min(SPEEDS.values()))
+    slowest = max(simulated, key=lambda k: simulated[k] / speeds.get(k.partition(":")[0], min(speeds.values())))
+    speed = speeds.get(slowest.partition(":")[0], min(speeds.values()))
     # a bound, said as one: SPEEDS are a block that rocks throughout, and most records leave
     # it resting most of the time (docs/campaigns/fragility-contact.toml: ≈ 23 min said, 92 s
     # taken), so the progress bar's ETA, which follows the runs, is the better guide
     return (f"{command}: about {sum(simulated.values()):.0f} simulated s in all; at most ≈ {wall / 60:.0f} min "
             f"on {workers} worker{'s' if workers != 1 else ''} (mostly {slowest}, ≈ {speed:g} simulated s per wall s "
-            f"with the block rocking throughout; a block that mostly rests runs several times faster, and the "
-            f"progress line's ETA follows the runs); each run stops at its budget of {budget_s:g} s wall time")
+            f"{basis})" + (f"; each run stops at its budget of {budget_s:g} s wall time" if budget_s else ""))

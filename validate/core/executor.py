@@ -210,6 +210,29 @@ QUIET_CLUSTER = {"distributed.admin.tick.interval": "1s", "distributed.admin.sys
                  "distributed.worker.memory.monitor-interval": "1s", "distributed.worker.profile.enabled": False}
 
 
+def quiet_resource_tracker() -> None:
+    """Start multiprocessing's resource tracker (the process that unlinks the semaphores
+    its workers leave) with its stderr on the null device, before any worker process
+    starts: a command stopped by a signal ends its workers at once, and the tracker, which
+    outlives it, printed 'There appear to be N leaked semaphore objects' after the command's
+    one line (issue 34). It still unlinks them; only its warning goes unsaid."""
+    from multiprocessing import resource_tracker
+    try:
+        saved = os.dup(2)
+    except OSError:  # no standard error to keep quiet
+        resource_tracker.ensure_running()
+        return
+    null = os.open(os.devnull, os.O_WRONLY)
+    try:
+        sys.stderr.flush()
+        os.dup2(null, 2)
+        resource_tracker.ensure_running()  # started once per process; its stderr is the fd 2 of now
+    finally:
+        os.dup2(saved, 2)
+        os.close(saved)
+        os.close(null)
+
+
 def local_client(workers: int):
     """A LocalCluster of `workers` single-threaded worker processes (the analytic kernel
     and the contact engines each use one core per process), with QUIET_CLUSTER's
@@ -224,13 +247,19 @@ def local_client(workers: int):
     # → 3.05 s). A campaign's workers hold little memory; glibc's own threshold serves.
     environ = {k: v for k, v in dask.config.get("distributed.nanny.pre-spawn-environ", {}).items()
                if k != "MALLOC_TRIM_THRESHOLD_"}
+    refuse_unrepeatable_main()  # its workers are spawned too
+    quiet_resource_tracker()
     with dask.config.set({**QUIET_CLUSTER, "distributed.nanny.pre-spawn-environ": environ}):
         # the scheduler serves HTTP routes even without a dashboard, on port 8787 unless
         # told otherwise: with another cluster on this machine that printed "Port 8787 is
         # already in use" on stderr. Any free port on this host alone will do.
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                dashboard_address=None, scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
-                               silence_logs=logging.ERROR)
+                               # what its workers would log is for no user: a failed task comes back
+                               # as the task's error, and a worker outliving a stopped command
+                               # (its heartbeat to a scheduler gone) printed its traceback after
+                               # the command's one line (issue 34)
+                               silence_logs=logging.CRITICAL)
         return Client(cluster)
 
 
@@ -280,12 +309,27 @@ def check_scheduler(address: str, timeout: float = GREETING_TIMEOUT) -> None:
         raise refuse(f"it answered {head!r}, not a Dask handshake")
 
 
-def close_client(client) -> None:
-    """Close a client opened here, and its LocalCluster if it started one."""
+#: how long closing a cluster on the way out of a stopped command may take (s): its workers
+#: are told to stop, then killed by their nannies
+CLOSE_TIMEOUT = 5.0
+
+
+def close_client(client, *, stopping: bool = False) -> None:
+    """Close a client opened here, and its LocalCluster if it started one. `stopping`: the
+    command is ending on a signal or an error; Dask's and tornado's shutdown chatter (a
+    worker's heartbeat to a scheduler already gone, a callback of a loop being torn down,
+    each with its traceback) is not for the user, whose one line follows (issue 34)."""
+    import logging
     cluster = getattr(client, "cluster", None)
-    client.close()
-    if cluster is not None:
-        cluster.close()
+    level = logging.root.manager.disable
+    if stopping:
+        logging.disable(logging.CRITICAL)
+    try:
+        client.close(timeout=CLOSE_TIMEOUT)
+        if cluster is not None:
+            cluster.close(timeout=CLOSE_TIMEOUT)
+    finally:
+        logging.disable(level)
 
 
 def client_for(client=None, workers: int = 0, scheduler: str | None = None):
@@ -442,6 +486,28 @@ def exit_if_bootstrapping() -> None:
         os._exit(BOOTSTRAP_EXIT)
 
 
+#: what a worker started by "spawn" could not start, said in one line (both where a worker
+#: dies before its first task and before any is started)
+UNREPEATABLE_MAIN = ("the worker processes for the contact engines could not start{why}: Python could not run this "
+                     "program again in them, as for code read from standard input; run it from a file, or in one "
+                     "process (workers=1, --workers 1; isorock.sweep: workers=0)")
+
+
+def refuse_unrepeatable_main() -> None:
+    """Before any worker is spawned: a worker runs the parent's program again ("spawn"),
+    from its file; a program read from standard input (`python - < script.py`) has none
+    ('<stdin>'), and each worker died printing its FileNotFoundError before the one line
+    said so (issue 34). Code without a file (`python -c`, a notebook) is not run again."""
+    import multiprocessing
+    if multiprocessing.current_process().name != "MainProcess":
+        return
+    main = sys.modules.get("__main__")
+    spec = getattr(main, "__spec__", None)
+    path = getattr(main, "__file__", None)
+    if (spec is None or not spec.name) and path is not None and not os.path.isfile(path):
+        raise InputError(UNREPEATABLE_MAIN.format(why=f" (the program, {path!r}, is not a file)"))
+
+
 def _refuse_if_never_started(worker: "_Worker") -> None:
     """Raise one line for a worker that died before it took its first task: it could not
     start (it stopped at exit_if_bootstrapping, or Python could not run the program again
@@ -454,10 +520,7 @@ def _refuse_if_never_started(worker: "_Worker") -> None:
         raise InputError("the worker processes for the contact engines could not start: this script starts "
                          "them at its top level, and each runs it again; call isorock under "
                          "`if __name__ == \"__main__\":`, or run in one process (workers=1, --workers 1)") from None
-    raise InputError(f"the worker processes for the contact engines could not start (exit code {code}: Python "
-                     "could not run this program again in them, as for code read from standard input, or they "
-                     "could not load their task); run it from a file, or in one process (workers=1, --workers 1)"
-                     ) from None
+    raise InputError(UNREPEATABLE_MAIN.format(why=f" (exit code {code}: or they could not load their task)")) from None
 
 
 #: How often (s) the executor reads its worker processes' CPU clocks under a CPU budget.
@@ -514,7 +577,9 @@ class Executor:
         if processes:
             import multiprocessing as mp
             exit_if_bootstrapping()
+            refuse_unrepeatable_main()
             context = mp.get_context("spawn")
+            quiet_resource_tracker()
             ready_kernel()  # built here once, not inside a task's budget in each worker
             self.workers = [_Worker(context) for _ in range(processes)]
 

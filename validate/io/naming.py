@@ -17,12 +17,13 @@ def _cycles(n: float) -> str:
     return f"{_g(n)} cycle" if n == 1 else f"{_g(n)} cycles"
 
 
-def describe_motion(motion) -> str:
+def describe_motion(motion, shown: float | None = None) -> str:
     """What a GroundMotion is, in words. Pulses: their kind, amplitude (in g, the scale
     applied), frequency and cycles ("one-sine pulse 0.6 g, 1.3 Hz" for one cycle,
     "sine pulse 0.6 g, 1.3 Hz, 2 cycles" for more); a Ricker wavelet has no cycles.
-    Records: the name they were read under, their PGA and length. No motion: free
-    rocking."""
+    Records: the name they were read under, their PGA and length, and, where a figure
+    shows only its first `shown` seconds, that (a 150 s record run for 40 s was titled
+    '150 s' above 40 s of data). No motion: free rocking."""
     if motion is None or motion.is_zero:
         return "no ground motion (free rocking)"
     pulse = motion.pulse
@@ -36,7 +37,8 @@ def describe_motion(motion) -> str:
             return f"one-{kind} pulse {head}"
         return f"{kind} pulse {head}, {_cycles(pulse.cycles)}"
     name = motion.name or "record"
-    return f"{name} (PGA {motion.pga_g:.2f} g, {motion.end_time:.3g} s)"
+    cut = f"; its first {shown:.3g} s shown" if shown is not None and shown < motion.end_time else ""
+    return f"{name} (PGA {motion.pga_g:.2f} g, {motion.end_time:.3g} s{cut})"
 
 
 def describe_system(system) -> str:

@@ -26,6 +26,7 @@ import signal
 import stat
 import sys
 import tempfile
+import time
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -98,6 +99,10 @@ def raise_for_signal(signum: int):
     raise Terminated(signum)
 
 
+#: how often a signal whose exception was swallowed is sent again until it is raised (s)
+RESEND_EVERY = 0.001
+
+
 @contextmanager
 def signals_end_cleanly():
     """While active, SIGTERM and SIGHUP raise Terminated and SIGINT KeyboardInterrupt in
@@ -105,8 +110,16 @@ def signals_end_cleanly():
     (signal_received) so that it still ends the command if the exception is lost on the
     way. A process forked from it (stress runs cases in children) dies of the signal as
     usual (SIGINT: KeyboardInterrupt, as Python's default) instead of unwinding its
-    parent's stack. It yields `settle`: called, signals are recorded and no longer raise."""
+    parent's stack. It yields `settle`: called, signals are recorded and no longer raise.
+
+    Raised where Python can only print it and swallow it ("Exception ignored in", with a
+    traceback: inside a garbage-collector callback, as Dask's scheduler installs one, or a
+    finalizer), the signal's exception is not printed (the unraisable hook below) and the
+    signal is sent again to the main thread until its handler raises where it can end the
+    command (issue 34)."""
+    import threading
     owner = os.getpid()
+    pending: list[int] = []  # a signal whose exception was swallowed, to be raised again
 
     def handler(signum, frame):
         if os.getpid() != owner:
@@ -117,8 +130,10 @@ def signals_end_cleanly():
             return
         if not _received:
             _received.append(signum)
-        if not settled:
-            raise_for_signal(signum)
+        if settled or _within(frame, unraisable.__code__):
+            return  # recorded; raised inside the hook it would be printed (it is sent again)
+        pending.clear()
+        raise_for_signal(signum)
 
     settled = False
 
@@ -128,8 +143,24 @@ def signals_end_cleanly():
         nonlocal settled
         settled = True
 
+    def resend():
+        main = threading.main_thread().ident
+        while pending and not settled:
+            time.sleep(RESEND_EVERY)
+            if pending and not settled:
+                signal.pthread_kill(main, pending[0])  # to the main thread: its blocking wait ends too
+
+    def unraisable(report):
+        if isinstance(report.exc_value, (Terminated, KeyboardInterrupt)) and _received and os.getpid() == owner:
+            if not settled and not pending:
+                pending.append(_received[0])
+                threading.Thread(target=resend, daemon=True, name="isorock-resend-signal").start()
+            return
+        hook(report)
+
     _received.clear()  # a record belongs to one command
     previous = {}
+    hook, sys.unraisablehook = sys.unraisablehook, unraisable
     try:
         for s in (*TERMINATING_SIGNALS, signal.SIGINT):
             previous[s] = signal.signal(s, handler)
@@ -140,6 +171,17 @@ def signals_end_cleanly():
     finally:
         for s, h in previous.items():
             signal.signal(s, h)
+        sys.unraisablehook = hook
+        pending.clear()
+
+
+def _within(frame, code) -> bool:
+    """Is `frame`, or any frame that called it, running `code`?"""
+    while frame is not None:
+        if frame.f_code is code:
+            return True
+        frame = frame.f_back
+    return False
 
 
 @contextmanager

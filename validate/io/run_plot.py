@@ -106,7 +106,7 @@ def runs_figure(runs: dict, motion) -> Figure:
     engines = ", ".join(_name(k, runs[k]) for k in labels)
     what = "rocking response" if not several else "rocking response of each engine and its difference"
     import textwrap
-    title = textwrap.fill(f"{describe_motion(motion)}: {what} ({engines})", 110)
+    title = textwrap.fill(f"{describe_motion(motion, shown=t_end)}: {what} ({engines})", 110)
     fig.suptitle(f"{title}\n{textwrap.fill(describe_system(ref.system), 110)}", fontsize=10)
     FigureCanvasAgg(fig)
     fig.tight_layout()

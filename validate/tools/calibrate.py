@@ -256,7 +256,7 @@ class _TooSlow(Exception):
 
 
 def lift_off_limit(engine_name: str) -> float:
-    """m: the engine's tolerance on the lift-off after an impact (validate/tolerances.py),
+    """m: the engine's tolerance on the lift-off after an impact (validate/core/tolerances.py),
     or LIFT_OFF where it has none."""
     from isorock.validate.core.tolerances import has_tolerance, tolerance
     if has_tolerance(engine_name, "lift_off_after_impact"):

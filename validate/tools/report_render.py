@@ -307,7 +307,7 @@ def _blocks(results: Results, images: dict) -> list:
                    "inside the limit, as a share of it; negative: outside). Skipped: the analytic history is "
                    "chaotic there (θmax/α moves a lot under ±1% of PGA), so the ensemble judges it. Not exercised: "
                    "no engine lifted the block, so nothing about contact was tested; counted apart, never passed. "
-                   "Every tolerance and its reason is in the folded table at the end (and in isorock's validate/tolerances.py)."))
+                   "Every tolerance and its reason is in the folded table at the end (and in isorock's validate/core/tolerances.py)."))
     B.append(("h2", "Where the engines part from the analytic model"))
     for sc, key in zip(results.scenarios, images["histories"]):
         B.append(("img", key, f"{sc.name}: ground acceleration, θ/α of every engine, each engine − analytic, "
