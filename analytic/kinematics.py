@@ -31,7 +31,8 @@ def tilted_centroid(system: System, theta: float) -> tuple[float, float]:
 #: How far (in units of the block's R) a statue that may slide (System.friction) can walk on
 #: its base before it reaches the edge of a contact engine's plate, beyond the room every
 #: plate leaves for a block that falls: the exact model's base has no edge. Random pulses
-#: slid up to 26·b (the 95th percentile 5·b, docs/sliding_engines.md); 100·R is some 200·b.
+#: slid up to 32·b (the 95th percentile 10·b, docs/sliding_engines.md); 100·R is at least 141·b
+#: (R ≥ √2·b for λ ≥ 1). A statue that walks farther is flagged (validate.core.measure).
 SLIDE_ROOM = 100.0
 
 
@@ -39,6 +40,13 @@ def slide_room(system: System) -> float:
     """Half-width (m) a contact engine's plate adds for a statue that may slide: SLIDE_ROOM·R
     with friction, 0 without (that plate, and every history on it, as before)."""
     return 0.0 if system.friction is None else SLIDE_ROOM * system.R
+
+
+def plate_edge(system: System) -> float:
+    """How far (m) a statue's slide x may go before its footprint passes the edge of a contact
+    engine's plate: every engine's plate reaches b + H + slide_room from its middle (MuJoCo's
+    0.1 m more), and the footprint b beyond x."""
+    return system.height + slide_room(system)
 
 
 # --- rotations ------------------------------------------------------------------------
@@ -189,5 +197,6 @@ class Throttle:
             self.last = now
 
 
-__all__ = ["tilted_centroid", "tilts_from_quaternion", "pivot_slip", "pivot_slip_rate", "slide_history", "slide_room", "lift_off",
+__all__ = ["tilted_centroid", "tilts_from_quaternion", "pivot_slip", "pivot_slip_rate", "slide_history", "slide_room", "plate_edge",
+           "lift_off",
            "contact_extras", "first_stop", "Throttle", "LYING"]

@@ -12,7 +12,8 @@
   shares (`isorock.analytic.overturning.judge_overturning`);
 - sliding: a statue with friction (System.friction) slides as part of the model, and its
   slide (RawHistory.slide) is handed on to be compared; without friction the model assumes
-  no slip, and a block that slid more than SLIDING_FRACTION·b is flagged (Status.SLID).
+  no slip, and a block that slid more than SLIDING_FRACTION·b is flagged (Status.SLID), as is
+  a statue that walked off the engine's plate (kinematics.plate_edge).
 """
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ import numpy as np
 
 from isorock.analytic.coefficients import beta as beta_closed_form
 from isorock.analytic.hybrid import map_to_impact
-from isorock.analytic.kinematics import LYING, LYING_SLACK
+from isorock.analytic.kinematics import LYING, LYING_SLACK, plate_edge
 from isorock.analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.status import Status
@@ -88,6 +89,11 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
         message = (f"the block slid {slip * 1000:.3g} mm at its pivot (more than {SLIDING_FRACTION:g}·b): the "
                    f"analytic model assumes no sliding (friction above b/h = {1 / system.slenderness:.3g} is needed)"
                    + (f"; it also {message}" if overturned else ""))
+    walked = float(np.max(np.abs(raw.slide))) if raw.slide is not None and raw.slide.size else 0.0
+    if walked > plate_edge(system) and not status.is_failure:  # the model's base has no edge
+        status = Status.SLID
+        message = (f"the statue slid {walked:.3g} m, off the engine's plate (its edge {plate_edge(system):.3g} m "
+                   "from the middle): the model's base has no edge, and the history past it is not the model's")
     # a non-linear isolator's map to θ = 0 holds its element's phase, read from the row (the
     # bearing's from its slider, extras["isolator_slider"]: without it, no β); a kind whose
     # phase the rows do not tell (analytic.isolator_map.MAPPED) gets no β
