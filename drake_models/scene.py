@@ -98,6 +98,18 @@ CHUNK = 0.25
 #: record's own samples are knots, so a record is reproduced exactly; a pulse's
 #: curvature error at this spacing is below 1e-5 of its amplitude.
 FORCE_KNOT = 5e-4
+#: A statue with friction (System.friction): the continuous plant's stiction tolerance v_s (its
+#: regularised Stribeck friction reaches μ_s at slip speed v_s and μ_k at 3·v_s, and a stuck
+#: contact creeps below v_s) in units of the block's R·p (Settings.stiction_tolerance follows
+#: it), so that every size meets the same friction law. Drake's own 1e-4 m/s, fixed in m/s, is
+#: 5e-5·R·p on a 1 m block and 1.6e-5·R·p on a 10 m one: stiffer than Radau3 at accuracy 1e-4
+#: follows, it parted from the exact model on 6 of 16 random cases at 10 m (slides 0.15–1.3·b
+#: off, docs/sliding_engines.md) and cost 2–10× the time; 3e-4·R·p brought four of them within
+#: 0.006·b, 2–10× faster, and its creep, below v_s/p = 3e-4·R per 1/p of sticking, is far below
+#: the 0.01·b a slide is read from (1e-4·R·p did as well on the cases, worse on the tests'
+#: twins). Without friction the plant keeps Drake's default, as before.
+STICTION_SHARE = 3e-4
+_PAPER = paper_system()
 
 
 @dataclass(frozen=True)
@@ -120,6 +132,9 @@ class Settings:
     corner_radius: radius (m) of the corner spheres, below b/10.
     sample_interval: the history's sample spacing (s); a multiple of timestep on a
         discrete plant.
+    stiction_tolerance: the continuous plant's stiction tolerance (m/s: below it a stuck contact
+        creeps, Stribeck's regularisation) for a statue with friction (System.friction); without
+        friction the plant keeps Drake's default, as always (STICTION_SHARE).
     follow_system: True: `for_system` puts every contact quantity in the block's own
         units (the values above are those measured on the paper's block); an explicit
         contact setting given to `settings_for` (every command's path) sets it False.
@@ -137,6 +152,8 @@ class Settings:
     friction: float = 1.0
     corner_radius: float = CORNER_RADIUS
     sample_interval: float = 1e-3
+    #: m/s on the paper's block (∝ R·p with follow_system): STICTION_SHARE·R·p
+    stiction_tolerance: float = STICTION_SHARE * _PAPER.R * _PAPER.p
     follow_system: bool = True
 
     def for_system(self, system: System, duration: float | None = None) -> "Settings":
@@ -144,7 +161,7 @@ class Settings:
         units, as measured on the paper's block (docs/drake.md, "Every size"): lengths ∝ R
         (the corner spheres), forces ∝ the block's weight (stiffness ∝ m·g/R, the
         hydroelastic modulus ∝ m·g/R²), velocities ∝ R·p (Hunt–Crossley's dissipation, s/m,
-        ∝ 1/(R·p)), times ∝ 1/p (a discrete step, SAP's relaxation time, the sample
+        ∝ 1/(R·p); the stiction tolerance ∝ R·p), times ∝ 1/p (a discrete step, SAP's relaxation time, the sample
         spacing, at most 0.01 s). The result is final (follow_system False); `duration`
         is not needed (a continuous plant ends on it)."""
         if not self.follow_system:
@@ -158,6 +175,7 @@ class Settings:
         return replace(self, stiffness=self.stiffness * weight / length, dissipation=self.dissipation * slow / length,
                        corner_radius=self.corner_radius * length, timestep=step, sample_interval=sample,
                        relaxation_time=self.relaxation_time * slow,
+                       stiction_tolerance=self.stiction_tolerance * length / slow,
                        hydroelastic_modulus=self.hydroelastic_modulus * weight / length ** 2, follow_system=False)
 
     def __post_init__(self):
@@ -175,6 +193,7 @@ class Settings:
         acc = require_positive_finite("accuracy", self.accuracy)
         require(acc < 1, "accuracy", self.accuracy, "below 1 (a relative accuracy)")
         for name in ("stiffness", "dissipation", "relaxation_time", "hydroelastic_modulus", "friction",
+                     "stiction_tolerance",
                      "corner_radius"):
             object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
         object.__setattr__(self, "accuracy", acc)
@@ -451,6 +470,8 @@ class _Built:
                                 else pd.ContactModel.kPoint)
         pd.Parser(plant).AddModelsFromString(scene_text(system, settings), "sdf")
         plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -system.gravity])
+        if system.friction is not None and settings.continuous:
+            plant.set_stiction_tolerance(settings.stiction_tolerance)
         plant.Finalize()
         self.plant = plant
         self.nq, self.nv = plant.num_positions(), plant.num_velocities()
