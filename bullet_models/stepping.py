@@ -24,7 +24,7 @@ from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator, isolator_parts
-from isorock.analytic.slide_physics import needs_contact_model
+from isorock.analytic.rest_phase import stepped_throughout
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
@@ -94,7 +94,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         side_prev = 0.0  # sin θ (≈ R₀₂) one step back
         a_set, gz_set = 0.0, -g  # build() set gravity (0, 0, −g)
         checked = 0  # rows already looked at by the stop rules
-        why = _stepped_throughout(system, motion)
+        why = stepped_throughout(system, motion)
         rest = None if why is not None else _rest(system, settings, theta0, xg, dt, lead)
         if element is not None:
             element.start(c, base, settings.substeps)
@@ -218,18 +218,6 @@ class Element:
             self.u_p = u - side * self.parts.yield_displacement
             q = side * f_s
         return q
-
-
-def _stepped_throughout(system, motion) -> str | None:
-    """Why a run is stepped throughout, whatever Settings.phased asks (None: it is not). A
-    non-linear isolator: the rest phase's map is the linear isolator's. A statue that may slide,
-    or a vertical motion: the rest phase holds the block on its base below the horizontal uplift
-    threshold (g·tanα), while friction lets it slide below that and the heave moves both."""
-    if system.isolator_kind != LINEAR:
-        return "non-linear isolator"
-    if needs_contact_model(system, motion):
-        return "a statue that may slide" if motion.vertical is None else "a vertical motion"
-    return None
 
 
 def _rest(system, settings, theta0, xg, dt, lead):

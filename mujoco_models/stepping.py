@@ -35,7 +35,7 @@ from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.errors import require
 from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator
 from isorock.analytic.limits import RunBudget
-from isorock.analytic.slide_physics import needs_contact_model
+from isorock.analytic.rest_phase import stepped_throughout
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
@@ -73,7 +73,7 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
 def _run(model, system, motion, settings, duration, theta0, progress, chunk_steps, warnings) -> RawHistory:
     """One run; MuJoCo's warnings arrive in the list `warnings` (the caller's handler)."""
     start = time.perf_counter()
-    if settings.phased and _stepped_throughout(system, motion) is not None:
+    if settings.phased and stepped_throughout(system, motion) is not None:  # why: there
         settings = replace(settings, phased=False)
     lay = Layout(model, system, settings.joint)
     dt = model.opt.timestep
@@ -104,7 +104,7 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     raw = raw_history(lay, system, motion, states, dt, runtime, status, message, stop_reason, t=states[:, 0])
     # the numbers this run used (Settings.for_system may have made them finer than asked)
     raw.extras.update(timestep=float(dt), solref_0=float(settings.solref[0]), solref_1=float(settings.solref[1]))
-    why = _stepped_throughout(system, motion)
+    why = stepped_throughout(system, motion)
     if why is not None:  # how the run was stepped, when not as Settings.phased asks
         raw.extras.update(stepping=f"throughout at the timestep (no rest phase, no coarse steps: {why})")
     if lay.slider_q is not None:  # the bearing's slider position u_p per row, as the analytic run's
@@ -135,20 +135,6 @@ def _scene(system: System, settings: Settings) -> mujoco.MjModel:
     costs ~9 ms, a tenth of a 40 s record's run): private to this module, which never
     changes a model it steps (the coarse step is stepped on a copy, phases.Flight)."""
     return build_model(system, settings)
-
-
-def _stepped_throughout(system: System, motion: GroundMotion) -> str | None:
-    """Why a run is stepped throughout at the timestep, whatever Settings.phased asks (None: it
-    is not). A non-linear isolator: the rest phase's map is the linear isolator's, and a coarse
-    step would soften the dry friction, whose time constant is 2 timesteps (scene.py). A statue
-    that may slide, or a vertical motion: the rest phase holds the block on its base and its
-    threshold is the horizontal uplift's (g·tanα), while friction lets it slide below that and
-    the heave moves both; a coarse step would double the friction cone's creep time."""
-    if system.isolator_kind != LINEAR:
-        return "non-linear isolator"
-    if needs_contact_model(system, motion):
-        return "a statue that may slide" if motion.vertical is None else "a vertical motion"
-    return None
 
 
 def _inputs(given: Settings, system: System, motion, duration, theta0):
