@@ -197,6 +197,5 @@ class Throttle:
             self.last = now
 
 
-__all__ = ["tilted_centroid", "tilts_from_quaternion", "pivot_slip", "pivot_slip_rate", "slide_history", "slide_room", "plate_edge",
-           "lift_off",
-           "contact_extras", "first_stop", "Throttle", "LYING"]
+__all__ = ["tilted_centroid", "tilts_from_quaternion", "pivot_slip", "pivot_slip_rate", "slide_history",
+           "slide_room", "plate_edge", "lift_off", "contact_extras", "first_stop", "Throttle", "LYING"]

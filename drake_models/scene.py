@@ -106,8 +106,8 @@ FORCE_KNOT = 5e-4
 #: follows, it parted from the exact model on 6 of 16 random cases at 10 m (slides 0.15–1.3·b
 #: off, docs/sliding_engines.md) and cost 2–10× the time; 3e-4·R·p brought four of them within
 #: 0.006·b, 2–10× faster, and its creep, below v_s/p = 3e-4·R per 1/p of sticking, is far below
-#: the 0.01·b a slide is read from (1e-4·R·p did as well on the cases, worse on the tests'
-#: twins). Without friction the plant keeps Drake's default, as before.
+#: the 0.01·b a slide is read from (1e-4·R·p did as well on the cases). Without friction the
+#: plant keeps Drake's default, as before.
 STICTION_SHARE = 3e-4
 _PAPER = paper_system()
 
@@ -161,8 +161,8 @@ class Settings:
         units, as measured on the paper's block (docs/drake.md, "Every size"): lengths ∝ R
         (the corner spheres), forces ∝ the block's weight (stiffness ∝ m·g/R, the
         hydroelastic modulus ∝ m·g/R²), velocities ∝ R·p (Hunt–Crossley's dissipation, s/m,
-        ∝ 1/(R·p); the stiction tolerance ∝ R·p), times ∝ 1/p (a discrete step, SAP's relaxation time, the sample
-        spacing, at most 0.01 s). The result is final (follow_system False); `duration`
+        ∝ 1/(R·p); the stiction tolerance ∝ R·p), times ∝ 1/p (a discrete step, SAP's
+        relaxation time, the sample spacing, at most 0.01 s). The result is final (follow_system False); `duration`
         is not needed (a continuous plant ends on it)."""
         if not self.follow_system:
             return self
@@ -193,8 +193,7 @@ class Settings:
         acc = require_positive_finite("accuracy", self.accuracy)
         require(acc < 1, "accuracy", self.accuracy, "below 1 (a relative accuracy)")
         for name in ("stiffness", "dissipation", "relaxation_time", "hydroelastic_modulus", "friction",
-                     "stiction_tolerance",
-                     "corner_radius"):
+                     "stiction_tolerance", "corner_radius"):
             object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
         object.__setattr__(self, "accuracy", acc)
         si = require_positive_finite("sample_interval", self.sample_interval)

@@ -147,13 +147,17 @@ def rows_for(engine_name: str, n: int, show_rows: bool, standing: bool = False, 
             out.append(row)
             if show_rows:
                 print(f"  case {i:3d} {row['base']:6s} H {size:4g} {'v' if row['vertical'] else ' '} "
-                      f"{'robust ' if steady else 'chaotic'} μ/tanα {system.friction / (system.b / system.h):.2f} "
+                      f"{'robust ' if steady else 'chaotic'} μ/tanα {row['mu_tan']:.2f} "
                       f"slip speed {ref['speed']:.2f}·√(gR) exact slide_max {ref['slide_max']:.3f}b "
-                      f"final {ref['slide_final']:+.3f}b onset {ref['onset'] if ref['onset'] is None else round(ref['onset'], 3)} "
+                      f"final {ref['slide_final']:+.3f}b onset {rounded(ref['onset'])} "
                       f"θ {ref['theta']:.3f} over {ref['over']} | {engine_name} {got['slide_max']:.3f}b "
-                      f"{got['slide_final']:+.3f}b onset {got['onset'] if got['onset'] is None else round(got['onset'], 3)} "
+                      f"{got['slide_final']:+.3f}b onset {rounded(got['onset'])} "
                       f"θ {got['theta']:.3f} over {got['over']} {got['status']} [{wall:.1f} s]", flush=True)
     return out
+
+
+def rounded(x):
+    return x if x is None else round(x, 3)
 
 
 def stats(values) -> str:
@@ -212,7 +216,8 @@ def report(engine_name: str, rows: list) -> None:
             print(f"    onset       |Δ|·p   {stats(r['d_onset'] for r in sel)}")
             print(f"    θmax/α      |Δ|     {stats(r['d_theta'] for r in sel)}")
             worst = max(sel, key=lambda r: (r["d_max"] if math.isfinite(r["d_max"]) else math.inf))
-            print(f"    worst slide_max: case {worst['case']} ({worst['base']}{', vertical' if worst['vertical'] else ''}): "
+            vertical = ", vertical" if worst["vertical"] else ""
+            print(f"    worst slide_max: case {worst['case']} ({worst['base']}{vertical}): "
                   f"exact {worst['ref']['slide_max']:.4g}b, {engine_name} {worst['got']['slide_max']:.4g}b, "
                   f"θmax/α {worst['ref']['theta']:.3g} / {worst['got']['theta']:.3g}")
 
@@ -234,7 +239,8 @@ def tilt(engines) -> None:
                 n = int(round(length / 0.01))
                 push = GroundMotion.from_array(np.r_[np.zeros(10), np.full(n + 1, (system.friction + 0.5) * G), 0.0],
                                                dt=0.01)
-                tr = engine.simulate(system, push, duration=0.1 + length + 2 * v * math.sqrt(system.R / G) / system.friction)
+                stop = v * math.sqrt(system.R / G) / system.friction  # the slip's time to stop at μ·g
+                tr = engine.simulate(system, push, duration=0.1 + length + 2 * stop)
                 print(f"| {name} | {ratio:g} | {v:g} | {tr.theta_max_over_alpha:.3g} | {tr.status} |", flush=True)
 
 
