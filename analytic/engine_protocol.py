@@ -50,7 +50,10 @@ class Capabilities:
     enough for grids of thousands of runs (bench and stress run it unless told otherwise);
     isolators: the isolator kinds it carries (System.isolator_kind; every engine the
     linear one, both analytic paths every kind: docs/isolators.md). Any other is
-    refused with one line, never run as linear."""
+    refused with one line, never run as linear. kinetic_friction: it carries a statue whose
+    kinetic friction is below its static one (System.kinetic_friction < friction); an engine
+    with one friction coefficient refuses such a System with one line (check_friction),
+    never runs it at either coefficient."""
 
     isolated_base: bool = True
     past_alpha: bool = True
@@ -58,6 +61,7 @@ class Capabilities:
     exact_impacts: bool = False
     campaigns: bool = True
     isolators: tuple[str, ...] = ("linear",)
+    kinetic_friction: bool = True
 
 
 @dataclass(frozen=True)
@@ -151,8 +155,8 @@ FREE_DURATION = 10.0
 
 def run_inputs(system: "System", motion: "GroundMotion | None", duration: float | None, theta0: float,
                impact_threshold: float, *, theta_dot0: float = 0.0, u0: float = 0.0,
-               u_dot0: float = 0.0, settings=None,
-               isolators: tuple[str, ...] = ("linear",)) -> tuple[GroundMotion, float]:
+               u_dot0: float = 0.0, settings=None, isolators: tuple[str, ...] = ("linear",),
+               kinetic_friction: bool = True) -> tuple[GroundMotion, float]:
     """What every engine's `simulate` takes, checked in one place so that all engines
     accept and refuse the same inputs with the same messages: (motion, duration) after the
     shared checks: `none` motion is zero ground
@@ -161,13 +165,16 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     bounds of analytic.limits: the motion's peak acceleration, the duration, the isolator periods it spans and, when the
     engine's `settings` are given, the steps they imply. `isolators`: the isolator kinds the
     calling engine carries (Capabilities.isolators): a System on another is refused, so
-    that no engine runs a friction pendulum or a bilinear bearing as a linear spring."""
+    that no engine runs a friction pendulum or a bilinear bearing as a linear spring;
+    `kinetic_friction` (Capabilities.kinetic_friction) False: a statue whose kinetic friction
+    is below its static one is refused too (check_friction)."""
     from .errors import InputError, require, require_positive_finite
     from .limits import check_acceleration, check_duration, check_isolator, check_settings
     from .motion import GroundMotion
     from .system import System
     require(isinstance(system, System), "system", system, "a System")
     check_isolator_kind(system, isolators)
+    check_friction(system, kinetic_friction)
     motion = motion or GroundMotion.zero()
     check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
     given = duration is not None
@@ -202,4 +209,23 @@ def check_isolator_kind(system: "System", isolators: tuple[str, ...], engine: st
                          f"{kind} one (engine 'analytic-reference' carries it; docs/isolators.md)")
 
 
-__all__ = ["check_isolator_kind", "DEFAULT_IMPACT_THRESHOLD", "EngineSpec", "Capabilities", "Simulate", "Tuning", "run_inputs", "TAIL_AFTER_MOTION", "FREE_DURATION"]
+def check_friction(system: "System", kinetic_friction: bool, engine: str = "this engine") -> None:
+    """One line refusing a statue whose kinetic friction is below its static one, for an engine
+    with one friction coefficient (Capabilities.kinetic_friction False: MuJoCo's and PyBullet's
+    contacts; Drake's discrete plant): run at μ_s it would slide too far, at μ_k start too early."""
+    from .errors import InputError
+    if kinetic_friction or system.friction is None or system.kinetic_friction == system.friction:
+        return
+    raise InputError(f"kinetic_friction = {system.kinetic_friction!r}: {engine} has one friction coefficient, "
+                     f"it cannot carry a kinetic one below friction = {system.friction!r} (the analytic engines and "
+                     "Drake's continuous plant carry both; or give kinetic_friction equal to friction)")
+
+
+def contact_friction(system: "System", own: float) -> float:
+    """The friction coefficient of a contact engine's block–base contact: the statue's
+    (System.friction, its static one) when it has one, else the engine's own setting, which
+    keeps a statue that cannot slip from slipping (docs/sliding_engines.md)."""
+    return own if system.friction is None else system.friction
+
+
+__all__ = ["check_friction", "check_isolator_kind", "contact_friction", "DEFAULT_IMPACT_THRESHOLD", "EngineSpec", "Capabilities", "Simulate", "Tuning", "run_inputs", "TAIL_AFTER_MOTION", "FREE_DURATION"]

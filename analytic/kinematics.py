@@ -28,6 +28,27 @@ def tilted_centroid(system: System, theta: float) -> tuple[float, float]:
             h * math.cos(theta) + s * b * math.sin(theta))
 
 
+#: How far (in units of the block's R) a statue that may slide (System.friction) can walk on
+#: its base before it reaches the edge of a contact engine's plate, beyond the room every
+#: plate leaves for a block that falls: the exact model's base has no edge. Random pulses
+#: slid up to 32·b (the 95th percentile 10·b, docs/sliding_engines.md); 100·R is at least 141·b
+#: (R ≥ √2·b for λ ≥ 1). A statue that walks farther is flagged (validate.core.measure).
+SLIDE_ROOM = 100.0
+
+
+def slide_room(system: System) -> float:
+    """Half-width (m) a contact engine's plate adds for a statue that may slide: SLIDE_ROOM·R
+    with friction, 0 without (that plate, and every history on it, as before)."""
+    return 0.0 if system.friction is None else SLIDE_ROOM * system.R
+
+
+def plate_edge(system: System) -> float:
+    """How far (m) a statue's slide x may go before its footprint passes the edge of a contact
+    engine's plate: every engine's plate reaches b + H + slide_room from its middle (MuJoCo's
+    0.1 m more), and the footprint b beyond x."""
+    return system.height + slide_room(system)
+
+
 # --- rotations ------------------------------------------------------------------------
 
 def tilts_from_quaternion(w, x, y, z):
@@ -55,6 +76,31 @@ def pivot_slip(system: System, x_centroid, theta, u):
     s = np.where(theta >= 0, 1.0, -1.0)
     b, h = system.b, system.h
     return np.asarray(x_centroid) + s * b * np.cos(theta) - h * np.sin(theta) - np.asarray(u) - s * b
+
+
+def pivot_slip_rate(system: System, x_centroid_dot, theta, theta_dot, u_dot):
+    """d/dt of pivot_slip (m/s) from the body's velocities: the pivot corner's horizontal
+    velocity relative to the base, ẋ_c − θ̇·(s·b·sinθ + h·cosθ) − u̇. Continuous through θ = 0,
+    where both bottom corners move alike."""
+    theta = np.asarray(theta, dtype=float)
+    s = np.where(theta >= 0, 1.0, -1.0)
+    b, h = system.b, system.h
+    return (np.asarray(x_centroid_dot) - np.asarray(theta_dot) * (s * b * np.sin(theta) + h * np.cos(theta))
+            - np.asarray(u_dot))
+
+
+def slide_history(system: System, motion, *, x_centroid, x_centroid_dot, theta, theta_dot, u, u_dot):
+    """(slide, slide_dot) of a contact engine's history: the block's slide x on its base (m) of
+    analytic.slide_physics (the middle of its bottom face at θ = 0, carried through rocking as
+    x = x_c − s·b: pivot_slip, row by row) and its rate (m/s, pivot_slip_rate, from the body's
+    velocities), where the run needs the model of a contact that may slip
+    (slide_physics.needs_contact_model: a statue with friction, or a vertical motion);
+    (None, None) otherwise, so that a history of the no-slip model carries nothing new."""
+    from .slide_physics import needs_contact_model
+    if not needs_contact_model(system, motion):
+        return None, None
+    return (pivot_slip(system, x_centroid, theta, u),
+            pivot_slip_rate(system, x_centroid_dot, theta, theta_dot, u_dot))
 
 
 def lift_off(system: System, z_centroid, theta):
@@ -151,5 +197,5 @@ class Throttle:
             self.last = now
 
 
-__all__ = ["tilted_centroid", "tilts_from_quaternion", "pivot_slip", "lift_off", "contact_extras",
-           "first_stop", "Throttle", "LYING"]
+__all__ = ["tilted_centroid", "tilts_from_quaternion", "pivot_slip", "pivot_slip_rate", "slide_history",
+           "slide_room", "plate_edge", "lift_off", "contact_extras", "first_stop", "Throttle", "LYING"]

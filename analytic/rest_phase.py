@@ -17,6 +17,9 @@ from __future__ import annotations
 import numpy as np
 from scipy.signal import lfilter
 
+from .slide_physics import needs_contact_model
+from .system import LINEAR
+
 #: The contact scene takes over LEAD_TIME (s) before the base's absolute acceleration first
 #: reaches F_HIGH of the uplift threshold: the block's compliant rest tilts by a contact
 #: time constant's worth before it lifts, and a record's acceleration can jump within a
@@ -37,6 +40,22 @@ SETTLE_TIME = 0.1
 REST_TILT = 1e-4
 REST_RATE = 1e-4
 REST_SPEED = 1e-4
+
+
+def stepped_throughout(system, motion) -> str | None:
+    """Why a contact engine's run takes no rest phase (and MuJoCo no coarse step away from
+    impacts), whatever its Settings.phased asks, in the words its extras["stepping"] says it
+    with; None: it may. A non-linear isolator: the rest phase's map is the linear isolator's (and
+    a coarse step would soften MuJoCo's dry friction, whose time constant is 2 timesteps). A
+    statue that may slide, or a vertical motion: the rest phase holds the block on its base until
+    the base nears the horizontal uplift threshold g·tanα, while friction lets it slide below
+    that (at μ·g) and the heave moves it at any acceleration; the coarse steps were measured on
+    a block that cannot slide (docs/mujoco.md)."""
+    if system.isolator_kind != LINEAR:
+        return "non-linear isolator"
+    if needs_contact_model(system, motion):
+        return "a statue that may slide" if motion.vertical is None else "a vertical motion"
+    return None
 
 
 def takeover(acceleration, threshold: float, lead: int, start: int = 0) -> int | None:
@@ -118,5 +137,5 @@ def linear_steps(a: np.ndarray, b: np.ndarray, x0: np.ndarray, f: np.ndarray) ->
     return out
 
 
-__all__ = ["F_HIGH", "LEAD_TIME", "F_LOW", "SETTLE_TIME", "REST_TILT", "REST_RATE", "REST_SPEED", "takeover",
-           "first_hot", "rest_states", "linear_steps", "BLOCK"]
+__all__ = ["F_HIGH", "LEAD_TIME", "F_LOW", "SETTLE_TIME", "REST_TILT", "REST_RATE", "REST_SPEED", "stepped_throughout",
+           "takeover", "first_hot", "rest_states", "linear_steps", "BLOCK"]

@@ -98,7 +98,10 @@ class RawHistory:
     `isorock.analytic.kinematics.contact_extras`). Impacts, effective β, uplifts and
     overturning are measured from it outside the engine, the same way for every engine
     (`isorock.validate.core.measure.measure`). `stop_reason` says why the history ends
-    early, if it does ('non-finite', 'lying', 'falling'; see kinematics.first_stop)."""
+    early, if it does ('non-finite', 'lying', 'falling'; see kinematics.first_stop).
+    `slide`, `slide_dot`: the block's slide x on its base (m) and ẋ (m/s), as the Trajectory's,
+    where the run needs the model of a contact that may slip (kinematics.slide_history),
+    else None."""
 
     engine: str
     system: System
@@ -112,6 +115,8 @@ class RawHistory:
     runtime_s: float = 0.0
     extras: dict = field(default_factory=dict)
     stop_reason: str | None = None
+    slide: np.ndarray | None = None
+    slide_dot: np.ndarray | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -225,12 +230,15 @@ class Trajectory:
 
     def slide_summary(self) -> dict:
         """The slide's metrics (m, s): how far the statue walked on its base at most and at the
-        end, and when it first slipped (None: never)."""
+        end, and when it first slid (slide_onset: the first time |x| passes SLIDING_FRACTION·b,
+        None: never, read off the samples: a contact engine's ẋ is never exactly 0, its contact
+        creeps. An engine that locates slips as events says when the first began in its extras'
+        own slide_onset, which summary() reports instead; to compare engines, read first_passage
+        off both histories)."""
         x = self.slide
-        moving = np.flatnonzero(np.abs(self.slide_dot) > 0) if self.slide_dot is not None else np.empty(0, int)
         return {"slide_max": float(np.max(np.abs(x))) if x.size else 0.0,
                 "slide_final": float(x[-1]) if x.size else 0.0,
-                "slide_onset": float(self.t[moving[0]]) if moving.size else None}
+                "slide_onset": first_passage(self.t, x, SLIDING_FRACTION * self.system.b)}
 
     # --- resampling -----------------------------------------------------------------
     def resample(self, dt: float) -> "Trajectory":
@@ -300,6 +308,26 @@ def cumulative_impact_loss(t: np.ndarray, impact_times, losses) -> np.ndarray:
     after[1:] = t[1:] == t[:-1]
     return np.where(after, padded[np.searchsorted(at, t, side="right")],
                     padded[np.searchsorted(at, t, side="left")])
+
+
+#: A statue has slid once its slide x passes this fraction of its half width b: far above a
+#: contact's compliance and creep (the contact engines' pivot moves up to 4e-4·b while it
+#: rocks without slipping), well below a slide that matters. Contact engines' runs of a
+#: statue without friction are flagged as slid past it (validate.core.measure).
+SLIDING_FRACTION = 0.01
+
+
+def first_passage(t, x, level: float) -> float | None:
+    """The first time (s) |x| exceeds `level`, interpolated linearly between the samples
+    around it (None: never)."""
+    t, a = np.asarray(t, dtype=float), np.abs(np.asarray(x, dtype=float))
+    over = np.flatnonzero(a > level)
+    if not over.size:
+        return None
+    i = int(over[0])
+    if i == 0 or a[i] == a[i - 1]:
+        return float(t[i])
+    return float(t[i - 1] + (t[i] - t[i - 1]) * (level - a[i - 1]) / (a[i] - a[i - 1]))
 
 
 def half_cycles(theta: np.ndarray) -> list[tuple[int, float]]:

@@ -40,7 +40,7 @@ def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=N
 ENGINE = EngineSpec(
     name="bullet", label="PyBullet", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
-                              isolators=CONTACT_ISOLATORS),
+                              isolators=CONTACT_ISOLATORS, kinetic_friction=False),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, simulate_body=_simulate_body,
     presets={
         "default": Preset("the measured default, its step following the block (docs/bullet.md, \"Settings that follow "

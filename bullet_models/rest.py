@@ -49,7 +49,7 @@ class Rest:
 
     def may_rest(self, rows: list, i: int) -> bool:
         """Whether the block has rested over the last SETTLE_TIME of rows (one per control
-        step: (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y)) and the base's acceleration at step i
+        step: (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y, ẋ)) and the base's acceleration at step i
         is below F_LOW of the threshold."""
         if len(rows) < self.settle_rows:
             return False

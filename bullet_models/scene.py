@@ -81,9 +81,20 @@ class Scene:
 
 
 def _plate_half_extents(system: System):
-    # wide enough that even an overturned block lands on it
-    half = system.b + system.height
+    # wide enough that even an overturned block lands on it, and a statue that may slide walks on it
+    half = system.b + system.height + kinematics.slide_room(system)
     return [half, half, 0.5 * PLATE_THICKNESS]
+
+
+def lateral_frictions(system: System, settings: Settings) -> tuple[float, float]:
+    """(block's, plate's) lateral friction. Bullet's contact takes the product of the two
+    bodies' (measured: √μ on each slides as μ, to 1e-6 of the rigid-plastic closed form), so a
+    statue's friction μ (System.friction) is the block's with the plate's 1. Without one, both
+    carry Settings.friction, as always: the contact's coefficient is then its square (1 at the
+    default 1.0)."""
+    if system.friction is None:
+        return settings.friction, settings.friction
+    return system.friction, 1.0
 
 
 
@@ -117,8 +128,8 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
     # same β to 0.01 points, ~10% less time per sub-step
     block = c.createMultiBody(baseMass=system.mass, baseCollisionShapeIndex=box, basePosition=pos,
                               baseOrientation=orn, useMaximalCoordinates=True)
-    for body, link in ((block, -1), (base, plate_link)):
-        c.changeDynamics(body, link, lateralFriction=settings.friction, restitution=settings.restitution,
+    for (body, link), mu in zip(((block, -1), (base, plate_link)), lateral_frictions(system, settings)):
+        c.changeDynamics(body, link, lateralFriction=mu, restitution=settings.restitution,
                          linearDamping=settings.linear_damping, angularDamping=settings.angular_damping,
                          activationState=p.ACTIVATION_STATE_DISABLE_SLEEPING,
                          contactProcessingThreshold=settings.contact_processing_threshold)
@@ -163,9 +174,10 @@ _SDF = """<?xml version="1.0"?>
      simulate() builds the same bodies with createMultiBody and then applies
      {settings}
      linear/angular damping, friction and restitution with changeDynamics on both bodies, sleeping off.
-     Friction: each collision carries mu = {mu} in SDF's <surface><friction><ode>, but PyBullet's loadSDF
-     does not read it (it keeps its default 0.5): after loading, call
-     changeDynamics(body, link, lateralFriction={mu}, restitution={restitution}) on the block and the plate.
+     Friction: each collision carries its mu in SDF's <surface><friction><ode> (Bullet's contact takes the
+     product of the two), but PyBullet's loadSDF does not read it (it keeps its default 0.5): after loading,
+     call changeDynamics(body, link, lateralFriction={mu}, restitution={restitution}) on the block and
+     changeDynamics(body, link, lateralFriction={plate_mu}, restitution={restitution}) on the plate.
      {isolator} -->
 <sdf version="1.6">
   <world name="isorock">
@@ -176,7 +188,7 @@ _SDF = """<?xml version="1.0"?>
       <pose>0 0 {h} 0 0 0</pose>
       <link name="block">
         <inertial><mass>{m}</mass>{inertia}</inertial>
-        <collision name="block"><geometry><box><size>{B} {B} {H}</size></box></geometry>{surface}</collision>
+        <collision name="block"><geometry><box><size>{B} {B} {H}</size></box></geometry>{block_surface}</collision>
       </link>
     </model>
   </world>
@@ -230,9 +242,9 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     settings = settings or Settings()
     w = 2 * _plate_half_extents(system)[0]
     plate_mass = 0.0 if system.fixed_base else system.base_mass
-    surface = _SURFACE.format(mu=settings.friction)
+    mu_block, mu_plate = lateral_frictions(system, settings)
     plate = _PLATE.format(z=-0.5 * PLATE_THICKNESS, mass=plate_mass, inertia=_NO_INERTIA, w=w, t=PLATE_THICKNESS,
-                          surface=surface)
+                          surface=_SURFACE.format(mu=mu_plate))
     linear = system.isolator_kind == LINEAR  # a fixed base too
     parts = None if linear else isolator_parts(system)
     k, c = (system.stiffness, system.damping) if linear else (parts.stiffness, parts.damping)
@@ -248,5 +260,6 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     listed = ", ".join(f"{f.name} = {getattr(settings, f.name)!r}" for f in fields(settings))
     return _SDF.format(base_kind="a fixed" if system.fixed_base else "an isolated", settings=listed,
                        isolator=isolator, base_links=base_links, h=system.h, m=system.mass,
-                       inertia=_NO_INERTIA, B=system.width, H=system.height, surface=surface,
-                       mu=settings.friction, restitution=settings.restitution)
+                       inertia=_NO_INERTIA, B=system.width, H=system.height,
+                       block_surface=_SURFACE.format(mu=mu_block), mu=mu_block, plate_mu=mu_plate,
+                       restitution=settings.restitution)

@@ -3,7 +3,8 @@ a time, and the states as a RawHistory (measured outside the engine, by the regi
 
 - ground motion as horizontal gravity, `setGravity(−ẍg, 0, −g)`: exact for a translating
   ground (model.md), held over a control step and so taken at its middle, as MuJoCo
-  takes its forces (at its start it would lag by half a step);
+  takes its forces (at its start it would lag by half a step); a vertical üv makes its z
+  −(g + üv), the base riding the ground vertically (it moves on its x joint alone);
 - the isolator force is held by Bullet over the sub-steps, so it is evaluated at the
   sub-steps' mean time: −(k(u + l u̇) + c(u̇ + l ü)), l = (n − 1)/(2n)·dt, with ü the base
   acceleration of the last step (kept from the step before when θ changed sign over it:
@@ -23,6 +24,7 @@ from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator, isolator_parts
+from isorock.analytic.rest_phase import stepped_throughout
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
@@ -44,7 +46,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: callable(t, duration), called about once a second."""
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  isolators=CONTACT_ISOLATORS)
+                                  isolators=CONTACT_ISOLATORS, kinetic_friction=False)
     check_contact_isolator(system, ENGINE)
     settings.check_isolator(system)
     linear = system.isolator_kind == LINEAR  # a fixed base too
@@ -62,6 +64,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         last = 0.0
     xg = np.asarray(motion(mids), dtype=float).tolist()
     g = system.gravity
+    # gravity's z at each control step's middle: −(g + üv) with a vertical motion, else −g throughout
+    gz = [-g] * len(xg) if motion.vertical is None else (-(g + np.asarray(motion.vertical(mids)))).tolist()
     k, c_dash = system.stiffness, system.damping
     element = None if linear else Element(isolator_parts(system))
     if element is not None:
@@ -82,16 +86,16 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         joint_state, motor = c.getJointState, c.setJointMotorControl2
         pose, velocity = c.getBasePositionAndOrientation, c.getBaseVelocity
         torque = p.TORQUE_CONTROL
-        rows = []  # (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y)
+        rows = []  # (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y, ẋ)
         slider = []  # a bearing's slider position u_p at each row
         status, message, stop_reason = Status.COMPLETED, "reached the end time", None
         u = ud = 0.0
         ud_prev = udd = 0.0  # base velocity one step back; base acceleration estimate
         side_prev = 0.0  # sin θ (≈ R₀₂) one step back
-        a_set = 0.0  # build() set gravity (0, 0, −g)
+        a_set, gz_set = 0.0, -g  # build() set gravity (0, 0, −g)
         checked = 0  # rows already looked at by the stop rules
-        # the rest phase's map is the linear isolator's: a non-linear one is stepped throughout
-        rest = _rest(system, settings, theta0, xg, dt, lead) if linear else None
+        why = stepped_throughout(system, motion)
+        rest = None if why is not None else _rest(system, settings, theta0, xg, dt, lead)
         if element is not None:
             element.start(c, base, settings.substeps)
         rest_end = n_steps - (1 if last else 0)  # the shorter last step is stepped by Bullet
@@ -104,7 +108,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 u, ud = joint_state(base, 0)[:2]
             if (i % every == 0 or i == n_steps) and not resumed:
                 pos, orn = pose(block)
-                rows.append((times[i], u, ud, *pos, *orn, velocity(block)[1][1]))
+                (vx, _, _), (_, wy, _) = velocity(block)
+                rows.append((times[i], u, ud, *pos, *orn, wy, vx))
                 if element is not None:
                     slider.append(element.u_p)
             resumed = False
@@ -132,7 +137,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                         k_row = i + 1 + j
                         if k_row % every == 0 or k_row == n_steps:
                             su, sud = states[j, 0], states[j, 1]
-                            rows.append((times[k_row], su, sud, su + offset, pos[1], pos[2], *orn, 0.0))
+                            rows.append((times[k_row], su, sud, su + offset, pos[1], pos[2], *orn, 0.0, sud))
                     i += skipped
                     if not fixed:
                         u, ud, ud_prev = (float(x) for x in states[-1])
@@ -149,10 +154,10 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 lead = (m - 1) / (2 * m) * last
                 if element is not None:
                     element.start(c, base, m)  # the friction's impulse per sub-step follows the step
-            a = xg[i]
-            if a != a_set:  # gravity persists in Bullet: set it only when ẍg changes
-                set_gravity(-a, 0.0, -g)
-                a_set = a
+            a, az = xg[i], gz[i]
+            if a != a_set or az != gz_set:  # gravity persists in Bullet: set it only when it changes
+                set_gravity(-a, 0.0, az)
+                a_set, gz_set = a, az
             if not fixed:
                 # ü from the last step, except over an impact (θ changed sign while rocking):
                 # the jump of u̇ there is no acceleration to extrapolate, the last one is kept
@@ -166,11 +171,12 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
             step()
             i += 1
         runtime = time.perf_counter() - start
-    raw = raw_history(system, np.array(rows), runtime, status, message, stop_reason)
+    raw = raw_history(system, motion, np.array(rows), runtime, status, message, stop_reason)
     # the numbers this run used (Settings.for_system may have made them finer than asked)
     raw.extras.update(timestep=float(settings.timestep), control_step=float(settings.control_step))
+    if why is not None:
+        raw.extras.update(stepping=f"throughout (no rest phase: {why})")
     if not linear:
-        raw.extras.update(stepping="throughout (no rest phase: non-linear isolator)")
         if element.parts.has_element:
             raw.extras.update(isolator_slider=np.array(slider[:len(rows)], dtype=float))
     return raw
@@ -256,12 +262,15 @@ def step_cost(system: System, settings: Settings | None = None, *, steps: int = 
         client.disconnect()
 
 
-def raw_history(system, rows, runtime, status, message, stop_reason) -> RawHistory:
-    t, u, ud, x, y, z, qx, qy, qz, qw, wy = rows.T
+def raw_history(system, motion, rows, runtime, status, message, stop_reason) -> RawHistory:
+    t, u, ud, x, y, z, qx, qy, qz, qw, wy, xd = rows.T
     theta, roll, yaw = kinematics.tilts_from_quaternion(qw, qx, qy, qz)
     counted = counted_sign_changes(theta, system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(
         system, x_centroid=x, z_centroid=z, theta=theta, u=u, counted_from=counted[0][0] if counted else None,
         out_of_plane=np.maximum.reduce([np.abs(y), np.abs(roll), np.abs(yaw)]))
+    slide, slide_dot = kinematics.slide_history(system, motion, x_centroid=x, x_centroid_dot=xd, theta=theta,
+                                                theta_dot=wy, u=u, u_dot=ud)
     return RawHistory(engine=ENGINE, system=system, t=t, u=u, u_dot=ud, theta=theta, theta_dot=wy,
-                      status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason)
+                      status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason,
+                      slide=slide, slide_dot=slide_dot)

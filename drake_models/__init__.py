@@ -7,8 +7,8 @@ from dataclasses import replace
 
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
 
-from .scene import (PRESETS, SCENE_FORMAT, Settings, preset, scene_text, settings_for, settings_for_timestep,
-                    simulate, sphere_geometry_beta, sphere_geometry_first_impact_time)
+from .scene import (PRESETS, SCENE_FORMAT, Settings, check_system, preset, scene_text, settings_for,
+                    settings_for_timestep, simulate, sphere_geometry_beta, sphere_geometry_first_impact_time)
 
 
 def ladder(quick: bool):
@@ -52,7 +52,9 @@ ENGINE = EngineSpec(
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, simulate_body=_simulate_body,
     presets={"default": Preset("the continuous plant's, as \"continuous\"", Settings),
              **{name: Preset(PRESET_REASONS[name], lambda s=s: s) for name, s in PRESETS.items()}},
-    ladder=ladder, tuning=TUNING)
+    ladder=ladder, tuning=TUNING,
+    # corner spheres the block can hold, and μ_k < μ_s on the continuous plant only
+    check_system=check_system)
 
 __all__ = ["ENGINE", "Settings", "PRESETS", "preset", "simulate", "scene_text", "settings_for",
            "settings_for_timestep", "sphere_geometry_beta", "sphere_geometry_first_impact_time"]

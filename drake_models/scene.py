@@ -71,7 +71,7 @@ except ImportError as exc:  # an optional extra; the registry and the report ski
 from isorock.analytic import kinematics
 from isorock.analytic.errors import InputError, require, require_positive_finite
 from isorock.analytic.motion import GroundMotion
-from isorock.analytic.engine_protocol import run_inputs
+from isorock.analytic.engine_protocol import check_friction, contact_friction, run_inputs
 from isorock.analytic.status import Status
 from isorock.analytic.system import System, paper_system
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
@@ -98,6 +98,18 @@ CHUNK = 0.25
 #: record's own samples are knots, so a record is reproduced exactly; a pulse's
 #: curvature error at this spacing is below 1e-5 of its amplitude.
 FORCE_KNOT = 5e-4
+#: A statue with friction (System.friction): the continuous plant's stiction tolerance v_s (its
+#: regularised Stribeck friction reaches μ_s at slip speed v_s and μ_k at 3·v_s, and a stuck
+#: contact creeps below v_s) in units of the block's R·p (Settings.stiction_tolerance follows
+#: it), so that every size meets the same friction law. Drake's own 1e-4 m/s, fixed in m/s, is
+#: 5e-5·R·p on a 1 m block and 1.6e-5·R·p on a 10 m one: stiffer than Radau3 at accuracy 1e-4
+#: follows, it parted from the exact model on 6 of 16 random cases at 10 m (slides 0.15–1.3·b
+#: off, docs/sliding_engines.md) and cost 2–10× the time; 3e-4·R·p brought four of them within
+#: 0.006·b, 2–10× faster, and its creep, below v_s/p = 3e-4·R per 1/p of sticking, is far below
+#: the 0.01·b a slide is read from (1e-4·R·p did as well on the cases). Without friction the
+#: plant keeps Drake's default, as before.
+STICTION_SHARE = 3e-4
+_PAPER = paper_system()
 
 
 @dataclass(frozen=True)
@@ -115,10 +127,14 @@ class Settings:
         geometry carries 2·stiffness; Drake combines them in series).
     dissipation: Hunt–Crossley dissipation (s/m). relaxation_time: SAP's and
         Lagged's linear dissipation time scale (s; each geometry carries half, Drake adds them).
-    friction: block–plate Coulomb friction (static = dynamic).
+    friction: block–plate Coulomb friction (static = dynamic), where the statue has none of its
+        own (System.friction and kinetic_friction, Drake's static and dynamic coefficients).
     corner_radius: radius (m) of the corner spheres, below b/10.
     sample_interval: the history's sample spacing (s); a multiple of timestep on a
         discrete plant.
+    stiction_tolerance: the continuous plant's stiction tolerance (m/s: below it a stuck contact
+        creeps, Stribeck's regularisation) for a statue with friction (System.friction); without
+        friction the plant keeps Drake's default, as always (STICTION_SHARE).
     follow_system: True: `for_system` puts every contact quantity in the block's own
         units (the values above are those measured on the paper's block); an explicit
         contact setting given to `settings_for` (every command's path) sets it False.
@@ -136,6 +152,8 @@ class Settings:
     friction: float = 1.0
     corner_radius: float = CORNER_RADIUS
     sample_interval: float = 1e-3
+    #: m/s on the paper's block (∝ R·p with follow_system): STICTION_SHARE·R·p
+    stiction_tolerance: float = STICTION_SHARE * _PAPER.R * _PAPER.p
     follow_system: bool = True
 
     def for_system(self, system: System, duration: float | None = None) -> "Settings":
@@ -143,8 +161,8 @@ class Settings:
         units, as measured on the paper's block (docs/drake.md, "Every size"): lengths ∝ R
         (the corner spheres), forces ∝ the block's weight (stiffness ∝ m·g/R, the
         hydroelastic modulus ∝ m·g/R²), velocities ∝ R·p (Hunt–Crossley's dissipation, s/m,
-        ∝ 1/(R·p)), times ∝ 1/p (a discrete step, SAP's relaxation time, the sample
-        spacing, at most 0.01 s). The result is final (follow_system False); `duration`
+        ∝ 1/(R·p); the stiction tolerance ∝ R·p), times ∝ 1/p (a discrete step, SAP's
+        relaxation time, the sample spacing, at most 0.01 s). The result is final (follow_system False); `duration`
         is not needed (a continuous plant ends on it)."""
         if not self.follow_system:
             return self
@@ -157,6 +175,7 @@ class Settings:
         return replace(self, stiffness=self.stiffness * weight / length, dissipation=self.dissipation * slow / length,
                        corner_radius=self.corner_radius * length, timestep=step, sample_interval=sample,
                        relaxation_time=self.relaxation_time * slow,
+                       stiction_tolerance=self.stiction_tolerance * length / slow,
                        hydroelastic_modulus=self.hydroelastic_modulus * weight / length ** 2, follow_system=False)
 
     def __post_init__(self):
@@ -174,7 +193,7 @@ class Settings:
         acc = require_positive_finite("accuracy", self.accuracy)
         require(acc < 1, "accuracy", self.accuracy, "below 1 (a relative accuracy)")
         for name in ("stiffness", "dissipation", "relaxation_time", "hydroelastic_modulus", "friction",
-                     "corner_radius"):
+                     "stiction_tolerance", "corner_radius"):
             object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
         object.__setattr__(self, "accuracy", acc)
         si = require_positive_finite("sample_interval", self.sample_interval)
@@ -370,15 +389,23 @@ _BOX = """      <collision name="block">
       </collision>"""
 
 
-def _props(settings: Settings, *, hydro: str | None = None) -> str:
+def frictions(system: System, settings: Settings) -> tuple[float, float]:
+    """(static, dynamic) friction of the block–base contact: the statue's μ_s and μ_k
+    (System.friction, kinetic_friction) when it has them, else Settings.friction for both."""
+    mu_s = contact_friction(system, settings.friction)
+    return mu_s, mu_s if system.friction is None else system.kinetic_friction
+
+
+def _props(settings: Settings, friction: tuple[float, float], *, hydro: str | None = None) -> str:
     """Proximity properties of one geometry. Drake combines a pair's point stiffnesses
     in series and adds their relaxation times, so each side carries 2·k and τ/2; equal
-    dissipations and frictions combine to themselves."""
+    dissipations and frictions combine to themselves (`friction`: (static, dynamic), the same
+    on both sides)."""
     lines = [f"<drake:point_contact_stiffness>{2 * settings.stiffness!r}</drake:point_contact_stiffness>",
              f"<drake:hunt_crossley_dissipation>{settings.dissipation!r}</drake:hunt_crossley_dissipation>",
              f"<drake:relaxation_time>{settings.relaxation_time / 2!r}</drake:relaxation_time>",
-             f"<drake:mu_dynamic>{settings.friction!r}</drake:mu_dynamic>",
-             f"<drake:mu_static>{settings.friction!r}</drake:mu_static>"]
+             f"<drake:mu_dynamic>{friction[1]!r}</drake:mu_dynamic>",
+             f"<drake:mu_static>{friction[0]!r}</drake:mu_static>"]
     if hydro == "rigid":
         lines.append("<drake:rigid_hydroelastic/>")
     elif hydro == "compliant":
@@ -402,13 +429,15 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     b, h, d = system.b, system.h, DEPTH_FRACTION * system.b
     m, mb = system.mass, system.base_mass
     r = _check_radius(system, settings.corner_radius)
-    w = 2 * (b + system.height)  # wide enough that even an overturned block lands on it
+    # wide enough that even an overturned block lands on it, and a statue that may slide walks on it
+    w = 2 * (b + system.height + kinematics.slide_room(system))
     t = PLATE_THICKNESS
     hydro = settings.contact == "hydroelastic"
+    mu = frictions(system, settings)
     if hydro:
-        collisions = _BOX.format(B=2 * b, H=2 * h, D=2 * d, props=_props(settings, hydro="compliant"))
+        collisions = _BOX.format(B=2 * b, H=2 * h, D=2 * d, props=_props(settings, mu, hydro="compliant"))
     else:  # the two bottom corners of the rocking plane, in link coordinates (up is −y)
-        collisions = "\n".join(_SPHERE.format(name=name, x=sx * (b - r), y=h - r, r=r, props=_props(settings))
+        collisions = "\n".join(_SPHERE.format(name=name, x=sx * (b - r), y=h - r, r=r, props=_props(settings, mu))
                                for name, sx in (("corner_pos", 1.0), ("corner_neg", -1.0)))
     base_joint = _WELD if system.fixed_base else _ISOLATOR.format(k=system.stiffness, c=system.damping)
     listed = ", ".join(f"{f.name} = {getattr(settings, f.name)!r}" for f in fields(settings))
@@ -418,7 +447,7 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
         H=system.height, B=system.width, D=2 * d, m=m, mb=mb, h=h, rot=repr(-math.pi / 2),
         plant=_plant_description(settings), settings=listed,
         plate_z=-t / 2, W=w, T=t, bixx=mb * (w * w + t * t) / 12, biyy=mb * (w * w + t * t) / 12,
-        bizz=mb * w * w / 6, plate_props=_props(settings, hydro="rigid" if hydro else None),
+        bizz=mb * w * w / 6, plate_props=_props(settings, mu, hydro="rigid" if hydro else None),
         base_joint=base_joint,
         # link axes: x = world x, y = world −z, z = world y (the rocking axis)
         ixx=m * (h * h + d * d) / 3, iyy=m * (b * b + d * d) / 3, izz=m * (b * b + h * h) / 3,
@@ -440,6 +469,8 @@ class _Built:
                                 else pd.ContactModel.kPoint)
         pd.Parser(plant).AddModelsFromString(scene_text(system, settings), "sdf")
         plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -system.gravity])
+        if system.friction is not None and settings.continuous:
+            plant.set_stiction_tolerance(settings.stiction_tolerance)
         plant.Finalize()
         self.plant = plant
         self.nq, self.nv = plant.num_positions(), plant.num_velocities()
@@ -459,6 +490,10 @@ class _Built:
         forces[self.xv] = -system.mass * xg
         if self.uv is not None:
             forces[self.uv] = -system.base_mass * xg
+        if motion.vertical is not None:
+            # −m·üv on the block's world z, and the planar joint's y is −z: +m·üv on y (the base
+            # rides the ground vertically, welded or on its x joint)
+            forces[self.yv] = system.mass * np.asarray(motion.vertical(knots), dtype=float)
         source = builder.AddSystem(pd.TrajectorySource(pd.PiecewisePolynomial.FirstOrderHold(knots, forces)))
         builder.Connect(source.get_output_port(), plant.get_applied_generalized_force_input_port())
         self.logger = pd.LogVectorOutput(plant.get_state_output_port(), builder, settings.sample_interval)
@@ -468,7 +503,7 @@ class _Built:
 def _force_knots(motion: GroundMotion, duration: float) -> np.ndarray:
     """Knots of the ground-force trajectory up to `duration`: spaced at most FORCE_KNOT,
     a record's samples among them (it is linear between them), and the end of a motion
-    (a pulse stops there, possibly with a jump)."""
+    (a pulse stops there, possibly with a jump); a vertical component's knots too."""
     if motion.is_zero:
         return np.array([0.0, duration])
     step = FORCE_KNOT if motion.pulse is not None else motion.dt / math.ceil(motion.dt / FORCE_KNOT - 1e-9)
@@ -477,6 +512,8 @@ def _force_knots(motion: GroundMotion, duration: float) -> np.ndarray:
     end = motion.end_time
     if 0 < end < duration:  # ẍg is zero after the end: add its last value and the zero beside it
         knots = np.union1d(knots, [end, min(end + 1e-9, duration)])
+    if motion.vertical is not None:
+        knots = np.union1d(knots, _force_knots(motion.vertical, duration))
     return knots
 
 
@@ -503,7 +540,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     a second."""
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
-    _check_radius(system, settings.corner_radius)
+    check_system(system, settings)
     start = time.perf_counter()
     built = _Built(system, motion, settings, duration)
     simulator = pd.Simulator(built.diagram)
@@ -561,14 +598,27 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         throttle(t)
     runtime = time.perf_counter() - start
     log = built.logger.FindLog(context)
-    return _raw_history(built, system, settings, log.sample_times()[:last], log.data()[:, :last], runtime,
+    return _raw_history(built, system, motion, settings, log.sample_times()[:last], log.data()[:, :last], runtime,
                         status, message, stop_reason)
 
 
-def _raw_history(built: _Built, system, settings, times, data, runtime, status, message,
+def check_system(system: System, settings: Settings) -> None:
+    """What this scene refuses before any work (EngineSpec.check_system): corner spheres too
+    large for the block, and a statue whose kinetic friction is below its static one on a
+    discrete plant, whose contact solvers (SAP, TAMSI, Lagged) use the dynamic coefficient alone.
+    The continuous plant's regularised Stribeck friction carries both (measured:
+    docs/sliding_engines.md)."""
+    settings = settings.for_system(system)
+    _check_radius(system, settings.corner_radius)
+    check_friction(system, settings.continuous, "Drake's discrete plant (timestep > 0)")
+
+
+def _raw_history(built: _Built, system, motion, settings, times, data, runtime, status, message,
                  stop_reason) -> RawHistory:
     """The raw history from the logged states (one column per sample), up to the last
-    finite sample, with the extras of this geometry."""
+    finite sample, with the extras of this geometry, and the slide where the run needs it
+    (kinematics.slide_history: the box's sharp corners, as for every engine; the corner
+    sphere's rolling, r·θ, stays below 2e-4·b, as the spheres are ∝ R)."""
     times = np.asarray(times, dtype=float)
     data = np.asarray(data, dtype=float)
     finite = np.all(np.isfinite(data), axis=0)
@@ -603,9 +653,12 @@ def _raw_history(built: _Built, system, settings, times, data, runtime, status, 
         # while |θ| ≤ α, as for every engine (analytic.kinematics.contact_extras)
         "pivot_slip_max": float(np.max(np.abs(slip[np.abs(theta) <= system.alpha]), initial=0.0)),
     }
+    slide, slide_dot = kinematics.slide_history(system, motion, x_centroid=x_c, x_centroid_dot=v[built.xv],
+                                                theta=theta, theta_dot=theta_dot, u=u, u_dot=u_dot)
     return RawHistory(engine=ENGINE, system=system, t=times, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
-                      status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason)
+                      status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason,
+                      slide=slide, slide_dot=slide_dot)
 
 
-__all__ = ["Settings", "PRESETS", "preset", "simulate", "scene_text", "SCENE_FORMAT",
+__all__ = ["Settings", "PRESETS", "preset", "simulate", "check_system", "scene_text", "SCENE_FORMAT",
            "sphere_geometry_beta", "sphere_geometry_first_impact_time"]

@@ -18,7 +18,7 @@ from isorock.analytic.trajectory import RawHistory
 
 from .scene import scene_text
 from .settings import Settings
-from .state import raw_history, stop_in, warning_failure
+from .state import raw_history, stop_in, vertical_at, warning_failure
 
 #: Fine steps start when the block would reach θ = 0 within IMPACT_ZONE coarse steps at
 #: its present θ̇ (and |θ̇| is above IMPACT_MIN_RATE, rad/s: a block at rest stays on
@@ -52,8 +52,9 @@ def run_event_resolved(model, system, motion, settings, lay, nstep, theta0, prog
     v0 = 1 + lay.nq
     vel = slice(v0, v0 + lay.nv)
 
-    def forces(t0, h, n):  # ẍg at each step's middle, as in stepping.run_model
-        return lay.forces(system, np.asarray(motion(t0 + (np.arange(n) + 0.5) * h), dtype=float))
+    def forces(t0, h, n):  # ẍg (and üv) at each step's middle, as in stepping.run_model
+        mids = t0 + (np.arange(n) + 0.5) * h
+        return lay.forces(system, np.asarray(motion(mids), dtype=float), vertical_at(motion, mids))
 
     def theta_rate(states):
         h = lay.histories(system, states)
@@ -145,4 +146,4 @@ def run_event_resolved(model, system, motion, settings, lay, nstep, theta0, prog
     rep[tail] = 1.5 * v[tail] - 0.5 * v[tail - 1]  # coarse row followed by a fine one (or the end)
     states = states.copy()
     states[:, vel] = rep
-    return raw_history(lay, system, states, dt, runtime, status, message, stop_reason)
+    return raw_history(lay, system, motion, states, dt, runtime, status, message, stop_reason)

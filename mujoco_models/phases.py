@@ -74,7 +74,6 @@ class Phases:
 
     def __init__(self, model, lay, system: System, settings, xg, dt: float):
         self.lay, self.system, self.xg, self.dt = lay, system, xg, dt
-        self.z_v = model.jnt_dofadr[model.joint("block_z").id]
         self.threshold = system.uplift_acceleration
         self.lead = int(round(LEAD_TIME / dt))
         self.settle = max(1, int(round(SETTLE_TIME / dt)))
@@ -102,7 +101,7 @@ class Phases:
         def until(chunk, steps, h):
             vel = chunk[:, self.v]
             rest = ((np.abs(h["theta"]) < self.tilt) & (np.abs(h["theta_dot"]) < self.rate)
-                    & (np.abs(vel[:, lay.x_v] - h["u_dot"]) < self.speed) & (np.abs(vel[:, self.z_v]) < self.speed))
+                    & (np.abs(vel[:, lay.x_v] - h["u_dot"]) < self.speed) & (np.abs(vel[:, lay.z_v]) < self.speed))
             quiet = self.absolute_acceleration(h["u"], h["u_dot"], steps) < F_LOW * self.threshold
             if broken[0] is None:
                 broken[0] = int(steps[0]) - 1

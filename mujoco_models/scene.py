@@ -14,6 +14,8 @@ from pathlib import Path
 
 import mujoco
 
+from isorock.analytic import kinematics
+from isorock.analytic.engine_protocol import contact_friction
 from isorock.analytic.errors import require
 from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.system import LINEAR, System
@@ -59,9 +61,11 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     opt.set("gravity", _fmt(0, 0, -system.gravity))
     opt.set("noslip_iterations", str(settings.noslip))
 
-    # Base: its top face is z = 0 and it reaches past where an overturned block lands.
+    # Base: its top face is z = 0 and it reaches past where an overturned block lands, and where
+    # a statue that may slide can walk (kinematics.slide_room).
     named["base"].set("pos", _fmt(0, 0, -BASE_HALF_THICKNESS))
-    named["base_geom"].set("size", _fmt(b + 2 * h + 0.1, d + 0.1, BASE_HALF_THICKNESS))
+    named["base_geom"].set("size", _fmt(b + 2 * h + 0.1 + kinematics.slide_room(system), d + 0.1,
+                                        BASE_HALF_THICKNESS))
     named["base"].find("inertial").set("mass", repr(mb))
     slide = named["base_slide"]
     if system.fixed_base:
@@ -86,7 +90,7 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
         block.insert(0, free)
 
     pair = root.find("contact/pair")
-    mu = settings.friction
+    mu = contact_friction(system, settings.friction)  # the statue's, when it has one
     pair.set("friction", _fmt(mu, mu, 0.005, 0.0001, 0.0001))
     pair.set("solref", _fmt(*settings.solref))
     pair.set("solimp", _fmt(*settings.solimp))

@@ -39,11 +39,12 @@ class Layout:
         if self.free:
             jid = model.joint("block_free").id
             self.bq, self.bv = model.jnt_qposadr[jid], model.jnt_dofadr[jid]
-            self.x_v = self.bv  # free joint: linear velocity first, in the world frame
+            self.x_v, self.z_v = self.bv, self.bv + 2  # free joint: linear velocity first, in the world frame
         else:
             self.xq, self.zq, self.thq = (model.jnt_qposadr[model.joint(n).id]
                                            for n in ("block_x", "block_z", "block_theta"))
-            self.x_v, self.thv = (model.jnt_dofadr[model.joint(n).id] for n in ("block_x", "block_theta"))
+            self.x_v, self.z_v, self.thv = (model.jnt_dofadr[model.joint(n).id]
+                                            for n in ("block_x", "block_z", "block_theta"))
 
     def initial_state(self, model, system: System, theta0: float) -> np.ndarray:
         """A rollout state row at t = 0: at rest, tilted by θ0 about the corner it rocks on."""
@@ -58,10 +59,14 @@ class Layout:
         state[1:1 + self.nq] = qpos
         return state
 
-    def forces(self, system: System, xg: np.ndarray) -> np.ndarray:
-        """qfrc_applied rows for the ground accelerations ẍg (one per step)."""
+    def forces(self, system: System, xg: np.ndarray, zg: np.ndarray | None = None) -> np.ndarray:
+        """qfrc_applied rows for the ground accelerations ẍg (one per step) and, with a vertical
+        motion, üv (`zg`): the block alone feels −m·üv, on its z dof (the base is carried
+        rigidly up and down with the ground, so its reaction goes to the ground)."""
         f = np.zeros((xg.size, self.nv))
         f[:, self.x_v] = -system.mass * xg
+        if zg is not None:
+            f[:, self.z_v] = -system.mass * zg
         if self.base_v is not None:
             f[:, self.base_v] = -system.base_mass * xg
         if self.slider_v is not None:
@@ -69,7 +74,7 @@ class Layout:
         return f
 
     def histories(self, system: System, states: np.ndarray) -> dict:
-        """t, u, u̇, θ, θ̇ and the centroid's x and z (and out-of-plane tilt with the free
+        """t, u, u̇, θ, θ̇ and the centroid's x, ẋ and z (and out-of-plane tilt with the free
         joint) from rollout state rows."""
         t = states[:, 0]
         qpos = states[:, 1:1 + self.nq]
@@ -79,7 +84,7 @@ class Layout:
             u, u_dot = np.zeros(n), np.zeros(n)
         else:
             u, u_dot = qpos[:, self.base_q].copy(), qvel[:, self.base_v].copy()
-        out = {"t": t.copy(), "u": u, "u_dot": u_dot}
+        out = {"t": t.copy(), "u": u, "u_dot": u_dot, "x_dot": qvel[:, self.x_v].copy()}
         if self.free:
             w, x, y, z = qpos[:, self.bq + 3:self.bq + 7].T
             theta, roll, yaw = kinematics.tilts_from_quaternion(w, x, y, z)
@@ -119,7 +124,8 @@ class StepRecord:
     """ẍg at the middle of each of a run's `nstep` steps of `dt` (a held force's impulse is
     then right to second order), evaluated block by block as the run reaches it: a run
     that overturns, or rests through a fixed base's record, never needs the rest of it.
-    Indexed like the array it stands for (`xg[a:b]`, `xg[steps]`)."""
+    Indexed like the array it stands for (`xg[a:b]`, `xg[steps]`). The vertical üv is a
+    StepRecord of `motion.vertical` (`vertical_record`)."""
 
     def __init__(self, motion: GroundMotion, dt: float, nstep: int):
         self.motion, self.dt, self.size = motion, dt, nstep
@@ -140,6 +146,17 @@ class StepRecord:
         else:
             self._fill(int(np.max(index)) + 1 if np.size(index) else 0)
         return self._values[index]
+
+
+def vertical_record(motion: GroundMotion, dt: float, nstep: int) -> StepRecord | None:
+    """üv at the middle of each step (StepRecord), or None for a motion without a vertical
+    component (its forces, and every history, as before)."""
+    return None if motion.vertical is None else StepRecord(motion.vertical, dt, nstep)
+
+
+def vertical_at(motion: GroundMotion, t) -> np.ndarray | None:
+    """üv at times t (s), or None without a vertical component."""
+    return None if motion.vertical is None else np.asarray(motion.vertical(t), dtype=float)
 
 
 @contextmanager
@@ -177,15 +194,19 @@ def stop_in(lay: Layout, system: System, chunk: np.ndarray, t: np.ndarray, motio
                                  motion_end=motion.end_time)
 
 
-def raw_history(lay, system, states, dt, runtime, status, message, stop_reason, t=None) -> RawHistory:
+def raw_history(lay, system, motion, states, dt, runtime, status, message, stop_reason, t=None) -> RawHistory:
     """The history of state rows: at times `t`, or every `dt` from 0 (MuJoCo's own time
-    sums dt and drifts by round-off)."""
+    sums dt and drifts by round-off); the slide where `motion` and `system` need it
+    (kinematics.slide_history)."""
     hist = lay.histories(system, states)
     t = np.arange(hist["t"].size) * dt if t is None else np.array(t, dtype=float)
     counted = counted_sign_changes(hist["theta"], system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(
         system, x_centroid=hist["x"], z_centroid=hist["z"], theta=hist["theta"], u=hist["u"],
         counted_from=counted[0][0] if counted else None, out_of_plane=hist.get("out_of_plane"))
+    slide, slide_dot = kinematics.slide_history(
+        system, motion, x_centroid=hist["x"], x_centroid_dot=hist["x_dot"], theta=hist["theta"],
+        theta_dot=hist["theta_dot"], u=hist["u"], u_dot=hist["u_dot"])
     return RawHistory(engine=ENGINE, system=system, t=t, u=hist["u"], u_dot=hist["u_dot"], theta=hist["theta"],
                       theta_dot=hist["theta_dot"], status=status, message=message, runtime_s=runtime,
-                      extras=extras, stop_reason=stop_reason)
+                      extras=extras, stop_reason=stop_reason, slide=slide, slide_dot=slide_dot)

@@ -2,7 +2,8 @@
 the states become a RawHistory (measured outside the engine, by the registry).
 
 The ground motion is applied exactly as generalized forces in the (translating) ground
-frame: −m ẍg on the block's x dof and −m_b ẍg on the base's. A force is held over a
+frame: −m ẍg on the block's x dof and −m_b ẍg on the base's, and a vertical üv as −m üv on
+the block's z dof (the base rides the ground vertically). A force is held over a
 step, so ẍg is taken at the step's middle: the impulse it gives is then right to
 second order (taken at the step's start it lags by dt/2). PyBullet does the same.
 
@@ -34,6 +35,7 @@ from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.errors import require
 from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator
 from isorock.analytic.limits import RunBudget
+from isorock.analytic.rest_phase import stepped_throughout
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
@@ -41,7 +43,8 @@ from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 from .scene import build_model
 from . import phases
 from .settings import Settings
-from .state import Layout, StepRecord, fresh_data, raw_history, stop_in, warning_failure, warnings_as_status
+from .state import (Layout, StepRecord, fresh_data, raw_history, stop_in, vertical_at, vertical_record,
+                    warning_failure, warnings_as_status)
 #: Steps per call of mujoco.rollout: the progress callback and the stop rules run
 #: between calls. The warm start is carried across calls, so the split does not change
 #: the result (tested).
@@ -70,6 +73,8 @@ def run_model(model: mujoco.MjModel, system: System, motion: GroundMotion, *, se
 def _run(model, system, motion, settings, duration, theta0, progress, chunk_steps, warnings) -> RawHistory:
     """One run; MuJoCo's warnings arrive in the list `warnings` (the caller's handler)."""
     start = time.perf_counter()
+    if settings.phased and stepped_throughout(system, motion) is not None:  # why: there
+        settings = replace(settings, phased=False)
     lay = Layout(model, system, settings.joint)
     dt = model.opt.timestep
     nstep = int(math.floor(duration / dt + 1e-9))
@@ -80,7 +85,7 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
 
     chunk_steps = chunk_steps or CHUNK_STEPS
     data = fresh_data(model)
-    xg = StepRecord(motion, dt, nstep)
+    xg, zg = StepRecord(motion, dt, nstep), vertical_record(motion, dt, nstep)
     state0 = lay.initial_state(model, system, theta0)
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
@@ -93,16 +98,17 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     else:
         rows, status, message, stop_reason, _, _ = _roll(model, data, lay, system, motion, xg, state0, warm,
                                                          rows, nstep, chunk_steps, dt, throttle, warnings,
-                                                         flight=flight)
+                                                         flight=flight, zg=zg)
     runtime = time.perf_counter() - start
     states = np.concatenate(rows)
-    raw = raw_history(lay, system, states, dt, runtime, status, message, stop_reason, t=states[:, 0])
+    raw = raw_history(lay, system, motion, states, dt, runtime, status, message, stop_reason, t=states[:, 0])
     # the numbers this run used (Settings.for_system may have made them finer than asked)
     raw.extras.update(timestep=float(dt), solref_0=float(settings.solref[0]), solref_1=float(settings.solref[1]))
-    if system.isolator_kind != LINEAR:  # how a non-linear isolator's run was stepped (_inputs)
-        raw.extras.update(stepping="throughout at the timestep (no rest phase, no coarse steps: non-linear isolator)")
-        if lay.slider_q is not None:  # the bearing's slider position u_p per row, as the analytic run's
-            raw.extras.update(isolator_slider=states[:, 1 + lay.slider_q].copy())
+    why = stepped_throughout(system, motion)
+    if why is not None:  # how the run was stepped, when not as Settings.phased asks
+        raw.extras.update(stepping=f"throughout at the timestep (no rest phase, no coarse steps: {why})")
+    if lay.slider_q is not None:  # the bearing's slider position u_p per row, as the analytic run's
+        raw.extras.update(isolator_slider=states[:, 1 + lay.slider_q].copy())
     return raw
 
 
@@ -136,16 +142,13 @@ def _inputs(given: Settings, system: System, motion, duration, theta0):
     the run will take, then the settings derived for the system and that duration (the
     step a whole divisor of it, so the run ends on it)."""
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
-                                  settings=given.for_system(system), isolators=CONTACT_ISOLATORS)
+                                  settings=given.for_system(system), isolators=CONTACT_ISOLATORS,
+                                  kinetic_friction=False)
     check_contact_isolator(system, "mujoco")
     derived = given.for_system(system, duration)
     if system.isolator_kind != LINEAR:
         require(derived.impact_timestep is None, "impact_timestep", derived.impact_timestep,
                 "None with a non-linear isolator (its dry friction's time constant follows the one timestep)")
-        if derived.phased:
-            # stepped throughout at the timestep: the rest phase's map is the linear isolator's, and a
-            # coarse step would soften the dry friction, whose time constant is 2 timesteps (scene.py)
-            derived = replace(derived, phased=False)
     return motion, duration, derived
 
 
@@ -225,10 +228,10 @@ def _phased(model, data, lay, system, motion, settings, xg, state0, rows, nstep,
 
 
 def _roll(model, data, lay, system, motion, xg, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings,
-          start=0, until=None, flight=None):
+          start=0, until=None, flight=None, zg=None):
     """Contact-scene rollout from step `start` to `nstep`, or, with `until(chunk, steps)`, to
     the row it names (the phased run's rest); with `flight` (phases.Flight), coarse steps
-    away from impacts. Each row's column 0 is its time, step index × dt (MuJoCo's own
+    away from impacts; `zg`: üv at each step's middle (state.vertical_record), or None. Each row's column 0 is its time, step index × dt (MuJoCo's own
     time sums the step and drifts). Returns (rows, status, message, stop_reason, steps
     done, warm start)."""
     status, message, stop_reason = Status.COMPLETED, "reached the end time", None
@@ -241,10 +244,12 @@ def _roll(model, data, lay, system, motion, xg, state0, warm, rows, nstep, chunk
             multiple, n = flight.plan(*tilt, done, nstep)
         if multiple == 1:
             # ẍg at each step's middle (xg), as forces on the block's and the base's x dofs
-            step_model, step_data, f = model, data, lay.forces(system, xg[done:done + n])
+            step_model, step_data = model, data
+            f = lay.forces(system, xg[done:done + n], None if zg is None else zg[done:done + n])
         else:
             step_model, step_data = flight.model, flight.data
-            f = lay.forces(system, np.asarray(motion((done + multiple * (np.arange(n) + 0.5)) * dt), dtype=float))
+            mids = (done + multiple * (np.arange(n) + 0.5)) * dt
+            f = lay.forces(system, np.asarray(motion(mids), dtype=float), vertical_at(motion, mids))
         state, _ = rollout.rollout(step_model, step_data, state0, f[None],
                                    control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED,
                                    initial_warmstart=warm)

@@ -100,10 +100,13 @@ class Engine:
         return self.spec.scene_text(system, settings)
 
     def check_isolator(self, system) -> None:
-        """One line refusing a System on an isolator this engine does not carry (no contact
-        engine carries a non-linear one yet: docs/isolators.md), before any work."""
-        from isorock.analytic.engine_protocol import check_isolator_kind
+        """One line refusing, before any work, a System this engine does not carry: on an
+        isolator it does not build (docs/isolators.md), or a statue whose kinetic friction is
+        below its static one, where the engine has one friction coefficient (MuJoCo, PyBullet:
+        Capabilities.kinetic_friction)."""
+        from isorock.analytic.engine_protocol import check_friction, check_isolator_kind
         check_isolator_kind(system, self.capabilities.isolators, f"engine {self.name!r}")
+        check_friction(system, self.capabilities.kinetic_friction, f"engine {self.name!r}")
 
     def check_system(self, system, settings=None) -> None:
         """Every bound this engine puts on `system` before any work: the isolator it carries

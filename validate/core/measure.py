@@ -9,7 +9,11 @@
   velocities, since their β measures the contact more than the block;
 - uplifts: where |θ| leaves the band REST_FRACTION·α after resting;
 - overturning: judged from the history by the run's rule, with the judge every engine
-  shares (`isorock.analytic.overturning.judge_overturning`).
+  shares (`isorock.analytic.overturning.judge_overturning`);
+- sliding: a statue with friction (System.friction) slides as part of the model, and its
+  slide (RawHistory.slide) is handed on to be compared; without friction the model assumes
+  no slip, and a block that slid more than SLIDING_FRACTION·b is flagged (Status.SLID), as is
+  a statue that walked off the engine's plate (kinematics.plate_edge).
 """
 from __future__ import annotations
 
@@ -19,12 +23,13 @@ import numpy as np
 
 from isorock.analytic.coefficients import beta as beta_closed_form
 from isorock.analytic.hybrid import map_to_impact
-from isorock.analytic.kinematics import LYING, LYING_SLACK
+from isorock.analytic.kinematics import LYING, LYING_SLACK, plate_edge
 from isorock.analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, Impact, RawHistory, Trajectory, half_cycles
+from isorock.analytic.trajectory import (DEFAULT_IMPACT_THRESHOLD, SLIDING_FRACTION, Impact, RawHistory, Trajectory,
+                                        half_cycles)
 
 #: How far (s) before and after a sign change the states are taken: well outside the
 #: contact transient of the default scenes (time constants of a few ms), and capped at
@@ -47,12 +52,12 @@ def contact_window(system: System) -> float:
 TRANSIENT_SHARE = 1 / 6
 #: |θ| below this fraction of α counts as "down" when deriving the mode of a contact engine.
 REST_FRACTION = 1e-3
-#: The corner the block stands or rocks on moving along the base by more than this
-#: fraction of the half width b is sliding, not a contact's compliance (measured up to
-#: 4e-4·b at the defaults of both engines under the report's pulses; a squat λ 0.89 block
-#: with friction 1 slides 0.6–0.7·b): the run then breaks the analytic model's
-#: no-sliding assumption and says so in its status.
-SLIDING_FRACTION = 0.01
+#: The corner the block stands or rocks on moving along the base by more than SLIDING_FRACTION
+#: of the half width b (analytic.trajectory: the same level a slide's onset is read at) is
+#: sliding, not a contact's compliance (measured up to 4e-4·b at the defaults of both engines
+#: under the report's pulses; a squat λ 0.89 block with friction 1 slides 0.6–0.7·b): a run of
+#: a statue without friction then breaks the analytic model's no-sliding assumption and says
+#: so in its status.
 
 
 def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = DEFAULT_IMPACT_THRESHOLD,
@@ -77,11 +82,18 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
     if overturned and status == Status.COMPLETED:
         status, message = Status.OVERTURNED, verdict.message
     slip = raw.extras.get("pivot_slip_max")
-    if slip is not None and slip > SLIDING_FRACTION * system.b and not status.is_failure:
+    # with friction set, sliding is the model's too: compared (Trajectory.slide), not flagged
+    if (system.friction is None and slip is not None and slip > SLIDING_FRACTION * system.b
+            and not status.is_failure):
         status = Status.SLID
         message = (f"the block slid {slip * 1000:.3g} mm at its pivot (more than {SLIDING_FRACTION:g}·b): the "
                    f"analytic model assumes no sliding (friction above b/h = {1 / system.slenderness:.3g} is needed)"
                    + (f"; it also {message}" if overturned else ""))
+    walked = float(np.max(np.abs(raw.slide))) if raw.slide is not None and raw.slide.size else 0.0
+    if walked > plate_edge(system) and not status.is_failure:  # the model's base has no edge
+        status = Status.SLID
+        message = (f"the statue slid {walked:.3g} m, off the engine's plate (its edge {plate_edge(system):.3g} m "
+                   "from the middle): the model's base has no edge, and the history past it is not the model's")
     # a non-linear isolator's map to θ = 0 holds its element's phase, read from the row (the
     # bearing's from its slider, extras["isolator_slider"]: without it, no β); a kind whose
     # phase the rows do not tell (analytic.isolator_map.MAPPED) gets no β
@@ -94,7 +106,8 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
                       mode=mode, impacts=impacts, uplift_times=_uplifts(t, mode, window), overturned=overturned,
                       overturn_time=overturn_time, impact_threshold=impact_threshold, runtime_s=raw.runtime_s,
-                      status=status, message=message, extras={**raw.extras, "overturn_rule": overturn_rule})
+                      status=status, message=message, extras={**raw.extras, "overturn_rule": overturn_rule},
+                      slide=raw.slide, slide_dot=raw.slide_dot)
 
 
 def _uplifts(t, mode, rest_time):
