@@ -1195,7 +1195,7 @@ def simulate(system, motion, settings, duration, theta0, theta_dot0, u0, u_dot0,
                     slip_loss=y[FL] if math.isfinite(cp[sl.C_MUS]) else None)
     slip_events = tuple((float(a), int(b)) for a, b, _ in slog[:n_slog].tolist())
     extras = {"overturn_rule": settings.overturn, "slip_mode": sigma.copy(), "slip_events": slip_events,
-              "slide_onset": next((te for te, sg in slip_events if sg != 0), None)}
+              "slip_onset": next((te for te, sg in slip_events if sg != 0), None)}
     if not linear:
         extras.update(isolator=system.isolator_kind, isolator_phase=phase.copy(), isolator_slider=u_p,
                       isolator_events=tuple((float(a), int(b), float(c)) for a, b, c in ilog[:n_ilog].tolist()))
@@ -1225,4 +1225,4 @@ def summary(system, motion, settings, duration, theta0, impact_threshold) -> dic
             "uplifts": int(n_upl), "overturned": overturned,
             "overturn_time": (r[3] if r[3] >= 0 else None) if overturned else None,
             "u_max": float(extremes[1]), "duration": float(r[2]), "overturn_rule": settings.overturn,
-            "friction_demand": math.nan, "slide_max": float(extremes[2]), "slide_onset": onset}
+            "friction_demand": math.nan, "slide_max": float(extremes[2]), "slip_onset": onset}

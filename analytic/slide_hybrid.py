@@ -336,7 +336,7 @@ class SlidingIntegrator(_IsolatorIntegrator):
                         slip_loss=y[FL] if self.slips else None)
         onset = next((te for te, sg in self.slip_log if sg != 0), None)
         extras = {"overturn_rule": self.cfg.overturn, "slip_mode": sigma, "slip_events": tuple(self.slip_log),
-                  "slide_onset": onset}
+                  "slip_onset": onset}
         if not self.linear:
             extras.update(isolator=sys.isolator_kind, isolator_phase=np.concatenate(self.out_phase),
                           isolator_slider=u_p, isolator_events=tuple(self.isolator_log))

@@ -232,9 +232,8 @@ class Trajectory:
         """The slide's metrics (m, s): how far the statue walked on its base at most and at the
         end, and when it first slid (slide_onset: the first time |x| passes SLIDING_FRACTION·b,
         None: never, read off the samples: a contact engine's ẋ is never exactly 0, its contact
-        creeps. An engine that locates slips as events says when the first began in its extras'
-        own slide_onset, which summary() reports instead; to compare engines, read first_passage
-        off both histories)."""
+        creeps; the analytic engines, which locate slips as events, also say when the first began:
+        extras' slip_onset)."""
         x = self.slide
         return {"slide_max": float(np.max(np.abs(x))) if x.size else 0.0,
                 "slide_final": float(x[-1]) if x.size else 0.0,

@@ -29,7 +29,7 @@ from isorock.analytic.motion import GroundMotion
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import (DEFAULT_IMPACT_THRESHOLD, SLIDING_FRACTION, Impact, RawHistory, Trajectory,
-                                        half_cycles)
+                                        first_passage, half_cycles)
 
 #: How far (s) before and after a sign change the states are taken: well outside the
 #: contact transient of the default scenes (time constants of a few ms), and capped at
@@ -218,20 +218,11 @@ MODE_HOLD = 0.05
 
 
 def slide_onset(traj: Trajectory, fraction: float = SLIDE_ONSET_FRACTION) -> float | None:
-    """First time (s) the statue has slid `fraction`·b from where it stood, interpolated
-    between samples; None if never (or where the run carries no slide)."""
+    """First time (s) the statue has slid `fraction`·b from where it stood (trajectory.first_passage);
+    None if never (or where the run carries no slide)."""
     if traj.slide is None:
         return None
-    level = fraction * traj.system.b
-    moved = np.abs(np.asarray(traj.slide) - traj.slide[0])
-    above = np.nonzero(moved > level)[0]
-    if not above.size:
-        return None
-    i = int(above[0])
-    if i == 0:
-        return float(traj.t[0])
-    t0, t1, a0, a1 = traj.t[i - 1], traj.t[i], moved[i - 1], moved[i]
-    return float(t0 + (t1 - t0) * (level - a0) / (a1 - a0))
+    return first_passage(traj.t, np.asarray(traj.slide) - traj.slide[0], fraction * traj.system.b)
 
 
 def mode_sequence(traj: Trajectory) -> tuple[str, ...]:
