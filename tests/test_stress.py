@@ -205,3 +205,23 @@ def test_a_reference_whose_outcome_flips_near_the_motion_is_chaotic_not_a_disagr
     monkeypatch.setattr(stress, "run_cases", runs)
     stress.recheck_disagreements(results, {case.name: case}, 60.0)
     assert mine["cross"] == "chaotic" and "0.9975" in mine["note"] and "reference" in mine["note"]
+
+
+def test_a_standing_statues_slide_is_judged_against_the_exact_models():
+    """Issue 33: where both stand, an engine whose largest slide parts from the exact model's by more
+    than its slide_max tolerance (×b) disagrees, if the exact slide holds under ±3% of the motion,
+    and is chaotic otherwise; within it, it agrees; a statue that cannot slip is judged as before."""
+    from isorock.validate.core.tolerances import tolerance
+    tol = tolerance("mujoco", "slide_max").limit
+    ref = dict(engine="analytic", case="c", verdict="pass", overturned=False, robust=True, status="completed",
+               slide_over_b=1.0, slide_robust=True)
+
+    def judged(slide, robust=True):
+        mine = dict(engine="mujoco", case="c", verdict="pass", overturned=False, status="completed",
+                    slide_over_b=slide)
+        compare_engines([dict(ref, slide_robust=robust), mine])
+        return mine["cross"]
+    assert judged(1.0 + 0.5 * tol) == "agree"
+    assert judged(1.0 + 2 * tol) == "DISAGREE"
+    assert judged(1.0 + 2 * tol, robust=False) == "chaotic"
+    assert judged(None) == "agree"  # no slide to compare: overturning alone, as before

@@ -4,7 +4,8 @@ from __future__ import annotations
 from isorock.validate.tools import stress as tool
 from pathlib import Path
 import time
-from isorock.validate.tools.stress import DRAWN_FULL, DRAWN_QUICK, COLUMNS, failures, markdown, run_stress, stress_verdict
+from isorock.validate.tools.stress import (DRAWN_FULL, DRAWN_QUICK, COLUMNS, failed, failures, markdown, run_stress,
+                                           stress_verdict)
 
 
 def add_parser(sub) -> None:
@@ -60,4 +61,4 @@ def cmd_stress(a) -> int:
               f"{r['status']} {r.get('error', '')}")
     print(f"report in {a.out}/stress.md ({time.perf_counter() - start:.0f} s)")
     print(stress_verdict(results))
-    return 1 if fails else 0
+    return 1 if failed(results) else 0

@@ -387,6 +387,10 @@ LIMITS: dict[str, Tolerance] = {
                 "±stress_robust_scale, nearest first: an outcome near overturning flips on a finer step than "
                 "±3% can see (drawn-1407: the exact model stands at 0.97, 1.00 and 1.03 ×, overturns at "
                 "0.9975 × and at 9 of 41 scales 0.95–1.05; docs/robustness.md)"),
+    "stress_slide_robust": Tolerance(
+        0.02, "×b: the contact engines' slide_max tolerance; a reference's largest slide counts as robust when "
+              "±stress_robust_scale of the motion moves it by less than half of it, so that a slide judged "
+              "against it tells the engine's error, not the slide's sensitivity to the motion"),
     "bench_mujoco_speed": Tolerance(
         1000.0, "simulated s per wall s asked of MuJoCo over a batch of 16 runs of Kobe 40 s on 2 cores "
                 "(issue 19), at the accuracy the atlas holds (atlas_level_coarse)", kind="min"),

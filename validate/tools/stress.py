@@ -18,8 +18,11 @@ it overturned or tilts past lying on its side, or (analytic) its energy balance 
 exceeds 1e-6 of the input energy. Across engines: a contact engine that overturns where
 the analytic model does not (or the reverse) DISAGREEs when the analytic outcome is
 robust (it does not flip under ±3% of the motion, nor, where a disagreement is claimed, at
-any step of 0.25% within it); a block that slid is flagged "slid"
-(the analytic model assumes no sliding), not failed.
+any step of 0.25% within it); where both stand, an engine whose largest slide parts from the
+exact model's by more than its slide_max tolerance DISAGREEs when that slide is robust (issue
+33: every case carries the statue's friction, so a block that slides is judged, not flagged).
+The grid fails on a broken run, or when an engine's rate of robust disagreements is beyond
+the table's limit by its exact 95% interval (`failed`); each disagreement is listed.
 
 A run's result is the one summary row of every table (core.summary: θmax/α as every table
 defines it, π/(2α) for an overturned block) and the grid's own checks beside it
@@ -231,15 +234,21 @@ def run_one(engine_name: str, case: StressCase, scale: float = 1.0) -> dict:
         wall = time.perf_counter() - start
         arrays = (tr.t, tr.u, tr.u_dot, tr.theta, tr.theta_dot)
         finite = all(np.all(np.isfinite(a)) for a in arrays)
-        robust = None
+        robust = slide_robust = None
+        slide = _slide_over_b(tr)
         if engine_name == REFERENCE and scale == 1.0:  # does its overturning hold under ±ROBUST_SCALE of the motion?
-            robust = all(engine.simulate(system, motion.scaled(f), duration=sc.duration, theta0=sc.theta0).overturned
-                         == tr.overturned for f in (1 - ROBUST_SCALE, 1 + ROBUST_SCALE))
+            again = [engine.simulate(system, motion.scaled(f), duration=sc.duration, theta0=sc.theta0)
+                     for f in (1 - ROBUST_SCALE, 1 + ROBUST_SCALE)]
+            robust = all(a.overturned == tr.overturned for a in again)
+            if slide is not None:  # and its slide, within the tightest contact engine's tolerance
+                slide_robust = all(a.status.ended_normally and not a.overturned
+                                   and abs(_slide_over_b(a) - slide) <= SLIDE_ROBUST for a in again)
         # the one summary row every table has (status, θmax/α as every table defines it,
         # impacts, uplifts, overturning, u_max), then what only this grid checks: finite
         # histories, the raw peak tilt (the "past lying on its side" check needs the angle
         # reached, not an overturned block's π/(2α)), the end tilt and time, the energy
         out = dict(row_of_trajectory(tr), finite=bool(finite), wall_s=wall, alpha=system.alpha, robust=robust,
+                   slide_over_b=slide, slide_robust=slide_robust,
                    theta_end_over_alpha=float(abs(tr.theta[-1]) / system.alpha) if tr.theta.size else 0.0,
                    theta_peak_over_alpha=float(np.nanmax(np.abs(tr.theta)) / system.alpha) if tr.theta.size else 0.0,
                    sim_end=float(tr.t[-1]),
@@ -300,6 +309,28 @@ def verdict(r: dict) -> str:
     return "pass"
 
 
+#: ×b: a reference's largest slide is robust when ±ROBUST_SCALE of the motion moves it by less than
+#: this, half the contact engines' slide_max tolerance (validate/core/tolerances.py): a slide that
+#: moves more than that under 3% of the motion cannot tell an engine's error from its sensitivity
+SLIDE_ROBUST = 0.5 * limit("stress_slide_robust")
+
+
+def _slide_over_b(tr) -> float | None:
+    """The largest slide of a run that stood (m, in units of b), None where it cannot slip or fell."""
+    if tr.slide is None or tr.overturned or not tr.status.ended_normally or not tr.slide.size:
+        return None
+    return float(np.max(np.abs(tr.slide - tr.slide[0])) / tr.system.b)
+
+
+def slide_agrees(engine: str, r: dict, ref: dict) -> bool | None:
+    """Whether an engine's largest slide is the exact model's within the engine's slide_max
+    tolerance (None: nothing to judge: either fell, or the engine has no such row)."""
+    from isorock.validate.core.tolerances import has_tolerance, tolerance
+    if r.get("slide_over_b") is None or ref.get("slide_over_b") is None or not has_tolerance(engine, "slide_max"):
+        return None
+    return abs(r["slide_over_b"] - ref["slide_over_b"]) <= tolerance(engine, "slide_max").limit
+
+
 def compare_engines(results: list[dict]) -> None:
     """Each contact engine against the reference, case by case (in place): `cross` is
     "agree", "DISAGREE" (the overturning differs where the reference's is robust),
@@ -313,10 +344,14 @@ def compare_engines(results: list[dict]) -> None:
             r["cross"] = ""
         elif r["status"] == "slid":
             r["cross"] = "slid"
-        elif r["overturned"] == ref["overturned"]:
-            r["cross"] = "agree"
-        else:
+        elif r["overturned"] != ref["overturned"]:
             r["cross"] = "DISAGREE" if ref.get("robust") else "chaotic"
+        elif slide_agrees(r["engine"], r, ref) is False:  # both stand: the statue's walk on its base (issue 33)
+            r["cross"] = "DISAGREE" if ref.get("slide_robust") else "chaotic"
+            r["note"] = (f"slid {r['slide_over_b']:.3g}·b against the exact model's {ref['slide_over_b']:.3g}·b"
+                         + ("" if ref.get("slide_robust") else " (which moves under ±3% of the motion)"))
+        else:
+            r["cross"] = "agree"
 
 
 def recheck_disagreements(results: list[dict], cases: dict, time_limit: float, *, workers: int = 2) -> None:
@@ -403,7 +438,8 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, dra
 # --- output ----------------------------------------------------------------------------
 
 COLUMNS = ("engine", "case", "verdict", "cross", "status", "finite", "wall_s", "impacts", "uplifts", "overturned",
-           "theta_max_over_alpha", "theta_peak_over_alpha", "u_max", "energy_residual", "what", "error", "note")
+           "theta_max_over_alpha", "theta_peak_over_alpha", "u_max", "slide_over_b", "energy_residual", "what", "error",
+           "note")
 
 
 #: The verdict of an exact model's run that stopped where its assumptions break (status
@@ -447,6 +483,17 @@ def failures(results) -> list[dict]:
     return [r for r in results if r["verdict"] not in ("pass", OUTSIDE) or r.get("cross") == "DISAGREE"]
 
 
+def failed(results) -> bool:
+    """Whether the grid fails: a run broke, or a contact engine's rate of robust disagreements is
+    beyond the table's verdict_disagreement_rate at its confidence (engine_agreement: the exact
+    interval every count is judged by). A robust disagreement is listed, and counted there: on
+    4,000 cases a contact model parts from the exact one somewhere (issue 33: a squat block's
+    tilting slide, docs/sliding_engines.md), and it is its rate that says whether to trust it."""
+    from isorock.validate.core.verdict import DISAGREES
+    broke = any(r["verdict"] not in ("pass", OUTSIDE) for r in results)
+    return broke or any(v.word == DISAGREES for v in engine_agreement(results).values())
+
+
 def stress_verdict(results) -> str:
     s = summary(results)
     compared = s["agree"] + s["disagree"]
@@ -455,7 +502,7 @@ def stress_verdict(results) -> str:
     if counts:  # what each engine's count says about its rate, judged as every ensemble is (core.verdict)
         rate += (f"; disagreements per engine at {limit('verdict_confidence'):.0%} confidence: "
                  + "; ".join(f"{e} {_count_text(v)}" for e, v in counts.items()))
-    head = "stress: PASS" if not failures(results) else "stress: FAIL"
+    head = "stress: FAIL" if failed(results) else "stress: PASS"
     return (f"{head} — {s['runs']} runs of {s['cases']} cases: {s['fail']} broke; contact engines agree with the "
             f"analytic model on overturning in {s['agree']} of {compared} robust comparisons ({rate}), "
             f"{s['disagree']} disagree, {s['slid']} slid (flagged), {s['chaotic']} chaotic"
