@@ -405,3 +405,23 @@ def test_an_engine_without_an_ensemble_limit_is_skipped_with_its_reason_not_a_la
     assert by_metric["ensemble_theta_max_diff"].status == "skip"
     assert "no tolerance for drake" in by_metric["ensemble_theta_max_diff"].note
     assert by_metric["ensemble_overturn_median"].status != "skip"  # Drake has this limit: judged
+
+
+def test_the_report_judges_a_statue_that_slides(tmp_path, capsys):
+    """Issue 33: the default report slides the paper's block on a fixed base with μ_s 0.2 under each
+    motion; PyBullet's largest and final slide are judged against the exact model's by the slide
+    rows (×b), and the exact slide is the rigid-plastic block's: it never lifts (θmax/α 0)."""
+    out = tmp_path / "rep"
+    rc = main(["validate", "--quick", "--quiet", "--engines", "analytic", "bullet", "--motion",
+               "sine:amp=0.6,freq=1.3,cycles=2", "--scales", "1,1,1", "--duration", "4", "--workers", "1",
+               "--out", str(out)])
+    assert rc == 0
+    m = json.loads((out / "metrics.json").read_text())
+    (sc,) = m["sliding"]
+    assert sc["system"]["friction"] == 0.2 and sc["exercised"]
+    exact = sc["runs"]["analytic"]
+    assert exact["theta_max_over_alpha"] == 0.0 and exact["slide_max"] > 0.1  # 24 cm, never lifting
+    slides = {c["metric"]: c for c in m["checks"] if c["scenario"] == sc["name"] and c["engine"] == "bullet"}
+    assert {"slide_max", "slide_final", "slide_onset", "overturn_agree"} <= set(slides)
+    assert all(c["status"] == "pass" for c in slides.values())
+    assert "Where the statue slides" in (out / "report.md").read_text()
