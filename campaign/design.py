@@ -60,20 +60,32 @@ class Statue:
     width: float
     mass: float
     base_mass: float
+    #: the statue's friction on its plinth (μ_s; None: it cannot slip, docs/sliding.md), and how far
+    #: it may walk on the plinth before it walks off (m; None: not asked)
+    friction: float | None = None
+    plinth_margin: float | None = None
 
     def __post_init__(self):
-        System.fixed(height=self.height, width=self.width, mass=self.mass)  # the block's own checks
+        self.fixed()  # the block's own checks, its friction's too
         if not (self.base_mass > 0 and math.isfinite(self.base_mass)):
             raise InputError(f"base-mass = {self.base_mass!r}: must be a positive finite number (kg)")
+        if self.plinth_margin is not None:
+            if self.friction is None:
+                raise InputError(f"plinth-margin = {self.plinth_margin!r}: needs the statue's --friction (without it "
+                                 "the statue cannot slip)")
+            if not (self.plinth_margin > 0 and math.isfinite(self.plinth_margin)):
+                raise InputError(f"plinth-margin = {self.plinth_margin!r}: must be a positive finite length, m")
 
     def fixed(self) -> System:
-        return System.fixed(height=self.height, width=self.width, mass=self.mass)
+        return System.fixed(height=self.height, width=self.width, mass=self.mass).with_friction(self.friction)
 
     @property
     def label(self) -> str:
         s = self.fixed()
         return (f"H {self.height:g} m, B {self.width:g} m (λ = H/B = {s.slenderness:.3g}, α = {s.alpha:.3g} rad), "
-                f"m {self.mass:g} kg on a {self.base_mass:g} kg base (μ = {self.mass / self.base_mass:.3g})")
+                f"m {self.mass:g} kg on a {self.base_mass:g} kg base (μ = {self.mass / self.base_mass:.3g})"
+                + ("" if self.friction is None else f", statue friction μ_s {self.friction:g}"
+                   + ("" if self.plinth_margin is None else f", {self.plinth_margin:g} m to the plinth's edge")))
 
 
 # --- isolator families: two axes, and the System at each cell ----------------------------
@@ -108,7 +120,8 @@ class Family:
 
     def system(self, statue: Statue, x: float, y: float) -> System:
         return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
-                                    base_mass=statue.base_mass, isolator=self.isolator(x, y))
+                                    base_mass=statue.base_mass, isolator=self.isolator(x, y)).with_friction(
+                                        statue.friction)
 
 
 @dataclass(frozen=True)
@@ -129,7 +142,7 @@ class LinearFamily(Family):
     def system(self, statue: Statue, x: float, y: float) -> System:
         # given by period and damping ratio, which the System derives k and c from
         return System.isolated(height=statue.height, width=statue.width, mass=statue.mass,
-                               base_mass=statue.base_mass, period=x, damping_ratio=y)
+                               base_mass=statue.base_mass, period=x, damping_ratio=y).with_friction(statue.friction)
 
 
 @dataclass(frozen=True)
@@ -255,6 +268,7 @@ class Design:
     check: dict | None = field(default=None)  # the first contact engine's check (as design.json's `check`)
     checks: list | None = field(default=None)  # every contact engine's, in the order asked
     _memo: dict = field(default_factory=dict, repr=False)
+    slide: np.ndarray | None = None  # m: how far the statue walked on its plinth (a statue with friction)
 
     # --- per system ---------------------------------------------------------------------
     @property
@@ -279,6 +293,29 @@ class Design:
     def p_hazard(self) -> np.ndarray:
         """(systems,) P(overturn) over the hazard: the levels' fractions, weighted."""
         return self.p_level() @ np.asarray(self.hazard.weights)
+
+    def walk_off_level(self) -> np.ndarray | None:
+        """(systems, levels) fraction of records under which the statue walks farther than the plinth
+        margin (a statue that falls first counts by its fall, p_level); None without a margin."""
+        if self.slide is None or self.statue.plinth_margin is None:
+            return None
+        v = self._valid()
+        off = np.nan_to_num(self.slide, nan=0.0) > self.statue.plinth_margin
+        with np.errstate(invalid="ignore"):
+            return (off & v).sum(axis=1) / v.sum(axis=1)
+
+    def walk_off_hazard(self) -> np.ndarray | None:
+        """(systems,) P(walks off its plinth) over the hazard: the levels' fractions, weighted."""
+        w = self.walk_off_level()
+        return None if w is None else w @ np.asarray(self.hazard.weights)
+
+    def walk(self, q: float) -> np.ndarray | None:
+        """(systems, levels) the q-quantile over the records of how far the statue walked (m)."""
+        if self.slide is None:
+            return None
+        x = np.where(self._valid(), self.slide, np.nan)
+        with np.errstate(invalid="ignore"):
+            return np.nanquantile(x, q, axis=1)
 
     def stroke(self, q: float) -> np.ndarray:
         """(systems, levels) the q-quantile over the records of the peak base displacement (m)."""
@@ -315,6 +352,9 @@ class Design:
         ok = self.grid(self.p_hazard()) <= target
         if max_stroke is not None:
             ok &= self.grid(self.stroke(0.84)[:, -1]) <= max_stroke
+        off = self.walk_off_hazard()
+        if off is not None:  # and the statue stays on its plinth as often (a plinth margin given)
+            ok &= self.grid(off) <= target
         return ok
 
     def best(self, target: float, max_stroke: float | None) -> tuple[int, int]:
@@ -403,7 +443,8 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     shape = (1 + len(family.x_values) * len(family.y_values), n_rec, n_lev)
     start = time.perf_counter()
     settled = []
-    if rest_phase and family.kind == LINEAR:
+    # the rest phase in closed form holds a statue that cannot slip (a linear isolator's, analytic.rest_scales)
+    if rest_phase and family.kind == LINEAR and statue.friction is None:
         bar = progress(shape[0] - 1, "rest phase", "isolators") if progress is not None else None
         settled = _settle_at_rest(cases, shape, hazard, tail, threads, bar)
     done = {row["case"] for row in settled}
@@ -423,7 +464,7 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
         return table.column(name).to_numpy(zero_copy_only=False)[order].reshape(shape)
     return Design(statue, family, hazard, overturned=col("overturned").astype(bool), u_max=col("u_max"),
                   theta_max=col("theta_max_over_alpha"), status=col("status").astype(str), table=table, wall_s=wall,
-                  tail=tail)
+                  tail=tail, slide=col("slide_max") if statue.friction is not None else None)
 
 
 def _settle_at_rest(cases, shape, hazard: Hazard, tail: float, threads, bar=None) -> list[dict]:
@@ -499,14 +540,23 @@ def verdict(d: Design, target: float, max_stroke: float | None) -> dict:
     iy, ix = d.best(target, max_stroke)
     k = 1 + iy * len(fam.x_values) + ix
     top = h.levels[-1]
+    off = d.walk_off_hazard()
     rule = f"P(overturn) ≤ {_pct(target)} over the hazard" + (
-        f" and 84th-percentile stroke ≤ {max_stroke:g} m at {top:g} g" if max_stroke is not None else "")
+        f" and 84th-percentile stroke ≤ {max_stroke:g} m at {top:g} g" if max_stroke is not None else "") + (
+        f" and P(walks off its plinth, {d.statue.plinth_margin:g} m) ≤ {_pct(target)}" if off is not None else "")
+    walk50, walk84 = d.walk(0.5), d.walk(0.84)
+
+    def walk(i):  # how far the statue walks on its plinth (a statue with friction)
+        if walk50 is None:
+            return ""
+        return (f"; it walks {walk50[i, -1]:.3g} m median, {walk84[i, -1]:.3g} m 84th percentile at {top:g} g"
+                + ("" if off is None else f", P(walks off its plinth) {_pct(off[i])} over the hazard"))
     fixed = (f"Fixed base: P(overturn) {_pct(p_h[0])} over the hazard"
-             + (f" ({_pct(p_l[0, -1])} at {top:g} g)." if len(h.levels) > 1 else "."))
+             + (f" ({_pct(p_l[0, -1])} at {top:g} g)" if len(h.levels) > 1 else "") + walk(0) + ".")
     best = (f"{fam.x_name.replace('_', ' ')} {_fmt_value(fam.x_values[ix], fam.x_unit)}, "
             f"{fam.y_name.replace('_', ' ')} {fam.y_values[iy]:.3g}: P {_pct(p_h[k])} over the hazard"
             + (f" ({_pct(p_l[k, -1])} at {top:g} g)" if len(h.levels) > 1 else "")
-            + f", stroke {s50[k, -1]:.3g} m median, {s84[k, -1]:.3g} m 84th percentile at {top:g} g")
+            + f", stroke {s50[k, -1]:.3g} m median, {s84[k, -1]:.3g} m 84th percentile at {top:g} g" + walk(k))
     n_ok = int(ok.sum())
     edges = []
     for row in region_rows(d, target, max_stroke):
@@ -527,7 +577,13 @@ def verdict(d: Design, target: float, max_stroke: float | None) -> dict:
             "fixed_base": {"p_hazard": float(p_h[0]), "p_levels": p_l[0].tolist(),
                            "fragility_median_pga": float(d.fragility_median(0))},
             "region_edges": [{fam.y_name: y, f"{fam.x_name}_from": a, f"{fam.x_name}_to": b, "contiguous": w}
-                             for y, a, b, w in edges]}
+                             for y, a, b, w in edges],
+            **({} if walk50 is None else {"walk": {
+                "statue_friction": d.statue.friction, "plinth_margin": d.statue.plinth_margin,
+                "best_median_top": float(walk50[k, -1]), "best_84_top": float(walk84[k, -1]),
+                "fixed_base_median_top": float(walk50[0, -1]), "fixed_base_84_top": float(walk84[0, -1]),
+                "best_p_walk_off": None if off is None else float(off[k]),
+                "fixed_base_p_walk_off": None if off is None else float(off[0])}})}
 
 
 def _region_words(edges, fam) -> str:

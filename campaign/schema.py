@@ -113,6 +113,8 @@ class Systems(_Strict):
     base_mass: Grid = None
     period: Grid = None
     damping_ratio: GridZero = None
+    #: the statue's friction on its base, μ_s (docs/sliding.md): an axis of its own; absent: no slip
+    friction: Grid = None
 
     @model_validator(mode="after")
     def _isolator_needs_its_base(self):

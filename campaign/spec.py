@@ -159,7 +159,9 @@ class CampaignSpec:
                     for mu, T, xi in itertools.product(s["mass_ratio"], s["period"], s["damping_ratio"]):
                         out.append({**geo, "mass": mass, "base": "isolated", "mass_ratio": mu,
                                     "period": T, "damping_ratio": xi})
-        return out
+        # the statue's friction, innermost (a campaign without the axis: its systems as before)
+        frictions = s.get("friction", (None,))
+        return [{**row, "friction": mu} if mu is not None else row for row in out for mu in frictions]
 
     def n_motions_per_system(self) -> int:
         m = self.motions
@@ -176,7 +178,7 @@ class CampaignSpec:
         per_geometry = ("fixed" in s["base"]) + ("isolated" in s["base"]) * (
             len(s.get("mass_ratio", s.get("base_mass", ()))) * len(s.get("period", ()))
             * len(s.get("damping_ratio", ())))
-        return geometry * len(s["mass"]) * per_geometry
+        return geometry * len(s["mass"]) * per_geometry * len(s.get("friction", (None,)))
 
     @property
     def n_cases(self) -> int:
@@ -212,7 +214,7 @@ class CampaignSpec:
 
 def _systems(t) -> dict:
     allowed = {"slenderness", "alpha", "size", "height", "width", "mass", "base", "mass_ratio", "base_mass",
-               "period", "damping_ratio"}
+               "period", "damping_ratio", "friction"}
     _check_keys("systems", t, allowed)
     out = {}
     geometry_keys = [k for k in ("slenderness", "alpha", "height", "width") if k in t]
@@ -235,6 +237,12 @@ def _systems(t) -> dict:
             raise InputError("systems.size: missing (R = √(b² + h²), the half-diagonal, m)")
         out["size"] = _grid("systems.size", t["size"])
     out["mass"] = _grid("systems.mass", t.get("mass", 1000.0))
+    # the statue's friction (docs/sliding.md): None, a statue that cannot slip, is the axis's one value by default
+    out["friction"] = (None,) if "friction" not in t else _grid("systems.friction", t["friction"])
+    from isorock.analytic.system import MAX_STATUE_FRICTION
+    for mu in out["friction"]:
+        if mu is not None and not 0 < mu <= MAX_STATUE_FRICTION:
+            raise _where("systems.friction", mu, f"a friction coefficient in (0, {MAX_STATUE_FRICTION:g}]")
     out["base"] = _strings("systems.base", t.get("base", "fixed"), BASES)
     if "isolated" in out["base"]:
         if "mass_ratio" not in t and "base_mass" not in t:

@@ -503,3 +503,23 @@ def test_a_campaign_takes_progress_as_every_tool_does(tmp_path):
     (bar,) = made
     assert bar.total == bar.counted == result.table.num_rows == 18
     assert bar.work == pytest.approx(sum(map(expected_cost, tasks))) == pytest.approx(bar.worked)
+
+
+def test_the_statues_friction_is_an_axis_and_each_row_is_its_direct_run(tmp_path):
+    """Issue 33: systems.friction multiplies the systems; each row carries its friction and its largest
+    slide, the sliding model's direct run's; a campaign without the axis has neither (NaN)."""
+    from isorock.analytic.fast import simulate_fast
+    from isorock.validate.core.cases import build_system
+    spec_file = tmp_path / "c.toml"
+    spec_file.write_text('[systems]\nslenderness = 3.0\nsize = 1.0\nmass = 100.0\nbase = "fixed"\n'
+                         'friction = [0.2, 0.5]\n[motions]\ntype = "pulse"\nfrequency_ratio = [2.0]\n'
+                         'amplitude_ratio = [1.5, 3.0]\n[duration]\ntail = 2.0\n[[engines]]\nname = "analytic"\n')
+    spec = load_spec(spec_file)
+    assert spec.n_systems() == 2 and len(spec.cases()) == 4
+    table = run_campaign(spec, tmp_path / "out", progress=False).to_dataframe()
+    assert sorted(table["friction"]) == [0.2, 0.2, 0.5, 0.5]
+    for case, row in zip(spec.cases(), table.sort_values("case").itertuples()):
+        direct = simulate_fast(case.system, case.ground_motion(), duration=case.duration).summary()
+        assert case.system.friction == row.friction
+        assert row.slide_max == pytest.approx(direct["slide_max"], rel=1e-12, abs=1e-15)
+    assert table[table["friction"] == 0.2]["slide_max"].max() > 0.01  # μ_s 0.2 < tanα 0.33: it slides

@@ -247,3 +247,32 @@ def test_the_contact_check_reruns_the_picked_runs_and_compares_them(small_design
     assert c["n"] == len(picks) and all(r["pga"] == small_design.hazard.levels[-1] for r in c["runs"])
     assert c["stroke_rel_diffs"] and c["stroke_within"] == len(c["stroke_rel_diffs"])
     assert c["text"].startswith(f"mujoco on {len(picks)} of the design's runs")
+
+
+def test_a_statue_that_slides_walks_as_the_kernel_says_and_off_its_plinth(tmp_path, capsys, records_folder):
+    """Issue 33: with the statue's friction every design run is the sliding model's (no rest-phase
+    shortcut: it holds a statue that cannot slip), a cell's walk is the kernel's direct run, and a
+    plinth margin below the walks puts P(walks off) in the answer and the recommendation."""
+    statue = Statue(height=1.0, width=0.35, mass=100.0, base_mass=100.0, friction=0.15)
+    family = LinearFamily((1.0, 2.5), (0.3,))
+    hazard = Hazard(RECORDS, (0.4,))
+    d = run_design(statue, family, hazard, tail=TAIL, threads=1)
+    assert d.slide is not None and np.nanmax(d.slide) > 0.01
+    k, r = 1, 0  # the first isolator under the first record
+    direct = simulate_fast(family.system(statue, 1.0, 0.3), unit_scaled(RECORDS[hazard.names[r]], 0.4),
+                           duration=RECORDS[hazard.names[r]].end_time + TAIL)
+    assert d.slide[k, r, 0] == pytest.approx(direct.summary()["slide_max"], rel=1e-12)
+    out = tmp_path / "design"
+    rc = main(["design", "--records", str(records_folder), "--height", "1", "--width", "0.35", "--mass", "100",
+               "--mass-ratio", "1", "--pga", "0.6", "--periods", "1,2.5", "--damping-ratios", "0.3", "--tail", "2",
+               "--friction", "0.15", "--plinth-margin", "0.001", "--out", str(out), "--quiet"])
+    assert rc == 0, capsys.readouterr().err
+    doc = json.loads((out / "design.json").read_text())
+    walk = doc["answer"]["walk"]
+    assert walk["statue_friction"] == 0.15 and walk["fixed_base_p_walk_off"] == 1.0
+    assert "walks off its plinth" in doc["verdict"]
+    capsys.readouterr()
+    rc = main(["design", "--records", str(records_folder), "--plinth-margin", "0.1", "--out", str(tmp_path / "x"),
+               "--quiet"])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and "--plinth-margin" in err and "--friction" in err and len(err.splitlines()) == 1

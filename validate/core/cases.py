@@ -123,12 +123,15 @@ def block_system(*, height: float, slenderness: float, mass: float, mass_ratio: 
 
 def build_system(inputs: dict) -> System:
     geo = dict(height=inputs["height"], width=inputs["width"], mass=inputs["mass"])
+    friction = inputs.get("friction")  # the statue's (docs/sliding.md), None or NaN: it cannot slip
+    friction = None if friction is None or math.isnan(friction) else friction
     if inputs["base"] == "fixed":
-        return System.fixed(**geo)
+        return System.fixed(**geo).with_friction(friction)
     # the base's mass as the user gave it, where they did (a campaign's base_mass), not
     # recomputed from the ratio (80/(80/150) is not 150 in floating point)
     base_mass = inputs.get("base_mass") or inputs["mass"] / inputs["mass_ratio"]
-    return System.isolated(**geo, base_mass=base_mass, period=inputs["period"], damping_ratio=inputs["damping_ratio"])
+    return System.isolated(**geo, base_mass=base_mass, period=inputs["period"],
+                           damping_ratio=inputs["damping_ratio"]).with_friction(friction)
 
 
 def pulse_for(system: System, kind: str, frequency_ratio: float, amplitude_ratio: float,

@@ -16,11 +16,15 @@ INPUT_COLUMNS = {
     "amplitude_ratio": "float64", "pulse_amp_g": "float64", "pulse_freq_hz": "float64",
     "scale_by": "string", "intensity": "float64", "scale_factor": "float64",
     "duration": "float64", "theta0": "float64",
+    # the statue's friction on its base (docs/sliding.md; NaN: it cannot slip)
+    "friction": "float64",
 }
 RESULT_COLUMNS = {
     "status": "string", "message": "string", "theta_max_over_alpha": "float64",
     "overturned": "bool", "overturn_mode": "string", "overturn_time": "float64",
     "impacts": "int64", "uplift": "bool", "uplifts": "int64", "u_max": "float64",
+    # m: how far the statue walked on its base at most (NaN where it cannot slip)
+    "slide_max": "float64",
     "runtime_s": "float64",
 }
 COLUMNS = {**INPUT_COLUMNS, **RESULT_COLUMNS}
@@ -46,7 +50,8 @@ def case_inputs(case: Case) -> dict:
                slenderness=s.slenderness, alpha=s.alpha, size=s.R, p=s.p, mass=s.mass,
                mass_ratio=s.mu, period=math.nan if s.fixed_base else s.period,
                damping_ratio=math.nan if s.fixed_base else s.damping_ratio,
-               motion=getattr(case.motion, "name", ""), duration=case.duration, theta0=case.theta0)
+               motion=getattr(case.motion, "name", ""), duration=case.duration, theta0=case.theta0,
+               friction=math.nan if s.friction is None else s.friction)
     row.update({k: v for k, v in case.inputs.items() if k in INPUT_COLUMNS})
     row["case"] = case.case
     return row
@@ -69,7 +74,8 @@ def row_of_batch(case, result: dict) -> dict:
             "overturn_mode": overturn_mode(overturned, int(result["impacts"])),
             "overturn_time": math.nan if result["overturn_time"] is None else float(result["overturn_time"]),
             "impacts": int(result["impacts"]), "uplift": int(result["uplifts"]) > 0,
-            "uplifts": int(result["uplifts"]), "u_max": float(result["u_max"])}
+            "uplifts": int(result["uplifts"]), "u_max": float(result["u_max"]),
+            "slide_max": float(result.get("slide_max", math.nan))}
 
 
 def row_of_trajectory(tr) -> dict:
@@ -80,14 +86,17 @@ def row_of_trajectory(tr) -> dict:
             "theta_max_over_alpha": tr.theta_max_over_alpha, "overturned": bool(tr.overturned),
             "overturn_mode": overturn_mode(tr.overturned, before),
             "overturn_time": math.nan if tr.overturn_time is None else float(tr.overturn_time),
-            "impacts": tr.impact_count, "uplift": tr.uplifts > 0, "uplifts": tr.uplifts, "u_max": tr.u_max}
+            "impacts": tr.impact_count, "uplift": tr.uplifts > 0, "uplifts": tr.uplifts, "u_max": tr.u_max,
+            "slide_max": math.nan if tr.slide is None or not tr.slide.size
+            else float(abs(tr.slide - tr.slide[0]).max())}
 
 
 def row_of_failure(error: BaseException) -> dict:
     """The result columns of a run that raised: a row saying so, not a lost chunk."""
     return {"status": "failed", "message": f"{type(error).__name__}: {error}",
             "theta_max_over_alpha": math.nan, "overturned": False, "overturn_mode": NOT_OVERTURNED,
-            "overturn_time": math.nan, "impacts": 0, "uplift": False, "uplifts": 0, "u_max": math.nan}
+            "overturn_time": math.nan, "impacts": 0, "uplift": False, "uplifts": 0, "u_max": math.nan,
+            "slide_max": math.nan}
 
 
 def rows_to_table(rows: list[dict]):
