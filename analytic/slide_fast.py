@@ -703,6 +703,15 @@ def _after_velocity(t, y, mode, rs, sp, ip, cp, mp, acc, mpv, accv):
 
 
 @njit
+def _lift(t, side, upl, n_upl, rs):
+    """The block lifts about corner `side` at t (the reference's lift): (uplifts logged, the new mode)."""
+    upl[n_upl] = t
+    rs[R_PEAK] = 0.0
+    rs[R_GRAZE] = 0.0
+    return n_upl + 1, int(side)
+
+
+@njit
 def _relift(t, y, rs, sp, ip, cp, mp, acc, mpv, accv, slog, n_slog):
     """SlidingIntegrator.relift: (corner it lifts about or 0, why it stops or 0, slip log length)."""
     s, sigma, why = _flat_mode(sp, ip, cp, rs[R_PHASE], rs[R_UP], y[U], y[UD], y[XD], _xg(t, mp, acc),
@@ -975,11 +984,7 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
                 why = w
                 break
             if side2 != 0:
-                upl[n_upl] = t
-                n_upl += 1
-                rs[R_PEAK] = 0.0
-                rs[R_GRAZE] = 0.0
-                mode = side2
+                n_upl, mode = _lift(t, side2, upl, n_upl, rs)
             else:
                 if rs[R_SIGMA] == 0.0:
                     rs[R_GRAZE] = 1.0
@@ -1013,11 +1018,7 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
                     why = w
                     break
                 if side2 != 0:
-                    upl[n_upl] = t
-                    n_upl += 1
-                    rs[R_PEAK] = 0.0
-                    rs[R_GRAZE] = 0.0
-                    mode = side2
+                    n_upl, mode = _lift(t, side2, upl, n_upl, rs)
             if rs[R_SIGMA] == 0.0 and mode != 0:
                 sg, w = _rock_mode(sp, ip, cp, float(mode), rs[R_PHASE], rs[R_UP], y[TH], y[THD], y[U], y[UD], xg,
                                    ge, True)
@@ -1049,11 +1050,7 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
                 sg = 0.0
             n_slog = _set_sigma(t, y, sg, int(s), rs, sp, ip, cp, mp, acc, mpv, accv, slog, n_slog)
             if int(s) != mode:
-                upl[n_upl] = t
-                n_upl += 1
-                rs[R_PEAK] = 0.0
-                rs[R_GRAZE] = 0.0
-                mode = int(s)
+                n_upl, mode = _lift(t, int(s), upl, n_upl, rs)
             continue
         if mode == 0:  # tip or slip from rest
             s, sg, w = _flat_mode(sp, ip, cp, rs[R_PHASE], rs[R_UP], y[U], y[UD], 0.0, xg, ge, rs[R_GRAZE] != 0.0,
@@ -1063,11 +1060,7 @@ def _run(sp, ip, cp, mp, acc, mpv, accv, breaks, T, y0, rtol, atol, max_step, ma
                 break
             n_slog = _set_sigma(t, y, sg, int(s), rs, sp, ip, cp, mp, acc, mpv, accv, slog, n_slog)
             if s != 0.0:
-                upl[n_upl] = t
-                n_upl += 1
-                rs[R_PEAK] = 0.0
-                rs[R_GRAZE] = 0.0
-                mode = int(s)
+                n_upl, mode = _lift(t, int(s), upl, n_upl, rs)
             elif sg == 0.0:
                 rs[R_GRAZE] = 1.0
             continue
