@@ -296,3 +296,21 @@ def test_the_rule_recomputed_on_the_papers_record_never_lets_quick_contradict_fu
         assert not _contradicts(q, f), (full["base"], q, f)
         sub = _statuses(_recorded_ensemble(full, every=4))
         assert not _contradicts(sub, f), (full["base"], sub, f)
+
+
+def test_the_verdicts_counts_of_checks_not_made_add_up(tmp_path):
+    """Issue 39: "16 of 190 not made (10 skipped, 4 not exercised)" left the inconclusive ones out;
+    the parenthesis now counts every check not made, by why."""
+    import json
+    import re
+
+    from isorock.validate.cli.main import main
+    out = tmp_path / "rep"
+    assert main(["validate", "--quick", "--quiet", "--engines", "analytic", "bullet", "--motion",
+                 "sine:amp=0.6,freq=1.3,cycles=2", "--scales", "1,1.5,3", "--workers", "1", "--out", str(out)]) in (0, 1)
+    m = json.loads((out / "metrics.json").read_text())
+    made = re.search(r"(\d+) of (\d+) not made \((\d+) skipped, (\d+) not exercised, (\d+) inconclusive", m["verdict"])
+    assert made, m["verdict"]
+    not_made, total, *parts = map(int, made.groups())
+    assert total == len(m["checks"]) and not_made == sum(parts)
+    assert not_made == sum(c["status"] not in ("pass", "fail") for c in m["checks"])

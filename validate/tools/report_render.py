@@ -149,7 +149,11 @@ def verdict(results: Results) -> str:
     engines = "; ".join(f"{_label(n)} {word}{_how_many_not_judged(results, n) if word == CAVEATS else ''}"
                         for n, (word, _) in engine_verdicts(results).items() if n != REFERENCE)
     skipped_engines = f" Engines skipped: {', '.join(results.skipped)}." if results.skipped else ""
-    tail = f"({n_skip} skipped, {n_idle} not exercised)"
+    n_open = sum(c.status == INCONCLUSIVE for c in checks)
+    # every check not made is in the count, by why (issue 39: the inconclusive ones were missing)
+    n_else = len(checks) - n_pass - len(failed) - n_skip - n_idle - n_open
+    tail = (f"({n_skip} skipped, {n_idle} not exercised, {n_open} inconclusive"
+            + (f", {n_else} without a value" if n_else else "") + ")")
     if stats:  # what the ensembles decided, per engine and quantity, and with what confidence
         per_engine = "; ".join(f"{_label(n)} {_tally([c for c in stats if c.engine == n])}"
                                for n in dict.fromkeys(c.engine for c in stats))
