@@ -504,7 +504,8 @@ def stress_verdict(results) -> str:
                  + "; ".join(f"{e} {_count_text(v)}" for e, v in counts.items()))
     head = "stress: FAIL" if failed(results) else "stress: PASS"
     return (f"{head} — {s['runs']} runs of {s['cases']} cases: {s['fail']} broke; contact engines agree with the "
-            f"analytic model on overturning in {s['agree']} of {compared} robust comparisons ({rate}), "
+            f"analytic model on overturning (and, where both stand, the statue's slide) in {s['agree']} of {compared} "
+            f"robust comparisons ({rate}), "
             f"{s['disagree']} disagree, {s['slid']} slid (flagged), {s['chaotic']} chaotic"
             + (f"; {s['outside']} cases beyond the exact model (the block would leave its base, or Coulomb friction "
                f"admits no mode: docs/sliding.md), not judged" if s["outside"] else ""))
