@@ -26,5 +26,5 @@ def test_the_stress_table_and_a_campaign_summary_use_it():
     row = dict(engine="analytic", case="c", verdict="pass", cross="", status="completed", finite=True,
                wall_s=0.5, impacts=3, uplifts=1, overturned=False, theta_max_over_alpha=math.nan,
                theta_peak_over_alpha=0.25, u_max=0.1, energy_residual=None, what="w")
-    assert "| analytic | c | pass |  | completed | True | 0.5 | 3 | 1 | False |  | 0.25 | 0.1 |  | w |  |  |" \
+    assert "| analytic | c | pass |  | completed | True | 0.5 | 3 | 1 | False |  | 0.25 | 0.1 |  |  | w |  |  |" \
         in markdown([row])

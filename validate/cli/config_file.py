@@ -59,10 +59,9 @@ class SystemTable(_Strict):
     stiffness: Positive | None = None
     dashpot: NonNegative | None = None
     fixed_base: StrictBool | None = None
-    #: the statue's friction on its base, μ_s and μ_k (docs/sliding.md); a design's plinth margin, m
+    #: the statue's friction on its base, μ_s and μ_k (docs/sliding.md)
     statue_friction: Positive | None = None
     kinetic_friction: Positive | None = None
-    plinth_margin: Positive | None = None
 
     @field_validator("damping_ratio")
     @classmethod

@@ -190,11 +190,11 @@ def statue_from_args(a, config: dict):
 
 
 def _slip(a, table: dict) -> dict:
-    """The statue's friction and plinth margin (options over the file's [system] table), checked
+    """The statue's friction (the option over the file's [system] statue_friction) and its plinth margin, checked
     as the System checks them, named as their options."""
     from isorock.analytic.system import System
     friction = a.friction if a.friction is not None else table.get("statue_friction")
-    margin = a.plinth_margin if a.plinth_margin is not None else table.get("plinth_margin")
+    margin = a.plinth_margin
     if friction is not None:
         try:
             System.fixed(height=1.0, width=1.0, mass=1.0).with_friction(friction)
