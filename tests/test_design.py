@@ -218,7 +218,8 @@ def test_the_command_writes_the_chart_and_the_answer(tmp_path, capsys, records_f
     doc = json.loads((out / "design.json").read_text())
     assert captured.out.splitlines()[0] == doc["verdict"]
     assert doc["runs"] == (1 + 4) * 2 * 2 and doc["failed"] == 0
-    assert doc["verdict"].startswith(("Recommended:", "No linear isolator"))
+    assert doc["verdict"].startswith(("Recommended:", "No linear isolator", "The fixed base already meets"))
+    assert doc["answer"]["fixed_base_suffices"] == doc["verdict"].startswith("The fixed base already meets")
     assert "Fixed base: P(overturn)" in doc["verdict"]
     assert "estimated" in captured.err and "ETA" in captured.err  # the budget first, progress after
     for name in ("design.md", "design.png", "design.csv", "runs.parquet"):
@@ -276,3 +277,123 @@ def test_a_statue_that_slides_walks_as_the_kernel_says_and_off_its_plinth(tmp_pa
                "--quiet"])
     err = capsys.readouterr().err.strip()
     assert rc == 2 and "--plinth-margin" in err and "--friction" in err and len(err.splitlines()) == 1
+
+
+# --- issue 39: every P with its interval, the target judged with it, the fixed base that suffices,
+# --- the locked isolator said and not named
+
+
+def test_every_p_has_the_exact_binomial_interval_of_its_records(small_design):
+    """At one level P is k of n records: its interval is Clopper–Pearson's, computed here by
+    SciPy's exact binomial test, and the target is judged with it (meets: the upper bound within
+    it; fails: the lower bound past it; cannot tell otherwise)."""
+    from scipy import stats
+
+    from isorock.campaign.design import target_judgement
+    d = run_design(STATUE, LinearFamily((1.0, 2.5), (0.05,)), Hazard(RECORDS, (0.8,)), tail=TAIL, threads=1)
+    n = len(RECORDS)
+    assert (d.records_answered() == n).all()
+    ks = set()
+    for k, (lo, hi) in enumerate(d.p_interval()):
+        count = int(round(d.p_hazard()[k] * n))
+        ks.add(count)
+        ci = stats.binomtest(count, n).proportion_ci(0.95, method="exact")
+        assert abs(lo - ci.low) < 1e-9 and abs(hi - ci.high) < 1e-9, (k, count)
+    assert len(ks) > 1  # more than one count was checked
+    assert target_judgement(0.0, 0.0, 0.04, 0.05) == "meets"
+    assert target_judgement(0.5, 0.06, 0.9, 0.05) == "fails"
+    assert target_judgement(0.0, 0.0, 0.7, 0.05) == "cannot tell"
+
+
+def test_the_records_needed_to_show_a_target_follow_the_exact_bound():
+    """n records with none overturning show P ≤ target when Clopper–Pearson's upper bound of 0
+    of n is within it: the first n for which SciPy's exact interval does."""
+    from scipy import stats
+
+    from isorock.campaign.design import records_needed
+    for target in (0.02, 0.05, 0.1):
+        n = records_needed(target)
+        assert stats.binomtest(0, n).proportion_ci(0.95, method="exact").high <= target
+        assert stats.binomtest(0, n - 1).proportion_ci(0.95, method="exact").high > target
+
+
+def test_the_verdict_says_when_the_fixed_base_already_suffices(small_design):
+    """At 0.02 g no block of tanα 0.35 can lift on a fixed base (uplift needs g·tanα): the fixed
+    base meets any target, the verdict says so first, and that 3 records cannot show 5%."""
+    from isorock.campaign.design import records_needed, verdict
+    d = run_design(STATUE, LinearFamily((2.5,), (0.3,)), Hazard(RECORDS, (0.02,)), tail=TAIL, threads=1)
+    assert not d.overturned.any()
+    v = verdict(d, 0.05, None)
+    assert v["fixed_base_suffices"] and v["headline"].startswith("The fixed base already meets")
+    assert v["fixed_base"]["target"] == "cannot tell" and v["fixed_base"]["records"] == 3
+    assert abs(v["fixed_base"]["p_hazard_interval"][1] - (1 - 0.025 ** (1 / 3))) < 1e-12
+    assert f"that takes {records_needed(0.05)}" in v["headline"]
+    assert not verdict(small_design, 0.05, None)["fixed_base_suffices"] or small_design.p_hazard()[0] <= 0.05
+
+
+def test_an_isolator_that_never_breaks_away_is_locked_and_not_named():
+    """A friction pendulum stays put while the ground's acceleration is below μ_f·g (the friction
+    on the whole mass holds it): at 0.1 g, μ_f 0.3 never slides (stroke 0, locked), μ_f 0.02 does.
+    Both keep P 0 (the block cannot lift below g·tanα = 0.35 g): the one that moves is named."""
+    from isorock.campaign.design import FrictionPendulumFamily, verdict
+    family = FrictionPendulumFamily((1.5,), (0.02, 0.3))
+    d = run_design(STATUE, family, Hazard(RECORDS, (0.1,)), tail=TAIL, threads=1)
+    assert not d.overturned.any()
+    assert (d.u_max[2] == 0).all() and (d.u_max[1] > 1e-3).all()  # μ 0.3 stuck under every record, μ 0.02 moved
+    assert list(d.locked()) == [False, False, True]
+    v = verdict(d, 0.05, None)
+    assert v["best"]["friction_coefficient"] == 0.02 and not v["best"]["locked"] and v["locked"] == 1
+    assert "1 of 2 isolators are locked" in v["headline"]
+
+
+def test_design_from_python_counts_what_the_kernel_runs_and_writes_what_the_command_writes(tmp_path):
+    """isorock.design with Python values: the fixed base's P at each level is the count of
+    the kernel's own direct runs (simulate_batch) of the records scaled to that level; the
+    same numbers as the command's design.json for the same inputs; NumPy numbers taken."""
+    import isorock
+    levels = (0.3, 0.9)
+    answer = isorock.design(height=1.0, width=np.float64(0.35), mass=100, base_mass=100, x=[1.0, 2.5],
+                            y=np.array([0.3]), records=RECORDS, pga=levels, tail=TAIL, threads=1,
+                            out=tmp_path / "py")
+    fixed = System.fixed(height=1.0, width=0.35, mass=100.0)
+    names = sorted(RECORDS)
+    for li, level in enumerate(levels):
+        motions = [unit_scaled(RECORDS[n], level) for n in names]
+        runs = simulate_batch([fixed], motions, duration=[RECORDS[n].end_time + TAIL for n in names], product=True,
+                              workers=1)
+        expected = sum(r["overturned"] for r in runs) / len(names)
+        assert answer.verdict["fixed_base"]["p_levels"][li] == expected
+    doc = json.loads((tmp_path / "py" / "design.json").read_text())
+    assert doc["verdict"] == answer.headline and len(answer.rows()) == 3
+    folder = tmp_path / "records"
+    folder.mkdir()
+    for n in names:
+        t = RECORDS[n].times
+        (folder / f"{n}.txt").write_text("# units: m/s2\n" + "\n".join(f"{a:.17g} {b:.17g}" for a, b in
+                                                                        zip(t, RECORDS[n].acceleration)))
+    rc = main(["design", "--records", str(folder), "--height", "1", "--width", "0.35", "--mass", "100",
+               "--base-mass", "100", "--periods", "1,2.5", "--damping-ratios", "0.3", "--pga", "0.3,0.9",
+               "--tail", str(TAIL), "--out", str(tmp_path / "cli"), "--quiet"])
+    cli = json.loads((tmp_path / "cli" / "design.json").read_text())
+    assert rc == 0 and [r["p_levels"] for r in cli["isolators"]] == [r["p_levels"] for r in answer.rows()]
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    (dict(height=0.6), "width"),
+    (dict(pga=[0.4, 0.2]), "pga"),
+    (dict(x=[1.0, float("inf")]), "x"),
+    (dict(y=[0.5, 1.2]), "y"),
+    (dict(records=123), "records"),
+    (dict(records={"a": [1, 2]}), "records['a']"),
+    (dict(target=2.0), "target"),
+    (dict(max_stroke=-1.0), "max_stroke"),
+    (dict(isolator="rubber"), "isolator"),
+    (dict(check=["nope"]), "check"),
+])
+def test_design_from_python_refuses_bad_values_naming_the_keyword(kwargs, field, tmp_path):
+    from isorock.analytic.errors import InputError
+    from isorock.campaign.design import design
+    with pytest.raises(InputError) as e:
+        design(**{"records": RECORDS, "pga": [0.2], "out": tmp_path / "never", **kwargs})
+    assert str(e.value).startswith(field) and "\n" not in str(e.value)
+    assert not (tmp_path / "never").exists()

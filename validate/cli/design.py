@@ -11,17 +11,20 @@ import numpy as np
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK
+from isorock.campaign.design import DEFAULT_GRIDS, DEFAULT_LEVELS
 from isorock.validate.cli.options import number
 
 DEFAULT_OUT = "isorock-design"
-DEFAULT_PGA = "0.1:1.0:10"
-#: the family's axes when not given: (option, default grid) per isolator kind
-DEFAULT_AXES = {LINEAR: (("periods", "1:4:20"), ("damping_ratios", "0.02:0.4:20")),
-                FRICTION_PENDULUM: (("radii", "0.5:4:20"), ("friction_coefficients", "0.02:0.2:20")),
-                BALL_IN_CONE: (("slopes", "0.02:0.3:15"), ("rolling_resistances", "0.005:0.1:20")),
-                BALL_IN_BOWL: (("radii", "0.5:4:20"), ("rolling_resistances", "0.005:0.1:20"))}
-#: the most values one axis (or the PGA levels) may take
-MAX_AXIS = 200
+
+
+def _range_text(grid) -> str:
+    lo, hi, num = grid
+    return f"{lo:g}:{hi:g}:{num}"
+
+
+DEFAULT_PGA = _range_text(DEFAULT_LEVELS)
+#: the family's axes when not given: (option, default grid) per isolator kind (campaign.design.DEFAULT_GRIDS)
+DEFAULT_AXES = {kind: tuple((name, _range_text(grid)) for name, grid in axes) for kind, axes in DEFAULT_GRIDS.items()}
 
 
 def add_parser(sub) -> None:
@@ -94,7 +97,9 @@ def add_parser(sub) -> None:
 
 def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[float, ...]:
     """'0.5', 'A,B,C' or 'FROM:TO:NUM' (both ends included, evenly spaced): positive,
-    finite, increasing values (below 1 for a damping ratio); one line naming the option otherwise."""
+    finite, increasing values (below 1 for a damping ratio); one line naming the option otherwise
+    (the values' rules: campaign.design.check_axis, which isorock.design applies too)."""
+    from isorock.campaign.design import check_axis, even_grid
     allowed = "a number, a list A,B,C or a range FROM:TO:NUM"
     parts = text.split(":")
     try:
@@ -106,23 +111,12 @@ def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[floa
             raise ValueError(text)
     except ValueError:
         raise InputError(f"--{option} = {text!r}: must be {allowed}") from None
-    if len(parts) == 3:
-        # NUM is read as a number first: inf or nan has no whole value to take (an OverflowError)
-        if not (math.isfinite(num) and num == int(num) and 1 <= num <= MAX_AXIS):
-            raise InputError(f"--{option} = {text!r}: NUM must be a whole number from 1 to {MAX_AXIS}")
-        if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
-            raise InputError(f"--{option} = {text!r}: must be a range FROM:TO:NUM with finite FROM ≤ TO")
-        # rounded as Python floats: NumPy's round multiplies by 1e12 first, and 1e300 became inf
-        values = tuple(round(float(v), 12) for v in np.linspace(lo, hi, int(num))) if num > 1 else (lo,)
-    if len(values) > MAX_AXIS:
-        raise InputError(f"--{option} = {text!r}: {len(values)} values; must be at most {MAX_AXIS}")
-    for v in values:
-        if not (v > 0 and math.isfinite(v)) or (below_one and v >= 1):
-            raise InputError(f"--{option} = {text!r}: {v!r} must be a positive finite number"
-                             + (" below 1 (an underdamped isolator)" if below_one else ""))
-    if list(values) != sorted(set(values)):
-        raise InputError(f"--{option} = {text!r}: must be increasing, each value once")
-    return values
+    try:
+        if len(parts) == 3:
+            values = even_grid(lo, hi, num)
+        return check_axis(option, values, below_one=below_one)
+    except InputError as e:  # the option as typed, with its text
+        raise InputError(f"--{option} = {text!r}: {str(e).split(': ', 1)[1]}") from None
 
 
 #: the keys of a --config file a design takes: [system]'s statue, pga (the levels) and units
@@ -258,17 +252,9 @@ def hazard_from_args(a, config: dict):
 
 def check_engines(given) -> list[str]:
     """--check as given (repeated, each comma-separated) → the contact engines, each once."""
-    from isorock.validate.core.engines import ALL_ENGINES, choose
-    contact = [e for e in ALL_ENGINES if not e.startswith("analytic")]
-    names = [x.strip() for text in (given or ()) for x in text.split(",")]
-    for name in names:
-        if name not in contact:
-            raise InputError(f"--check = {name!r}: must be a contact engine, one of {', '.join(contact)}")
-    if len(set(names)) != len(names):
-        raise InputError(f"--check = {','.join(names)}: name each engine once")
-    for name in names:
-        choose(name, {}, strict=True).settings()  # not installed: one line naming the extra
-    return names
+    from isorock.campaign.design import contact_engines
+    return contact_engines([x.strip() for text in (given or ()) for x in text.split(",")],
+                           named=lambda key: "--" + key)
 
 
 def _check(d, engine: str, picks, hazard, cores: int, quiet: bool) -> dict:
@@ -294,14 +280,8 @@ def cmd_design(a) -> int:
     from isorock.campaign.design_report import write_design
     from isorock.validate.io.output import Outputs
     from isorock.validate.io.progress import Progress
-    if not (0 <= a.target <= 1):
-        raise InputError(f"--target = {a.target!r}: must be a probability from 0 to 1")
-    if a.max_stroke is not None and not (a.max_stroke > 0 and math.isfinite(a.max_stroke)):
-        raise InputError(f"--max-stroke = {a.max_stroke!r}: must be a positive finite length, m")
-    if not (a.tail >= 0 and math.isfinite(a.tail)):
-        raise InputError(f"--tail = {a.tail!r}: must be a non-negative finite number of seconds")
-    if a.check_runs < 1 or a.check_runs > 200:
-        raise InputError(f"--check-runs = {a.check_runs!r}: must be a whole number from 1 to 200")
+    from isorock.campaign.design import check_decision
+    check_decision(a.target, a.max_stroke, a.tail, a.check_runs, named=lambda key: "--" + key.replace("_", "-"))
     checks = check_engines(a.check)
     config = read_design_config(a)
     statue = statue_from_args(a, config)
