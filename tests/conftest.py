@@ -14,6 +14,15 @@ def pytest_addoption(parser):
 RECORDS = ROOT.parent / "shared" / "data" / "records"
 
 
+def pytest_xdist_auto_num_workers(config):
+    """`-n auto` (pyproject's addopts): the cores this process may use, not the host's
+    (os.cpu_count() in a container counts the machine's), at most 4 (each worker loads
+    MuJoCo, PyBullet and Drake)."""
+    import os
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    return max(1, min(4, cores))
+
+
 @pytest.fixture(scope="session")
 def records_dir() -> Path:
     if not RECORDS.is_dir():
