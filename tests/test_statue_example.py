@@ -68,3 +68,32 @@ def test_pga_and_pgv_in_one_file_are_refused_in_one_line(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "pgv" in err[0] and "not both" in err[0], err
     assert not (tmp_path / "o").exists()
+
+
+def test_the_bust_stays_still_on_its_isolator_and_rocks_on_a_fixed_base_as_the_file_says():
+    """(issue 39) The file's comment: at 0.5 g the isolated plinth (with the bust on it, one
+    body until uplift) never reaches the bust's uplift acceleration g·tanα; on a fixed base the
+    ground's 0.5 g does. Oracle: the isolator's own linear oscillator integrated here by SciPy
+    (M ü + c u̇ + k u = −M ü_g, M = m + m_b), its absolute acceleration against g·tanα, and the
+    exact model agreeing (θmax 0 isolated, lifted on the fixed base)."""
+    import numpy as np
+    from scipy.integrate import solve_ivp
+
+    import isorock
+    from isorock.analytic.motion import GroundMotion, parse_pulse
+    from isorock.analytic.system import System
+    bust = System.isolated(height=0.6, width=0.2, mass=80.0, base_mass=150.0, period=2.0, damping_ratio=0.15)
+    lift = 9.81 * np.tan(bust.alpha)
+    for spec in ("sine:amp=0.3,freq=2,cycles=2", "ricker:amp=0.3,freq=1.5"):
+        ground = GroundMotion.from_pulse(parse_pulse(spec)).scaled_to_pga(0.5)
+        w, xi = 2 * np.pi / 2.0, 0.15
+
+        def rhs(t, y):
+            return [y[1], -ground.at(t) - 2 * xi * w * y[1] - w * w * y[0]]
+        t = np.linspace(0.0, ground.end_time + 4.0, 20001)
+        sol = solve_ivp(rhs, (0.0, t[-1]), [0.0, 0.0], t_eval=t, rtol=1e-10, atol=1e-12, max_step=0.002)
+        absolute = -(2 * xi * w * sol.y[1] + w * w * sol.y[0])  # ü_g + ü
+        assert np.abs(absolute).max() < 0.6 * lift, spec  # the plinth stays well below uplift
+        kw = dict(engine="analytic", motion=spec, pga=0.5, height=0.6, width=0.2, mass=80)
+        assert isorock.run(base_mass=150, period=2.0, damping_ratio=0.15, **kw).theta_max_over_alpha == 0.0
+        assert isorock.run(fixed_base=True, **kw).theta_max_over_alpha > 0.3  # 0.5 g > g·tanα = 0.333 g

@@ -384,6 +384,31 @@ def test_the_verdict_line_says_how_much_was_not_judged():
     assert "PyBullet agrees." in line or "PyBullet agrees;" in line or line.endswith("PyBullet agrees.")
 
 
+def test_the_verdict_says_on_which_base_the_block_never_lifted():
+    """(issue 39) The museum's bust on its isolator never lifts at the site's PGA: its contact was
+    not tested there, and the verdict line says where, not only how many checks."""
+    from types import SimpleNamespace
+
+    from isorock.validate.tools.report_render import NOT_EXERCISED, engine_verdicts, verdict
+
+    def check(scenario, status):
+        return SimpleNamespace(engine="mujoco", metric="theta_max_diff", status=status, interval=None, note="",
+                               scenario=scenario)
+    scenarios = [SimpleNamespace(name=f"{m}, {b}", system=SimpleNamespace(fixed_base=b == "fixed"), runs={})
+                 for m in ("sine", "ricker") for b in ("isolated", "fixed")]
+    checks = ([check("sine, isolated", NOT_EXERCISED)] * 4 + [check("ricker, isolated", NOT_EXERCISED)] * 4
+              + [check("sine, fixed", "pass")] * 4 + [check("ricker, fixed", "pass")] * 3
+              + [check("ricker, fixed", NOT_EXERCISED)])
+    results = SimpleNamespace(checks=checks, engines=("mujoco",), scenarios=scenarios, skipped={}, failed=[])
+    line = verdict(results)
+    assert ("MuJoCo agrees with caveats (9 of 16 checks not exercised: the block never lifted on the isolated "
+            "base under any motion)") in line
+    assert "nothing about contact was tested there" in engine_verdicts(results)["mujoco"][1][0]
+    # a base where some histories lifted is counted, not named
+    checks[0] = check("sine, isolated", "pass")
+    assert "the block never lifted in 1 of 4 histories" in verdict(results)
+
+
 def test_an_engine_without_an_ensemble_limit_is_skipped_with_its_reason_not_a_late_exit():
     """The README's Drake example (`validate --quick --engines analytic drake`) ran 7 minutes
     and then exited 2: "tolerance ('drake', 'ensemble_theta_max_diff'): not in the table".

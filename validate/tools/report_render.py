@@ -114,7 +114,9 @@ def engine_verdicts(results: Results) -> dict:
         if skips:
             reasons.append(f"{len(skips)} skipped (chaotic references are judged by their ensembles)")
         if idle:
-            reasons.append(f"{len(idle)} not exercised (no engine lifted the block there)")
+            where = _where_never_lifted(results, name)
+            reasons.append(f"{len(idle)} not exercised (no engine lifted the block there"
+                           + (f": {where}; nothing about contact was tested there" if where else "") + ")")
         if open_:
             reasons.append(f"{len(open_)} inconclusive at {_confidence():.0%} (an ensemble's interval straddles "
                            f"its limit: {_tally(open_, words=False)}{_would_decide(open_)})")
@@ -123,6 +125,25 @@ def engine_verdicts(results: Results) -> dict:
                 CAVEATS if (skips or idle or odd or open_) else AGREES)
         out[name] = (word, reasons)
     return out
+
+
+def _where_never_lifted(results: Results, name: str) -> str:
+    """Where an engine's single histories were not exercised, in words: "the block never
+    lifted on the isolated base, under any motion" when a whole base was (a museum's bust on
+    its isolator stays still at the site's PGA: its contact was not tested there, issue 39),
+    else how many of the histories."""
+    idle_by_base, all_by_base = {}, {}
+    for sc in results.scenarios:
+        base = "fixed base" if sc.system.fixed_base else "isolated base"
+        mine = [c for c in results.checks if c.engine == name and c.scenario == sc.name]
+        if mine:
+            all_by_base[base] = all_by_base.get(base, 0) + 1
+            idle_by_base[base] = idle_by_base.get(base, 0) + all(c.status == NOT_EXERCISED for c in mine)
+    whole = [b for b in all_by_base if idle_by_base[b] == all_by_base[b]]
+    if whole:
+        return " and ".join(f"the block never lifted on the {b} under any motion" for b in whole)
+    idle = sum(idle_by_base.values())
+    return f"the block never lifted in {idle} of {sum(all_by_base.values())} histories" if idle else ""
 
 
 def _how_many_not_judged(results: Results, name: str) -> str:
@@ -134,8 +155,11 @@ def _how_many_not_judged(results: Results, name: str) -> str:
              ((NOT_EXERCISED, "not exercised"), ("skip", "skipped"), (INCONCLUSIVE, "inconclusive"))) if n]
     if not said:
         return ""
+    where = _where_never_lifted(results, name) if said[0].endswith("not exercised") else ""
     count, word = said[0].split(" ", 1)
-    return f" ({count} of {len(mine)} checks {word}{''.join(', ' + x for x in said[1:])})"
+    rest = ", ".join(said[1:])
+    return (f" ({count} of {len(mine)} checks {word}" + (f": {where}" + (f"; {rest}" if rest else "") if where
+                                                          else "".join(", " + x for x in said[1:])) + ")")
 
 
 def verdict(results: Results) -> str:
