@@ -62,6 +62,22 @@ def test_a_metric_without_a_tolerance_is_skipped_with_the_reason_not_an_error_af
     assert b2 and all(c["status"] == "skip" and "no tolerance" in c["note"] for c in b2)
 
 
+def test_a_history_metric_without_a_tolerance_is_counted_as_not_made_never_dropped(tmp_path, capsys, monkeypatch):
+    """(issue 39) Drake 'agreed with caveats' on 4 checks while θmax/α, impacts, uplift,
+    overturning and stroke were silently never judged for it: a history metric the table has no
+    limit for is a check skipped with the reason, in the verdict's count. Here MuJoCo's θmax/α
+    limit taken out of the table: every scenario still carries that check, skipped, saying why."""
+    monkeypatch.delitem(TOLERANCES, ("mujoco", "theta_max_diff"))
+    out = tmp_path / "rep"
+    rc = main(TINY + ["--engines", "analytic", "mujoco", "--workers", "1", "--out", str(out)])
+    assert rc in (0, 1), capsys.readouterr().err
+    m = json.loads((out / "metrics.json").read_text())
+    theta = [c for c in m["checks"] if c["engine"] == "mujoco" and c["metric"] == "theta_max_diff"]
+    histories = {c["scenario"] for c in m["checks"] if c["engine"] == "mujoco" and c["metric"] == "impacts_diff"}
+    assert theta and {c["scenario"] for c in theta} == histories
+    assert all(c["status"] == "skip" and "no tolerance" in c["note"] for c in theta)
+
+
 @pytest.mark.parametrize("preset, timestep, own", [
     ("mujoco:fast", "0.03", True),    # beyond every MuJoCo step: the user's value is the fault
     ("mujoco:fine", "0.01", False),   # a valid step, but fine's own solref (4e-4 s) cannot follow it

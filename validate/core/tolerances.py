@@ -475,7 +475,7 @@ class Check:
         return asdict(self)
 
 
-def _unjudged(engine: str, metric: str, scenario: str, value) -> Check:
+def unjudged(engine: str, metric: str, scenario: str, value) -> Check:
     """A metric the table has no limit for on this engine (Drake's β₂: never measured):
     reported, skipped with the reason, never a pass; and never an error after the runs
     (validate with Drake failed so after ten minutes, issue 24)."""
@@ -488,7 +488,7 @@ def check(engine: str, metric: str, scenario: str, value, *, note: str = "") -> 
     """`value` against the table's tolerance for (engine, metric). A missing or NaN
     value fails: a quantity that could not be measured is not a pass."""
     if not has_tolerance(engine, metric):
-        return _unjudged(engine, metric, scenario, value if isinstance(value, (int, float)) else None)
+        return unjudged(engine, metric, scenario, value if isinstance(value, (int, float)) else None)
     tol = tolerance(engine, metric)
     if isinstance(value, bool):
         value = float(value)
@@ -514,7 +514,7 @@ def judged(engine: str, metric: str, scenario: str, v, *, note: str = "") -> Che
 
 def skipped(engine: str, metric: str, scenario: str, note: str) -> Check:
     if not has_tolerance(engine, metric):
-        return _unjudged(engine, metric, scenario, None)
+        return unjudged(engine, metric, scenario, None)
     tol = tolerance(engine, metric)
     return Check(engine, metric, scenario, None, tol.limit, tol.kind, tol.reason, "skip", note)
 
@@ -523,7 +523,7 @@ def not_exercised(engine: str, metric: str, scenario: str, note: str) -> Check:
     """A check whose scenario tested nothing (no engine lifted the block): counted apart,
     never as a pass."""
     if not has_tolerance(engine, metric):
-        return _unjudged(engine, metric, scenario, None)
+        return unjudged(engine, metric, scenario, None)
     tol = tolerance(engine, metric)
     return Check(engine, metric, scenario, None, tol.limit, tol.kind, tol.reason, "not exercised", note)
 

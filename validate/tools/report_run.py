@@ -41,7 +41,7 @@ from isorock.validate.core.runner import Task, run_tasks
 from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
                                        free_rocking_grid, paper_bases)
 from isorock.validate.core.tolerances import (ROBUST_SPREAD, Check, check, has_tolerance, judged, limit, not_exercised,
-                                             skipped, tolerance)
+                                             skipped, tolerance, unjudged)
 from isorock.validate.core.verdict import overturn_verdicts, quantile_verdict
 
 #: Built-in pulses of the default report, chosen with the analytic model so that the
@@ -487,6 +487,9 @@ def _history_checks(sc: HistoryRuns, engines) -> list[Check]:
         slid = sc.runs.get(name) is not None and str(sc.runs[name].status) == "slid"
         for metric, value in metrics.items():
             if not has_tolerance(name, metric):
+                # counted as not made, with the reason (issue 39: Drake's θmax/α, impacts, uplift,
+                # overturning and stroke were silently never judged beside its 'agrees with caveats')
+                out.append(unjudged(name, metric, sc.name, None))
                 continue
             if not sc.exercised and not err:
                 out.append(not_exercised(name, metric, sc.name, sc.why_not_exercised()))
