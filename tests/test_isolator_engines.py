@@ -242,18 +242,21 @@ def test_bearing_peaks_and_loop_area(engine):
 #: (device, parameters, pulse, impacts with a measured β): each rocks the paper's block (analytic
 #: θmax/α 0.27–0.56, 3–5 impacts), one from each side of the pendulum's friction (μ_f above tanα
 #: = 0.35: the base sticks and the block lifts on it; below: it slides, and lifts off the slope's
-#: force). β is measured where the element keeps one phase over the window (analytic.isolator_map):
-#: every impact on the sliding pendulum; the first on the sticking one (later ones kick the base
-#: loose, and it sticks again within the window); on the stiff bearing it yields and unloads
-#: within most windows.
+#: force). On a pendulum or bowl β is measured at every impact: the rigid model runs from the
+#: engine's state a window before the crossing to θ = 0, and from the crossing to the state a window
+#: after, its slider sticking and slipping as the model's does (analytic.isolator_map,
+#: image_after_impact: each impact kicks the sticking base loose and it sticks again within the
+#: window, issue 34; held in one phase, only the first impact's β was measured, the others 3% high
+#: or not at all). On the stiff bearing, where the element holds one phase over the window: it
+#: yields and unloads within most windows.
 ROCKING = [
-    ("pendulum", (1.0, 0.4), "sine:amp=0.5,freq=1.5,cycles=1", 1),
+    ("pendulum", (1.0, 0.4), "sine:amp=0.5,freq=1.5,cycles=1", 5),
     ("pendulum", (0.3, 0.1), "sine:amp=0.5,freq=1.5,cycles=1", 4),
     ("bearing", (3e6, 0.1, 0.002, 1000.0), "ricker:amp=0.6,freq=1.5", 0),
     ("bearing", (3e6, 0.1, 0.002, 1000.0), "ricker:amp=0.8,freq=2", 1),
     # a ball in a bowl (R_eff 0.25 m, μ_r 0.05): it rolls, and the block lifts off the bowl's force;
     # its phase is the pendulum's (analytic.isolator_map), so each impact's β is measured
-    ("bowl", (0.25, 0.05), "ricker:amp=0.6,freq=1.5", 4),
+    ("bowl", (0.25, 0.05), "ricker:amp=0.6,freq=1.5", 5),
     # double pendulums, both of whose surfaces slide while the block rocks (regimes I and II, and a
     # pinned base in the second: μ_hi 0.4 > tanα); their three phases are not read off an
     # engine's rows (analytic.isolator_map.MAPPED), so no β

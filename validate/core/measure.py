@@ -23,6 +23,7 @@ import numpy as np
 
 from isorock.analytic.coefficients import beta as beta_closed_form
 from isorock.analytic.hybrid import map_to_impact
+from isorock.analytic.isolator_map import MAPPED, PENDULUMS
 from isorock.analytic.kinematics import LYING, LYING_SLACK, plate_edge
 from isorock.analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
 from isorock.analytic.motion import GroundMotion
@@ -98,7 +99,6 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
     # bearing's from its slider, extras["isolator_slider"]: without it, no β); a kind whose
     # phase the rows do not tell (analytic.isolator_map.MAPPED) gets no β
     slider = raw.extras.get("isolator_slider")
-    from isorock.analytic.isolator_map import MAPPED
     kind = system.isolator_kind  # LINEAR on a fixed base too
     mapped = effective_beta and (kind == LINEAR or (kind in MAPPED and (kind != "bilinear" or slider is not None)))
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
@@ -144,12 +144,18 @@ def effective_impacts(system, motion, t, u, u_dot, theta, theta_dot, *, impact_t
         if counted and mapped:
             t_prev = t[changes[n - 1][0]] if n > 0 else t[0]
             t_next = t[changes[n + 1][0]] if n + 1 < len(changes) else t[-1]
-            pre = _mapped(system, motion, t, u, u_dot, theta, theta_dot,
-                          t_cross - min(window, 0.5 * (t_cross - t_prev)), backward=False, window=window,
-                          slider=slider, t_cross=t_cross)
-            post = _mapped(system, motion, t, u, u_dot, theta, theta_dot,
-                           t_cross + min(window, 0.5 * (t_next - t_cross)), backward=True, window=window,
-                           slider=slider, t_cross=t_cross)
+            t_before = t_cross - min(window, 0.5 * (t_cross - t_prev))
+            if system.isolator_kind in PENDULUMS:  # its base may break loose or stick before the impact
+                pre = _pendulum_pre(system, motion, t, u, u_dot, theta, theta_dot, t_before, t_cross, window)
+            else:
+                pre = _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_before, backward=False, window=window,
+                              slider=slider, t_cross=t_cross)
+            t_after = t_cross + min(window, 0.5 * (t_next - t_cross))
+            if system.isolator_kind in PENDULUMS:  # the impact kicks the base loose: forward, as the model moves it
+                post = _pendulum_post(system, motion, t, u, theta_dot, i, t_cross, t_after, pre)
+            else:
+                post = _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_after, backward=True, window=window,
+                               slider=slider, t_cross=t_cross)
             if pre:
                 thd_pre, ud_pre = pre
             if post:
@@ -166,6 +172,39 @@ def _crossing_time(t, theta, i):
     if a == b:
         return float(t[i])
     return float(t[i - 1] + (t[i] - t[i - 1]) * a / (a - b))
+
+
+def _pendulum_pre(system, motion, t, u, u_dot, theta, theta_dot, t_before, t_cross, window):
+    """(θ̇⁻, u̇⁻) of a pendulum's impact: the engine's state at the row a window before the
+    crossing, its slider's phase read off the row (isolator_map.phase_at), run forward by the
+    rigid model, whose slider sticks and slips as the model's does, to θ = 0; it must land
+    near the engine's crossing (None otherwise: not this impact)."""
+    from isorock.analytic.isolator_map import pendulum_forward, phase_at
+    k = int(np.clip(np.searchsorted(t, t_before), 0, t.size - 1))
+    if theta[k] == 0 or t[k] >= t_cross:
+        return None
+    phase = phase_at(system, float(u_dot[k]), None, None)
+    state = (float(u[k]), 0.0 if phase == 0 else float(u_dot[k]), float(theta[k]), float(theta_dot[k]))
+    landed = pendulum_forward(system, motion, float(t[k]), state, float(t[k]) + 5 * window + 0.05, phase=phase,
+                              to_landing=True)
+    if landed is None or abs(landed[0] - t_cross) > window:
+        return None
+    return landed[1][3], landed[1][1]
+
+
+def _pendulum_post(system, motion, t, u, theta_dot, i, t_cross, t_after, pre):
+    """(θ̇⁺, u̇⁺) of a pendulum's impact: the rigid model run forward from the crossing
+    (isolator_map.image_after_impact) to the engine's row a window after it, from the
+    pre-impact image `pre` (none without it) and the base's position at the crossing."""
+    if not pre:
+        return None
+    from isorock.analytic.isolator_map import image_after_impact  # noqa: I001 (scipy.optimize, on first use)
+    k = int(np.clip(np.searchsorted(t, t_after), 0, t.size - 1))
+    if t[k] <= t_cross:
+        return None
+    u_cross = float(u[i - 1] + (u[i] - u[i - 1]) * (t_cross - t[i - 1]) / (t[i] - t[i - 1]))
+    thd_pre, ud_pre = pre
+    return image_after_impact(system, motion, t_cross, u_cross, ud_pre, thd_pre, float(t[k]), float(theta_dot[k]))
 
 
 def _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_at, *, backward, window, slider=None, t_cross=None):
