@@ -62,6 +62,12 @@ class Capabilities:
     campaigns: bool = True
     isolators: tuple[str, ...] = ("linear",)
     kinetic_friction: bool = True
+    #: it carries a statue that may slip on its base (System.friction: docs/sliding.md), and a
+    #: vertical ground motion (GroundMotion.vertical): every engine here does; an engine a
+    #: package registers may not, and is then refused such a run in one line, never runs it
+    #: as a statue that cannot slip or on level ground
+    statue_friction: bool = True
+    vertical: bool = True
 
 
 @dataclass(frozen=True)
@@ -117,7 +123,8 @@ class EngineSpec:
     System the engine cannot carry with those (derived) settings, beyond the checks every
     engine shares (MuJoCo: a body below mjMINVAL; PyBullet: a base too light, an isolator
     too stiff for its control step): what `simulate` refuses, asked before any work (a
-    campaign asks it of every system of its grid when its file is read)."""
+    campaign asks it of every system of its grid when its file is read); `tolerances` (an
+    engine a package registers) its limits, each with its reason."""
 
     name: str
     label: str
@@ -135,6 +142,10 @@ class EngineSpec:
     simulate_body: Callable[..., dict] | None = None
     step_cost: Callable[..., float] | None = None
     check_system: Callable[..., None] | None = None
+    #: an engine a package registers (docs/plugins.md) brings its own limits: metric → an object
+    #: with `limit`, `reason` and `kind` ("max", "min", "equal"; validate.core.tolerances.Tolerance),
+    #: judged like the table's rows; the built-in engines' are in the table itself
+    tolerances: dict = field(default_factory=dict)
 
     def settings(self, **overrides):
         if self.settings_for is not None:
@@ -209,11 +220,16 @@ def check_isolator_kind(system: "System", isolators: tuple[str, ...], engine: st
                          f"{kind} one (engine 'analytic-reference' carries it; docs/isolators.md)")
 
 
-def check_friction(system: "System", kinetic_friction: bool, engine: str = "this engine") -> None:
+def check_friction(system: "System", kinetic_friction: bool, engine: str = "this engine", *,
+                   statue_friction: bool = True) -> None:
     """One line refusing a statue whose kinetic friction is below its static one, for an engine
     with one friction coefficient (Capabilities.kinetic_friction False: MuJoCo's and PyBullet's
-    contacts; Drake's discrete plant): run at μ_s it would slide too far, at μ_k start too early."""
+    contacts; Drake's discrete plant): run at μ_s it would slide too far, at μ_k start too early.
+    And a statue that may slip at all, for an engine that carries none (statue_friction False)."""
     from .errors import InputError
+    if not statue_friction and system.friction is not None:
+        raise InputError(f"friction = {system.friction!r}: {engine} carries a statue that cannot slip on its base only "
+                         "(Capabilities.statue_friction)")
     if kinetic_friction or system.friction is None or system.kinetic_friction == system.friction:
         return
     raise InputError(f"kinetic_friction = {system.kinetic_friction!r}: {engine} has one friction coefficient, "

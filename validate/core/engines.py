@@ -34,6 +34,35 @@ ENGINE_MODULES = {
     # the former name of the compiled engine, kept so that nothing breaks
     "analytic-fast": "isorock.analytic.engines:ENGINE",
 }
+#: The entry-point group an installed package registers an engine under (issue 37): in its
+#: pyproject.toml, `[project.entry-points."isorock.engines"] NAME = "package.module:ENGINE"`,
+#: ENGINE an EngineSpec whose `name` is NAME (docs/plugins.md; examples/isorock-engine-example).
+PLUGIN_GROUP = "isorock.engines"
+
+
+def _plugins() -> tuple[dict, dict]:
+    """(name → "module:ATTRIBUTE", name → why it is not registered) of the engines installed
+    packages declare. A name a built-in engine has is never taken (said, not silently)."""
+    from importlib.metadata import entry_points
+    found, refused = {}, {}
+    for ep in entry_points(group=PLUGIN_GROUP):
+        if ep.name in ENGINE_MODULES:
+            refused[ep.name] = (f"{ep.value} (from {ep.dist.name if ep.dist else 'a package'}) names the built-in "
+                                f"engine {ep.name!r}: not registered")
+        elif ep.name in found:
+            refused[ep.name] = f"declared twice ({found[ep.name]}, {ep.value}): not registered"
+        elif not ep.name or ":" in ep.name or "," in ep.name or " " in ep.name:
+            refused[ep.name] = f"{ep.value}: an engine's name has no ':', ',' or space: not registered"
+        else:
+            found[ep.name] = ep.value
+    for name in refused:
+        found.pop(name, None)
+    return found, refused
+
+
+#: the engines installed packages register (PLUGIN_GROUP), and those refused with the reason
+PLUGINS, PLUGINS_REFUSED = _plugins()
+ENGINE_MODULES.update(PLUGINS)
 #: The engine every other is compared with.
 REFERENCE = "analytic"
 #: The engines every report and comparison loops over: the reference and the contact engines.
@@ -106,7 +135,8 @@ class Engine:
         Capabilities.kinetic_friction)."""
         from isorock.analytic.engine_protocol import check_friction, check_isolator_kind
         check_isolator_kind(system, self.capabilities.isolators, f"engine {self.name!r}")
-        check_friction(system, self.capabilities.kinetic_friction, f"engine {self.name!r}")
+        check_friction(system, self.capabilities.kinetic_friction, f"engine {self.name!r}",
+                       statue_friction=self.capabilities.statue_friction)
 
     def check_system(self, system, settings=None) -> None:
         """Every bound this engine puts on `system` before any work: the isolator it carries
@@ -133,6 +163,9 @@ class Engine:
         from isorock.analytic.trajectory import RawHistory
         from isorock.validate.core import measure
         self.check_isolator(system)
+        if motion is not None and motion.vertical is not None and not self.capabilities.vertical:
+            raise InputError(f"vertical: engine {self.name!r} carries horizontal ground motion only "
+                             "(Capabilities.vertical)")
         if settings is None:
             settings = self.settings()
         if budget_s is not None:  # a wall-clock budget (analytic/limits.py): the run stops past it
@@ -185,7 +218,12 @@ def get_engine(name: str) -> Engine:
     if name not in ENGINE_MODULES:
         raise InputError(f"engine = {name!r}: must be one of {', '.join(ALL_ENGINES)}")
     module, _, attribute = ENGINE_MODULES[name].partition(":")
-    return Engine(name, getattr(importlib.import_module(module), attribute or "ENGINE"))
+    spec = getattr(importlib.import_module(module), attribute or "ENGINE")
+    if name in PLUGINS and not (isinstance(spec, EngineSpec) and spec.name == name):
+        raise InputError(f"engine = {name!r}: its package's {PLUGINS[name]} must be an EngineSpec named {name!r} "
+                         f"(isorock.analytic.engine_protocol; docs/plugins.md), not {type(spec).__name__}"
+                         + (f" named {spec.name!r}" if isinstance(spec, EngineSpec) else ""))
+    return Engine(name, spec)
 
 
 

@@ -433,8 +433,25 @@ def judged_as(engine: str) -> str:
     return SAME_MODEL.get(engine, engine)
 
 
+def _plugin_tolerance(engine: str, metric: str) -> Tolerance | None:
+    """An engine a package registers (core.engines.PLUGINS) brings its own limits, each with its
+    reason (EngineSpec.tolerances: metric → Tolerance): the table's rows for it, read where the
+    table has none of its own."""
+    from isorock.validate.core.engines import PLUGINS, get_engine
+    if engine not in PLUGINS:
+        return None
+    try:
+        own = get_engine(engine).spec.tolerances
+    except (ImportError, InputError):
+        return None
+    return own.get(metric)
+
+
 def tolerance(engine: str, metric: str) -> Tolerance:
     engine = judged_as(engine)
+    own = None if (engine, metric) in TOLERANCES else _plugin_tolerance(engine, metric)
+    if own is not None:
+        return own
     try:
         return TOLERANCES[(engine, metric)]
     except KeyError:
@@ -444,7 +461,8 @@ def tolerance(engine: str, metric: str) -> Tolerance:
 
 
 def has_tolerance(engine: str, metric: str) -> bool:
-    return (judged_as(engine), metric) in TOLERANCES
+    engine = judged_as(engine)
+    return (engine, metric) in TOLERANCES or _plugin_tolerance(engine, metric) is not None
 
 
 @dataclass(frozen=True)

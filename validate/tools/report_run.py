@@ -149,6 +149,7 @@ class HistoryRuns:
     duration: float
     runs: dict = field(default_factory=dict)         # engine → Trajectory
     errors: dict = field(default_factory=dict)       # engine → message
+    not_carried: dict = field(default_factory=dict)  # engine → why it was not run (it cannot carry the system)
     comparisons: dict = field(default_factory=dict)  # engine → Comparison
     sensitivity: dict | None = None
     #: agreement horizons: engine → {s, p_units, impacts, parted}; "model under ±0.5%" the model's own
@@ -367,7 +368,7 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         tasks += [Task(("history", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o, rule)
                   for i, sc in enumerate(histories)]
         tasks += [Task(("slide", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o, rule)
-                  for i, sc in enumerate(sliding)]
+                  for i, sc in enumerate(sliding) if engines[name].capabilities.statue_friction]
     total = len(tasks) + len(engines) * sum(len(s) for s in scales)
     from isorock.analytic.limits import check_settings
     from isorock.validate.core.engines import settings_used
@@ -397,6 +398,10 @@ def build(config: ReportConfig, *, progress=None) -> Results:
     for key, sc in [(("history", i), sc) for i, sc in enumerate(histories)] + [(("slide", i), sc)
                                                                              for i, sc in enumerate(sliding)]:
         for name in engines:
+            if (*key, name) not in results:  # an engine that carries no statue friction (a plugin's)
+                sc.not_carried[name] = (f"not run: engine {name!r} carries a statue that cannot slip only "
+                                        "(Capabilities.statue_friction)")
+                continue
             tr, err = results[(*key, name)]
             if tr is None:
                 sc.errors[name] = err
@@ -490,6 +495,9 @@ def _history_checks(sc: HistoryRuns, engines) -> list[Check]:
                 # counted as not made, with the reason (issue 39: Drake's θmax/α, impacts, uplift,
                 # overturning and stroke were silently never judged beside its 'agrees with caveats')
                 out.append(unjudged(name, metric, sc.name, None))
+                continue
+            if name in sc.not_carried:
+                out.append(skipped(name, metric, sc.name, sc.not_carried[name]))
                 continue
             if not sc.exercised and not err:
                 out.append(not_exercised(name, metric, sc.name, sc.why_not_exercised()))
