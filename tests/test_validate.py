@@ -451,3 +451,29 @@ def test_the_report_judges_a_statue_that_slides(tmp_path, capsys):
     assert {"slide_max", "slide_final", "slide_onset", "overturn_agree"} <= set(slides)
     assert all(c["status"] == "pass" for c in slides.values())
     assert "Where the statue slides" in (out / "report.md").read_text()
+
+
+def test_an_inconclusive_check_of_too_few_cases_says_so_not_that_it_straddles():
+    """(issue 39) "inconclusive" was explained as "the interval straddles its limit" beside an
+    interval wholly inside it: with n = 1 the ensemble has no interval (core.verdict's
+    min_cases). Oracle: the verdict rule itself, run on one case and on many."""
+    from types import SimpleNamespace
+
+    from isorock.validate.core.tolerances import judged
+    from isorock.validate.core.verdict import quantile_verdict
+    from isorock.validate.tools.report_render import engine_verdicts, scorecard
+    rng = np.random.default_rng(1)
+    one = quantile_verdict([0.501], [0.50], limit=0.02, confidence=0.95, min_cases=5)
+    ref = rng.uniform(0.2, 0.8, 40)
+    many = quantile_verdict(ref + 0.02 + rng.normal(0, 0.01, 40), ref, limit=0.02, confidence=0.95, min_cases=5)
+    assert one.word == many.word == "inconclusive" and one.n == 1 and many.n == 40
+    lo, hi = one.interval
+    assert -0.02 < lo <= hi < 0.02  # wholly inside the limit, and still nothing decided
+    checks = [judged("mujoco", "ensemble_theta_max_diff", "ensemble a", one),
+              judged("mujoco", "ensemble_theta_max_diff", "ensemble b", many)]
+    results = SimpleNamespace(checks=checks, engines=("mujoco",), scenarios=[], skipped={}, failed=[])
+    reason = [r for r in engine_verdicts(results)["mujoco"][1] if "inconclusive" in r][0]
+    assert "1 with too few cases for an interval (n = 1)" in reason and "1 whose interval straddles" in reason
+    _, rows = scorecard(results)
+    cell = {r[0]: r for r in rows}["ensemble θmax/α"][1]
+    assert cell.count("too few cases") == 1 and "n = 1" in cell

@@ -118,8 +118,12 @@ def engine_verdicts(results: Results) -> dict:
             reasons.append(f"{len(idle)} not exercised (no engine lifted the block there"
                            + (f": {where}; nothing about contact was tested there" if where else "") + ")")
         if open_:
-            reasons.append(f"{len(open_)} inconclusive at {_confidence():.0%} (an ensemble's interval straddles "
-                           f"its limit: {_tally(open_, words=False)}{_would_decide(open_)})")
+            few = [c for c in open_ if _too_few(c)]
+            why = "; ".join(filter(None, [
+                f"{len(few)} with too few cases for an interval (n = {_span_of(c.cases for c in few)})" if few else "",
+                (f"{len(open_) - len(few)} whose interval straddles its limit" if len(few) < len(open_) else "")]))
+            reasons.append(f"{len(open_)} inconclusive at {_confidence():.0%} ({why}: {_tally(open_, words=False)}"
+                           f"{_would_decide(open_)})")
         reasons += odd
         word = (DISAGREES if fails else UNTESTED if not passes else
                 CAVEATS if (skips or idle or odd or open_) else AGREES)
@@ -271,12 +275,24 @@ def _score(checks) -> str:
     for c in checks:
         if c.status == INCONCLUSIVE:
             lo, hi = c.interval
-            parts.append(f"inconclusive [{lo:+.3g}, {hi:+.3g}] against ±{c.limit:g}")
+            parts.append(f"inconclusive [{lo:+.3g}, {hi:+.3g}] against ±{c.limit:g}"
+                         + (f" (n = {c.cases}: too few cases for an interval)" if _too_few(c) else ""))
     if n_skip:
         parts.append(f"{n_skip} skipped")
     if n_idle:
         parts.append(f"{n_idle} not exercised")
     return " · ".join(parts)
+
+
+def _too_few(c) -> bool:
+    """An inconclusive check whose ensemble had too few cases for any interval (core.verdict's
+    min_cases): its 'interval' may lie wholly inside the limit and still decide nothing (issue 39)."""
+    return c.status == INCONCLUSIVE and "fewer than" in (c.note or "")
+
+
+def _span_of(values) -> str:
+    v = sorted({x for x in values if x is not None})
+    return "?" if not v else f"{v[0]}" if len(v) == 1 else f"{v[0]}–{v[-1]}"
 
 
 def _interval_cell(c) -> str:
