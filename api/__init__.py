@@ -9,6 +9,9 @@ platform. The notebook API (isorock.validate.cli.api), loaded on first use so th
     report = isorock.report(quick=True, engines=["analytic", "mujoco"])   # isorock validate's report
     campaign = isorock.sweep("examples/spectrum.toml").to_dataframe()
     answer = isorock.design(height=0.6, width=0.2, mass=80, base_mass=150, pga=[0.2, 0.4])  # FEMA P695
+    bust = isorock.System.isolated(height=0.6, width=0.2, mass=80, base_mass=150, period=2.0, damping_ratio=0.15)
+    tr = isorock.simulate(bust, isorock.load_motion("sine:amp=0.5,freq=1,cycles=2"), engine="mujoco",
+                          settings={"timestep": 2e-4})
     print(answer.headline); answer.to_dataframe()
 
 The packages: isorock.analytic (the model), isorock.mujoco_models, isorock.bullet_models,
@@ -22,7 +25,10 @@ from __future__ import annotations
 #: (isorock.validate.core, …) and cannot also be a function; `design` takes Python values
 #: (Statue's numbers, sequences, GroundMotions) and parses no command line
 API = {"run": "isorock.validate.cli.api", "report": "isorock.validate.cli.api", "sweep": "isorock.validate.cli.api",
-       "design": "isorock.campaign.design"}
+       "design": "isorock.campaign.design",
+       # typed, from Python values: one run of any engine, and the values it takes
+       "simulate": "isorock.validate.core.engines", "System": "isorock.analytic.system",
+       "GroundMotion": "isorock.analytic.motion", "load_motion": "isorock.analytic.motion"}
 
 
 def __getattr__(name: str):

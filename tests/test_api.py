@@ -27,9 +27,10 @@ def _cli_args(options: dict) -> list[str]:
 def test_the_top_package_names_its_entry_points_and_keeps_its_subpackages():
     import isorock.validate.core.engines  # noqa: F401 — the subpackage isorock.validate stays one
     assert callable(isorock.run) and callable(isorock.report) and callable(isorock.sweep)
+    assert callable(isorock.simulate) and callable(isorock.design) and isorock.System.__name__ == "System"
     assert isorock.validate.__name__ == "isorock.validate"
     with pytest.raises(AttributeError):
-        isorock.simulate  # noqa: B018
+        isorock.no_such_entry_point  # noqa: B018
 
 
 def test_run_is_the_command_line_run(tmp_path):
@@ -199,3 +200,28 @@ def test_a_sweep_on_workers_from_code_on_standard_input_is_told_what_to_do(tmp_p
     last = r.stderr.strip().splitlines()[-1]
     assert r.returncode != 0 and "InputError" in last and "could not start" in last, r.stderr[-3000:]
     assert "FileNotFoundError" not in r.stderr, r.stderr[-3000:]
+
+
+def test_simulate_takes_python_values_and_its_runs_are_the_engines_own():
+    """(issue 35) isorock.simulate(system, motion, engine=, settings=): no command line in
+    between. Oracles: free rocking's first impact time against model.md's exact integral (the
+    analytic engine), and MuJoCo with a settings dict exactly as the engine run with those
+    settings; bad values are one-line InputErrors naming the keyword."""
+    import isorock
+    from isorock.analytic.errors import InputError
+    from isorock.validate.core.compare import exact_first_impact_time
+    from isorock.validate.core.engines import get_engine
+    block = isorock.System.fixed(height=2.0, width=0.7, mass=3800.0)
+    tr = isorock.simulate(block, None, theta0=0.5 * block.alpha, duration=2.0)
+    assert abs(tr.impacts[0].t / exact_first_impact_time(block, 0.5 * block.alpha) - 1) < 1e-8
+    motion = isorock.load_motion("sine:amp=0.6,freq=1.3,cycles=1")
+    got = isorock.simulate(block, motion, engine="mujoco", settings={"timestep": 2e-4}, duration=3.0)
+    mj = get_engine("mujoco")
+    want = mj.simulate(block, motion, settings=mj.settings(timestep=2e-4), duration=3.0)
+    assert np.array_equal(got.theta, want.theta) and got.status == want.status
+    for kwargs, field in [(dict(system="block"), "system"), (dict(motion=[0.1]), "motion"),
+                          (dict(engine="nope"), "engine"), (dict(settings={"no_such": 1}), "no_such"),
+                          (dict(engine="analytic", settings=mj.settings()), "settings")]:
+        with pytest.raises(InputError) as e:
+            isorock.simulate(**{"system": block, "motion": motion, **kwargs})
+        assert field in str(e.value) and "\n" not in str(e.value), (kwargs, str(e.value))

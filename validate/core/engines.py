@@ -402,3 +402,37 @@ def engine_label(name: str) -> str:
         return get_engine(name).label
     except ImportError:
         return name
+
+
+def simulate(system, motion=None, *, engine: str = REFERENCE, settings=None, duration: float | None = None,
+             theta0: float = 0.0, overturn_rule: str | None = None, budget_s: float | None = None) -> "Trajectory":
+    """One run of any engine, from Python values (issue 35: no command line in between).
+
+    system: an isorock.analytic.System; motion: a GroundMotion (None: no motion, free rocking
+    from theta0, rad); engine: "ENGINE" or "ENGINE:PRESET" (`isorock presets` lists them);
+    settings: None (the engine's or the preset's), a dict of overrides checked against the
+    engine's settings (an unknown one is an InputError naming it), or the engine's own Settings;
+    duration (s; None: the motion's end + 5 s). Returns the measured Trajectory every engine's
+    run becomes (a contact engine's history measured as the commands measure it)."""
+    from isorock.analytic.motion import GroundMotion
+    from isorock.analytic.system import System
+    if not isinstance(system, System):
+        raise InputError(f"system = {type(system).__name__}: must be an isorock System (System.fixed, "
+                         "System.isolated, System.with_isolator)")
+    if motion is not None and not isinstance(motion, GroundMotion):
+        raise InputError(f"motion = {type(motion).__name__}: must be a GroundMotion (isorock.load_motion reads a "
+                         "pulse or a record) or None")
+    if not isinstance(engine, str):
+        raise InputError(f"engine = {engine!r}: must be a name, ENGINE or ENGINE:PRESET")
+    if settings is None or isinstance(settings, dict):
+        choice = choose(engine, settings or {}, strict=True)
+        settings = choice.settings()
+        name = choice.engine
+    else:
+        name = canonical(engine).partition(":")[0]
+        own = get_engine(name).Settings
+        if not isinstance(settings, own):
+            raise InputError(f"settings = {type(settings).__name__}: must be a dict of overrides or engine "
+                             f"{name!r}'s {own.__name__}")
+    return get_engine(name).simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
+                                     overturn_rule=overturn_rule, budget_s=budget_s)
