@@ -101,3 +101,42 @@ def test_a_plugin_that_hands_over_something_else_is_one_line(monkeypatch):
     with pytest.raises(InputError) as e:
         engines.get_engine("fake")
     assert "must be an EngineSpec named 'fake'" in str(e.value) and "named 'mujoco'" in str(e.value)
+
+
+def test_sweep_runs_the_plugin_and_stress_says_what_it_could_not_carry(plugin_path, tmp_path):
+    """A campaign file names it like any engine; stress's grid (every case a statue that may slide)
+    is refused by an engine that declares no statue friction: counted 'not carried', never a pass,
+    and with nothing else run the verdict is NOTHING TESTED (exit 1)."""
+    spec = tmp_path / "rk4.toml"
+    spec.write_text("""
+[campaign]
+name = "rk4 plugin"
+[systems]
+alpha = 0.25
+size = 1.0
+mass = 3800.0
+base = ["fixed"]
+[motions]
+type = "pulse"
+pulse = "sine"
+cycles = 1
+frequency_ratio = {from = 2.0, to = 4.0, num = 2}
+amplitude_ratio = {from = 1.5, to = 3.0, num = 2}
+[duration]
+tail = 2.0
+[[engines]]
+name = "analytic"
+[[engines]]
+name = "rk4"
+""")
+    done = isorock(plugin_path, "sweep", str(spec), "--out", str(tmp_path / "sweep"), cwd=tmp_path)
+    assert done.returncode == 0, done.stderr[-2000:]
+    import pyarrow.parquet as pq
+    table = pq.read_table(tmp_path / "sweep" / "results.parquet").to_pandas()
+    rk4 = table[table["engine"] == "rk4"]
+    ref = table[table["engine"] == "analytic"]
+    assert len(rk4) == len(ref) == 4 and set(rk4["status"]) <= {"completed", "overturned"}
+    assert list(rk4.sort_values("case")["overturned"]) == list(ref.sort_values("case")["overturned"])
+    done = isorock(plugin_path, "stress", "--quick", "--engines", "rk4", "--out", str(tmp_path / "stress"))
+    assert done.returncode == 1 and "stress: NOTHING TESTED" in done.stdout + done.stderr
+    assert "not carried by their engine" in done.stdout + done.stderr

@@ -412,6 +412,18 @@ def reference_flips(results, names, cases, time_limit: float, *, workers: int = 
     return flips
 
 
+def _not_carried(engine, case) -> str:
+    """Why `engine` cannot carry `case` (its Capabilities), or ''."""
+    from isorock.analytic.errors import InputError
+    try:
+        engine.check_isolator(case.scenario.system)
+    except InputError as e:
+        return str(e)
+    if not engine.capabilities.vertical and getattr(case.scenario.ground_motion(), "vertical", None) is not None:
+        return f"vertical: engine {engine.name!r} carries horizontal ground motion only"
+    return ""
+
+
 def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, drawn: int | None = None,
                workers: int = 2) -> list[dict]:
     """Every edge case and drawn case on its engines. `progress`: a factory total → bar
@@ -427,9 +439,15 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, dra
     todo += [(e, c) for c in draws for e in engines if e in ENGINE_NAMES]
     for e in dict.fromkeys(e for e, _ in todo):  # an engine that cannot be loaded is named before the grid
         get_engine(e)
-    bar = bar_of(progress, len(todo))
-    results = run_cases(todo, time_limit, workers=workers, bar=bar)
+    carried, refused = [], []
+    for e, c in todo:  # what an engine declares it cannot carry is not run, and said
+        why = _not_carried(get_engine(e), c)
+        (refused if why else carried).append((e, c, why))
+    bar = bar_of(progress, len(carried))
+    results = run_cases([(e, c) for e, c, _ in carried], time_limit, workers=workers, bar=bar)
     bar.close()
+    results += [dict(engine=e, case=c.name, what=c.what, duration=c.scenario.duration, status="not-carried",
+                     error=why, verdict=NOT_CARRIED) for e, c, why in refused]
     compare_engines(results)
     recheck_disagreements(results, {c.name: c for c in edges + draws}, time_limit, workers=workers)
     return results
@@ -446,13 +464,20 @@ COLUMNS = ("engine", "case", "verdict", "cross", "status", "finite", "wall_s", "
 #: outside-model: free flight, Painlevé; docs/sliding.md): neither a pass nor a failure, and
 #: no reference for the contact engines there
 OUTSIDE = "outside"
+#: The verdict of a case its engine cannot carry (an engine a package registers without statue
+#: friction or vertical motion: Capabilities), refused before the run: not run, neither a pass nor
+#: a failure, counted apart
+NOT_CARRIED = "not carried"
+#: verdicts that are no failure
+NOT_FAILED = ("pass", OUTSIDE, NOT_CARRIED)
 
 
 def summary(results) -> dict:
     """Counts the verdict line and the tables are made of."""
     cross = [r["cross"] for r in results if r.get("cross")]
     return {"runs": len(results), "cases": len({r["case"] for r in results}),
-            "fail": sum(r["verdict"] not in ("pass", OUTSIDE) for r in results),
+            "fail": sum(r["verdict"] not in NOT_FAILED for r in results),
+            "not_carried": sum(r["verdict"] == NOT_CARRIED for r in results),
             "outside": len({r["case"] for r in results if r["verdict"] == OUTSIDE}),
             "agree": cross.count("agree"), "disagree": cross.count("DISAGREE"),
             "slid": cross.count("slid"), "chaotic": cross.count("chaotic")}
@@ -480,7 +505,7 @@ def _count_text(v) -> str:
 
 def failures(results) -> list[dict]:
     """Runs that broke (their verdict) or disagree with a robust reference."""
-    return [r for r in results if r["verdict"] not in ("pass", OUTSIDE) or r.get("cross") == "DISAGREE"]
+    return [r for r in results if r["verdict"] not in NOT_FAILED or r.get("cross") == "DISAGREE"]
 
 
 def failed(results) -> bool:
@@ -490,8 +515,13 @@ def failed(results) -> bool:
     4,000 cases a contact model parts from the exact one somewhere (issue 33: a squat block's
     tilting slide, docs/sliding_engines.md), and it is its rate that says whether to trust it."""
     from isorock.validate.core.verdict import DISAGREES
-    broke = any(r["verdict"] not in ("pass", OUTSIDE) for r in results)
-    return broke or any(v.word == DISAGREES for v in engine_agreement(results).values())
+    broke = any(r["verdict"] not in NOT_FAILED for r in results)
+    return broke or nothing_run(results) or any(v.word == DISAGREES for v in engine_agreement(results).values())
+
+
+def nothing_run(results) -> bool:
+    """No run was made: every case was one its engine does not carry. Never a pass."""
+    return all(r["verdict"] == NOT_CARRIED for r in results)
 
 
 def stress_verdict(results) -> str:
@@ -502,13 +532,16 @@ def stress_verdict(results) -> str:
     if counts:  # what each engine's count says about its rate, judged as every ensemble is (core.verdict)
         rate += (f"; disagreements per engine at {limit('verdict_confidence'):.0%} confidence: "
                  + "; ".join(f"{e} {_count_text(v)}" for e, v in counts.items()))
-    head = "stress: FAIL" if failed(results) else "stress: PASS"
+    head = ("stress: NOTHING TESTED" if nothing_run(results) else "stress: FAIL" if failed(results)
+            else "stress: PASS")
     return (f"{head} — {s['runs']} runs of {s['cases']} cases: {s['fail']} broke; contact engines agree with the "
             f"analytic model on overturning (and, where both stand, the statue's slide) in {s['agree']} of {compared} "
             f"robust comparisons ({rate}), "
             f"{s['disagree']} disagree, {s['slid']} slid (flagged), {s['chaotic']} chaotic"
             + (f"; {s['outside']} cases beyond the exact model (the block would leave its base, or Coulomb friction "
-               f"admits no mode: docs/sliding.md), not judged" if s["outside"] else ""))
+               f"admits no mode: docs/sliding.md), not judged" if s["outside"] else "")
+            + (f"; {s['not_carried']} runs not carried by their engine (a statue that slides, or vertical ground "
+               "motion, which it declares it does not carry), not run" if s["not_carried"] else ""))
 
 
 def markdown(results) -> str:
