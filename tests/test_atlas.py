@@ -267,3 +267,22 @@ def test_a_friction_cell_is_judged_against_the_exact_models_peaks():
     assert r["status"] == "ok" and r["friction"] == 0.1 and "peaks" in r["beta_from"]
     assert abs(r["beta_error"]) < 1e-9 and r["t1_reference_from"] == "analytic model"
     assert Cell(6.0, 0.0, 1.0, 0.1).system().friction == 0.1
+
+
+def test_the_atlas_says_where_an_engine_tilts_a_sliding_statue_and_why():
+    """(issue 33) Where MuJoCo cannot follow a sliding statue the atlas says where and why. Oracle:
+    the exact model's block with μ_s < tanα slides and never tips (friction's resultant stays
+    inside its base: θmax/α = 0, a slide of several b); PyBullet follows it without tilting;
+    MuJoCo's soft contact tilts it past slide_theta_max_diff near tanα (docs/sliding_engines.md)."""
+    grid = Grid((2.0,), (0.0,), (1.0,), frictions=(0.15, 0.45))
+    result = build(["mujoco:default", "bullet:default"], grid, workers=1)
+    rows = result["slide_tilt"]
+    assert {r["engine"] for r in rows} == {"mujoco:default", "bullet:default"} and len(rows) == 4
+    for r in rows:
+        assert r["theta_max_over_alpha_exact"] == 0.0 and r["slide_exact"] > 1.0  # it slides, never tips
+    assert all(r["within"] for r in rows if r["engine"] == "bullet:default")
+    near = [r for r in rows if r["engine"] == "mujoco:default" and r["friction_over_tan_alpha"] > 0.8]
+    assert near and not near[0]["within"]
+    text = "\n".join(atlas.tilt_lines(result))
+    assert "**mujoco:default** tilts a sliding statue past the limit" in text and "soft contact" in text
+    assert "**bullet:default** follows the sliding statue without tilting it in all 2 cells" in text

@@ -415,8 +415,104 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
     results = {t.key: (o.value if o.done else _stopped(o, budget),) for t, o in zip(tasks, outcomes)}
     rows = [row(label, c, refs[c.key], results[(label, c.key)][0]) for label in labels for c in cells]
     summaries = [summarize(label, [r for r in rows if r["engine"] == label]) for label in labels]
+    tilts = slide_tilts(labels, grid, overrides) if any(f is not None for f in grid.frictions) else []
     return {"grid": grid, "rows": rows, "presets": summaries, "verdict": verdict(summaries),
-            "aliases": aliases, "skipped": skipped, "budget_s": budget, "wall_s": time.perf_counter() - start}
+            "aliases": aliases, "skipped": skipped, "budget_s": budget, "wall_s": time.perf_counter() - start,
+            "slide_tilt": tilts}
+
+
+# --- where a statue that slides tilts in an engine, and cannot in the exact model --------------
+
+#: The slip speed of the sustained push, in units of √(g·R): a fast slide, as a statue walking on
+#: its plinth in a strong record (docs/sliding_engines.md: the tilt grows with it)
+TILT_SLIP = 1.0
+
+
+def sustained_push(system):
+    """(motion, duration) that slides a block with μ_s < tanα without rocking it in the exact
+    model (friction's resultant stays inside its base): the ground pushed at μ_s·g + 0.5·g until
+    the slip reaches TILT_SLIP·√(g·R), then still while the slip stops."""
+    import numpy as np
+
+    from isorock.analytic.motion import GroundMotion
+    g = system.gravity
+    length = TILT_SLIP * math.sqrt(g * system.R) / (0.5 * g)
+    dt = length / 100
+    push = GroundMotion.from_array(np.r_[np.zeros(10), np.full(101, (system.friction + 0.5) * g), 0.0], dt=dt,
+                                   name="sustained push")
+    stop = TILT_SLIP * math.sqrt(system.R / g) / system.friction
+    return push, 10 * dt + length + 2 * stop
+
+
+def slide_tilts(labels, grid: Grid, overrides: dict | None = None) -> list[dict]:
+    """Per engine label and fixed-base friction cell with μ_s < tanα (the exact model's block
+    slides there and never tips: θmax/α = 0): how far the engine's block tilts while it slides
+    (sustained_push), against slide_theta_max_diff's limit. The atlas's answer to where an
+    engine cannot follow a sliding statue, and why (issue 33: MuJoCo's soft contact lets the
+    leading corners sink, the more the nearer μ_s is to tanα)."""
+    from isorock.validate.core.engines import REFERENCE, get_engine, resolve
+    from isorock.validate.core.tolerances import has_tolerance, tolerance
+    out = []
+    cells = [c for c in grid.cells() if c.mass_ratio == 0 and c.friction is not None
+             and c.friction < 1.0 / c.slenderness]
+    for c in cells:
+        system = c.system()
+        motion, duration = sustained_push(system)
+        exact = get_engine(REFERENCE).simulate(system, motion, duration=duration)
+        for label in labels:
+            engine, settings = resolve(label, dict(overrides or {}))
+            try:
+                tr = engine.simulate(system, motion, settings=settings, duration=duration)
+            except InputError as e:
+                out.append({"engine": label, "cell": c.key, "status": "refused", "note": str(e)})
+                continue
+            name = label.partition(":")[0]
+            lim = tolerance(name, "slide_theta_max_diff").limit if has_tolerance(name, "slide_theta_max_diff") \
+                else math.nan
+            diff = abs(tr.theta_max_over_alpha - exact.theta_max_over_alpha)
+            out.append({"engine": label, "slenderness": c.slenderness, "height": c.height, "friction": c.friction,
+                        "friction_over_tan_alpha": c.friction * c.slenderness, "status": str(tr.status),
+                        "slide": float(abs(tr.slide).max()) / system.b if tr.slide is not None else None,
+                        "slide_exact": float(abs(exact.slide).max()) / system.b,
+                        "theta_max_over_alpha": tr.theta_max_over_alpha,
+                        "theta_max_over_alpha_exact": exact.theta_max_over_alpha, "limit": lim,
+                        "within": bool(diff <= lim) and str(tr.status) == str(exact.status)})
+    return out
+
+
+def tilt_lines(atlas: dict) -> list[str]:
+    """The sliding section of atlas.md: per engine, where its sliding block tilts past the limit."""
+    rows = [r for r in atlas.get("slide_tilt", []) if r.get("status") != "refused"]
+    if not rows:
+        return []
+    lines = ["## A statue that slides: where an engine tilts it", "",
+             f"Each fixed-base cell with a friction μ_s below tanα, pushed at μ_s·g + 0.5·g until its slip reaches "
+             f"{TILT_SLIP:g}·√(gR), then left to stop: the exact model's block slides and never tips (friction's "
+             "resultant stays inside its base, θmax/α = 0). An engine whose block tilts there by more than "
+             "slide_theta_max_diff parts from the model: its soft contact lets the leading corners sink while it "
+             "slides, the more the nearer μ_s is to tanα (docs/sliding_engines.md).", "",
+             "| engine | λ | H (m) | μ_s | μ_s/tanα | slide/b (exact) | θmax/α (exact 0) | within |",
+             "|---|---:|---:|---:|---:|---:|---:|---|"]
+    for r in rows:
+        slide = "–" if r["slide"] is None else f"{r['slide']:.3g} ({r['slide_exact']:.3g})"
+        lines.append(f"| {r['engine']} | {r['slenderness']:g} | {r['height']:g} | {r['friction']:g} | "
+                     f"{r['friction_over_tan_alpha']:.2g} | {slide} | {r['theta_max_over_alpha']:.3g} "
+                     f"({r['status']}) | {'yes' if r['within'] else 'NO'} |")
+    lines.append("")
+    for engine in dict.fromkeys(r["engine"] for r in rows):
+        bad = [r for r in rows if r["engine"] == engine and not r["within"]]
+        mine = [r for r in rows if r["engine"] == engine]
+        if bad:
+            worst = max(bad, key=lambda r: r["theta_max_over_alpha"])
+            lines.append(f"- **{engine}** tilts a sliding statue past the limit in {len(bad)} of {len(mine)} cells, "
+                         f"from μ_s/tanα {min(r['friction_over_tan_alpha'] for r in bad):.2g} (worst θmax/α "
+                         f"{worst['theta_max_over_alpha']:.3g}"
+                         + (", it overturned" if worst["status"] == "overturned" else "")
+                         + f" at λ {worst['slenderness']:g}, μ_s/tanα {worst['friction_over_tan_alpha']:.2g}): judge "
+                         "statues that slide there by another engine.")
+        else:
+            lines.append(f"- **{engine}** follows the sliding statue without tilting it in all {len(mine)} cells.")
+    return lines + [""]
 
 
 def summarize(label: str, rows: list[dict]) -> dict:
@@ -587,6 +683,7 @@ def markdown(atlas: dict, *, quick: bool) -> str:
              f"impact the rigid model has above {KEPT_AMPLITUDE:g}α, or whose t₁ errs by more than "
              f"{100 * T1_LEVEL:g}% does not qualify.", ""]
     lines += verdict_lines(atlas)
+    lines += [""] + tilt_lines(atlas) if atlas.get("slide_tilt") else []
     notes = []
     for v in atlas["verdict"]:
         for label, failures in v["incomplete"].items():
