@@ -901,7 +901,7 @@ class Answer:
     def to_dataframe(self):
         """The rows as a pandas DataFrame (the notebook extra), the values at the highest level as columns."""
         from isorock.analytic.errors import import_extra
-        pd = import_extra("pandas", "notebook")
+        pd = import_extra("pandas", "notebook", "Answer.to_dataframe")
         top = self.design.hazard.levels[-1]
         return pd.DataFrame([{**{k: v for k, v in r.items() if not isinstance(v, list)},
                               "p_hazard_low": r["p_hazard_interval"][0], "p_hazard_high": r["p_hazard_interval"][1],

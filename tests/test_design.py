@@ -365,6 +365,9 @@ def test_design_from_python_counts_what_the_kernel_runs_and_writes_what_the_comm
         assert answer.verdict["fixed_base"]["p_levels"][li] == expected
     doc = json.loads((tmp_path / "py" / "design.json").read_text())
     assert doc["verdict"] == answer.headline and len(answer.rows()) == 3
+    frame = answer.to_dataframe()  # the README's line: one row per base, the interval's ends as columns
+    assert list(frame["base"]) == ["fixed", "isolated", "isolated"]
+    assert (frame["p_hazard_low"] <= frame["p_hazard"]).all() and (frame["p_hazard"] <= frame["p_hazard_high"]).all()
     folder = tmp_path / "records"
     folder.mkdir()
     for n in names:
