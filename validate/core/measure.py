@@ -23,7 +23,8 @@ import numpy as np
 
 from isorock.analytic.coefficients import beta as beta_closed_form
 from isorock.analytic.hybrid import map_to_impact
-from isorock.analytic.isolator_map import MAPPED, PENDULUMS
+from isorock.analytic.isolator_map import (MAPPED, PENDULUMS, image_after_impact, pendulum_forward,
+                                           phase_at)
 from isorock.analytic.kinematics import LYING, LYING_SLACK, plate_edge
 from isorock.analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
 from isorock.analytic.motion import GroundMotion
@@ -179,7 +180,6 @@ def _pendulum_pre(system, motion, t, u, u_dot, theta, theta_dot, t_before, t_cro
     crossing, its slider's phase read off the row (isolator_map.phase_at), run forward by the
     rigid model, whose slider sticks and slips as the model's does, to θ = 0; it must land
     near the engine's crossing (None otherwise: not this impact)."""
-    from isorock.analytic.isolator_map import pendulum_forward, phase_at
     k = int(np.clip(np.searchsorted(t, t_before), 0, t.size - 1))
     if theta[k] == 0 or t[k] >= t_cross:
         return None
@@ -198,7 +198,6 @@ def _pendulum_post(system, motion, t, u, theta_dot, i, t_cross, t_after, pre):
     pre-impact image `pre` (none without it) and the base's position at the crossing."""
     if not pre:
         return None
-    from isorock.analytic.isolator_map import image_after_impact  # noqa: I001 (scipy.optimize, on first use)
     k = int(np.clip(np.searchsorted(t, t_after), 0, t.size - 1))
     if t[k] <= t_cross:
         return None
