@@ -38,6 +38,14 @@ KERNEL_FILES = {KERNEL_SOURCES[0]: KERNEL_SOURCES,
                                                             ("slide_fast.py", "slide_physics.py", "physics.py"))}
 
 
+#: What a first build announces, per kernel: its time measured on a fresh checkout of the shared
+#: 2-core machine at load about 1 (issue 39: an estimate is a bound that holds), 1.5× and rounded up:
+#: _integrate 38.5 s, _run 33.9 s, _integrate_iso 157.3 s with a peak of 2.9 GB
+#: (`isorock run --isolator friction-pendulum …` in a new clone, /usr/bin/time -v)
+BUILD_ESTIMATE = {"_integrate": "up to a minute", "_run": "up to a minute",
+                  "_integrate_iso": "up to 4 minutes and 3 GB of memory"}
+
+
 def _say(message: str) -> None:
     print(f"isorock: {message}", file=sys.stderr, flush=True)
 
@@ -404,7 +412,7 @@ def _aot_function_locked(dispatcher):
                     if fn is None:  # the reason and the build in one line (and its end in another)
                         _say(f"{why + '; ' if why else ''}compiling the analytic kernel {dispatcher.__name__} "
                              f"ahead of time ({'again' if why else 'first use'}, cached in "
-                             f"{folder or '?'}; about 1-2 minutes)...")
+                             f"{folder or '?'}; {BUILD_ESTIMATE.get(dispatcher.__name__, 'a few minutes')})...")
                         start = time.perf_counter()
                         fn = _load_module(name, _build_module(dispatcher, name)).run
                         _say(f"compiled {dispatcher.__name__} in {time.perf_counter() - start:.1f} s")
