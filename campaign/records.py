@@ -25,6 +25,24 @@ def fema_available() -> bool:
     return True
 
 
+def suite_spec(records, *, units: str | None = None, limit: int = 0, named=str,
+               allowed: str = "'fema-p695' or a folder of record files") -> tuple[dict, str]:
+    """(the spec load_suite reads, the source in words) of a suite named as a user names it:
+    'fema-p695' (its package installed) or a folder that holds record files (`units` for those
+    that do not state theirs); one line naming the field (`named`) otherwise. What `design`
+    takes, from the command line and from Python."""
+    if records == "fema-p695":
+        if not fema_available():
+            raise InputError(f"{named('records')} = 'fema-p695': {FEMA_INSTALL_HINT}, or give a folder of records")
+        return {"suite": "fema-p695", "limit": limit}, "FEMA P695 far field"
+    folder = Path(records).expanduser() if isinstance(records, (str, Path)) else None
+    if folder is None or not folder.is_dir():
+        raise InputError(f"{named('records')} = {records!r}: must be {allowed}")
+    spec = {"folder": str(folder), "limit": limit, "units": units}
+    count_records(spec)  # an empty folder: one line
+    return spec, str(folder)
+
+
 def _folder_files(folder: Path) -> list[Path]:
     return sorted(p for p in folder.iterdir()
                   if p.is_file() and not p.name.startswith(".") and p.suffix.lower() not in _SKIP_SUFFIXES)

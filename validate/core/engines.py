@@ -138,6 +138,15 @@ class Engine:
         check_friction(system, self.capabilities.kinetic_friction, f"engine {self.name!r}",
                        statue_friction=self.capabilities.statue_friction)
 
+    def check_run(self, system, motion=None) -> None:
+        """One line refusing, before any work, a run this engine does not carry: its System
+        (check_isolator), or a vertical ground motion where it carries horizontal motion only
+        (Capabilities.vertical: an engine a package registers may not)."""
+        self.check_isolator(system)
+        if motion is not None and motion.vertical is not None and not self.capabilities.vertical:
+            raise InputError(f"vertical: engine {self.name!r} carries horizontal ground motion only "
+                             "(Capabilities.vertical)")
+
     def check_system(self, system, settings=None) -> None:
         """Every bound this engine puts on `system` before any work: the isolator it carries
         and the engine's own (EngineSpec.check_system), with `settings` as the run will use
@@ -162,10 +171,7 @@ class Engine:
         from isorock.analytic.overturning import PAST_ALPHA
         from isorock.analytic.trajectory import RawHistory
         from isorock.validate.core import measure
-        self.check_isolator(system)
-        if motion is not None and motion.vertical is not None and not self.capabilities.vertical:
-            raise InputError(f"vertical: engine {self.name!r} carries horizontal ground motion only "
-                             "(Capabilities.vertical)")
+        self.check_run(system, motion)
         if settings is None:
             settings = self.settings()
         if budget_s is not None:  # a wall-clock budget (analytic/limits.py): the run stops past it

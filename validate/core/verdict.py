@@ -107,6 +107,11 @@ def bootstrap(statistic, n: int, *, resamples: int = BOOTSTRAP, seed: int = 0) -
     return np.array([statistic(rng.integers(0, n, n)) for _ in range(resamples)], dtype=float)
 
 
+#: The note of a verdict over fewer cases than its rule's minimum (an inconclusive one that no
+#: interval decides): the report tells it apart from one whose interval straddles its limit.
+TOO_FEW_CASES = "cases: no interval"
+
+
 def _judge(quantity, estimate, samples, limit, confidence, n, min_cases, note="", widen=0.0) -> Verdict:
     lo, hi = interval(samples, confidence)
     lo, hi = lo - widen, hi + widen
@@ -115,7 +120,7 @@ def _judge(quantity, estimate, samples, limit, confidence, n, min_cases, note=""
                        note or "the data bound no estimate")
     if n < min_cases:  # a percentile bootstrap over a handful of cases has no width to speak of
         return Verdict(quantity, float(estimate), (lo, hi), limit, confidence, n, INCONCLUSIVE,
-                       int(min_cases), f"fewer than {min_cases} cases: no interval")
+                       int(min_cases), f"fewer than {min_cases} {TOO_FEW_CASES}")
     word, need = decide(estimate, lo, hi, limit, n, widen)
     dropped = int(np.isnan(samples).sum())
     if dropped:
@@ -238,7 +243,7 @@ def rate_verdict(k: int, n: int, *, limit: float, confidence: float, min_cases: 
     lo, hi = rate_interval(k, n, confidence)
     if n < min_cases:
         return Verdict(quantity, rate, (lo, hi), limit, confidence, n, INCONCLUSIVE, int(min_cases),
-                       f"{k} of {n}; fewer than {min_cases} cases: no interval", bound="≤")
+                       f"{k} of {n}; fewer than {min_cases} {TOO_FEW_CASES}", bound="≤")
     word, _ = decide(rate, lo, hi, limit, n)
     need = None
     if word == INCONCLUSIVE and rate != limit:

@@ -455,20 +455,22 @@ def slide_tilts(labels, grid: Grid, overrides: dict | None = None) -> list[dict]
     out = []
     cells = [c for c in grid.cells() if c.mass_ratio == 0 and c.friction is not None
              and c.friction < 1.0 / c.slenderness]
+    # each label's engine, settings and limit once, not once per cell
+    chosen = {label: resolve(label, dict(overrides or {})) for label in labels}
+    limits = {label: tolerance(label, "slide_theta_max_diff").limit
+              if has_tolerance(label, "slide_theta_max_diff") else math.nan for label in labels}
     for c in cells:
         system = c.system()
         motion, duration = sustained_push(system)
         exact = get_engine(REFERENCE).simulate(system, motion, duration=duration)
         for label in labels:
-            engine, settings = resolve(label, dict(overrides or {}))
+            engine, settings = chosen[label]
             try:
                 tr = engine.simulate(system, motion, settings=settings, duration=duration)
             except InputError as e:
                 out.append({"engine": label, "cell": c.key, "status": "refused", "note": str(e)})
                 continue
-            name = label.partition(":")[0]
-            lim = tolerance(name, "slide_theta_max_diff").limit if has_tolerance(name, "slide_theta_max_diff") \
-                else math.nan
+            lim = limits[label]
             diff = abs(tr.theta_max_over_alpha - exact.theta_max_over_alpha)
             out.append({"engine": label, "slenderness": c.slenderness, "height": c.height, "friction": c.friction,
                         "friction_over_tan_alpha": c.friction * c.slenderness, "status": str(tr.status),

@@ -24,6 +24,7 @@ from isorock.validate.io.provenance import provenance
 from isorock.validate.tools.paper import PAPER_FIGURE5, is_kobe, paper_blocks
 from isorock.validate.tools.report_run import OWN, PAPER_SLENDERNESS, Results
 from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
+from isorock.validate.core.verdict import TOO_FEW_CASES
 
 #: The families of checks the scorecard shows, in order: (title, metrics).
 FAMILIES = (
@@ -227,11 +228,8 @@ def _would_decide(open_) -> str:
     need = sorted({c.n_needed for c in open_ if c.n_needed})
     if not need:
         return ""
-    ran = sorted({c.cases for c in open_ if c.cases})
-
-    def span(v):
-        return f"{v[0]}" if len(v) == 1 else f"{v[0]}–{v[-1]}"
-    return f" (about {span(need)} cases would decide the inconclusive; this run judged {span(ran)})"
+    return (f" (about {_span_of(need)} cases would decide the inconclusive; this run judged "
+            f"{_span_of(c.cases for c in open_ if c.cases)})")
 
 
 def scorecard(results: Results) -> tuple[list, list]:
@@ -287,10 +285,11 @@ def _score(checks) -> str:
 def _too_few(c) -> bool:
     """An inconclusive check whose ensemble had too few cases for any interval (core.verdict's
     min_cases): its 'interval' may lie wholly inside the limit and still decide nothing (issue 39)."""
-    return c.status == INCONCLUSIVE and "fewer than" in (c.note or "")
+    return c.status == INCONCLUSIVE and TOO_FEW_CASES in (c.note or "")
 
 
 def _span_of(values) -> str:
+    """'5' or '5–12': the smallest and largest of whole numbers (None left out)."""
     v = sorted({x for x in values if x is not None})
     return "?" if not v else f"{v[0]}" if len(v) == 1 else f"{v[0]}–{v[-1]}"
 
