@@ -30,6 +30,57 @@ def simulate_reference(system, motion=None, **kwargs):
     return reference(system, motion, **kwargs)
 
 
+def _kernel_of(system, motion):
+    """The compiled kernel a run of `system` under `motion` calls: the sliding model's, the
+    linear one (fixed base, linear isolator) or the non-linear isolators'."""
+    from . import fast
+    from .slide_physics import needs_contact_model
+    if needs_contact_model(system, motion):
+        from . import slide_fast
+        return slide_fast._run
+    return fast._integrate if system.fixed_base or system.isolator is None else fast._integrate_iso
+
+
+#: what each kernel serves, by its name (kernel_cache.BUILD_ESTIMATE's keys)
+_KERNEL_SERVES = {"_integrate": "the fixed base's and the linear isolator's", "_integrate_iso":
+                  "the non-linear isolators'", "_run": "the sliding statue's and vertical shaking's"}
+
+
+def kernel_ready(system, motion=None) -> bool:
+    """Whether the compiled kernel a run of `system` under `motion` needs runs without being
+    compiled first (kernel_cache.is_ready)."""
+    from .kernel_cache import is_ready
+    from .motion import GroundMotion
+    return is_ready(_kernel_of(system, GroundMotion.zero() if motion is None else motion))
+
+
+#: the longest run (simulated s) that a first run takes on the reference while the kernel it
+#: needs is not built: the reference runs 45 s of Kobe in 9–11 s on the non-linear isolators and
+#: the sliding model (the paper's block; 1 s on the fixed base and the linear isolator), where
+#: the isolators' kernel takes up to 4 minutes and 3 GB to build (kernel_cache.BUILD_ESTIMATE)
+FIRST_RUN_REFERENCE_S = 100.0
+
+
+def first_run_reference(system, motion, duration: float) -> str | None:
+    """Why one run of the compiled engine should take the SciPy reference instead (the
+    same model, tested against the kernel to ~1e-10 rad), or None: its kernel is not
+    built yet and the run is short enough that the reference ends before the build would
+    (issue 34: a first run that starts at once). ISOROCK_FIRST_RUN=kernel builds it instead."""
+    import os
+
+    from .kernel_cache import BUILD_ESTIMATE, is_ready
+    from .motion import GroundMotion
+    if os.environ.get("ISOROCK_FIRST_RUN", "reference") == "kernel" or not duration <= FIRST_RUN_REFERENCE_S:
+        return None
+    kernel = _kernel_of(system, GroundMotion.zero() if motion is None else motion)
+    if is_ready(kernel):
+        return None
+    name = kernel.__name__
+    return (f"{_KERNEL_SERVES[name]} compiled kernel is not built yet (once per install, {BUILD_ESTIMATE[name]}): "
+            "this run takes the same model on SciPy (analytic-reference), which needs no build; design, sweep "
+            "and validate build the kernel, and ISOROCK_FIRST_RUN=kernel builds it now")
+
+
 ENGINE = EngineSpec(
     name="analytic", label="analytic", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=True, exact_impacts=True,
@@ -44,4 +95,5 @@ REFERENCE_ENGINE = EngineSpec(
                               campaigns=False, isolators=ISOLATOR_KINDS),
     presets=PRESETS, ladder=ladder)
 
-__all__ = ["ENGINE", "REFERENCE_ENGINE", "Settings", "simulate", "simulate_reference", "ladder"]
+__all__ = ["ENGINE", "REFERENCE_ENGINE", "Settings", "simulate", "simulate_reference", "ladder", "kernel_ready",
+           "first_run_reference", "FIRST_RUN_REFERENCE_S"]

@@ -386,6 +386,22 @@ def is_built(dispatcher) -> bool:
     return _find_module(_module_name(dispatcher)) is not None
 
 
+def is_ready(dispatcher) -> bool:
+    """Whether a call of dispatcher through call_kernel would run without compiling: it
+    is loaded in this process, or its ahead-of-time module is built, or (the JIT kernel
+    asked for, or a kernel with no ahead-of-time build) numba's disk cache holds it. A
+    damaged cache counts as not ready (call_kernel rebuilds it)."""
+    if dispatcher in _ready or _aot_loaded.get(dispatcher) is not None or dispatcher.overloads:
+        return True
+    if dispatcher in _aot_exports and dispatcher not in _aot_loaded and os.environ.get("ISOROCK_KERNEL", "aot") != "jit":
+        return is_built(dispatcher)  # call_kernel builds it first, whatever numba's cache holds
+    cf = _cache_file(dispatcher)
+    try:
+        return bool(cf is not None and cf._load_index())
+    except _DAMAGED:
+        return False
+
+
 def _aot_function(dispatcher):
     """The extension module's function for dispatcher, built first if needed; None where
     the JIT kernel is to be used instead (said once)."""

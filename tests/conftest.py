@@ -1,8 +1,15 @@
 """Shared fixtures. Records are read from <repository root>/../shared/data/records,
 never copied into the project; a missing folder or file skips with the reason."""
+import os
 from pathlib import Path
 
 import pytest
+
+# A command's first run takes the SciPy reference while the compiled kernel it needs is not
+# built (analytic.engines.first_run_reference): in a session that builds the kernels as it
+# goes, which path served would depend on the order tests ran in. The suite asks for the
+# kernel throughout; tests/test_first_run.py tests the reference path on its own.
+os.environ.setdefault("ISOROCK_FIRST_RUN", "kernel")
 
 ROOT = Path(__file__).resolve().parent.parent
 

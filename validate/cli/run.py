@@ -180,7 +180,23 @@ def plan_runs(a, specs) -> RunPlan:
         motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold,
                                       settings=settings_used(settings, system),
                                       isolators=engine.capabilities.isolators)
-    return RunPlan(loaded, system, motion, duration, theta0)
+    return RunPlan(first_run_engines(loaded, system, motion, duration), system, motion, duration, theta0)
+
+
+def first_run_engines(loaded, system, motion, duration):
+    """`loaded` with the compiled engine swapped for the SciPy reference (the same model,
+    the same settings) where its kernel is not built yet and the run is short: a first
+    run starts at once instead of waiting minutes for a build (issue 34); said on stderr."""
+    from isorock.analytic.engines import first_run_reference
+    from isorock.validate.core.engines import get_engine
+    out = []
+    for label, engine, settings in loaded:
+        why = first_run_reference(system, motion, duration) if engine.name == "analytic" else None
+        if why:
+            print(f"isorock: {label}: {why}", file=sys.stderr, flush=True)
+            engine = get_engine("analytic-reference")
+        out.append((label, engine, settings))
+    return out
 
 
 def simulate_plan(plan: RunPlan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:
