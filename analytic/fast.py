@@ -737,7 +737,13 @@ def _spacing(t):
 # reference-counted at every turn of it): a run that fills its room returns _NO_ROOM
 # and its caller runs it again with more (_call_integrate).
 
-@njit(inline="always")
+# _store and the isolator's bookkeeping below (_next_point … _pivot_ratio) are compiled as
+# functions of their own, not inlined into the kernel as the step's arithmetic is: inlined at
+# their 40-odd call sites they doubled the isolator kernel's build (157 s and 2.7 GB against
+# 80 s and 1.7 GB, a fresh build on the shared 2 cores) for no speed (farm-bench A/B of the
+# kernels on a pulse and Kobe, both bases and a pendulum: CPU median 0.995, n = 11); not
+# inlining the events too (_event, _slider_event) saved memory (1.1 GB) but cost 4.5%.
+@njit
 def _store(out_t, out_y, out_m, n, t, y, mode, out_ph, out_up, iso):
     """Store one point at index n; False (nothing stored) when the arrays are full. On a
     non-linear isolator also its phase and slider (which moves with a yielding bearing)."""
@@ -754,7 +760,7 @@ def _store(out_t, out_y, out_m, n, t, y, mode, out_ph, out_up, iso):
     return True
 
 
-@njit(inline="always")
+@njit
 def _next_point(kg, odt, grid, t_stop, roots, n_roots, kr, offset):
     """The next time to store or measure, merging two ordered sequences: grid points kg·odt
     below t_stop (when `grid`) and roots[kr] + offset (kr < n_roots); a tie takes the root.
@@ -771,14 +777,14 @@ def _next_point(kg, odt, grid, t_stop, roots, n_roots, kr, offset):
 
 # --- the isolator's slider (hybrid._IsolatorIntegrator), compiled ------------------------
 
-@njit(inline="always")
+@njit
 def _iso_state(ipk, phase, u_p, rest, start):
     """The iso tuple of a piece (_IS_*) from the run's isolator constants ipk (physics's ip,
     u_y, stick limit: the tuple's first _IS_PH entries)."""
     return (ipk[0], ipk[1], ipk[2], ipk[3], ipk[4], ipk[5], ipk[6], ipk[7], phase, u_p, rest, start)
 
 
-@njit(inline="always")
+@njit
 def _stick_or_slip(sp, iso, mode, theta, theta_dot, u, xg):
     """A rigid slider's phase at rest (u̇ = 0): 0 if its demand is within the stick limit, else
     a slip its way (hybrid._IsolatorIntegrator.stick_or_slip; iso's phase and u_p: now)."""
@@ -789,7 +795,7 @@ def _stick_or_slip(sp, iso, mode, theta, theta_dot, u, xg):
     return _slip_phase(iso, 1.0 if demand > 0 else -1.0, u, u_p)
 
 
-@njit(inline="always")
+@njit
 def _phase_after_velocity(sp, iso, phase, mode, theta, theta_dot, u, u_dot, xg):
     """The phase a new base velocity (after an impact) leaves the slider in."""
     if iso[0] >= _ISO_FRICTION:
@@ -804,7 +810,7 @@ def _phase_after_velocity(sp, iso, phase, mode, theta, theta_dot, u, u_dot, xg):
     return phase
 
 
-@njit(inline="always")
+@njit
 def _iso_relift(sp, iso, phase, u, u_dot, u_p, xg):
     """physics.relift on the isolator (hybrid._IsolatorIntegrator.relift)."""
     side = _uplift_dir(sp, _iso_base_acc(sp, iso, phase, u, u_dot, u_p, xg))
@@ -814,7 +820,7 @@ def _iso_relift(sp, iso, phase, u, u_dot, u_p, xg):
     return side if _lifts_clearly(sp, side, thdd) else 0
 
 
-@njit(inline="always")
+@njit
 def _set_phase(ipk, phase, u_p, u, u_dot, new):
     """hybrid._IsolatorIntegrator.set_phase: (phase, u_p, u̇) once the slider takes phase
     `new`: a yielding bearing's slider stops where it is, a sticking pendulum's base rests."""
@@ -826,7 +832,7 @@ def _set_phase(ipk, phase, u_p, u, u_dot, new):
     return new, u_p, u_dot
 
 
-@njit(inline="always")
+@njit
 def _log_phase(iev, n, t, phase, u):
     """Row n of the isolator's events (t, phase after, u); -1 when they are full (_NO_ROOM)."""
     if n == iev.shape[0]:
@@ -837,7 +843,7 @@ def _log_phase(iev, n, t, phase, u):
     return n + 1
 
 
-@njit(inline="always")
+@njit
 def _base_acc_of(sp, u, u_dot, xg, iso):
     """The base's absolute acceleration in translation (the uplift events read it)."""
     if _ISO:
@@ -845,7 +851,7 @@ def _base_acc_of(sp, u, u_dot, xg, iso):
     return _base_acc(sp, u, u_dot, xg)
 
 
-@njit(inline="always")
+@njit
 def _pivot_ratio(sp, mode, theta, theta_dot, u, u_dot, xg, iso):
     """physics.pivot_force_ratio, with the isolator's accelerations on a non-linear one."""
     if _ISO:

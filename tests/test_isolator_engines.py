@@ -29,7 +29,7 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import BallInBowl, BilinearIsolator, DoubleFrictionPendulum, FrictionPendulum, System
-from isorock.validate.core.compare import compare
+from isorock.validate.core.compare import base_history_error, compare, own_horizon, reference_sensitivity
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.tolerances import tolerance
 
@@ -278,12 +278,10 @@ def measure_rocking(engine, device, params, pulse, with_beta=0) -> dict:
     assert ref.impact_count >= 3 and not ref.overturned  # the case rocks: the comparison means something
     tr = get_engine(engine).simulate(system, motion, duration=duration)
     c = compare(tr, ref)
-    grid = np.linspace(0.0, duration, 2001)
-    du = np.max(np.abs(np.interp(grid, tr.t, tr.u) - np.interp(grid, ref.t, ref.u)))
     assert c.first_uplift_diff is not None and c.overturn_agree
     betas = [abs(e) for e in c.beta_errors if math.isfinite(e)]
     assert len(betas) >= with_beta
-    return {"isolator_u_history": du / ref.u_max, "first_uplift_diff": abs(c.first_uplift_diff),
+    return {"isolator_u_history": base_history_error(tr, ref), "first_uplift_diff": abs(c.first_uplift_diff),
             "impacts_diff": abs(c.impacts - c.impacts_ref), "theta_max_diff": abs(c.theta_max_diff),
             "beta_rel_error": max(betas, default=0.0)}
 
@@ -293,6 +291,27 @@ def measure_rocking(engine, device, params, pulse, with_beta=0) -> dict:
 def test_rocking_on_the_device_agrees_with_the_analytic_model(engine, device, params, pulse, with_beta):
     for metric, value in measure_rocking(engine, device, params, pulse, with_beta).items():
         assert value <= limit(engine, metric), metric
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_a_stiff_bearing_is_held_to_the_models_history_to_its_own_horizon_then_judged_by_ensemble(engine):
+    """Issue 34: the stiff bearing under six cycles rocks the block 17 times, and the exact model
+    disagrees with itself after 7 of them under 0.5% of the motion (own_horizon): the base
+    history is held to the table's limit up to there, and past it the engine's θmax/α and
+    overturning are judged against the model's ensemble (the motion scaled by 1 ± 1%).
+    docs/scripts/bilinear_horizon.py measures it on ten cases (docs/isolators.md)."""
+    system, motion = bearing(3e6, 0.1, 0.002, 1000.0), load_motion("sine:amp=0.45,freq=1.5,cycles=6")
+    duration = motion.end_time + 2.0
+    ref = get_engine("analytic-reference").simulate(system, motion, duration=duration)
+    own = own_horizon(system, motion, ref, duration=duration)
+    assert ref.impact_count >= 12 and own["parted"] and own["impacts"] < ref.impact_count / 2  # ill-conditioned
+    tr = get_engine(engine).simulate(system, motion, duration=duration)
+    assert base_history_error(tr, ref, own["s"]) <= tolerance(engine, "isolator_u_history").limit
+    ensemble = reference_sensitivity(system, motion, duration=duration)
+    th = tolerance(engine, "theta_max_diff").limit
+    spread = ensemble["theta_max_over_alpha"]
+    assert min(spread) - th <= tr.theta_max_over_alpha <= max(spread) + th
+    assert not ensemble["overturn_flips"] and tr.overturned == ref.overturned
 
 
 @pytest.mark.parametrize("engine", [*ENGINES, "drake"])
