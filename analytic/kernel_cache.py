@@ -40,10 +40,11 @@ KERNEL_FILES = {KERNEL_SOURCES[0]: KERNEL_SOURCES,
 
 #: What a first build announces, per kernel: its time measured on a fresh checkout of the shared
 #: 2-core machine at load about 1 (issue 39: an estimate is a bound that holds), 1.5× and rounded up:
-#: _integrate 38.5 s, _run 33.9 s, _integrate_iso 157.3 s with a peak of 2.9 GB
-#: (`isorock run --isolator friction-pendulum …` in a new clone, /usr/bin/time -v)
+#: _integrate 38.5 s, _run 33.9 s, _integrate_iso 80–106 s with a peak of 1.7–1.9 GB since its
+#: bookkeeping is compiled out of line (analytic/fast.py, before _store; 157.3 s and 2.9 GB before)
+#: (`isorock run --isolator friction-pendulum …` in a new checkout, /usr/bin/time)
 BUILD_ESTIMATE = {"_integrate": "up to a minute", "_run": "up to a minute",
-                  "_integrate_iso": "up to 4 minutes and 3 GB of memory"}
+                  "_integrate_iso": "up to 3 minutes and 2 GB of memory"}
 
 
 def _say(message: str) -> None:
