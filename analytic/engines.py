@@ -54,6 +54,15 @@ def kernel_ready(system, motion=None) -> bool:
     return is_ready(_kernel_of(system, GroundMotion.zero() if motion is None else motion))
 
 
+def unbuilt_kernels(systems) -> list[str]:
+    """What building the compiled kernels that runs of `systems` (horizontal motion) need, and
+    are not built yet, will cost, one phrase per kernel: a long command's estimate adds it."""
+    from .kernel_cache import BUILD_ESTIMATE, is_ready
+    from .motion import GroundMotion
+    kernels = dict.fromkeys(_kernel_of(system, GroundMotion.zero()) for system in systems)
+    return [f"{_KERNEL_SERVES[k.__name__]} kernel ({BUILD_ESTIMATE[k.__name__]})" for k in kernels if not is_ready(k)]
+
+
 #: the longest run (simulated s) that a first run takes on the reference while the kernel it
 #: needs is not built. A new checkout of the shared 2 cores ran the 155 s of Kobe JMA N-S (the
 #: record and 5 s after it) in 1.5 s wall on the fixed base, 6.6 s on the linear isolator,
@@ -98,4 +107,4 @@ REFERENCE_ENGINE = EngineSpec(
     presets=PRESETS, ladder=ladder)
 
 __all__ = ["ENGINE", "REFERENCE_ENGINE", "Settings", "simulate", "simulate_reference", "ladder", "kernel_ready",
-           "first_run_reference", "FIRST_RUN_REFERENCE_S"]
+           "first_run_reference", "FIRST_RUN_REFERENCE_S", "unbuilt_kernels"]

@@ -100,3 +100,25 @@ def test_an_ahead_of_time_kernel_is_ready_only_once_built(monkeypatch):
     assert not kernel_cache.is_ready(kernel)
     monkeypatch.setattr(kernel_cache, "_module_name", lambda d: real)
     assert kernel_cache.is_ready(kernel) == kernel_cache.is_built(kernel)
+
+
+def test_a_long_command_names_the_builds_it_will_wait_for(monkeypatch):
+    pendulum = System.with_isolator(height=1.2, width=0.3, mass=250, base_mass=500,
+                                    isolator=FrictionPendulum(radius=1.0, friction_coefficient=0.3))
+    fixed, linear = paper_system(fixed_base=True), paper_system()
+    monkeypatch.setattr(kernel_cache, "is_ready", lambda dispatcher: True)
+    assert engines.unbuilt_kernels([fixed, pendulum]) == []
+    monkeypatch.setattr(kernel_cache, "is_ready", lambda dispatcher: False)
+    assert engines.unbuilt_kernels([fixed, linear]) == [
+        f"the fixed base's and the linear isolator's kernel ({kernel_cache.BUILD_ESTIMATE['_integrate']})"]
+    got = engines.unbuilt_kernels([fixed, pendulum, fixed.with_friction(0.4)])
+    assert len(got) == 3 and "non-linear isolators'" in got[1] and "sliding statue's" in got[2]
+
+
+def test_design_states_the_build_before_its_work(records_dir, tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(kernel_cache, "is_ready", lambda dispatcher: False)
+    code = main(["design", "--records", str(records_dir), "--pga", "0.4", "--periods", "2", "--damping-ratios", "0.1",
+                 "--height", "0.6", "--width", "0.2", "--mass", "80", "--base-mass", "150", "--out", str(tmp_path / "d")])
+    err = capsys.readouterr().err
+    assert code == 0
+    assert "before it, once per install, it builds the fixed base's and the linear isolator's kernel" in err
