@@ -50,6 +50,8 @@ EXTRA_COMMANDS = {
     "sweep": ("isorock.validate.cli.sweep", "run a campaign (TOML): overturning spectra, fragility curves, agreement maps"),
     "design": ("isorock.validate.cli.design", "which isolator keeps my statue standing at my site: P(overturn) and "
                                               "stroke per isolator over a record suite, the chart, the recommended region"),
+    "statue": ("isorock.validate.cli.statue", "a statue's mesh: the direction it tips first, and its two tipping "
+                                              "edges"),
     "experiments": ("isorock.validate.cli.experiments", "score the rigid model and the contact engines against measured "
                                                         "shake-table tests"),
 }

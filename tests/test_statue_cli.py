@@ -1,0 +1,77 @@
+"""`isorock statue` (issue 36): the direction a statue tips first, and its edges, checked against
+trimesh's own mass properties (an integrator of its own) and the closed form of a footprint."""
+import json
+import math
+
+import pytest
+
+from isorock.analytic import shape
+from isorock.validate.cli.main import main
+
+trimesh = pytest.importorskip("trimesh")
+
+
+def _json(capsys, *args):
+    code = main(["statue", *args, "--json", "-"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    return json.loads(out.out), out.err
+
+
+def test_the_bust_tips_first_forward_where_trimeshs_centre_of_mass_says(capsys):
+    d, err = _json(capsys, "--example", "bust", "--mass", "80")
+    mesh = trimesh.Trimesh(*shape.example_statue("bust"), process=False)
+    com = mesh.center_mass  # trimesh's own integrals of the same surface
+    assert d["tips_first"]["azimuth_deg"] == pytest.approx(0.0, abs=1e-9)
+    assert d["tips_first"]["uplift_g"] == pytest.approx((0.12 - com[0]) / com[2], rel=1e-9)
+    back = d["edges"]["backward"]
+    assert back["uplift_g"] == pytest.approx((0.12 + com[0]) / com[2], rel=1e-9)
+    assert back["alpha"] == pytest.approx(math.atan2(0.12 + com[0], com[2]), rel=1e-9)
+    assert d["volume"] == pytest.approx(mesh.volume, rel=1e-9)
+    assert "tips first when the table accelerates at" in err and "two edges differ" in err
+
+
+def test_the_polar_table_is_the_footprint_seen_from_the_centre_of_mass(capsys):
+    d, _ = _json(capsys, "--example", "obelisk", "--density", "2600")
+    grid = d["uplift_by_azimuth"]
+    h = d["com_height"]
+    for deg, g in zip(grid["azimuth_deg"], grid["uplift_g"]):
+        a = math.radians(deg)
+        reach = min(0.2 / abs(math.cos(a)) if abs(math.cos(a)) > 1e-12 else math.inf,
+                    0.2 / abs(math.sin(a)) if abs(math.sin(a)) > 1e-12 else math.inf)
+        assert g == pytest.approx(reach / h, rel=1e-9)
+    assert d["tips_first"]["uplift_g"] == pytest.approx(min(grid["uplift_g"]), rel=1e-12)
+
+
+def test_a_file_is_read_in_its_unit_and_every_output_is_written(tmp_path, capsys):
+    mesh = trimesh.Trimesh(*shape.example_statue("amphora"), process=False)
+    mm = tmp_path / "amphora-mm.stl"
+    mesh.copy().apply_scale(1000.0).export(mm)
+    in_m, _ = _json(capsys, "--example", "amphora", "--mass", "60")
+    code = main(["statue", str(mm), "--unit", "mm", "--mass", "60", "--json", str(tmp_path / "a.json"),
+                 "--plot", str(tmp_path / "a.png"), "--write-mesh", str(tmp_path / "a.stl")])
+    capsys.readouterr()
+    assert code == 0
+    in_mm = json.loads((tmp_path / "a.json").read_text())
+    # an STL holds its vertices as 32-bit floats (a relative 6e-8 each)
+    assert in_mm["tips_first"]["uplift_g"] == pytest.approx(in_m["tips_first"]["uplift_g"], rel=1e-6)
+    assert in_mm["edges"]["forward"]["I_O"] == pytest.approx(in_m["edges"]["forward"]["I_O"], rel=1e-6)
+    assert (tmp_path / "a.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert trimesh.load_mesh(tmp_path / "a.stl").volume == pytest.approx(mesh.volume, rel=1e-6)
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--mass", "80"], "give its mesh FILE or --example"),
+    (["--example", "bust"], "mass (kg) or its density"),
+    (["--example", "bust", "--mass", "80", "--unit", "mm"], "made in metres"),
+    (["--example", "bust", "--mass", "80", "--azimuth", "nan"], "azimuth"),
+    (["FILE.stl", "--mass", "80"], "needs --unit"),
+    (["FILE.stl", "--example", "bust", "--mass", "80"], "one of the two"),
+    (["missing.stl", "--unit", "m", "--mass", "80"], "cannot be read"),
+])
+def test_bad_input_is_one_line_and_exit_2(args, says, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    trimesh.creation.box(extents=(1, 1, 2)).export(tmp_path / "FILE.stl")
+    code = main(["statue", *args])
+    err = capsys.readouterr().err
+    assert code == 2 and says in err and err.count("\n") == 1
