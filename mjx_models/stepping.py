@@ -1,0 +1,165 @@
+"""Stepping the MuJoCo scene with MJX (MuJoCo's JAX port): the same MJCF, the same settings and
+the same forces as the MuJoCo engine (mujoco_models), stepped throughout at the timestep by
+`mjx.step` in float64, in chunks of CHUNK_STEPS compiled once per scene layout (a jitted
+`lax.scan`), many runs of one scene at once with `jax.vmap` (simulate_batch). What MJX cannot
+carry is refused before any work: a non-linear isolator (its dry friction is a Python-side
+element in MuJoCo's scene), MuJoCo's phased or event-resolved stepping (MJX steps throughout)."""
+from __future__ import annotations
+
+import functools
+import math
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from isorock.analytic.engine_protocol import run_inputs
+from isorock.analytic.errors import import_extra, require
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.status import Status
+from isorock.analytic.system import System
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
+from isorock.mujoco_models.scene import build_model
+from isorock.mujoco_models.settings import Settings
+from isorock.mujoco_models.state import Layout, StepRecord, raw_history, vertical_record
+
+#: steps per compiled chunk: one compilation serves every run of a scene layout whatever its
+#: duration (the chunk's length is static to XLA), and a run ends within a chunk of its end
+CHUNK_STEPS = 2000
+#: isolators MJX carries: the linear one (a spring and dashpot on the base's joint)
+ISOLATORS = ("linear",)
+
+
+def _jax():
+    """(jax, mjx), float64 on: MJX's default float32 puts the pivot's contact force, and so β, off
+    by its rounding (the scene's contact depth is ~1e-6 of the block)."""
+    import contextlib
+    import io
+    jax = import_extra("jax", "mjx", "the MJX engine")
+    jax.config.update("jax_enable_x64", True)
+    # mujoco.mjx prints "Failed to import warp" on standard output where MuJoCo Warp (its other
+    # backend, not used here) is absent: it would land in `--json -`'s output
+    with contextlib.redirect_stdout(io.StringIO()):
+        mjx = import_extra("mujoco.mjx", "mjx", "the MJX engine")
+    return jax, mjx
+
+
+def _inputs(given: Settings, system: System, motion, duration, theta0):
+    """(motion, duration, settings) of one run, checked as the MuJoCo engine checks its own."""
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
+                                  settings=given.for_system(system), isolators=ISOLATORS, kinetic_friction=False)
+    derived = given.for_system(system, duration)
+    require(derived.impact_timestep is None, "impact_timestep", derived.impact_timestep,
+            "None: MJX steps the scene throughout at the timestep")
+    return motion, duration, replace(derived, phased=False)
+
+
+@functools.lru_cache(maxsize=16)
+def _chunk(nq: int, nv: int, free: bool):
+    """The jitted chunk of CHUNK_STEPS steps for one scene layout: (mjx model, mjx data, forces
+    (CHUNK_STEPS × nv)) → (data, qpos rows, qvel rows). Compiled on its first call (seconds)."""
+    jax, mjx = _jax()
+
+    def step(carry, force):
+        model, data = carry
+        new = mjx.step(model, data.replace(qfrc_applied=force))
+        # float64 on, a step returns the contact indices as int64 where put_data made int32:
+        # the scan's carry keeps its types
+        new = jax.tree_util.tree_map(lambda a, b: a.astype(b.dtype), new, data)
+        return (model, new), (new.qpos, new.qvel)
+
+    @jax.jit
+    def chunk(model, data, forces):
+        (_, data), (qpos, qvel) = jax.lax.scan(step, (model, data), forces)
+        return data, qpos, qvel
+    return chunk
+
+
+def _start(model, lay, system, theta0):
+    """MJX's data at t = 0: at rest, tilted by θ0 about its corner."""
+    import mujoco
+    _, mjx = _jax()
+    state0 = lay.initial_state(model, system, theta0)
+    data = mujoco.MjData(model)
+    data.qpos[:] = state0[1:1 + model.nq]
+    mujoco.mj_forward(model, data)
+    return mjx.put_data(model, data)
+
+
+def simulate(system: System, motion: GroundMotion | None = None, *, settings: Settings | None = None,
+             duration: float | None = None, theta0: float = 0.0, progress=None) -> RawHistory:
+    """The scene from t = 0 to `duration` (default: the motion's end + 5 s, or 10 s without
+    motion), from rest tilted by θ0 (rad) about its corner, stepped by mjx.step."""
+    return simulate_batch(system, [motion], settings=settings, duration=duration, theta0=[theta0],
+                          progress=progress)[0]
+
+
+def simulate_batch(system: System, motions, *, settings: Settings | None = None, duration: float | None = None,
+                   theta0=None, progress=None) -> list[RawHistory]:
+    """Runs of one system, one per motion (and θ0), stepped together by jax.vmap: one scene, so
+    one compiled chunk. Each history is the run's own, as `simulate` makes it alone."""
+    jax, mjx = _jax()
+    import jax.numpy as jnp
+    motions = [GroundMotion.zero() if m is None else m for m in motions]
+    theta0 = [0.0] * len(motions) if theta0 is None else list(theta0)
+    require(len(theta0) == len(motions), "theta0", len(theta0), f"one per motion ({len(motions)})")
+    start = time.perf_counter()
+    checked = [_inputs(settings or Settings(), system, m, duration, th) for m, th in zip(motions, theta0)]
+    durations = {d for _, d, _ in checked}
+    require(len(durations) == 1, "duration", sorted(durations), "one duration for a batch")
+    duration, derived = checked[0][1], checked[0][2]
+    model = build_model(system, derived)
+    lay = Layout(model, system, derived.joint)
+    dt = model.opt.timestep
+    nstep = int(math.floor(duration / dt + 1e-9))
+    n_chunks = -(-nstep // CHUNK_STEPS)
+    forces = np.zeros((len(motions), n_chunks * CHUNK_STEPS, model.nv))
+    for k, (m, _, _) in enumerate(checked):
+        xg, zg = StepRecord(m, dt, nstep), vertical_record(m, dt, nstep)
+        forces[k, :nstep] = lay.forces(system, xg[0:nstep], None if zg is None else zg[0:nstep])
+    mx = mjx.put_model(model)
+    starts = [_start(model, lay, system, th) for th in theta0]
+    chunk = _chunk(model.nq, model.nv, lay.free)
+    if len(starts) == 1:
+        # one run is stepped as it is: under vmap every branch of a step (each collision
+        # function's, the solver's) is taken by every run, which made one run 15× slower
+        data = starts[0]
+
+        def step(d, f):
+            d, qp, qv = chunk(mx, d, f[0])
+            return d, qp[None], qv[None]
+    else:
+        data = jax.tree_util.tree_map(lambda *xs: jnp.stack(xs), *starts)
+        batched = jax.vmap(chunk, in_axes=(None, 0, 0))
+
+        def step(d, f):
+            return batched(mx, d, f)
+    qpos, qvel = [], []
+    for c in range(n_chunks):
+        data, qp, qv = step(data, jnp.asarray(forces[:, c * CHUNK_STEPS:(c + 1) * CHUNK_STEPS]))
+        qpos.append(np.asarray(qp))
+        qvel.append(np.asarray(qv))
+        if progress is not None:
+            progress(min(duration, (c + 1) * CHUNK_STEPS * dt), duration)
+    qpos = np.concatenate(qpos, axis=1)[:, :nstep]
+    qvel = np.concatenate(qvel, axis=1)[:, :nstep]
+    runtime = (time.perf_counter() - start) / len(motions)
+    out = []
+    for k, (m, _, _) in enumerate(checked):
+        state0 = lay.initial_state(model, system, theta0[k])
+        states = np.zeros((nstep + 1, lay.nstate))
+        states[0] = state0
+        states[1:, 1:1 + model.nq] = qpos[k]
+        states[1:, 1 + model.nq:1 + model.nq + model.nv] = qvel[k]
+        states[:, 0] = np.arange(nstep + 1) * dt
+        finite = np.all(np.isfinite(states), axis=1)
+        status, message, stop = Status.COMPLETED, "", None
+        if not finite.all():
+            bad = int(np.argmin(finite))
+            states = states[:bad]
+            status, message, stop = Status.FAILED, f"MJX's state is not finite at t = {bad * dt:.6g} s", "non-finite"
+        raw = raw_history(lay, system, m, states, dt, runtime, status, message, stop, t=states[:, 0])
+        raw.extras.update(timestep=float(dt), solref_0=float(derived.solref[0]), solref_1=float(derived.solref[1]),
+                          stepping="throughout at the timestep, by mjx.step in float64")
+        out.append(replace(raw, engine="mjx") if hasattr(raw, "engine") else raw)
+    return out
