@@ -16,7 +16,7 @@ from isorock.validate.core.tolerances import tolerance
 pytest.importorskip("jax")
 pytest.importorskip("mujoco.mjx")
 
-from isorock.mjx_models import simulate_batch  # noqa: E402
+from isorock.mujoco_models.mjx import simulate_batch  # noqa: E402
 from isorock.mujoco_models import Settings  # noqa: E402
 
 FULL = Settings(phased=False)  # MuJoCo C stepping the scene throughout at the timestep, as MJX does

@@ -1,6 +1,6 @@
 """MJX's batch against MuJoCo's C engine on the same scene, as docs/mjx.md quotes it (issue 37):
 B runs of the paper's block rocking freely from θ0 between 0.3α and 0.7α for 3 s, on the fixed
-base, by MJX in one vmapped batch (`mjx_models.simulate_batch`, the chunk compiled before the
+base, by MJX in one vmapped batch (`mujoco_models.mjx.simulate_batch`, the chunk compiled before the
 clock starts) and by MuJoCo C one after another (the `full` preset: the same scene stepped
 throughout, as MJX steps it), in this one process; wall seconds per run, and the largest
 |Δθ|/α between the two engines' histories of the same run.
@@ -13,7 +13,7 @@ import time
 import numpy as np
 
 from isorock.analytic.system import System
-from isorock.mjx_models import simulate_batch
+from isorock.mujoco_models.mjx import simulate_batch
 from isorock.mujoco_models import Settings, simulate
 
 system = System.fixed(height=2.0, width=0.7, mass=3800.0)

@@ -32,7 +32,7 @@ ENGINE_MODULES = {
     # Drake's point contact: an independent, slower formulation, asked for by name (docs/drake.md)
     "drake": "isorock.drake_models",
     # MuJoCo's JAX port on MuJoCo's own scene (optional: the mjx extra; docs/mjx.md)
-    "mjx": "isorock.mjx_models",
+    "mjx": "isorock.mujoco_models.mjx:ENGINE",
     # the former name of the compiled engine, kept so that nothing breaks
     "analytic-fast": "isorock.analytic.engines:ENGINE",
 }

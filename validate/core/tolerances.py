@@ -177,7 +177,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
                "block, the larger the step's share of an impact, docs/mujoco.md); below the 1% of the engine tests"),
     ("mujoco", "out_of_plane"): Tolerance(
         1e-9, "with the free joint nothing pushes the symmetric scene out of its plane; measured 0"),
-    # --- MJX, MuJoCo's JAX port on MuJoCo's own scene (mjx_models; docs/mjx.md) ----------
+    # --- MJX, MuJoCo's JAX port on MuJoCo's own scene (mujoco_models/mjx.py; docs/mjx.md) ----------
     # it steps the MuJoCo scene throughout at the timestep, as MuJoCo C's `full` preset does: its
     # histories follow C's to the contact solver's tolerance, so MuJoCo's limits and reasons hold
     ("mjx", "history_vs_mujoco"): Tolerance(

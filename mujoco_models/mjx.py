@@ -1,9 +1,12 @@
-"""Stepping the MuJoCo scene with MJX (MuJoCo's JAX port): the same MJCF, the same settings and
-the same forces as the MuJoCo engine (mujoco_models), stepped throughout at the timestep by
+"""The engine "mjx" (issue 37): the MuJoCo scene stepped by MJX, MuJoCo's JAX port: the same MJCF,
+the same settings and the same forces as the MuJoCo engine, stepped throughout at the timestep by
 `mjx.step` in float64, in chunks of CHUNK_STEPS compiled once per scene layout (a jitted
 `lax.scan`), many runs of one scene at once with `jax.vmap` (simulate_batch). What MJX cannot
 carry is refused before any work: a non-linear isolator (its dry friction is a Python-side
-element in MuJoCo's scene), MuJoCo's phased or event-resolved stepping (MJX steps throughout)."""
+element in MuJoCo's scene), MuJoCo's phased or event-resolved stepping (MJX steps throughout).
+An optional engine: `pip install 'isorock[mjx]'` (mujoco-mjx, with JAX); on a CPU here, on a GPU
+where JAX finds one (never required). Measured against MuJoCo's C engine and the exact model:
+docs/mjx.md."""
 from __future__ import annotations
 
 import functools
@@ -19,9 +22,11 @@ from isorock.analytic.motion import GroundMotion
 from isorock.analytic.status import Status
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
-from isorock.mujoco_models.scene import build_model
-from isorock.mujoco_models.settings import Settings
-from isorock.mujoco_models.state import Layout, StepRecord, raw_history, vertical_record
+from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset
+
+from .scene import SCENE_FORMAT, build_model, check_representable, scene_text
+from .settings import Settings, settings_for
+from .state import Layout, StepRecord, raw_history, vertical_record
 
 #: steps per compiled chunk: one compilation serves every run of a scene layout whatever its
 #: duration (the chunk's length is static to XLA), and a run ends within a chunk of its end
@@ -163,3 +168,15 @@ def simulate_batch(system: System, motions, *, settings: Settings | None = None,
                           stepping="throughout at the timestep, by mjx.step in float64")
         out.append(replace(raw, engine="mjx") if hasattr(raw, "engine") else raw)
     return out
+
+
+ENGINE = EngineSpec(
+    name="mjx", label="MJX (MuJoCo on JAX)", settings_type=Settings, simulate=simulate,
+    # a compiled chunk costs seconds per scene, and a run on a CPU 20–80× MuJoCo C's: no campaigns
+    # (bench, stress and sweep run it only when named)
+    capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
+                              campaigns=False, isolators=ISOLATORS, kinetic_friction=False),
+    settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
+    presets={"default": Preset("MuJoCo's default scene and settings, stepped throughout by mjx.step in float64 "
+                               "(MuJoCo's rest phase and coarse steps are its C engine's, not MJX's)", Settings)},
+    check_system=lambda system, settings: check_representable(system))
