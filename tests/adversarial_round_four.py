@@ -67,22 +67,15 @@ def capture(argv):
     text.flush()
     return code, raw.getvalue().decode('utf-8')
 """
-_scope: dict = {}
-exec(CAPTURE, _scope)
-
-
 def _capture_in(d: Path, argv) -> tuple[int, str]:
-    """`capture(argv)` run in folder d, its stderr dropped (a check's own reference run)."""
-    import contextlib
-    import io
-    import os
-    cwd = os.getcwd()
-    try:
-        os.chdir(d)
-        with contextlib.redirect_stderr(io.StringIO()):
-            return _scope["capture"](argv)
-    finally:
-        os.chdir(cwd)
+    """`isorock ARGV` run in folder d as a process of its own, its stderr dropped (a check's own
+    reference run: a process, since the table runs checks in threads, and a working folder and
+    sys.stdout are the whole process's)."""
+    import subprocess
+    import sys
+    p = subprocess.run([sys.executable, "-m", "isorock.validate.cli.main", *argv], cwd=d, capture_output=True,
+                       text=True, timeout=120)
+    return p.returncode, p.stdout
 
 
 # --- the typed API: isorock.simulate, isorock.design -----------------------------------------
