@@ -179,15 +179,22 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     that no engine runs a friction pendulum or a bilinear bearing as a linear spring;
     `kinetic_friction` (Capabilities.kinetic_friction) False: a statue whose kinetic friction
     is below its static one is refused too (check_friction)."""
-    from .errors import InputError, require, require_positive_finite
+    from .errors import InputError, real_number, require, require_positive_finite
     from .limits import check_acceleration, check_duration, check_isolator, check_settings
     from .motion import GroundMotion
     from .system import System
     require(isinstance(system, System), "system", system, "a System")
+    # the initial state and the counting threshold as numbers first: a str, None or a list
+    # given from Python met math.isfinite below as a TypeError
+    theta0, theta_dot0, u0, u_dot0 = (real_number(name, v, "a finite number") for name, v in (
+        ("theta0", theta0), ("theta_dot0", theta_dot0), ("u0", u0), ("u_dot0", u_dot0)))
+    impact_threshold = real_number("impact_threshold", impact_threshold, "a number in [0, 1)")
     check_isolator_kind(system, isolators)
     check_friction(system, kinetic_friction)
     motion = motion or GroundMotion.zero()
     check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
+    if motion.vertical is not None:  # the vertical component is bounded as the horizontal is
+        check_acceleration("vertical", motion.vertical.pga_g, f" ({motion.vertical.name or 'its peak'})")
     given = duration is not None
     if not given:
         duration = FREE_DURATION if motion.is_zero else motion.last_time + TAIL_AFTER_MOTION

@@ -77,11 +77,15 @@ def first_run_reference(system, motion, duration: float) -> str | None:
     same model, tested against the kernel to ~1e-10 rad), or None: its kernel is not
     built yet and the run is short enough that the reference ends before the build would
     (issue 34: a first run that starts at once). ISOROCK_FIRST_RUN=kernel builds it instead."""
+    import numbers
     import os
 
     from .kernel_cache import BUILD_ESTIMATE, is_ready
     from .motion import GroundMotion
-    if os.environ.get("ISOROCK_FIRST_RUN", "reference") == "kernel" or not duration <= FIRST_RUN_REFERENCE_S:
+    # only a run of a positive duration within the bound: anything else (None, text, a negative
+    # or NaN duration) is no reason to swap engines, and the run's own checks refuse it
+    if (os.environ.get("ISOROCK_FIRST_RUN", "reference") == "kernel" or isinstance(duration, bool)
+            or not isinstance(duration, numbers.Real) or not 0 < duration <= FIRST_RUN_REFERENCE_S):
         return None
     kernel = _kernel_of(system, GroundMotion.zero() if motion is None else motion)
     if is_ready(kernel):

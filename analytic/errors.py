@@ -11,20 +11,28 @@ def require(condition: bool, field: str, value, allowed: str) -> None:
         raise InputError(f"{field} = {value!r}: must be {allowed}")
 
 
-def require_positive_finite(field: str, value) -> float:
+def real_number(field: str, value, allowed: str = "a number") -> float:
+    """`value` as a float where it is a real number: an int, a float, NumPy's scalars and 0-d
+    arrays, a Fraction, a Decimal, a number's text ('1e-8', as a file or an option gives it).
+    A bool is refused (True is not the number 1 a user meant), as are None, a sequence and
+    other text: one line naming `field` and `allowed`, never a TypeError from deeper down."""
+    if (isinstance(value, bool) or value is None or getattr(value, "dtype", None) == bool
+            or getattr(value, "ndim", 0) != 0):  # an array of one value: float() would take it, warning
+        raise InputError(f"{field} = {value!r}: must be {allowed}")
     try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{field} = {value!r}: must be a positive finite number") from None
+        return float(value)
+    except (TypeError, ValueError, OverflowError):
+        raise InputError(f"{field} = {value!r}: must be {allowed}") from None
+
+
+def require_positive_finite(field: str, value) -> float:
+    x = real_number(field, value, "a positive finite number")
     require(x > 0 and x < float("inf"), field, value, "a positive finite number")
     return x
 
 
 def require_nonnegative_finite(field: str, value) -> float:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{field} = {value!r}: must be a non-negative finite number") from None
+    x = real_number(field, value, "a non-negative finite number")
     require(x >= 0 and x < float("inf"), field, value, "a non-negative finite number")
     return x
 

@@ -93,6 +93,16 @@ class BudgetExceeded(RuntimeError):
     """A run took longer than its wall-clock budget (RUN_BUDGET_S)."""
 
 
+def check_budget(seconds, field: str = "budget_s") -> float:
+    """A run's wall-clock budget: a positive finite number of seconds (a negative, NaN or text
+    budget was taken as given from Python, and stopped nothing or everything)."""
+    from .errors import real_number
+    x = real_number(field, seconds, "a positive finite number of seconds")
+    if not (x > 0 and math.isfinite(x)):
+        raise InputError(f"{field} = {seconds!r}: must be a positive finite number of seconds")
+    return x
+
+
 class RunBudget:
     """An engine's progress callback (t, duration) that stops the run once it has taken
     `seconds` of wall time since it was made (then `chained`, the caller's own callback).
@@ -100,7 +110,7 @@ class RunBudget:
     about a second of its budget."""
 
     def __init__(self, seconds: float, chained=None):
-        self.seconds, self.chained, self.start = seconds, chained, time.monotonic()
+        self.seconds, self.chained, self.start = check_budget(seconds), chained, time.monotonic()
 
     def __call__(self, t: float, duration: float) -> None:
         if self.chained is not None:

@@ -72,7 +72,10 @@ class EnergyLog:
 
     @property
     def input_energy(self) -> float:
-        """A scale for the residual: the largest energy that entered or was held."""
+        """A scale for the residual: the largest energy that entered or was held (0 for a run
+        with no rows: one that failed at its start, e.g. in free flight at once)."""
+        if not self.total.size:
+            return 0.0
         return float(max(np.max(np.abs(self.ground_work)), np.max(np.abs(self.total)),
                          np.max(self.impact_loss) if self.impact_loss.size else 0.0,
                          np.max(self.isolator_loss) if self.isolator_loss is not None and self.isolator_loss.size
@@ -212,14 +215,15 @@ class Trajectory:
             "runtime_s": self.runtime_s,
             "impact_log": [i.as_dict() for i in self.counted_impacts],
         }
-        if self.energy is not None:
+        # a run that failed at its start (free flight at once) has no rows: no energy to account for
+        if self.energy is not None and self.energy.total.size:
             out["energy_balance_residual"] = self.energy.relative_residual
             out["energy_lost_in_impacts"] = float(sum(self.energy.per_impact))
             out["energy_lost_in_dashpot"] = float(self.energy.dashpot_loss[-1])
             out["ground_work"] = float(self.energy.ground_work[-1])
             if self.energy.isolator_loss is not None:
                 out["energy_lost_in_isolator"] = float(self.energy.isolator_loss[-1])
-        if self.energy is not None and self.energy.slip_loss is not None:
+        if self.energy is not None and self.energy.slip_loss is not None and self.energy.slip_loss.size:
             out["energy_lost_in_slip"] = float(self.energy.slip_loss[-1])
         if self.slide is not None:
             out.update(self.slide_summary())

@@ -80,13 +80,31 @@ def even_grid(lo: float, hi: float, num: float) -> tuple[float, ...]:
     return tuple(round(float(v), 12) for v in np.linspace(lo, hi, int(num))) if num > 1 else (float(lo),)
 
 
+def numbers_of(name: str, values) -> tuple[float, ...]:
+    """A keyword given a number or a sequence of numbers, as floats (any real number: NumPy's,
+    a Fraction); text, a bool, a dict or nesting is one line naming `name` ('2' was the period
+    2 s, True the period 1 s)."""
+    from isorock.analytic.errors import real_number
+    allowed = "a number or a sequence of numbers"
+    try:
+        ndim = np.ndim(values)
+    except (TypeError, ValueError):  # a ragged nesting
+        ndim = 2
+    if isinstance(values, (str, bytes, dict, set)) or ndim > 1:
+        raise InputError(f"{name} = {values!r}: must be {allowed}")
+    items = list(values) if ndim else [values]
+    out = []
+    for v in items:
+        if isinstance(v, (str, bytes)):
+            raise InputError(f"{name} = {values!r}: must be {allowed}")
+        out.append(real_number(name, v, allowed))
+    return tuple(out)
+
+
 def check_axis(name: str, values, *, below_one: bool = False) -> tuple[float, ...]:
     """An axis of a family, or the PGA levels: positive, finite, increasing numbers, at most
     MAX_AXIS (below 1 for a damping ratio); one line naming `name` otherwise."""
-    try:
-        values = tuple(float(v) for v in (values if np.ndim(values) else [values]))
-    except (TypeError, ValueError):
-        raise InputError(f"{name} = {values!r}: must be a number or a sequence of numbers") from None
+    values = numbers_of(name, values)
     if not values or len(values) > MAX_AXIS:
         raise InputError(f"{name} = {values!r}: {len(values)} values; must be 1 to {MAX_AXIS}")
     for v in values:
@@ -916,7 +934,10 @@ class Answer:
         empty folder, or an earlier isorock output), all or none (validate.io.output)."""
         from isorock.validate.io.output import Outputs
 
+        from isorock.validate.cli.api import _path
+
         from .design_report import write_design
+        out = _path("out", out, optional=False)
         with Outputs() as outputs:
             folder = outputs.folder("out", out)
             folder.write(lambda tmp: write_design(self.design, self.target, self.max_stroke, tmp))
@@ -942,11 +963,26 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     write the files `isorock design --out` writes. Every value is checked by the rules the
     command's options follow (an InputError naming the keyword)."""
     from isorock.analytic.system import PAPER_BLOCK
+    from isorock.validate.cli.api import _path
+    out = _path("out", out)  # a number would name a folder '123'
+    # every number as its float, once, here: Python values are not the command line's floats
+    # (np.float32(0.05) was refused as a target, True taken as 1, 'x' a TypeError further down)
+    target, tail = _number_of("target", target), _number_of("tail", tail)
+    max_stroke, friction, plinth_margin = (None if v is None else _number_of(k, v) for k, v in (
+        ("max_stroke", max_stroke), ("friction", friction), ("plinth_margin", plinth_margin)))
+    check_runs = _whole_of("check_runs", check_runs)
+    if threads is not None:
+        from isorock.analytic.limits import check_workers
+        threads = check_workers("threads", _whole_of("threads", threads))
     check_decision(target, max_stroke, tail, check_runs)
-    engines = contact_engines([check] if isinstance(check, str) else check)  # before any record is read
-    if isolator not in FAMILIES:
+    if isinstance(check, str):
+        check = [check]
+    elif not isinstance(check, (list, tuple)):
+        raise InputError(f"check = {check!r}: must be an engine's name or a list of them")
+    engines = contact_engines(check)  # before any record is read
+    if not isinstance(isolator, str) or isolator not in FAMILIES:
         raise InputError(f"isolator = {isolator!r}: must be one of {', '.join(FAMILIES)}")
-    given = {k: v for k, v in dict(height=height, width=width, mass=mass, base_mass=base_mass).items()
+    given = {k: _number_of(k, v) for k, v in dict(height=height, width=width, mass=mass, base_mass=base_mass).items()
              if v is not None}
     if given and len(given) < 4:
         missing = [k for k in ("height", "width", "mass", "base_mass") if k not in given]
@@ -960,7 +996,7 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
                                            below_one=isolator == LINEAR))
     check_family_runs(family)
     levels = check_axis("pga", pga if pga is not None else even_grid(*DEFAULT_LEVELS))
-    hazard = Hazard(_records(records, units), levels, tuple(float(w) for w in level_weights),
+    hazard = Hazard(_records(records, units), levels, numbers_of("level_weights", level_weights),
                     records if isinstance(records, str) else "")
     check_size(family, hazard, tail)
     check_engines_carry(statue, family, hazard, engines, tail, named=str)
@@ -975,13 +1011,37 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     return answer
 
 
+def _number_of(name: str, value) -> float:
+    """A keyword's number as its float (analytic.errors.real_number: NumPy's, a Fraction; a
+    bool, text or None refused in one line naming it)."""
+    from isorock.analytic.errors import real_number
+    if isinstance(value, (str, bytes)):
+        raise InputError(f"{name} = {value!r}: must be a number")
+    return real_number(name, value)
+
+
+def _whole_of(name: str, value) -> int:
+    """A keyword's whole number as an int (NumPy's integers too); a bool, a float or text is one
+    line naming it."""
+    import numbers
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise InputError(f"{name} = {value!r}: must be a whole number")
+    return int(value)
+
+
 def _records(records, units) -> dict:
     """The hazard's records: a dict name → GroundMotion as given, or a suite or folder read."""
     from isorock.campaign.records import load_suite, suite_spec
     if isinstance(records, dict):
         for name, r in records.items():
+            if not (isinstance(name, str) and name.strip()):  # a name the table's string column holds
+                raise InputError(f"records: the key {name!r} must be the record's name (a non-empty str)")
             if not isinstance(r, GroundMotion):
                 raise InputError(f"records[{name!r}] = {type(r).__name__}: must be a GroundMotion")
+            if r.pulse is not None or r.vertical is not None:
+                raise InputError(f"records[{name!r}] = {r.name or 'a motion'}: must be a sampled horizontal record "
+                                 "(GroundMotion.from_array, or a record file), not a pulse or a motion with a "
+                                 "vertical component")
         return dict(records)
     return load_suite(suite_spec(records, units=units,
                                  allowed="a dict of GroundMotions, 'fema-p695' or a folder of record files")[0])

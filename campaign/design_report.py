@@ -231,7 +231,10 @@ def write_design(d: Design, target: float, max_stroke: float | None, folder: Pat
     (folder / "design.csv").write_text(csv_text(rows, fam, h.levels), encoding="utf-8")
     doc = {"verdict": v["headline"], "answer": v,
            "statue": {"height": d.statue.height, "width": d.statue.width, "mass": d.statue.mass,
-                      "base_mass": d.statue.base_mass},
+                      "base_mass": d.statue.base_mass,
+                      # the statue that may slip, as designed for (without them the file read as one that cannot)
+                      **({} if d.statue.friction is None else {"friction": d.statue.friction}),
+                      **({} if d.statue.plinth_margin is None else {"plinth_margin": d.statue.plinth_margin})},
            "hazard": {"records": h.names, "source": h.source, "pga_levels": list(h.levels),
                       "level_weights": list(h.weights)},
            "family": {"isolator": fam.kind, "x": fam.x_name, "x_values": list(fam.x_values), "y": fam.y_name,

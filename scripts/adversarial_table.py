@@ -1,5 +1,6 @@
 """Run every hostile input of tests/adversarial_cases.py as a real `isorock` process and
-print the table for issues 13 and 24's closing notes: per class, how many cases, how many ended
+print the table for issues 13, 24 and 34's closing notes (rounds one to four:
+tests/adversarial_cases.py, adversarial_round_two.py, _three.py, _four.py): per class, how many cases, how many ended
 with exit 2 and one line, how many gave the correct result, how many anything else
 (traceback, hang, wrong result, a file touched outside the command's own outputs).
 

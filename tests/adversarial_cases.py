@@ -264,6 +264,8 @@ def cases() -> list[Case]:
     c += round_two(Case)
     from adversarial_round_three import round_three  # issue 34: design, file bounds, experiments' data, the API
     c += round_three(Case)
+    from adversarial_round_four import round_four  # issue 34's goal: the typed API, first runs, plugins, sliding
+    c += round_four(Case)
     return c
 
 
@@ -349,6 +351,8 @@ def run_in_process(case: Case, d: Path) -> Outcome:
     out_b, err = io.BytesIO(), io.StringIO()
     out = io.TextIOWrapper(out_b, encoding="utf-8", write_through=True)
     cwd = os.getcwd()
+    env = {k: os.environ.get(k) for k in case.env}  # the process's environment, as run_as_process gives it
+    os.environ.update(case.env)
     old = signal.signal(signal.SIGALRM, alarm)
     signal.setitimer(signal.ITIMER_REAL, TIME_LIMIT)
     code, tb, hung = None, False, False
@@ -365,22 +369,26 @@ def run_in_process(case: Case, d: Path) -> Outcome:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, old)
         os.chdir(cwd)
+        for k, v in env.items():
+            os.environ.pop(k, None) if v is None else os.environ.__setitem__(k, v)
     out.flush()
     return Outcome(code, out_b.getvalue().decode("utf-8", "replace"), err.getvalue(),
                    _touched(before, snapshot(d), case.outputs), tb or "Traceback" in err.getvalue(), hung)
 
 
 def _run_code(code: str) -> int:
-    """A notebook-API case: its InputError is the command's exit 2 and one line."""
+    """A notebook-API case: its InputError is the command's exit 2 and one line; code that
+    drives the command line (validate.cli.main) sets EXIT to its exit code."""
     import sys
 
     from isorock.analytic.errors import InputError
+    scope = {"__name__": "__main__"}
     try:
-        exec(compile(code, "<case>", "exec"), {"__name__": "__main__"})
+        exec(compile(code, "<case>", "exec"), scope)
     except InputError as e:
         print(f"isorock: error: {e}", file=sys.stderr)
         return 2
-    return 0
+    return int(scope.get("EXIT", 0))
 
 
 def run_as_process(case: Case, d: Path, python: str) -> Outcome:

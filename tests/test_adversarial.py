@@ -1,7 +1,7 @@
 """Every hostile input of tests/adversarial_cases.py ends as it should: one error line
 and exit 2, or the right result; never a traceback, a hang, or a change to anything in
-the working folder but the command's own outputs (issue 13; rounds two and three: issues
-24 and 34)."""
+the working folder but the command's own outputs (issue 13; rounds two, three and four:
+issues 24 and 34)."""
 import pytest
 
 from adversarial_cases import cases, run_in_process

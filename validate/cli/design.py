@@ -86,7 +86,8 @@ def add_parser(sub) -> None:
                         "far it agrees; several: --check mujoco --check bullet, or --check mujoco,bullet (each is "
                         "asked before any work whether it carries the statue and every isolator of the family)")
     g.add_argument("--check-runs", type=int, default=12, metavar="N",
-                   help="how many runs --check makes (default: %(default)s)")
+                   help="how many runs --check makes, at least one on each base it compares (the named "
+                        "isolator, the grid's worst, the fixed base; default: %(default)s)")
     p.add_argument("--tail", type=number, default=5.0, help="seconds simulated after each record (default: 5)")
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
                    help="folder for design.md, design.png, design.json, design.csv, runs.parquet: new, empty or an "

@@ -294,6 +294,8 @@ def motion_from_args(a):
         raise InputError(f"{given}: give one of --scale, --pga and --pgv")
     m = load_motion(a.motion, format=a.format, units=a.units)
     vertical = getattr(a, "vertical", None)
+    if vertical is None and getattr(a, "vertical_units", None) is not None:  # it would do nothing, unsaid
+        raise InputError(f"--vertical-units = {a.vertical_units!r}: needs --vertical (the record it states units for)")
     if vertical is not None:
         if not vertical.strip() or vertical.strip().lower() == "none":
             raise InputError(f"--vertical = {vertical!r}: a record file or a pulse (omit it for horizontal shaking only)")

@@ -107,11 +107,10 @@ class Engine:
         """The engine's default settings with `overrides` applied (settings that follow
         others, e.g. MuJoCo's contact parameters after its timestep, follow them); an
         override the engine does not have is an InputError naming it."""
-        known = {f.name for f in fields(self.Settings)}
-        unknown = sorted(k for k in overrides if k not in known)
+        unknown = unknown_settings(self.name, self.Settings, overrides)
         if unknown:
             raise InputError(f"{', '.join(unknown)}: not a setting of engine {self.name!r} "
-                             f"(its settings: {', '.join(sorted(known))})")
+                             f"(its settings: {', '.join(sorted(f.name for f in fields(self.Settings)))})")
         return self.spec.settings(**overrides)
 
     def preset(self, name: str):
@@ -184,7 +183,18 @@ class Engine:
         kwargs = dict(settings=settings, duration=duration, theta0=theta0, progress=progress)
         if self.capabilities.exact_impacts:
             kwargs["impact_threshold"] = impact_threshold
-        out = self.spec.simulate(system, motion, **kwargs)
+        if self.name in PLUGINS:  # a package's engine: what it raises or hands over is checked here
+            from isorock.analytic.limits import BudgetExceeded
+            try:
+                out = self.spec.simulate(system, motion, **kwargs)
+            except (InputError, BudgetExceeded):
+                raise
+            except Exception as e:  # noqa: BLE001 — the package's failure, said as its own
+                raise PluginError(f"engine {self.name!r} (its package's {PLUGINS[self.name]}) failed: "
+                                  f"{type(e).__name__}: {e}") from None
+            check_plugin_run(self.name, out, exact_impacts=self.capabilities.exact_impacts)
+        else:
+            out = self.spec.simulate(system, motion, **kwargs)
         if isinstance(out, RawHistory):
             from isorock.analytic.motion import GroundMotion
             out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
@@ -202,6 +212,9 @@ class Engine:
         from isorock.analytic.overturning import PAST_ALPHA
         from isorock.validate.core import measure
         runs = list(runs)
+        if budget_s is not None:
+            from isorock.analytic.limits import check_budget
+            check_budget(budget_s)
         for system, *_ in runs:
             self.check_isolator(system)
         if self.spec.simulate_many is None or self.capabilities.exact_impacts:
@@ -222,16 +235,86 @@ class Engine:
                 for raw, (_, motion, _, _) in zip(raws, runs)]
 
 
+def unknown_settings(name: str, settings_type, overrides) -> list[str]:
+    """The names among `overrides` (a dict of setting → value) that engine `name`'s
+    Settings does not have, sorted; a key that is not a name at all (a number, None: a dict
+    built in Python) is one line here, not a TypeError where the names are joined."""
+    for key in overrides:
+        if not isinstance(key, str):
+            raise InputError(f"settings: the key {key!r} is not a setting's name (a str) of engine {name!r}")
+    known = {f.name for f in fields(settings_type)}
+    return sorted(k for k in overrides if k not in known)
+
+
+class EngineUnavailable(InputError, ImportError):
+    """An engine a package registers that cannot be loaded here (its module missing, or raising
+    on import): one line when it is asked for by name (an InputError), skipped with the reason
+    where every engine is looped over (an ImportError, as Drake is where it is not installed)."""
+
+
+class PluginError(InputError):
+    """What an engine a package registers handed over, or raised, is not a run: one line naming
+    the engine and its package (docs/plugins.md), never a traceback from deeper down or a
+    result measured from garbage."""
+
+
 def get_engine(name: str) -> Engine:
-    if name not in ENGINE_MODULES:
+    if isinstance(name, str) and name not in ENGINE_MODULES and name in PLUGINS_REFUSED:
+        # declared by a package and not registered (a built-in's name keeps the built-in): say why
+        raise InputError(f"engine = {name!r}: {PLUGINS_REFUSED[name]}")
+    if not isinstance(name, str) or name not in ENGINE_MODULES:
         raise InputError(f"engine = {name!r}: must be one of {', '.join(ALL_ENGINES)}")
     module, _, attribute = ENGINE_MODULES[name].partition(":")
-    spec = getattr(importlib.import_module(module), attribute or "ENGINE")
-    if name in PLUGINS and not (isinstance(spec, EngineSpec) and spec.name == name):
+    if name not in PLUGINS:
+        spec = getattr(importlib.import_module(module), attribute or "ENGINE")
+        return Engine(name, spec)
+    try:  # a package's code: whatever its import raises is the package's, said in one line
+        spec = getattr(importlib.import_module(module), attribute or "ENGINE")
+    except Exception as e:  # noqa: BLE001
+        raise EngineUnavailable(f"engine = {name!r}: its package's {PLUGINS[name]} cannot be loaded here "
+                                f"({type(e).__name__}: {e})") from None
+    if not (isinstance(spec, EngineSpec) and spec.name == name):
         raise InputError(f"engine = {name!r}: its package's {PLUGINS[name]} must be an EngineSpec named {name!r} "
                          f"(isorock.analytic.engine_protocol; docs/plugins.md), not {type(spec).__name__}"
                          + (f" named {spec.name!r}" if isinstance(spec, EngineSpec) else ""))
+    import dataclasses
+    if not (isinstance(spec.settings_type, type) and dataclasses.is_dataclass(spec.settings_type)):
+        raise InputError(f"engine = {name!r}: its package's {PLUGINS[name]} has settings_type = "
+                         f"{spec.settings_type!r}; must be a frozen dataclass (docs/plugins.md)")
     return Engine(name, spec)
+
+
+def check_plugin_run(name: str, out, *, exact_impacts: bool):
+    """What a plugin's simulate returned, checked before it is measured: a RawHistory (or a
+    Trajectory, where it declares exact impacts) of at least two rows, its arrays 1-D of one
+    length, finite, in increasing time. A PluginError naming the engine otherwise (None, a
+    dict, NaN or time running backwards were measured, or a traceback)."""
+    import numpy as np
+
+    from isorock.analytic.trajectory import RawHistory, Trajectory
+    where = f"engine {name!r} (its package's {PLUGINS.get(name, name)})"
+    kinds = (RawHistory, Trajectory) if exact_impacts else (RawHistory,)
+    if not isinstance(out, kinds):
+        raise PluginError(f"{where} returned {type(out).__name__}; must return a RawHistory (docs/plugins.md)")
+    if isinstance(out, Trajectory):
+        return
+    arrays = {}
+    for field_name in ("t", "u", "u_dot", "theta", "theta_dot"):
+        try:
+            arrays[field_name] = np.asarray(getattr(out, field_name), dtype=float)
+        except (TypeError, ValueError):
+            raise PluginError(f"{where} returned a history whose {field_name} is not numbers") from None
+    shapes = {k: a.shape for k, a in arrays.items()}
+    if len(set(shapes.values())) != 1 or arrays["t"].ndim != 1:
+        raise PluginError(f"{where} returned a history of arrays {shapes}: must be 1-D, of one length")
+    if arrays["t"].size < 2:
+        raise PluginError(f"{where} returned a history of {arrays['t'].size} rows: must have at least 2")
+    for k, a in arrays.items():
+        if not np.all(np.isfinite(a)):
+            raise PluginError(f"{where} returned a history whose {k} is not finite at t = "
+                              f"{arrays['t'][np.argmin(np.isfinite(a))]:.6g} s (end it there, with a status)")
+    if not np.all(np.diff(arrays["t"]) > 0):
+        raise PluginError(f"{where} returned a history whose time t does not increase")
 
 
 
@@ -298,7 +381,7 @@ def choose(label: str, overrides: dict | None = None, *, strict: bool = False) -
         engine.preset(preset)
     known = {f.name for f in fields(engine.Settings)}
     given = {k: (tuple(v) if isinstance(v, list) else v) for k, v in (overrides or {}).items() if v is not None}
-    unknown = sorted(k for k in given if k not in known)
+    unknown = unknown_settings(name, engine.Settings, given)
     if strict and unknown:
         raise InputError(f"{', '.join(unknown)}: not a setting of engine {name!r} "
                          f"(its settings: {', '.join(sorted(known))})")
@@ -437,10 +520,14 @@ def simulate(system, motion=None, *, engine: str = REFERENCE, settings=None, dur
         settings = choice.settings()
         name = choice.engine
     else:
-        name = canonical(engine).partition(":")[0]
+        choice = choose(canonical(engine))  # the engine and its preset checked, as a dict's are
+        name = choice.engine
         own = get_engine(name).Settings
         if not isinstance(settings, own):
             raise InputError(f"settings = {type(settings).__name__}: must be a dict of overrides or engine "
                              f"{name!r}'s {own.__name__}")
+        if choice.preset:  # the preset's settings or these: one of them would be dropped unsaid
+            raise InputError(f"engine = {engine!r} with settings = {own.__name__}(…): give the preset or the "
+                             "Settings, not both (a dict of overrides goes on top of a preset)")
     return get_engine(name).simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
                                      overturn_rule=overturn_rule, budget_s=budget_s)

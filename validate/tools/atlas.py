@@ -135,7 +135,8 @@ def axis_values(option: str, text: str) -> tuple[float, ...]:
         values.append(x)
     if len(set(values)) != len(values):
         dup = next(x for x in values if values.count(x) > 1)
-        raise InputError(f"{flag} = {text!r}: lists {dup:g} twice; each value once (a repeat runs its cells twice)")
+        raise InputError(f"{flag} = {text!r}: lists {'none' if dup is None else f'{dup:g}'} twice; each value once "
+                         "(a repeat runs its cells twice)")
     if len(values) > MAX_AXIS_VALUES:
         raise InputError(f"{flag} = {text!r}: {len(values)} values; must be at most {MAX_AXIS_VALUES}")
     return tuple(sorted(values, key=lambda x: math.inf if x is None else x))
