@@ -176,6 +176,10 @@ def call_kernel(dispatcher, *args):
         fn = _aot_function(dispatcher)
         if fn is not None:
             return fn(*[_c_writable(a) for a in args])
+    # every array writable and C-contiguous, as the ahead-of-time export takes them: numba
+    # compiles a signature per array flavour, and a record's read-only array beside a pulse's
+    # writable one compiled the sliding kernel once for each (33 s each; four in one cache)
+    args = [_c_writable(a) for a in args]
     if dispatcher in _ready:
         return dispatcher(*args)
     cf = _cache_file(dispatcher)
@@ -398,9 +402,13 @@ def is_ready(dispatcher) -> bool:
         return is_built(dispatcher)  # call_kernel builds it first, whatever numba's cache holds
     cf = _cache_file(dispatcher)
     try:
-        return bool(cf is not None and cf._load_index())
+        index = cf._load_index() if cf is not None else {}
     except _DAMAGED:
         return False
+    # the one signature call_kernel calls with: every array writable (an older cache may hold
+    # read-only flavours only, which a call no longer matches)
+    from numba.core.types import Array
+    return any(all(t.mutable for t in key[0] if isinstance(t, Array)) for key in index)
 
 
 def _aot_function(dispatcher):

@@ -122,3 +122,20 @@ def test_design_states_the_build_before_its_work(records_dir, tmp_path, capsys, 
     err = capsys.readouterr().err
     assert code == 0
     assert "before it, once per install, it builds the fixed base's and the linear isolator's kernel" in err
+
+
+def test_a_kernel_is_called_with_one_flavour_of_array():
+    """A record's samples are a read-only array, a pulse's a writable one: numba compiles a
+    signature per flavour (the sliding kernel's cache held four, 33 s each), and a cache holding
+    only read-only flavours would read as ready for a call that compiles. call_kernel passes
+    every array writable, and is_ready asks for that signature."""
+    import numpy as np
+
+    @numba.njit
+    def total(a):
+        return a.sum()
+    frozen = np.arange(4.0)
+    frozen.flags.writeable = False
+    assert kernel_cache.call_kernel(total, frozen) == 6.0
+    assert kernel_cache.call_kernel(total, np.arange(4.0)) == 6.0
+    assert len(total.signatures) == 1 and all(t.mutable for t in total.signatures[0])
