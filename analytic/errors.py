@@ -50,3 +50,14 @@ def import_extra(module: str, extra: str, needed_for: str):
             raise  # a module the package itself imports is missing: not a missing extra
         raise InputError(f"{needed_for} needs the package {e.name!r}, not installed: "
                          f"pip install 'isorock[{extra}]' (or, in a checkout, pip install -e '.[{extra}]')") from None
+
+
+def path_value(key: str, value, *, optional: bool = True):
+    """A path given from Python: a str or an os.PathLike (a number would name a folder '123',
+    None a campaign file 'None'); None where `optional`."""
+    import os
+    if value is None and optional:
+        return None
+    if isinstance(value, (str, os.PathLike)) and str(value).strip():
+        return value
+    raise InputError(f"{key} = {value!r}: must be a path (a str or a pathlib.Path)")

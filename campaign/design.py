@@ -934,10 +934,10 @@ class Answer:
         empty folder, or an earlier isorock output), all or none (validate.io.output)."""
         from isorock.validate.io.output import Outputs
 
-        from isorock.validate.cli.api import _path
+        from isorock.analytic.errors import path_value
 
         from .design_report import write_design
-        out = _path("out", out, optional=False)
+        out = path_value("out", out, optional=False)
         with Outputs() as outputs:
             folder = outputs.folder("out", out)
             folder.write(lambda tmp: write_design(self.design, self.target, self.max_stroke, tmp))
@@ -963,8 +963,8 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     write the files `isorock design --out` writes. Every value is checked by the rules the
     command's options follow (an InputError naming the keyword)."""
     from isorock.analytic.system import PAPER_BLOCK
-    from isorock.validate.cli.api import _path
-    out = _path("out", out)  # a number would name a folder '123'
+    from isorock.analytic.errors import path_value
+    out = path_value("out", out)  # a number would name a folder '123'
     # every number as its float, once, here: Python values are not the command line's floats
     # (np.float32(0.05) was refused as a target, True taken as 1, 'x' a TypeError further down)
     target, tail = _number_of("target", target), _number_of("tail", tail)

@@ -24,6 +24,7 @@ from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset
 
+from . import ladder  # MuJoCo's work-precision ladder: the same scene, the same timesteps
 from .scene import SCENE_FORMAT, build_model, check_representable, scene_text
 from .settings import Settings, settings_for
 from .state import Layout, StepRecord, raw_history, vertical_record
@@ -179,4 +180,4 @@ ENGINE = EngineSpec(
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT,
     presets={"default": Preset("MuJoCo's default scene and settings, stepped throughout by mjx.step in float64 "
                                "(MuJoCo's rest phase and coarse steps are its C engine's, not MJX's)", Settings)},
-    check_system=lambda system, settings: check_representable(system))
+    ladder=ladder, check_system=lambda system, settings: check_representable(system))

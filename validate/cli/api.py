@@ -24,7 +24,7 @@ import argparse
 import re
 from dataclasses import dataclass
 
-from isorock.analytic.errors import InputError
+from isorock.analytic.errors import InputError, path_value
 
 
 def _parser(command: str) -> argparse.ArgumentParser:
@@ -87,14 +87,8 @@ def _text(value) -> str:
 
 
 def _path(key: str, value, *, optional: bool = True):
-    """A path keyword: a str or an os.PathLike (a number would name a folder '123', None a
-    campaign file 'None')."""
-    import os
-    if value is None and optional:
-        return None
-    if isinstance(value, (str, os.PathLike)) and str(value).strip():
-        return value
-    raise InputError(f"{key} = {value!r}: must be a path (a str or a pathlib.Path)")
+    """A path keyword (analytic.errors.path_value, which campaign's design shares)."""
+    return path_value(key, value, optional=optional)
 
 
 def _flag(key: str, value) -> bool:
