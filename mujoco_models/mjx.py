@@ -173,7 +173,7 @@ def simulate_batch(system: System, motions, *, settings: Settings | None = None,
 
 ENGINE = EngineSpec(
     name="mjx", label="MJX (MuJoCo on JAX)", settings_type=Settings, simulate=simulate,
-    # a compiled chunk costs seconds per scene, and a run on a CPU 20–80× MuJoCo C's: no campaigns
+    # a compiled chunk costs seconds per scene, and a run on a CPU 12–37× MuJoCo C's: no campaigns
     # (bench, stress and sweep run it only when named)
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
                               campaigns=False, isolators=ISOLATORS, kinetic_friction=False),
