@@ -569,13 +569,7 @@ def round_four(Case) -> list:
           # one run on each base it compares (the named isolator, the fixed base), as --check-runs says
           check=lambda d, out: json.loads((d / "out" / "design.json").read_text())["checks"][0]["n"] == 2)
 
-    def design_doc(key, want):
-        def check(d: Path, out: str) -> bool:
-            got = json.loads((d / "out" / "design.json").read_text())
-            for k in key.split("."):
-                got = got[k]
-            return got == want
-        return check
+    from adversarial_round_three import _design_json as design_doc  # design.json's value at a dotted key
 
     def no_slip_as_without(d: Path, out: str) -> bool:
         """--friction 10: no record slides the statue, so every P(overturn) is the no-slip design's
