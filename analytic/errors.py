@@ -25,6 +25,15 @@ def real_number(field: str, value, allowed: str = "a number") -> float:
         raise InputError(f"{field} = {value!r}: must be {allowed}") from None
 
 
+def python_number(field: str, value, allowed: str = "a number") -> float:
+    """A number given from Python as its float (real_number: NumPy's scalars, a Fraction); text
+    refused too, which the command line's and files' readers take as a number's spelling but a
+    keyword given '2' or b'2' meant otherwise (a period of 2 s)."""
+    if isinstance(value, (str, bytes)):
+        raise InputError(f"{field} = {value!r}: must be {allowed}")
+    return real_number(field, value, allowed)
+
+
 def require_positive_finite(field: str, value) -> float:
     x = real_number(field, value, "a positive finite number")
     require(x > 0 and x < float("inf"), field, value, "a positive finite number")

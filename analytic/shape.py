@@ -29,7 +29,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.spatial import ConvexHull
 
-from .errors import InputError
+from .errors import InputError, import_extra, python_number
 from .system import STANDARD_GRAVITY
 
 #: Hull faces whose planes agree to this (unit normal, and offset in m) are one face.
@@ -197,11 +197,12 @@ class RestingBody:
 
 
 def resting(vertices: np.ndarray, faces: np.ndarray, mass: float, placement: np.ndarray,
-            name: str = "the body") -> RestingBody:
+            name: str = "the body", properties=None) -> RestingBody:
     """The body at rest: `vertices` (mesh frame) placed by the rotation `placement`,
     settled on the stable hull face nearest the table's downward normal, then in the table
-    frame (that face at z = 0, normal −z)."""
-    volume, com0, inertia_unit = mass_properties(vertices, faces)
+    frame (that face at z = 0, normal −z). `properties`: the mesh's mass_properties, where the
+    caller has them already."""
+    volume, com0, inertia_unit = mass_properties(vertices, faces) if properties is None else properties
     density = mass / volume
     v = vertices @ placement.T
     com = placement @ com0
@@ -225,14 +226,11 @@ def resting(vertices: np.ndarray, faces: np.ndarray, mass: float, placement: np.
                                 settle_tilt_deg=tilt, margin_m=face["margin"]))
 
 
-
-
 def read_mesh(path, unit: str) -> tuple[np.ndarray, np.ndarray]:
     """(vertices n×3 in m, triangles m×3) of the mesh file at `path` (whatever trimesh reads:
     STL, OBJ, PLY, OFF, GLB), its lengths in `unit` (one of UNITS; required: an STL states
     none). Refused in one line: an unreadable file, no triangles, a mesh that is not closed
     or not consistently wound (it has no volume to weigh), a non-finite vertex."""
-    from .errors import import_extra
     if unit not in UNITS:
         raise InputError(f"unit = {unit!r}: must be the mesh file's length unit, one of {', '.join(UNITS)}")
     trimesh = import_extra("trimesh", "statue", "reading a statue's mesh")
@@ -268,15 +266,18 @@ def standing(vertices: np.ndarray, faces: np.ndarray, *, mass: float | None = No
              name: str = "statue") -> RestingBody:
     """The statue as its mesh stands (z up, settled on the stable hull face nearest its
     bottom), weighing `mass` kg, or `density` kg/m³ times its volume (one of the two)."""
-    volume = mass_properties(vertices, faces)[0]
+    properties = mass_properties(vertices, faces)
+    volume = properties[0]
     if not volume > 0:
         raise InputError(f"{name}: its mesh encloses no volume")
     if (mass is None) == (density is None):
         raise InputError(f"{name}: give its mass (kg) or its density (kg/m³), one of the two")
     value, what = (mass, "mass") if mass is not None else (density, "density")
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-        raise InputError(f"{what} = {value!r}: must be a positive finite number ({'kg' if what == 'mass' else 'kg/m³'})")
-    body = resting(vertices, faces, float(mass if mass is not None else density * volume), np.eye(3), name=name)
+    allowed = f"a positive finite number ({'kg' if what == 'mass' else 'kg/m³'})"
+    x = python_number(what, value, allowed)
+    if not (math.isfinite(x) and x > 0):
+        raise InputError(f"{what} = {value!r}: must be {allowed}")
+    body = resting(vertices, faces, x if mass is not None else x * volume, np.eye(3), name=name, properties=properties)
     if not body.checks["margin_m"] > MIN_MARGIN:
         raise InputError(f"{name}: its centre of mass is {body.checks['margin_m']:.3g} m inside the face it stands "
                          "on: it stands on an edge")
@@ -314,21 +315,16 @@ def weakest_direction(body: RestingBody) -> tuple[float, float]:
 def _revolved(profile, sections: int = 96):
     """(vertices, faces) of a profile [(radius, z), …] from the axis at the bottom to the axis
     at the top, revolved about z (trimesh.creation.revolve)."""
-    from .errors import import_extra
     trimesh = import_extra("trimesh", "statue", "making an example statue")
     mesh = trimesh.creation.revolve(np.asarray(profile, float), sections=sections)
     return np.asarray(mesh.vertices), np.asarray(mesh.faces)
 
 
 def _hull_mesh(points):
-    """(vertices, faces) of the convex hull of `points`, wound outward."""
-    hull = ConvexHull(np.asarray(points, float))
-    faces = hull.simplices.copy()
-    for k, (eq, s) in enumerate(zip(hull.equations, faces)):
-        p = hull.points
-        if np.dot(np.cross(p[s[1]] - p[s[0]], p[s[2]] - p[s[0]]), eq[:3]) < 0:
-            faces[k] = s[[0, 2, 1]]
-    return np.asarray(hull.points), faces
+    """(vertices, faces) of the convex hull of `points`, wound outward (trimesh.convex)."""
+    trimesh = import_extra("trimesh", "statue", "making an example statue")
+    mesh = trimesh.convex.convex_hull(np.asarray(points, float))
+    return np.asarray(mesh.vertices), np.asarray(mesh.faces)
 
 
 def _stacked(*parts):

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from isorock.analytic.errors import InputError
+from isorock.analytic.errors import InputError, python_number
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, BallInBowl, BallInCone,
                                      FrictionPendulum, System)
@@ -967,8 +967,8 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     out = path_value("out", out)  # a number would name a folder '123'
     # every number as its float, once, here: Python values are not the command line's floats
     # (np.float32(0.05) was refused as a target, True taken as 1, 'x' a TypeError further down)
-    target, tail = _number_of("target", target), _number_of("tail", tail)
-    max_stroke, friction, plinth_margin = (None if v is None else _number_of(k, v) for k, v in (
+    target, tail = python_number("target", target), python_number("tail", tail)
+    max_stroke, friction, plinth_margin = (None if v is None else python_number(k, v) for k, v in (
         ("max_stroke", max_stroke), ("friction", friction), ("plinth_margin", plinth_margin)))
     check_runs = _whole_of("check_runs", check_runs)
     if threads is not None:
@@ -982,7 +982,7 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     engines = contact_engines(check)  # before any record is read
     if not isinstance(isolator, str) or isolator not in FAMILIES:
         raise InputError(f"isolator = {isolator!r}: must be one of {', '.join(FAMILIES)}")
-    given = {k: _number_of(k, v) for k, v in dict(height=height, width=width, mass=mass, base_mass=base_mass).items()
+    given = {k: python_number(k, v) for k, v in dict(height=height, width=width, mass=mass, base_mass=base_mass).items()
              if v is not None}
     if given and len(given) < 4:
         missing = [k for k in ("height", "width", "mass", "base_mass") if k not in given]
@@ -1009,15 +1009,6 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     if out is not None:
         answer.write(out)
     return answer
-
-
-def _number_of(name: str, value) -> float:
-    """A keyword's number as its float (analytic.errors.real_number: NumPy's, a Fraction; a
-    bool, text or None refused in one line naming it)."""
-    from isorock.analytic.errors import real_number
-    if isinstance(value, (str, bytes)):
-        raise InputError(f"{name} = {value!r}: must be a number")
-    return real_number(name, value)
 
 
 def _whole_of(name: str, value) -> int:

@@ -60,10 +60,11 @@ def _inputs(given: Settings, system: System, motion, duration, theta0):
     return motion, duration, replace(derived, phased=False)
 
 
-@functools.lru_cache(maxsize=16)
-def _chunk(nq: int, nv: int, free: bool):
-    """The jitted chunk of CHUNK_STEPS steps for one scene layout: (mjx model, mjx data, forces
-    (CHUNK_STEPS × nv)) → (data, qpos rows, qvel rows). Compiled on its first call (seconds)."""
+@functools.cache
+def _chunk():
+    """The jitted chunk of CHUNK_STEPS steps: (mjx model, mjx data, forces (CHUNK_STEPS × nv))
+    → (data, qpos rows, qvel rows). JAX compiles it once per scene layout (the shapes of its
+    arguments), on its first call with one (seconds)."""
     jax, mjx = _jax()
 
     def step(carry, force):
@@ -125,7 +126,7 @@ def simulate_batch(system: System, motions, *, settings: Settings | None = None,
         forces[k, :nstep] = lay.forces(system, xg[0:nstep], None if zg is None else zg[0:nstep])
     mx = mjx.put_model(model)
     starts = [_start(model, lay, system, th) for th in theta0]
-    chunk = _chunk(model.nq, model.nv, lay.free)
+    chunk = _chunk()
     if len(starts) == 1:
         # one run is stepped as it is: under vmap every branch of a step (each collision
         # function's, the solver's) is taken by every run, which made one run 15× slower
@@ -167,7 +168,7 @@ def simulate_batch(system: System, motions, *, settings: Settings | None = None,
         raw = raw_history(lay, system, m, states, dt, runtime, status, message, stop, t=states[:, 0])
         raw.extras.update(timestep=float(dt), solref_0=float(derived.solref[0]), solref_1=float(derived.solref[1]),
                           stepping="throughout at the timestep, by mjx.step in float64")
-        out.append(replace(raw, engine="mjx") if hasattr(raw, "engine") else raw)
+        out.append(replace(raw, engine="mjx"))
     return out
 
 

@@ -15,6 +15,9 @@ from isorock.validate.cli.main import main
 PENDULUM = ["--height", "1.2", "--width", "0.3", "--mass", "250", "--base-mass", "500", "--isolator",
             "friction-pendulum", "--radius", "1.0", "--friction-coefficient", "0.3",
             "--motion", "ricker:amp=0.5,freq=2.0", "--duration", "4.5", "--quiet"]
+#: the same pendulum as a System
+PENDULUM_SYSTEM = System.with_isolator(height=1.2, width=0.3, mass=250, base_mass=500,
+                                       isolator=FrictionPendulum(radius=1.0, friction_coefficient=0.3))
 
 
 def _run_json(tmp_path, capsys, name, args):
@@ -69,8 +72,7 @@ def test_the_kernel_each_run_needs(monkeypatch):
     from isorock.analytic import fast, slide_fast
     asked = []
     monkeypatch.setattr(kernel_cache, "is_ready", lambda dispatcher: asked.append(dispatcher) or True)
-    pendulum = System.with_isolator(height=1.2, width=0.3, mass=250, base_mass=500,
-                                    isolator=FrictionPendulum(radius=1.0, friction_coefficient=0.3))
+    pendulum = PENDULUM_SYSTEM
     for system, motion in ((paper_system(), None), (paper_system(fixed_base=True), None), (pendulum, None),
                            (paper_system().with_friction(0.4), None),
                            (paper_system(), load_motion("sine:amp=0.6,freq=1.3,cycles=1"))):
@@ -103,8 +105,7 @@ def test_an_ahead_of_time_kernel_is_ready_only_once_built(monkeypatch):
 
 
 def test_a_long_command_names_the_builds_it_will_wait_for(monkeypatch):
-    pendulum = System.with_isolator(height=1.2, width=0.3, mass=250, base_mass=500,
-                                    isolator=FrictionPendulum(radius=1.0, friction_coefficient=0.3))
+    pendulum = PENDULUM_SYSTEM
     fixed, linear = paper_system(fixed_base=True), paper_system()
     monkeypatch.setattr(kernel_cache, "is_ready", lambda dispatcher: True)
     assert engines.unbuilt_kernels([fixed, pendulum]) == []

@@ -48,16 +48,22 @@ def test_a_setting_that_unfits_a_presets_own_settings_is_blamed_on_what_was_give
     assert rc == 2 and err.count("\n") == 1 and "timestep = 0.0005" in err and "mujoco:fine" in err, err
 
 
+def _report_without(row, tmp_path, capsys, monkeypatch) -> dict:
+    """metrics.json of the tiny report of the analytic model and MuJoCo, with the table's `row`
+    (engine, metric) taken out: the report is still written, whatever its verdict."""
+    monkeypatch.delitem(TOLERANCES, row)
+    out = tmp_path / "rep"
+    rc = main(TINY + ["--engines", "analytic", "mujoco", "--workers", "1", "--out", str(out)])
+    assert rc in (0, 1), capsys.readouterr().err
+    return json.loads((out / "metrics.json").read_text())
+
+
 def test_a_metric_without_a_tolerance_is_skipped_with_the_reason_not_an_error_after_the_runs(tmp_path, capsys,
                                                                                                monkeypatch):
     """validate --quick --engines analytic drake ran 568 s and then exited 2: "tolerance
     ('drake', 'beta2_abs_error'): not in the table". The same with MuJoCo's β₂ limit taken
     out of the table: the report is written, that metric skipped with the reason."""
-    monkeypatch.delitem(TOLERANCES, ("mujoco", "beta2_abs_error"))
-    out = tmp_path / "rep"
-    rc = main(TINY + ["--engines", "analytic", "mujoco", "--workers", "1", "--out", str(out)])
-    assert rc in (0, 1), capsys.readouterr().err
-    m = json.loads((out / "metrics.json").read_text())
+    m = _report_without(("mujoco", "beta2_abs_error"), tmp_path, capsys, monkeypatch)
     b2 = [c for c in m["checks"] if c["engine"] == "mujoco" and c["metric"] == "beta2_abs_error"]
     assert b2 and all(c["status"] == "skip" and "no tolerance" in c["note"] for c in b2)
 
@@ -67,11 +73,7 @@ def test_a_history_metric_without_a_tolerance_is_counted_as_not_made_never_dropp
     overturning and stroke were silently never judged for it: a history metric the table has no
     limit for is a check skipped with the reason, in the verdict's count. Here MuJoCo's θmax/α
     limit taken out of the table: every scenario still carries that check, skipped, saying why."""
-    monkeypatch.delitem(TOLERANCES, ("mujoco", "theta_max_diff"))
-    out = tmp_path / "rep"
-    rc = main(TINY + ["--engines", "analytic", "mujoco", "--workers", "1", "--out", str(out)])
-    assert rc in (0, 1), capsys.readouterr().err
-    m = json.loads((out / "metrics.json").read_text())
+    m = _report_without(("mujoco", "theta_max_diff"), tmp_path, capsys, monkeypatch)
     theta = [c for c in m["checks"] if c["engine"] == "mujoco" and c["metric"] == "theta_max_diff"]
     histories = {c["scenario"] for c in m["checks"] if c["engine"] == "mujoco" and c["metric"] == "impacts_diff"}
     assert theta and {c["scenario"] for c in theta} == histories

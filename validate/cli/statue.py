@@ -62,7 +62,7 @@ def summary(body, azimuth_deg: float | None) -> dict:
         raise InputError(f"azimuth = {azimuth_deg!r}: must be a finite number of degrees")
     azimuth = weakest if azimuth_deg is None else math.radians(azimuth_deg)
     grid = [2 * math.pi * k / N_AZIMUTHS for k in range(N_AZIMUTHS)]
-    uplift = [shape.tipping_edges(body, a)["forward"]["uplift_g"] for a in grid]
+    uplift = [body.along(a).lift_off(1)["accel_g"] for a in grid]  # the forward edge's: the table's polar
     return dict(mass=body.mass, volume=body.checks["volume_m3"], com_height=float(body.com[2]),
                 footprint_margin=body.checks["margin_m"],
                 tips_first=dict(azimuth_deg=math.degrees(weakest), uplift_g=weakest_g),

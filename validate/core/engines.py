@@ -107,10 +107,7 @@ class Engine:
         """The engine's default settings with `overrides` applied (settings that follow
         others, e.g. MuJoCo's contact parameters after its timestep, follow them); an
         override the engine does not have is an InputError naming it."""
-        unknown = unknown_settings(self.name, self.Settings, overrides)
-        if unknown:
-            raise InputError(f"{', '.join(unknown)}: not a setting of engine {self.name!r} "
-                             f"(its settings: {', '.join(sorted(f.name for f in fields(self.Settings)))})")
+        refuse_unknown_settings(self.name, self.Settings, overrides)
         return self.spec.settings(**overrides)
 
     def preset(self, name: str):
@@ -244,6 +241,14 @@ def unknown_settings(name: str, settings_type, overrides) -> list[str]:
             raise InputError(f"settings: the key {key!r} is not a setting's name (a str) of engine {name!r}")
     known = {f.name for f in fields(settings_type)}
     return sorted(k for k in overrides if k not in known)
+
+
+def refuse_unknown_settings(name: str, settings_type, overrides) -> None:
+    """One line naming every override engine `name`'s Settings does not have, and its settings."""
+    unknown = unknown_settings(name, settings_type, overrides)
+    if unknown:
+        raise InputError(f"{', '.join(unknown)}: not a setting of engine {name!r} "
+                         f"(its settings: {', '.join(sorted(f.name for f in fields(settings_type)))})")
 
 
 class EngineUnavailable(InputError, ImportError):
@@ -381,10 +386,10 @@ def choose(label: str, overrides: dict | None = None, *, strict: bool = False) -
         engine.preset(preset)
     known = {f.name for f in fields(engine.Settings)}
     given = {k: (tuple(v) if isinstance(v, list) else v) for k, v in (overrides or {}).items() if v is not None}
-    unknown = unknown_settings(name, engine.Settings, given)
-    if strict and unknown:
-        raise InputError(f"{', '.join(unknown)}: not a setting of engine {name!r} "
-                         f"(its settings: {', '.join(sorted(known))})")
+    if strict:
+        refuse_unknown_settings(name, engine.Settings, given)
+    else:
+        unknown_settings(name, engine.Settings, given)  # a key that is not a name: one line, strict or not
     mine = {k: v for k, v in given.items() if k in known}
     return EngineChoice(name, tuple(sorted(mine.items())), preset)
 
