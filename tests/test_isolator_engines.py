@@ -258,10 +258,11 @@ ROCKING = [
     # its phase is the pendulum's (analytic.isolator_map), so each impact's β is measured
     ("bowl", (0.25, 0.05), "ricker:amp=0.6,freq=1.5", 5),
     # double pendulums, both of whose surfaces slide while the block rocks (regimes I and II, and a
-    # pinned base in the second: μ_hi 0.4 > tanα); their three phases are not read off an
-    # engine's rows (analytic.isolator_map.MAPPED), so no β
-    ("double", (0.15, 0.03, 0.3, 0.2), "sine:amp=0.5,freq=1.5,cycles=1", 0),
-    ("double", (0.2, 0.1, 0.3, 0.4), "ricker:amp=0.8,freq=2", 0),
+    # pinned base in the second: μ_hi 0.4 > tanα); their three phases are read off the rows (the
+    # base's speed, the element's stretch: analytic.isolator_map.phase_at) and mapped forward as
+    # the model changes them, so each impact's β is measured (issue 34; none before)
+    ("double", (0.15, 0.03, 0.3, 0.2), "sine:amp=0.5,freq=1.5,cycles=1", 5),
+    ("double", (0.2, 0.1, 0.3, 0.4), "ricker:amp=0.8,freq=2", 5),
 ]
 
 

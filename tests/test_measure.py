@@ -112,6 +112,9 @@ def test_a_block_that_slides_says_so_in_its_status():
 
 # --- issue 34: β measured where the base moves as the model says it moves ---------------------------
 
+PAPER_BLOCK = dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0)
+
+
 def _isolated_on(isolator, height=1.2, width=0.3, mass=250.0, base_mass=500.0):
     return System.with_isolator(height=height, width=width, mass=mass, base_mass=base_mass, isolator=isolator)
 
@@ -137,17 +140,23 @@ def _measured_against_the_models_own_impacts(system, pulse, duration, theta0=0.0
     # for a few ms (the model's u̇⁺ = 0.010 m/s): β read 3% high, as if the base were pinned
     ("friction-pendulum", "ricker:amp=0.5,freq=2.0"),
     ("ball-in-bowl", "ricker:amp=0.6,freq=1.5"),
-], ids=["pendulum-sticking", "bowl"])
+    # double pendulums on the paper's block (tests/test_isolator_engines.py's): the windows hold
+    # every phase (regime II, regime I, pinned then slipping, a reversal), and the element's
+    # slider is read off the rows as an engine's (extras["isolator_slider"]); no β before
+    ("double-friction-pendulum", "sine:amp=0.5,freq=1.5,cycles=1"),
+    ("double-friction-pendulum-pinned", "ricker:amp=0.8,freq=2"),
+], ids=["pendulum-sticking", "bowl", "double", "double-pinned"])
 def test_beta_on_a_base_the_impact_kicks_loose_is_the_models(isolator, pulse):
-    from isorock.analytic.system import BallInBowl, FrictionPendulum
-    iso = (FrictionPendulum(radius=1.0, friction_coefficient=0.3) if isolator == "friction-pendulum"
-           else BallInBowl(radius=0.5, rolling_resistance=0.05))
-    pairs = _measured_against_the_models_own_impacts(_isolated_on(iso), pulse, 4.5)
+    from isorock.analytic.system import BallInBowl, DoubleFrictionPendulum, FrictionPendulum
+    if isolator.startswith("double"):
+        series = (0.15, 0.03, 0.3, 0.2) if isolator == "double-friction-pendulum" else (0.2, 0.1, 0.3, 0.4)
+        system = System.with_isolator(**PAPER_BLOCK, isolator=DoubleFrictionPendulum(*series))
+    else:
+        system = _isolated_on(FrictionPendulum(radius=1.0, friction_coefficient=0.3) if isolator == "friction-pendulum"
+                              else BallInBowl(radius=0.5, rolling_resistance=0.05))
+    pairs = _measured_against_the_models_own_impacts(system, pulse, 4.5)
     assert all(math.isfinite(got) for got, _ in pairs), pairs  # every impact measured
     assert max(abs(got / want - 1) for got, want in pairs) < 1e-6, pairs
-
-
-PAPER_BLOCK = dict(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0)
 
 
 @pytest.mark.parametrize("kind", ["fixed", "linear", "pendulum-sliding", "bearing"])

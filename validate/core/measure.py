@@ -23,8 +23,8 @@ import numpy as np
 
 from isorock.analytic.coefficients import beta as beta_closed_form
 from isorock.analytic.hybrid import map_to_impact
-from isorock.analytic.isolator_map import (MAPPED, PENDULUMS, image_after_impact, pendulum_forward,
-                                           phase_at)
+from isorock.analytic.isolator_map import (MAPPED, PENDULUMS, image_after_impact, pendulum_forward, phase_at,
+                                           reads_slider)
 from isorock.analytic.kinematics import LYING, LYING_SLACK, plate_edge
 from isorock.analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
 from isorock.analytic.motion import GroundMotion
@@ -96,12 +96,13 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
         status = Status.SLID
         message = (f"the statue slid {walked:.3g} m, off the engine's plate (its edge {plate_edge(system):.3g} m "
                    "from the middle): the model's base has no edge, and the history past it is not the model's")
-    # a non-linear isolator's map to θ = 0 holds its element's phase, read from the row (the
-    # bearing's from its slider, extras["isolator_slider"]: without it, no β); a kind whose
-    # phase the rows do not tell (analytic.isolator_map.MAPPED) gets no β
+    # a non-linear isolator's map to θ = 0 starts in its element's phase, read from the row (a
+    # bearing's and a double pendulum's from the element's slider, extras["isolator_slider"]:
+    # without it, no β); a kind whose phase the rows do not tell (a ball in a cone) gets no β
     slider = raw.extras.get("isolator_slider")
     kind = system.isolator_kind  # LINEAR on a fixed base too
-    mapped = effective_beta and (kind == LINEAR or (kind in MAPPED and (kind != "bilinear" or slider is not None)))
+    mapped = effective_beta and (kind == LINEAR or (kind in MAPPED and (slider is not None
+                                                                        or not reads_slider(system))))
     impacts = effective_impacts(system, motion, t, u, u_dot, theta, theta_dot,
                                 impact_threshold=impact_threshold, window=window, mapped=mapped, slider=slider)
     return Trajectory(engine=raw.engine, system=system, t=t, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,
@@ -147,13 +148,13 @@ def effective_impacts(system, motion, t, u, u_dot, theta, theta_dot, *, impact_t
             t_next = t[changes[n + 1][0]] if n + 1 < len(changes) else t[-1]
             t_before = t_cross - min(window, 0.5 * (t_cross - t_prev))
             if system.isolator_kind in PENDULUMS:  # its base may break loose or stick before the impact
-                pre = _pendulum_pre(system, motion, t, u, u_dot, theta, theta_dot, t_before, t_cross, window)
+                pre = _pendulum_pre(system, motion, t, u, u_dot, theta, theta_dot, t_before, t_cross, window, slider)
             else:
                 pre = _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_before, backward=False, window=window,
                               slider=slider, t_cross=t_cross)
             t_after = t_cross + min(window, 0.5 * (t_next - t_cross))
             if system.isolator_kind in PENDULUMS:  # the impact kicks the base loose: forward, as the model moves it
-                post = _pendulum_post(system, motion, t, u, theta_dot, i, t_cross, t_after, pre)
+                post = _pendulum_post(system, motion, t, u, theta_dot, i, t_cross, t_after, pre, slider)
             else:
                 post = _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_after, backward=True, window=window,
                                slider=slider, t_cross=t_cross)
@@ -175,35 +176,44 @@ def _crossing_time(t, theta, i):
     return float(t[i - 1] + (t[i] - t[i - 1]) * a / (a - b))
 
 
-def _pendulum_pre(system, motion, t, u, u_dot, theta, theta_dot, t_before, t_cross, window):
-    """(θ̇⁻, u̇⁻) of a pendulum's impact: the engine's state at the row a window before the
-    crossing, its slider's phase read off the row (isolator_map.phase_at), run forward by the
-    rigid model, whose slider sticks and slips as the model's does, to θ = 0; it must land
-    near the engine's crossing (None otherwise: not this impact)."""
+def _pendulum_pre(system, motion, t, u, u_dot, theta, theta_dot, t_before, t_cross, window, slider=None):
+    """(θ̇⁻, u̇⁻, phase, u_p) of a rigid slider's impact: the engine's state at the row a window
+    before the crossing, its slider's phase read off the row (isolator_map.phase_at; a double
+    pendulum's element slider from `slider`), run forward by the rigid model, whose slider sticks
+    and slips as the model's does, to θ = 0; it must land near the engine's crossing (None
+    otherwise: not this impact)."""
     k = int(np.clip(np.searchsorted(t, t_before), 0, t.size - 1))
     if theta[k] == 0 or t[k] >= t_cross:
         return None
-    phase = phase_at(system, float(u_dot[k]), None, None)
+    u_p = 0.0 if slider is None else float(slider[k])
+    phase = phase_at(system, float(u_dot[k]), u=float(u[k]), u_p=u_p)
     state = (float(u[k]), 0.0 if phase == 0 else float(u_dot[k]), float(theta[k]), float(theta_dot[k]))
     landed = pendulum_forward(system, motion, float(t[k]), state, float(t[k]) + 5 * window + 0.05, phase=phase,
-                              to_landing=True)
+                              u_p=u_p, to_landing=True)
     if landed is None or abs(landed[0] - t_cross) > window:
         return None
     return landed[1][3], landed[1][1]
 
 
-def _pendulum_post(system, motion, t, u, theta_dot, i, t_cross, t_after, pre):
-    """(θ̇⁺, u̇⁺) of a pendulum's impact: the rigid model run forward from the crossing
+def _pendulum_post(system, motion, t, u, theta_dot, i, t_cross, t_after, pre, slider=None):
+    """(θ̇⁺, u̇⁺) of a rigid slider's impact: the rigid model run forward from the crossing
     (isolator_map.image_after_impact) to the engine's row a window after it, from the
-    pre-impact image `pre` (none without it) and the base's position at the crossing."""
+    pre-impact image `pre` (none without it), the base's position at the crossing and, on a
+    double pendulum, its element's slider and regime there (from `slider`)."""
     if not pre:
         return None
     k = int(np.clip(np.searchsorted(t, t_after), 0, t.size - 1))
     if t[k] <= t_cross:
         return None
-    u_cross = float(u[i - 1] + (u[i] - u[i - 1]) * (t_cross - t[i - 1]) / (t[i] - t[i - 1]))
+
+    def at_cross(x):
+        return float(x[i - 1] + (x[i] - x[i - 1]) * (t_cross - t[i - 1]) / (t[i] - t[i - 1]))
+    u_cross = at_cross(u)
     thd_pre, ud_pre = pre
-    return image_after_impact(system, motion, t_cross, u_cross, ud_pre, thd_pre, float(t[k]), float(theta_dot[k]))
+    u_p = 0.0 if slider is None else at_cross(slider)
+    phase = phase_at(system, ud_pre, u=u_cross, u_p=u_p)
+    return image_after_impact(system, motion, t_cross, u_cross, ud_pre, thd_pre, float(t[k]), float(theta_dot[k]),
+                              phase_pre=phase, u_p=u_p)
 
 
 def _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_at, *, backward, window, slider=None, t_cross=None):
