@@ -14,6 +14,7 @@ from isorock.analytic.errors import InputError
 from isorock.experiments import data, processing, study
 
 DEFAULT_OUT = "isorock-experiments"
+DEFAULT_MODEL = "isorock-model.json"
 
 
 def add_parser(sub) -> None:
@@ -48,7 +49,14 @@ def add_parser(sub) -> None:
                    help="bullet: table–rock friction coefficient (default 0.5, as mujoco's)")
     p.add_argument("--bullet-restitution", type=float, metavar="E",
                    help="bullet: table–rock restitution, 0 to 1 (default 0.3, the data's own simulation's)")
-    p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR", help="output folder (default: %(default)s)")
+    p.add_argument("--fit", metavar="DIR", help="fit on the tests of DIR (its layout as --data's; --tests to take "
+                   "some): choose the predictor nested in folds grouped by record, fit it on all of them, and write "
+                   f"the frozen model file to --out (default: {DEFAULT_MODEL}; a new file)")
+    p.add_argument("--predict", metavar="DIR", help="score the tests of DIR (--tests to take some) with the frozen "
+                   "--model, refitting nothing; writes prediction.md and prediction.json to --out")
+    p.add_argument("--model", metavar="FILE", help="the model file --fit wrote (with --predict)")
+    p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR", help="output folder (default: %(default)s); with "
+                   "--fit the model file")
     p.set_defaults(func=main)
 
 
@@ -75,8 +83,109 @@ def _tests(text):
     return tests
 
 
+#: the study's options that --fit and --predict do not take (they run the candidates of
+#: experiments.fitted, and the model's own processing when predicting)
+STUDY_ONLY = {"engines": "analytic,asymmetric", "sensitivity": False, "overturning_scale": False,
+              "mujoco_friction": None, "mujoco_dampratio": None, "bullet_friction": None, "bullet_restitution": None}
+
+
+def fit_or_predict(a) -> int:
+    """`--fit DIR` and `--predict DIR --model FILE` (experiments.fitted)."""
+    from isorock.experiments import fitted
+    from isorock.validate.io.output import Outputs
+    if a.fit is not None and a.predict is not None:
+        raise InputError("fit, predict: give one of them (fit on one set of tests, then predict another)")
+    for name, default in STUDY_ONLY.items():
+        if getattr(a, name) != default:
+            raise InputError(f"{name.replace('_', '-')} = {getattr(a, name)!r}: not taken with --fit or --predict "
+                             "(they run experiments.fitted's candidates)")
+    if a.data != str(study.default_data()):
+        raise InputError(f"data = {a.data!r}: with --fit or --predict the folder is theirs (--fit DIR, --predict DIR)")
+    tests = _tests(a.tests)
+    if a.fit is not None:
+        if a.model is not None:
+            raise InputError(f"model = {a.model!r}: is read by --predict; --fit writes its model to --out")
+        if a.fit == "":
+            raise InputError("fit = '': must be a data folder")
+        steps = processing.parse_steps(a.steps)
+        processing.check_lowpass(a.lowpass_hz)
+        with Outputs() as outputs:
+            out = outputs.file("out", DEFAULT_MODEL if a.out == DEFAULT_OUT else a.out, exclusive=True)
+            model = fitted.fit(a.fit, tests=tests, steps=steps, lowpass_hz=a.lowpass_hz)
+            from isorock.validate.io.output import to_json
+            from isorock.validate.io.provenance import provenance
+            model["provenance"] = provenance()
+            model["fit"]["data"] = str(a.fit)
+            out.write_text(to_json(model) + "\n")
+            outputs.commit()
+        print("\n".join(fit_lines(model)))
+        print(f"wrote {out.given}")
+        return 0
+    if a.model is None:
+        raise InputError("model: --predict needs the model file --fit wrote (--model FILE)")
+    if a.predict == "":
+        raise InputError("predict = '': must be a data folder")
+    if a.steps != ",".join(processing.DEFAULT_STEPS) or a.lowpass_hz != processing.LOWPASS_HZ:
+        raise InputError("steps, lowpass-hz: --predict uses the model's own processing (frozen by --fit)")
+    model = fitted.load_model(a.model)
+    with Outputs() as outputs:
+        out = outputs.folder("out", a.out)
+        result = fitted.predict(a.predict, model, tests=tests)
+        result["model"] = str(a.model)
+        from isorock.validate.io.output import to_json
+        from isorock.validate.io.provenance import provenance
+        result["provenance"] = provenance()
+
+        def fill(folder):
+            (folder / "prediction.json").write_text(to_json(result) + "\n")
+            (folder / "prediction.md").write_text("\n".join(["# isorock experiments: prediction", "",
+                                                              *predict_lines(result)]) + "\n")
+        out.write(fill)
+        outputs.commit()
+    print("\n".join(predict_lines(result)))
+    print(f"wrote {a.out}/prediction.md, prediction.json")
+    return 0
+
+
+def fit_lines(model) -> list[str]:
+    fit = model["fit"]
+    lines = [f"fitted on {len(fit['tests'])} tests of {fit['records']} records; {len(fit['candidates'])} candidates "
+             f"compared, the choice nested in {fit['outer_folds']} folds grouped by record (inner "
+             f"{fit['inner_folds']})", "",
+             "| specimen | predictor chosen | nested held-out accuracy [95% CI over records] | chosen per fold | "
+             "rigid model's own verdict |", "|---|---|---|---|---|"]
+    for s, e in model["specimens"].items():
+        n = e["nested"]
+        lo, hi = n["accuracy_records_ci"]
+        lines.append(f"| SP{s} | {e['predictor']} | {n['accuracy']:.3f} [{lo:.3f}, {hi:.3f}] | "
+                     f"{len(set(n['chosen_per_fold']))} different in {len(n['chosen_per_fold'])} | "
+                     f"{n['own_verdict_accuracy']:.3f} |")
+    return lines
+
+
+def predict_lines(result) -> list[str]:
+    seen = result["seen_in_fit"]
+    lines = [f"{len(result['tests'])} tests of {result['records']} records; "
+             + (f"**{len(seen)} of them were in the fit** (their score is not held out)" if seen
+                else "none of them was in the fit"), "",
+             "| specimen | predictor | accuracy [95% CI over tests] | [95% CI over records] | hard tests: accuracy (n) "
+             "| never overturned at any scale ≤ 2: accuracy (n) |", "|---|---|---|---|---|---|"]
+    for s, r in result["specimens"].items():
+        m = r["scores"]
+        hard, easy = r["hard"], r["never_overturned"]
+        lines.append(f"| SP{s} | {r['predictor']} | {_ci(m, 'accuracy')} | "
+                     f"[{r['accuracy_records_ci'][0]:.3f}, {r['accuracy_records_ci'][1]:.3f}] | "
+                     f"{'—' if hard is None else format(hard['accuracy'], '.3f')} ({r['hard_tests']}) | "
+                     f"{'—' if easy is None else format(easy['accuracy'], '.3f')} ({r['never_overturned_tests']}) |")
+    return lines
+
+
 def main(a) -> int:
     from isorock.validate.io.output import Outputs
+    if a.fit is not None or a.predict is not None:
+        return fit_or_predict(a)
+    if a.model is not None:
+        raise InputError(f"model = {a.model!r}: is read by --predict (--predict DIR --model FILE)")
     engines = _engines(a.engines)
     steps = processing.parse_steps(a.steps)
     processing.check_lowpass(a.lowpass_hz)  # up front, not after every test is read
