@@ -60,3 +60,31 @@ def no_bounce_slenderness(mass_ratio: float) -> float:
     """β > 0 exactly when λ exceeds √(2(μ+1)/(μ+4))."""
     mu = require_nonnegative_finite("mass_ratio", mass_ratio)
     return math.sqrt(2 * (mu + 1) / (mu + 4))
+
+
+def edge_impact(mass: float, base_mass: float | None, centre_height: float, inertia: float,
+                lever_from: float, lever_to: float) -> tuple[float, float]:
+    """(β, β₂) of an impact that ends rocking about the edge at lever_from (m, the horizontal
+    distance from the centre of mass) and starts it about the edge at lever_to, on a base of
+    base_mass (None: a fixed base, β₂ = 0): a statue of two different edges (System.body).
+
+    At θ = 0 the block's centre of mass moves at (u̇ + h θ̇, s·b_s·θ̇) about edge s. The impact's
+    impulses act at the new edge and between base and ground only through bounded forces, so it
+    conserves the block's angular momentum about the new edge,
+        (I_c + m h² − m b_from b_to) θ̇⁻ + m h u̇⁻ = (I_c + m h² + m b_to²) θ̇⁺ + m h u̇⁺,
+    and the system's horizontal momentum, M u̇ + m h θ̇. With c = m²h²/M (0 on a fixed base):
+        β = (I_c + m h² − m b_from b_to − c) / (I_c + m h² + m b_to² − c),   β₂ = (m h/M)(1 − β).
+    For the rectangle (b_from = b_to = b, I_c = m(b² + h²)/3) these are beta and beta2 above."""
+    m = require_positive_finite("mass", mass)
+    h = require_positive_finite("centre_height", centre_height)
+    i_c = require_positive_finite("inertia", inertia)
+    b_from = require_positive_finite("lever_from", lever_from)
+    b_to = require_positive_finite("lever_to", lever_to)
+    if base_mass is None:
+        share, c = 0.0, 0.0
+    else:
+        big_m = m + require_positive_finite("base_mass", base_mass)
+        share = m * h / big_m
+        c = m * h * share
+    beta_ = (i_c + m * h * h - m * b_from * b_to - c) / (i_c + m * h * h + m * b_to * b_to - c)
+    return beta_, share * (1.0 - beta_)

@@ -68,6 +68,10 @@ class Capabilities:
     #: as a statue that cannot slip or on level ground
     statue_friction: bool = True
     vertical: bool = True
+    #: it carries a statue of two different tipping edges (System.body: issue 36, the planar
+    #: model of a real shape): the analytic engines; a contact engine that builds the box H × B
+    #: is refused such a System in one line (check_body), never runs the box in its place
+    two_edges: bool = False
 
 
 @dataclass(frozen=True)
@@ -167,7 +171,7 @@ FREE_DURATION = 10.0
 def run_inputs(system: "System", motion: "GroundMotion | None", duration: float | None, theta0: float,
                impact_threshold: float, *, theta_dot0: float = 0.0, u0: float = 0.0,
                u_dot0: float = 0.0, settings=None, isolators: tuple[str, ...] = ("linear",),
-               kinetic_friction: bool = True) -> tuple[GroundMotion, float]:
+               kinetic_friction: bool = True, two_edges: bool = False) -> tuple[GroundMotion, float]:
     """What every engine's `simulate` takes, checked in one place so that all engines
     accept and refuse the same inputs with the same messages: (motion, duration) after the
     shared checks: `none` motion is zero ground
@@ -178,7 +182,8 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     calling engine carries (Capabilities.isolators): a System on another is refused, so
     that no engine runs a friction pendulum or a bilinear bearing as a linear spring;
     `kinetic_friction` (Capabilities.kinetic_friction) False: a statue whose kinetic friction
-    is below its static one is refused too (check_friction)."""
+    is below its static one is refused too (check_friction); `two_edges`
+    (Capabilities.two_edges) False: a statue of two different edges is refused (check_body)."""
     from .errors import InputError, real_number, require, require_positive_finite
     from .limits import check_acceleration, check_duration, check_isolator, check_settings
     from .motion import GroundMotion
@@ -191,6 +196,7 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     impact_threshold = real_number("impact_threshold", impact_threshold, "a number in [0, 1)")
     check_isolator_kind(system, isolators)
     check_friction(system, kinetic_friction)
+    check_body(system, two_edges)
     motion = motion or GroundMotion.zero()
     check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
     if motion.vertical is not None:  # the vertical component is bounded as the horizontal is
@@ -202,8 +208,9 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     check_duration("duration", duration, "" if given else f" (the motion's end + {TAIL_AFTER_MOTION:g} s)")
     check_isolator(system, duration)
     check_settings(settings, duration)
-    require(math.isfinite(theta0) and abs(theta0) < system.alpha, "theta0", theta0,
-            f"a finite tilt smaller than α = {system.alpha:.6g} rad in magnitude")
+    side_alpha = system.edge_alpha(1 if theta0 >= 0 else -1) if math.isfinite(theta0) else system.alpha
+    require(math.isfinite(theta0) and abs(theta0) < side_alpha, "theta0", theta0,
+            f"a finite tilt smaller than α = {side_alpha:.6g} rad in magnitude (of the edge it tilts onto)")
     for name, v in (("theta_dot0", theta_dot0), ("u0", u0), ("u_dot0", u_dot0)):
         require(math.isfinite(v), name, v, "a finite number")
     if system.fixed_base:
@@ -225,6 +232,16 @@ def check_isolator_kind(system: "System", isolators: tuple[str, ...], engine: st
     if kind not in isolators:
         raise InputError(f"isolator = {kind}: {engine} carries the {', '.join(isolators)} isolator only, not a "
                          f"{kind} one (engine 'analytic-reference' carries it; docs/isolators.md)")
+
+
+def check_body(system: "System", two_edges: bool, engine: str = "this engine") -> None:
+    """One line refusing a statue of two different tipping edges (System.body) for an engine
+    that builds the box H × B (Capabilities.two_edges False)."""
+    from .errors import InputError
+    if system.body is not None and not two_edges:
+        raise InputError(f"body: {engine} builds the symmetric box H × B; a statue of two different edges "
+                         f"(b₊ {system.body.lever_forward:.4g} m, b₋ {system.body.lever_backward:.4g} m) runs on the "
+                         "analytic engines (Capabilities.two_edges; docs/statues.md)")
 
 
 def check_friction(system: "System", kinetic_friction: bool, engine: str = "this engine", *,

@@ -99,7 +99,7 @@ def first_run_reference(system, motion, duration: float) -> str | None:
 ENGINE = EngineSpec(
     name="analytic", label="analytic", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=True, exact_impacts=True,
-                              isolators=ISOLATOR_KINDS),
+                              isolators=ISOLATOR_KINDS, two_edges=True),
     presets=PRESETS, ladder=ladder)
 
 REFERENCE_ENGINE = EngineSpec(
@@ -107,7 +107,7 @@ REFERENCE_ENGINE = EngineSpec(
     simulate=simulate_reference,
     # a run takes a second where the compiled engine takes milliseconds: no grid engine
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=True,
-                              campaigns=False, isolators=ISOLATOR_KINDS),
+                              campaigns=False, isolators=ISOLATOR_KINDS, two_edges=True),
     presets=PRESETS, ladder=ladder)
 
 __all__ = ["ENGINE", "REFERENCE_ENGINE", "Settings", "simulate", "simulate_reference", "ladder", "kernel_ready",

@@ -234,8 +234,8 @@ def _compile_physics():
               "isolator_element_force", "isolator_translation_acceleration", "isolator_rocking_accelerations",
               "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
               "slip_power", "slip_force", "rigid_demand", "element_hold", "slip_phase", "slider_position",
-              "hidden_crossing", "vertex_function")
-    for name in ("ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
+              "hidden_crossing", "vertex_function", "edge", "landing_side")
+    for name in ("edge", "landing_side", "ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
                  "relift", "lifts_clearly", "impact_function_order", "lift_order", "impact_continues", "impact_map", "kinetic_energy",
@@ -296,7 +296,7 @@ _hidden_crossing = _P["hidden_crossing"]
 _vertex_function = _P["vertex_function"]
 
 
-assert physics.N_SP == 19 and physics.N_MP == 14  # the tuples below
+assert physics.N_SP == 26 and physics.N_MP == 14  # the tuples below
 
 
 @njit(inline="always")
@@ -305,7 +305,7 @@ def _sp_tuple(a):
     inlined call it is passed to (function calls that also bar the optimizer), a tuple of
     floats never."""
     return (a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11], a[12], a[13],
-            a[14], a[15], a[16], a[17], a[18])
+            a[14], a[15], a[16], a[17], a[18], a[19], a[20], a[21], a[22], a[23], a[24], a[25])
 
 
 @njit(inline="always")
@@ -1681,6 +1681,13 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
     """
     start = time.perf_counter()  # runtime_s: everything this call takes, the kernel's loading included
     settings = _check_settings(settings)
+    if isinstance(system, System) and system.asymmetric:
+        # the kernel reads one threshold both ways at rest and one α per run (physics.first_uplift,
+        # its events): a statue of two edges runs on the reference path, which the Trajectory's
+        # engine says ("analytic-reference"; docs/statues.md)
+        from .hybrid import simulate as reference
+        return reference(system, motion, settings=settings, duration=duration, theta0=theta0,
+                         theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, impact_threshold=impact_threshold)
     motion, duration = _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0,
                                   impact_threshold)
     odt = settings.output_dt if output_dt is None else require_positive_finite("output_dt", output_dt)
@@ -1821,6 +1828,9 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
     systems = _as_list(systems, System, "systems")
     for system in systems:
         _check_isolator(system)
+        if system.asymmetric:
+            raise InputError("body: a statue of two different edges runs one at a time on the reference path "
+                             "(analytic.hybrid: engine 'analytic-reference'); the compiled batch takes the rectangle")
     motions = _as_list(motions if motions is not None else GroundMotion.zero(), GroundMotion, "motions")
     case_sys, case_mot = _cases(systems, motions, product)
     n = case_sys.size

@@ -85,7 +85,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: An
     """
     settings = settings or AnalyticSettings()
     motion, duration = run_inputs(system, motion, duration, theta0, impact_threshold,
-                                  theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS)
+                                  theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS,
+                                  two_edges=True)
     if needs_contact_model(system, motion):  # the statue may slip, or the ground heaves: docs/sliding.md
         from .slide_hybrid import simulate as simulate_sliding
         return simulate_sliding(system, motion, settings, duration, progress, impact_threshold, theta0, theta_dot0,
@@ -202,11 +203,12 @@ class _Integrator:
             status, message, t = stop.status, stop.message, stop.t
             y = self.out_y[-1][:, -1] if self.out_y else y
         if status == Status.COMPLETED and verdict == 0:
-            verdict = physics.overturn_code(not past_alpha_rule, float(y[TH]), sys.alpha, False)
+            verdict = physics.overturn_code(not past_alpha_rule, float(y[TH]),
+                                            sys.edge_alpha(1 if y[TH] >= 0 else -1), False)
         overturn_time = None
         if verdict:
             status, overturn_time = Status.OVERTURNED, self.last_past_alpha
-            message = describe(verdict, t, overturn_time, float(y[TH]) / sys.alpha)
+            message = describe(verdict, t, overturn_time, float(y[TH]) / sys.edge_alpha(1 if y[TH] >= 0 else -1))
         return self.trajectory(status, message, overturn_time, time.perf_counter() - start)
 
     def integrate(self, t, y, mode, status, message, past_alpha_rule, start):
@@ -235,7 +237,7 @@ class _Integrator:
                     mode = self.lift(t, side)
                 continue
             if (mode and past_alpha_rule and sys.fixed_base and t >= self.motion_end
-                    and mode * y[TH] > sys.alpha and mode * y[THD] > 0):
+                    and mode * y[TH] > sys.edge_alpha(mode) and mode * y[THD] > 0):
                 verdict = 3  # past α and falling, nothing left to pull it back
                 break
             if mode == 0:
@@ -292,7 +294,9 @@ class _Integrator:
     def rests_still(self):
         """Whether the state cannot change while the block rests (a fixed base): the run then
         finds the first uplift from the motion itself (physics.first_uplift)."""
-        return self.sys.fixed_base
+        # physics.first_uplift reads one threshold g·tanα for both ways: a statue of two edges
+        # is integrated at rest like an isolated one, its uplift found as an event
+        return self.sys.fixed_base and not self.sys.asymmetric
 
     def begin(self, t, y, mode):
         """The mode the run starts in (a model that tells more than the corner refines it)."""
@@ -332,7 +336,7 @@ class _Integrator:
         self.impacts.append(Impact(
             t=t, theta_dot_pre=thd_pre, theta_dot_post=thd_post, u_dot_pre=ud_pre,
             u_dot_post=ud_post, continued=continued, amplitude=self.peak,
-            counted=self.peak > self.impact_threshold * self.sys.alpha))
+            counted=self.peak > self.impact_threshold * self.sys.edge_alpha(physics.landing_side(thd_pre))))
         self.peak = 0.0
         y[THD], y[UD] = thd_post, ud_post
         if continued:
@@ -360,17 +364,22 @@ class _Integrator:
     # events ---------------------------------------------------------------------------
     def uplift_events(self):
         sp = self.sp
-        thr = sp[physics.THR] * (1.0 + (physics.GRAZE_MARGIN if self.graze else 0.0))
+        thr_pos, thr_neg = self.uplift_thresholds()
 
         def a(t, y):
             return physics.base_acceleration(sp, y[U], y[UD], self.xg(t))
-        # a < −thr lifts about O (θ > 0); a > thr about O' (θ < 0)
-        e_pos = _event(lambda t, y: -a(t, y) - thr, "uplift", +1, side=1)
-        e_neg = _event(lambda t, y: a(t, y) - thr, "uplift", +1, side=-1)
+        # a < −thr₊ lifts about O (θ > 0); a > thr₋ about O' (θ < 0)
+        e_pos = _event(lambda t, y: -a(t, y) - thr_pos, "uplift", +1, side=1)
+        e_neg = _event(lambda t, y: a(t, y) - thr_neg, "uplift", +1, side=-1)
         return [e_pos, e_neg]
 
+    def uplift_thresholds(self):
+        """(g·tanα₊, g·tanα₋), raised by GRAZE_MARGIN after a grazing landing (physics.relift)."""
+        raise_by = 1.0 + (physics.GRAZE_MARGIN if self.graze else 0.0)
+        return self.sp[physics.THR] * raise_by, self.sp[physics.THR_NEG] * raise_by
+
     def rocking_events(self, s, t0, y0):
-        alpha = self.sys.alpha
+        alpha = self.sys.edge_alpha(s)
         peak = _event(lambda t, y: y[THD], "peak", 0)
         peak.terminal = False  # located only so θmax is exact, not read off samples
         # |θ| rising through α: the end of the run under the rule "alpha", and on a fixed
@@ -696,12 +705,12 @@ class _IsolatorIntegrator(_Integrator):
 
     def uplift_events(self):
         sp, ip, ph, up = self.sp, self.ip, self.phase, self.u_p
-        thr = sp[physics.THR] * (1.0 + (physics.GRAZE_MARGIN if self.graze else 0.0))
+        thr_pos, thr_neg = self.uplift_thresholds()
 
         def a(t, y):
             return physics.isolator_base_acceleration(sp, ip, ph, y[U], y[UD], up, self.xg(t))
-        return [_event(lambda t, y: -a(t, y) - thr, "uplift", +1, side=1),
-                _event(lambda t, y: a(t, y) - thr, "uplift", +1, side=-1)]
+        return [_event(lambda t, y: -a(t, y) - thr_pos, "uplift", +1, side=1),
+                _event(lambda t, y: a(t, y) - thr_neg, "uplift", +1, side=-1)]
 
     def translation_events(self, t0, y0):
         return self.uplift_events() + self.slider_events(0, t0, y0, self.rhs_translation)

@@ -19,7 +19,11 @@ import numpy as np
 
 # --- packed system parameters -------------------------------------------------------
 (M_BLOCK, M_TOTAL, H, B_HALF, G, K, C_DAMP, FIXED, ALPHA, J, THR, BETA, BETA2, BETA3, REST,
- INV_M, INV_J, M_BASE, INERTIA, N_SP) = range(20)
+ INV_M, INV_J, M_BASE, INERTIA, B_NEG, ALPHA_NEG, J_NEG, INV_J_NEG, THR_NEG, BETA_NEG, BETA2_NEG, N_SP) = range(27)
+# The slots that differ between a statue's two tipping edges (System.body, issue 36) hold the
+# forward edge's (s = +1: B_HALF, ALPHA, J, INV_J, THR, and the BETA, BETA2 of an impact that
+# ends rocking about it) and, in their _NEG twins, the backward edge's (s = −1); `edge` reads the
+# one of corner s. For the rectangle the twins are equal, and every result is as before to the bit.
 
 # --- packed motion parameters -------------------------------------------------------
 (KIND, DT, END, AMP, OMEGA, FREQ, PEND, SCALE, SHIFT, PIECE, PI, PA0, PA1, INV_DT, N_MP) = range(15)
@@ -41,29 +45,42 @@ SIDE_ANGLE = 0.5 * math.pi  # |θ| at which the block lies on its side
 def system_params(system, rest_velocity: float) -> np.ndarray:
     """A System packed for the functions below (rest_velocity: the dimensionless floor
     of AnalyticSettings, stored as rest_velocity·p·α in rad/s)."""
-    from .coefficients import beta, beta2, beta3
+    from .coefficients import beta, beta2, beta3, edge_impact
     lam, mu, h = system.slenderness, system.mu, system.h
     sp = np.zeros(N_SP)
     sp[M_BLOCK] = system.mass
     sp[M_TOTAL] = system.total_mass
     sp[H] = h
-    sp[B_HALF] = system.b
     sp[G] = system.gravity
     sp[K] = 0.0 if system.fixed_base else system.stiffness
     sp[C_DAMP] = 0.0 if system.fixed_base else system.damping
     sp[FIXED] = 1.0 if system.fixed_base else 0.0
-    sp[ALPHA] = system.alpha
-    sp[J] = system.mass * system.R**2 + system.inertia
-    sp[THR] = system.uplift_acceleration
-    sp[BETA] = beta(lam, mu)
-    sp[BETA2] = beta2(lam, mu, h)
     sp[BETA3] = beta3(mu, h)
     sp[REST] = rest_velocity * system.p * system.alpha
     sp[INV_M] = 1.0 / system.total_mass
-    sp[INV_J] = 1.0 / sp[J]
     sp[M_BASE] = 0.0 if system.fixed_base else system.base_mass
     sp[INERTIA] = system.inertia
+    for side, (b, alpha, j, inv_j, thr, bt, bt2) in ((1, (B_HALF, ALPHA, J, INV_J, THR, BETA, BETA2)),
+                                                     (-1, (B_NEG, ALPHA_NEG, J_NEG, INV_J_NEG, THR_NEG, BETA_NEG,
+                                                           BETA2_NEG))):
+        sp[b] = system.lever(side)
+        sp[alpha] = system.edge_alpha(side)
+        sp[j] = system.mass * system.edge_radius(side) ** 2 + system.inertia
+        sp[inv_j] = 1.0 / sp[j]
+        sp[thr] = system.gravity * sp[b] / h if system.asymmetric else system.uplift_acceleration
+        if system.asymmetric:  # the impact onto the other edge, from this one (coefficients.edge_impact)
+            sp[bt], sp[bt2] = edge_impact(system.mass, None if system.fixed_base else system.base_mass, h,
+                                          system.inertia, system.lever(side), system.lever(-side))
+        else:  # the paper's closed forms, as they always were
+            sp[bt], sp[bt2] = beta(lam, mu), beta2(lam, mu, h)
     return sp
+
+
+def edge(sp, s, forward, backward):
+    """The slot of corner s's edge: sp[forward] for s = +1, sp[backward] for s = −1 (s a number
+    or an array of ±1, as the energy functions take it). Exact for the rectangle, whose two are
+    equal (½(x + x) + ½s·0 is x to the bit); within an ulp for two edges."""
+    return 0.5 * (sp[forward] + sp[backward]) + 0.5 * s * (sp[forward] - sp[backward])
 
 
 def motion_params(motion):
@@ -168,13 +185,13 @@ def rocking_accelerations_with(sp, s, theta, theta_dot, u, u_dot, q, xg):
     """rocking_accelerations with a non-linear isolator's element force q (N) on the base
     besides the spring k·u and dashpot c·u̇ of sp (isolator_element_force: docs/isolators.md);
     q = 0 is the linear isolator, to the last bit (x − 0.0 is x)."""
-    h, b, m, g = sp[H], sp[B_HALF], sp[M_BLOCK], sp[G]
+    h, b, m, g = sp[H], edge(sp, s, B_HALF, B_NEG), sp[M_BLOCK], sp[G]
     st, ct = math.sin(theta), math.cos(theta)
     L1 = h * ct + s * b * st
     L2 = s * b * ct - h * st
     if sp[FIXED] != 0.0:
-        return 0.0, (-m * L1 * xg - m * g * L2) * sp[INV_J], L1
-    M, Jt = sp[M_TOTAL], sp[J]
+        return 0.0, (-m * L1 * xg - m * g * L2) * edge(sp, s, INV_J, INV_J_NEG), L1
+    M, Jt = sp[M_TOTAL], edge(sp, s, J, J_NEG)
     f_u = -M * xg - m * L2 * theta_dot * theta_dot - sp[C_DAMP] * u_dot - sp[K] * u - q
     f_t = -m * L1 * xg - m * g * L2
     inv = 1.0 / (M * Jt - (m * L1) ** 2)
@@ -191,11 +208,10 @@ def base_acceleration(sp, u, u_dot, xg):
 
 def uplift_direction(sp, a):
     """+1 / −1 when an absolute base acceleration a lifts the block about O / O'
-    (|a| > g·tanα; a < 0 lifts about O), else 0."""
-    thr = sp[THR]
-    if a < -thr:
+    (a < −g·tanα₊ lifts about O, a > g·tanα₋ about O'), else 0."""
+    if a < -sp[THR]:
         return 1
-    if a > thr:
+    if a > sp[THR_NEG]:
         return -1
     return 0
 
@@ -382,11 +398,11 @@ def isolator_rocking_accelerations(sp, ip, phase, s, theta, theta_dot, u, u_dot,
 
 def pinned_rocking_accelerations(sp, s, theta, xg):
     """(0, θ̈, L1) of a block rocking about corner s on a base that moves with the ground."""
-    h, b, m = sp[H], sp[B_HALF], sp[M_BLOCK]
+    h, b, m = sp[H], edge(sp, s, B_HALF, B_NEG), sp[M_BLOCK]
     st, ct = math.sin(theta), math.cos(theta)
     L1 = h * ct + s * b * st
     L2 = s * b * ct - h * st
-    return 0.0, (-m * L1 * xg - m * sp[G] * L2) * sp[INV_J], L1
+    return 0.0, (-m * L1 * xg - m * sp[G] * L2) * edge(sp, s, INV_J, INV_J_NEG), L1
 
 
 def isolator_base_acceleration(sp, ip, phase, u, u_dot, u_p, xg):
@@ -405,8 +421,9 @@ def stick_demand(sp, mode, theta, theta_dot, u, xg):
     if mode != 0:
         s = float(mode)
         thdd = pinned_rocking_accelerations(sp, s, theta, xg)[1]
-        L2 = s * sp[B_HALF] * math.cos(theta) - sp[H] * math.sin(theta)
-        L1 = sp[H] * math.cos(theta) + s * sp[B_HALF] * math.sin(theta)
+        b = edge(sp, s, B_HALF, B_NEG)
+        L2 = s * b * math.cos(theta) - sp[H] * math.sin(theta)
+        L1 = sp[H] * math.cos(theta) + s * b * math.sin(theta)
         f = f - sp[M_BLOCK] * (L1 * thdd + L2 * theta_dot * theta_dot)
     return f
 
@@ -527,17 +544,26 @@ def balance_energy(sp, ip, s, u, u_dot, theta, theta_dot, u_p):
 
 # --- impact at θ = 0 ----------------------------------------------------------------------
 
+def landing_side(theta_dot_pre):
+    """The corner a block rocked about as it lands with θ̇⁻ (θ returns to 0 from its side:
+    θ̇⁻ < 0 on corner +1)."""
+    return -1.0 if theta_dot_pre > 0.0 else 1.0
+
+
 def impact_continues(sp, theta_dot_pre):
     """Rocking continues about the other corner unless |θ̇⁻| is below the rest floor
     (the Zeno tail) or the block is below the no-bounce slenderness (β ≤ 0)."""
-    return abs(theta_dot_pre) >= sp[REST] and sp[BETA] > 0.0
+    return abs(theta_dot_pre) >= sp[REST] and edge(sp, landing_side(theta_dot_pre), BETA, BETA_NEG) > 0.0
 
 
 def impact_map(sp, theta_dot_pre, u_dot_pre, continued):
     """(θ̇⁺, u̇⁺): θ̇⁺ = β θ̇⁻, u̇⁺ = u̇⁻ + β₂ θ̇⁻ when rocking continues; θ̇⁺ = 0,
-    u̇⁺ = u̇⁻ + β₃ θ̇⁻ when it ceases (fixed base: u̇ stays 0)."""
+    u̇⁺ = u̇⁻ + β₃ θ̇⁻ when it ceases (fixed base: u̇ stays 0). β and β₂ of the edge it lands
+    from (landing_side)."""
     if continued:
-        thd, ud = sp[BETA] * theta_dot_pre, u_dot_pre + sp[BETA2] * theta_dot_pre
+        s = landing_side(theta_dot_pre)
+        thd = edge(sp, s, BETA, BETA_NEG) * theta_dot_pre
+        ud = u_dot_pre + edge(sp, s, BETA2, BETA2_NEG) * theta_dot_pre
     else:
         thd, ud = 0.0, u_dot_pre + sp[BETA3] * theta_dot_pre
     if sp[FIXED] != 0.0:
@@ -547,15 +573,16 @@ def impact_map(sp, theta_dot_pre, u_dot_pre, continued):
 
 def impact_energy_loss(sp, u_dot_pre, theta_dot_pre, u_dot_post, theta_dot_post):
     """Kinetic energy lost in an impact at θ = 0 (J)."""
-    return (kinetic_energy(sp, 1.0, u_dot_pre, 0.0, theta_dot_pre)
-            - kinetic_energy(sp, -1.0, u_dot_post, 0.0, theta_dot_post))
+    s = landing_side(theta_dot_pre)
+    return (kinetic_energy(sp, s, u_dot_pre, 0.0, theta_dot_pre)
+            - kinetic_energy(sp, -s, u_dot_post, 0.0, theta_dot_post))
 
 
 # --- energy and forces (scalars or arrays) ---------------------------------------------------
 
 def kinetic_energy(sp, s, u_dot, theta, theta_dot):
     """T = ½ m_b u̇² + ½ m [(u̇ + ẋ)² + ż²] + ½ I θ̇² (J), velocities relative to the ground."""
-    h, b, m = sp[H], sp[B_HALF], sp[M_BLOCK]
+    h, b, m = sp[H], edge(sp, s, B_HALF, B_NEG), sp[M_BLOCK]
     ct, st = np.cos(theta), np.sin(theta)
     xd = theta_dot * (h * ct + s * b * st)
     zd = theta_dot * (s * b * ct - h * st)
@@ -565,7 +592,7 @@ def kinetic_energy(sp, s, u_dot, theta, theta_dot):
 
 def potential_energy(sp, s, u, theta):
     """V = ½ k u² + m g (s b sinθ + h cosθ − h) (J); zero at rest."""
-    h, b = sp[H], sp[B_HALF]
+    h, b = sp[H], edge(sp, s, B_HALF, B_NEG)
     return 0.5 * sp[K] * u * u + sp[M_BLOCK] * sp[G] * (s * b * np.sin(theta) + h * np.cos(theta) - h)
 
 
@@ -585,8 +612,9 @@ def rocking_pivot_force_ratio(sp, s, theta, theta_dot, udd, thdd, xg):
     """pivot_force_ratio while rocking about corner s, given the accelerations ü and θ̈
     there (rocking_accelerations'); an integrator has them from its last stage."""
     st, ct = math.sin(theta), math.cos(theta)
-    L1 = sp[H] * ct + s * sp[B_HALF] * st
-    L2 = s * sp[B_HALF] * ct - sp[H] * st
+    b = edge(sp, s, B_HALF, B_NEG)
+    L1 = sp[H] * ct + s * b * st
+    L2 = s * b * ct - sp[H] * st
     fx = xg + udd + thdd * L1 + theta_dot * theta_dot * L2
     fz = sp[G] + thdd * L2 - theta_dot * theta_dot * L1
     if fz <= 0.0:

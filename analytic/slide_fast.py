@@ -36,7 +36,7 @@ from .status import Status
 
 # --- analytic.physics and analytic.slide_physics, compiled ----------------------------------
 
-_PHYSICS = ("ground_acceleration", "piece_acceleration", "pulse_acceleration", "base_pinned",
+_PHYSICS = ("edge", "landing_side", "ground_acceleration", "piece_acceleration", "pulse_acceleration", "base_pinned",
             "isolator_element_force", "slip_force", "element_hold", "lifts_clearly", "lift_order",
             "impact_continues", "stick_limit", "slip_phase", "slider_position", "slip_power", "vertex_rest_speed",
             "potential_energy", "element_energy", "overturn_code", "hidden_crossing", "vertex_function")

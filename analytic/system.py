@@ -24,6 +24,62 @@ ISOLATOR_KINDS = (LINEAR, BILINEAR, FRICTION_PENDULUM, BALL_IN_CONE, BALL_IN_BOW
 
 
 @dataclass(frozen=True)
+class PlanarBody:
+    """A statue that is not a symmetric rectangle, as the planar model sees it in one shaking
+    direction (issue 36; docs/statues.md): its centre of mass `centre_height` h above the
+    plinth, `lever_forward` b₊ and `lever_backward` b₋ the horizontal distances from it to the
+    two tipping edges (b₊ to the edge about which θ > 0 rocks, the body turning towards +x,
+    lifted by a ground acceleration below −g·b₊/h), and `inertia` I_c (kg·m²) about the centre of
+    mass, about the axis of rocking. Each edge s has its own α_s = atan(b_s/h), R_s = √(b_s² + h²)
+    and I_s = I_c + m R_s²; an impact onto the other edge conserves the angular momentum about
+    it (model.md's map, re-derived for two edges: physics.system_params). The rectangle is
+    b₊ = b₋ = b, h = H/2, I_c = m(b² + h²)/3."""
+
+    centre_height: float
+    lever_forward: float
+    lever_backward: float
+    inertia: float
+
+    def __post_init__(self):
+        for name in ("centre_height", "lever_forward", "lever_backward", "inertia"):
+            object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
+
+    def lever(self, side: int) -> float:
+        """b_s (m) of the edge on `side` (+1 forward, −1 backward)."""
+        return self.lever_forward if side > 0 else self.lever_backward
+
+    def alpha(self, side: int) -> float:
+        return math.atan2(self.lever(side), self.centre_height)
+
+    def radius(self, side: int) -> float:
+        return math.hypot(self.lever(side), self.centre_height)
+
+    @property
+    def weaker_side(self) -> int:
+        """The edge it tips about first (the smaller α; forward on a tie)."""
+        return 1 if self.lever_forward <= self.lever_backward else -1
+
+    @classmethod
+    def rectangle(cls, height: float, width: float, mass: float) -> "PlanarBody":
+        """The symmetric block H × B of mass m as a PlanarBody (the model's special case)."""
+        h, b = 0.5 * height, 0.5 * width
+        return cls(centre_height=h, lever_forward=b, lever_backward=b, inertia=mass * (b * b + h * h) / 3)
+
+    @classmethod
+    def from_resting(cls, body) -> "PlanarBody":
+        """The planar body of a statue's mesh at rest, shaken along its x (analytic.shape.RestingBody,
+        turned with .along(azimuth)): b± from the centre of mass to the footprint's extremes."""
+        fw, bw = body.direction(1), body.direction(-1)
+        return cls(centre_height=fw["h"], lever_forward=fw["b"], lever_backward=bw["b"],
+                   inertia=float(body.inertia[1, 1]))
+
+    def describe(self) -> dict:
+        return {"centre_height": self.centre_height, "lever_forward": self.lever_forward,
+                "lever_backward": self.lever_backward, "centroidal_inertia": self.inertia,
+                "alpha_forward": self.alpha(1), "alpha_backward": self.alpha(-1)}
+
+
+@dataclass(frozen=True)
 class LinearIsolator:
     """The seed paper's isolator: a linear spring `stiffness` k (N/m) and dashpot `damping`
     c (N·s/m). A System holds it as its own `stiffness` and `damping` (its default)."""
@@ -269,11 +325,16 @@ class System:
                | DoubleFrictionPendulum | None) = None
     friction: float | None = None
     kinetic_friction: float | None = None
+    body: PlanarBody | None = None
 
     def __post_init__(self):
         for name in ("height", "width", "mass", "base_mass", "gravity"):
             object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
         self._check_friction()
+        if self.body is not None:
+            require(isinstance(self.body, PlanarBody), "body", self.body, "a PlanarBody (or None: the rectangle)")
+            require(self.friction is None, "friction", self.friction,
+                    "absent for a statue of two different edges (body): the sliding model takes the rectangle")
         iso = self.isolator
         if iso is not None:
             require(isinstance(iso, (LinearIsolator,) + NONLINEAR_ISOLATORS), "isolator", iso,
@@ -360,25 +421,50 @@ class System:
 
     def on_fixed_base(self) -> "System":
         """The same block (and its friction) on a fixed base (its base mass kept for a scene's plate)."""
-        return System.fixed(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
-                            gravity=self.gravity).with_friction(self.friction, self.kinetic_friction)
+        return replace(System.fixed(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
+                                    gravity=self.gravity), body=self.body).with_friction(self.friction,
+                                                                                        self.kinetic_friction)
 
     def on_isolator(self, period: float, damping_ratio: float) -> "System":
         """The same block (and its friction) and base mass on an isolator of period T (s) and damping ratio ξ."""
-        return System.isolated(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
-                               period=period, damping_ratio=damping_ratio,
-                               gravity=self.gravity).with_friction(self.friction, self.kinetic_friction)
+        return replace(System.isolated(height=self.height, width=self.width, mass=self.mass, base_mass=self.base_mass,
+                                       period=period, damping_ratio=damping_ratio, gravity=self.gravity),
+                       body=self.body).with_friction(self.friction, self.kinetic_friction)
 
     # --- geometry ---------------------------------------------------------------
+    # A System with a `body` (two different edges) answers these for the edge it tips about
+    # first (PlanarBody.weaker_side): the smaller α, its R, p, λ and threshold; `lever(s)`,
+    # `edge_alpha(s)` and `edge_radius(s)` give either edge. Without one, the rectangle's.
+    @property
+    def asymmetric(self) -> bool:
+        """Whether the statue has two different edges (a `body`), not the rectangle H × B."""
+        return self.body is not None
+
+    def lever(self, side: int) -> float:
+        """b_s (m): the horizontal distance from the centre of mass to the edge on `side` (±1)."""
+        return self.b if self.body is None else self.body.lever(side)
+
+    def edge_alpha(self, side: int) -> float:
+        """α_s = atan(b_s/h) of the edge on `side` (rad)."""
+        return self.alpha if self.body is None else self.body.alpha(side)
+
+    def edge_radius(self, side: int) -> float:
+        """R_s = √(b_s² + h²) of the edge on `side` (m)."""
+        return self.R if self.body is None else self.body.radius(side)
+
+    def edge_inertia(self, side: int) -> float:
+        """I_s = I_c + m R_s² about the edge on `side` (kg·m²)."""
+        return self.mass * self.edge_radius(side) ** 2 + self.inertia
+
     @property
     def h(self) -> float:
-        """Half height (m): centroid height above the base."""
-        return 0.5 * self.height
+        """Half height (m): centroid height above the base (a body's centre of mass height)."""
+        return 0.5 * self.height if self.body is None else self.body.centre_height
 
     @property
     def b(self) -> float:
-        """Half width (m)."""
-        return 0.5 * self.width
+        """Half width (m); a body's lever of the edge it tips about first."""
+        return 0.5 * self.width if self.body is None else self.body.lever(self.body.weaker_side)
 
     @property
     def R(self) -> float:
@@ -397,13 +483,15 @@ class System:
 
     @property
     def p(self) -> float:
-        """Frequency parameter √(3g / 4R) (rad/s)."""
+        """Frequency parameter √(3g / 4R) (rad/s); a body's √(m g R/I_O) of its weaker edge."""
+        if self.body is not None:
+            return math.sqrt(self.mass * self.gravity * self.R / (self.mass * self.R ** 2 + self.inertia))
         return math.sqrt(3 * self.gravity / (4 * self.R))
 
     @property
     def inertia(self) -> float:
-        """Centroidal moment of inertia m(b² + h²)/3 (kg·m²)."""
-        return self.mass * (self.b**2 + self.h**2) / 3
+        """Centroidal moment of inertia m(b² + h²)/3 (kg·m²); a body's own I_c."""
+        return self.mass * (self.b**2 + self.h**2) / 3 if self.body is None else self.body.inertia
 
     # --- base ---------------------------------------------------------------------
     @property
@@ -473,6 +561,8 @@ class System:
             # only where the statue may slip: a no-slip system's description is as before
             **({} if self.friction is None else {"friction": self.friction,
                                                  "kinetic_friction": self.kinetic_friction}),
+            # only for a statue of two edges: a rectangle's description is as before
+            **({} if self.body is None else {"body": self.body.describe()}),
         }
 
 
@@ -495,7 +585,7 @@ def paper_system(*, fixed_base: bool = False, period: float = PAPER_PERIOD,
     return System.isolated(**PAPER_BLOCK, period=period, damping_ratio=damping_ratio)
 
 
-__all__ = ["System", "InputError", "LinearIsolator", "BilinearIsolator", "FrictionPendulum", "BallInCone",
+__all__ = ["System", "PlanarBody", "InputError", "LinearIsolator", "BilinearIsolator", "FrictionPendulum", "BallInCone",
            "BallInBowl", "DoubleFrictionPendulum", "ISOLATOR_KINDS", "BALL_IN_CONE", "BALL_IN_BOWL",
            "DOUBLE_PENDULUM", "LINEAR", "BILINEAR", "FRICTION_PENDULUM", "paper_system", "STANDARD_GRAVITY", "PAPER_PERIOD",
            "PAPER_DAMPING_RATIO", "PAPER_BLOCK", "PAPER_TEXT"]

@@ -159,7 +159,12 @@ class Trajectory:
         from .overturning import PAST_ALPHA, theta_max_over_alpha
         if not self.theta.size:
             return 0.0
-        return float(theta_max_over_alpha(float(np.max(np.abs(self.theta))), self.alpha, self.overturned,
+        theta_max = float(np.max(np.abs(self.theta)))
+        if self.system.asymmetric:  # each way against its own edge's α, as the weaker edge's share
+            sy = self.system
+            theta_max = self.alpha * max(max(float(np.max(self.theta)), 0.0) / sy.edge_alpha(1),
+                                         max(-float(np.min(self.theta)), 0.0) / sy.edge_alpha(-1))
+        return float(theta_max_over_alpha(theta_max, self.alpha, self.overturned,
                                           self.extras.get("overturn_rule", PAST_ALPHA)))
 
     def _theta_max_definition(self) -> str:
@@ -197,6 +202,8 @@ class Trajectory:
             "status": str(self.status),
             "message": self.message,
             "alpha": self.alpha,
+            # a statue of two edges: α and λ above are its weaker edge's; both edges here
+            **({"body": self.system.body.describe()} if self.system.asymmetric else {}),
             "slenderness": self.system.slenderness,
             "mass_ratio": self.system.mu,
             "fixed_base": self.system.fixed_base,

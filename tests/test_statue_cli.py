@@ -75,3 +75,47 @@ def test_bad_input_is_one_line_and_exit_2(args, says, tmp_path, capsys, monkeypa
     code = main(["statue", *args])
     err = capsys.readouterr().err
     assert code == 2 and says in err and err.count("\n") == 1
+
+
+# --- issue 36: `isorock run --statue`: the exact model of the statue's own two edges ---------------
+
+def _run_json(capsys, *args):
+    code = main(["run", *args, "--json", "-", "--quiet"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    return json.loads(out.out), out.err
+
+
+def test_run_takes_the_bust_on_its_two_edges_and_lifts_it_where_its_centre_of_mass_says(capsys):
+    """The bust along 0° (its weaker direction): b± = 0.12 ∓ x_c and h = z_c from trimesh's own
+    centre of mass; under a sine of 0.5 g, between the forward edge's g·b₊/h (0.416 g) and the
+    backward's (0.656 g), it first lifts about the forward edge where −A sin ωt reaches g·b₊/h:
+    t = (π + asin(b₊/(h·A)))/ω, and only ever that way (θ ≥ 0)."""
+    d, err = _run_json(capsys, "--statue-example", "bust", "--mass", "80", "--fixed-base",
+                       "--motion", "sine:amp=0.5,freq=2,cycles=1")
+    com = trimesh.Trimesh(*shape.example_statue("bust"), process=False).center_mass
+    body = d["body"]
+    assert body["lever_forward"] == pytest.approx(0.12 - com[0], rel=1e-9)
+    assert body["lever_backward"] == pytest.approx(0.12 + com[0], rel=1e-9)
+    assert body["centre_height"] == pytest.approx(com[2], rel=1e-9)
+    omega = 2 * math.pi * 2.0
+    ratio = body["lever_forward"] / (body["centre_height"] * 0.5)
+    assert d["engine"] == "analytic-reference" and "two different edges" in err
+    assert d["uplift_times"][0] == pytest.approx((math.pi + math.asin(ratio)) / omega, abs=1e-9)
+    assert d["uplifts"] >= 1 and not d["overturned"]
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--statue-example", "bust", "--mass", "80", "--height", "2"], "--height"),
+    (["--statue-example", "bust", "--mass", "80", "--density", "2600"], "one of the two"),
+    (["--statue-example", "bust"], "one of the two"),  # neither (the block's default mass is not the statue's)
+    (["--statue", "bust.stl", "--mass", "80"], "--unit"),
+    (["--unit", "mm"], "describes a statue's mesh"),
+    (["--statue-example", "bust", "--mass", "80", "--engine", "mujoco"], "two different edges"),
+    (["--statue-example", "bust", "--mass", "80", "--statue-friction", "0.5"], "--statue-friction"),
+], ids=["height", "mass-and-density", "no-mass", "no-unit", "unit-alone", "contact-engine", "friction"])
+def test_run_with_a_statue_refuses_in_one_line(args, says, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code = main(["run", *args, "--fixed-base", "--motion", "sine:amp=0.5,freq=2,cycles=1"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and says in err and len(err.splitlines()) == 1, err

@@ -30,7 +30,7 @@ from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
 from isorock.validate.cli.options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,
-                                          add_motion_options, add_system_options, engine_settings_from_args, number,
+                                          add_motion_options, add_statue_options, add_system_options, engine_settings_from_args, number,
                                           system_from_args)
 
 #: Subcommands that live in their own modules (each has add_parser(subparsers)), with
@@ -108,6 +108,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
                         "several, comma-separated, run on the same system and motion and are compared with "
                         "the first (default: analytic, the compiled kernel, which carries every --isolator)")
     add_system_options(p, defaults=PAPER_BLOCK)
+    add_statue_options(p)
     add_isolator_options(p)
     add_motion_options(p)
     p.add_argument("--duration", type=number,

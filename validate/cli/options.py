@@ -68,8 +68,19 @@ def _floats(n_min, n_max, name):
     return parse
 
 
+class Default(float):
+    """A number the parser filled in, not the user's: a command that takes a statue's mesh
+    (--statue) refuses the block's --height and --width given with it, and can tell them apart."""
+
+
+def given(value) -> bool:
+    """Whether an option's value is the user's (not None, not a Default)."""
+    return value is not None and not isinstance(value, Default)
+
+
 def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=None) -> None:
-    d = defaults or {}
+    d = {k: Default(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else v
+         for k, v in (defaults or {}).items()}
     g = p.add_argument_group("system (SI units)")
     g.add_argument("--height", type=number, required=required and "height" not in d, default=d.get("height"),
                    help="block height H = 2h, m")
@@ -184,13 +195,72 @@ def _isolator_from_args(a, common):
         yield_displacement=a.yield_displacement))
 
 
+def add_statue_options(p: argparse.ArgumentParser) -> None:
+    """A statue's mesh instead of the block H × B (issue 36): its two tipping edges along the
+    shaking direction become the exact model's (System.body; docs/statues.md)."""
+    from isorock.analytic.shape import EXAMPLES, UNITS
+    g = p.add_argument_group("a statue from its mesh, instead of --height and --width (docs/statues.md)")
+    g.add_argument("--statue", metavar="FILE", help="the statue's mesh (STL, OBJ, PLY, OFF, GLB), standing as it "
+                   "stands on its plinth, z up; with --unit and --mass (or --density)")
+    g.add_argument("--statue-example", choices=EXAMPLES, help="a statue made by code instead (metres)")
+    g.add_argument("--unit", choices=tuple(UNITS), help="the mesh file's length unit (required: never guessed)")
+    g.add_argument("--density", type=number, help="the statue's density, kg/m³, instead of --mass")
+    g.add_argument("--azimuth", type=number, help="the shaking direction, degrees from the mesh's x towards y "
+                   "(default: the direction it tips first)")
+
+
+def _statue_body(a):
+    """(mass, PlanarBody) of the statue's mesh along the shaking direction; None without one."""
+    import math
+    from isorock.analytic import shape
+    from isorock.analytic.system import PlanarBody
+    path, example = getattr(a, "statue", None), getattr(a, "statue_example", None)
+    if path is None and example is None:
+        for name in ("unit", "density", "azimuth"):
+            if getattr(a, name, None) is not None:
+                raise InputError(f"--{name} = {getattr(a, name)!r}: describes a statue's mesh (--statue FILE)")
+        return None
+    if path is not None and example is not None:
+        raise InputError("statue: give its mesh (--statue FILE) or --statue-example NAME, one of the two")
+    for name in ("height", "width"):
+        if given(getattr(a, name, None)):
+            raise InputError(f"--{name} = {getattr(a, name)!r}: the statue's mesh gives its shape; leave --{name} out")
+    if given(getattr(a, "statue_friction", None)):
+        raise InputError("--statue-friction: the sliding model takes the block H × B, not a statue's mesh yet")
+    mass = a.mass if given(a.mass) else None
+    if (mass is None) == (a.density is None):
+        raise InputError("statue: give its --mass (kg) or its --density (kg/m³), one of the two")
+    if example is not None:
+        if a.unit not in (None, "m"):
+            raise InputError(f"--unit = {a.unit!r}: an example statue is made in metres; leave --unit out")
+        vertices, faces = shape.example_statue(example)
+    else:
+        if a.unit is None:
+            raise InputError(f"--unit: {path!r} needs its length unit ({', '.join(shape.UNITS)}): a mesh file states "
+                             "none this reader trusts, so it is never guessed")
+        vertices, faces = shape.read_mesh(path, a.unit)
+    standing = shape.standing(vertices, faces, mass=mass, density=a.density, name=path or example)
+    if a.azimuth is not None and not math.isfinite(a.azimuth):
+        raise InputError(f"--azimuth = {a.azimuth!r}: must be a finite number of degrees")
+    azimuth = shape.weakest_direction(standing)[0] if a.azimuth is None else math.radians(a.azimuth)
+    return standing.mass, PlanarBody.from_resting(standing.along(azimuth))
+
+
 def system_from_args(a, *, default_isolator=None):
     """The System the options describe; `default_isolator` (period, damping ratio)
-    is used when no isolator option is given (the scene command's paper defaults)."""
+    is used when no isolator option is given (the scene command's paper defaults). With a
+    statue's mesh (add_statue_options), its two edges along the shaking direction."""
+    statue = _statue_body(a)
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
+    if statue is not None:
+        mass, body = statue
+        common.update(height=2 * body.centre_height, width=body.lever_forward + body.lever_backward, mass=mass)
     system = _isolator_from_args(a, common)
     if system is None:
         system = _linear_from_args(a, common, default_isolator=default_isolator)
+    if statue is not None:
+        from dataclasses import replace
+        return replace(system, body=statue[1])
     mu_s, mu_k = getattr(a, "statue_friction", None), getattr(a, "kinetic_friction", None)
     if mu_k is not None and mu_s is None:
         raise InputError(f"--kinetic-friction = {mu_k:g}: needs --statue-friction (μ_s, the static coefficient)")

@@ -171,7 +171,8 @@ def plan_runs(a, specs) -> RunPlan:
         raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
     if not (abs(a.theta0_over_alpha) < 1):
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
-    theta0 = a.theta0_over_alpha * system.alpha
+    # a fraction of the α of the edge it tilts onto (a statue's two edges differ)
+    theta0 = a.theta0_over_alpha * system.edge_alpha(1 if a.theta0_over_alpha >= 0 else -1)
     # the work bounds (duration, isolator, every engine's steps) before any work
     duration = a.duration
     for _, engine, settings in loaded:
@@ -179,7 +180,8 @@ def plan_runs(a, specs) -> RunPlan:
         # the steps the run will take (an engine whose settings follow the system derives them)
         motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold,
                                       settings=settings_used(settings, system),
-                                      isolators=engine.capabilities.isolators)
+                                      isolators=engine.capabilities.isolators,
+                                      two_edges=getattr(engine.capabilities, "two_edges", False))
     return RunPlan(first_run_engines(loaded, system, motion, duration), system, motion, duration, theta0)
 
 
@@ -192,6 +194,9 @@ def first_run_engines(loaded, system, motion, duration):
     out = []
     for label, engine, settings in loaded:
         why = first_run_reference(system, motion, duration) if engine.name == "analytic" else None
+        if engine.name == "analytic" and system.asymmetric:
+            why = ("a statue of two different edges runs on the same model on SciPy (analytic-reference): the "
+                   "compiled kernel takes the block H × B (docs/statues.md)")
         if why:
             print(f"isorock: {label}: {why}", file=sys.stderr, flush=True)
             engine = get_engine("analytic-reference")

@@ -81,8 +81,8 @@ def verdict(label: str, s: dict) -> str:
              f"backward at {b['uplift_g']:.3g} g, α {b['alpha']:.4g} rad, R {b['R']:.4g} m, I_O {b['I_O']:.4g} kg·m², "
              f"p {b['p']:.4g} rad/s."]
     if abs(f["alpha"] - b["alpha"]) > 1e-9 * max(f["alpha"], b["alpha"]):
-        lines.append("Its two edges differ: the exact model of a block with two different edges is not in run, "
-                     "validate or design yet (issue 36); the edges above are what it will take.")
+        lines.append("Its two edges differ: `isorock run --statue FILE` runs the exact model of both (the analytic "
+                     "engines); validate, design and the contact engines take the block H × B still (issue 36).")
     return "\n".join(lines)
 
 

@@ -131,8 +131,9 @@ class Engine:
         isolator it does not build (docs/isolators.md), or a statue whose kinetic friction is
         below its static one, where the engine has one friction coefficient (MuJoCo, PyBullet:
         Capabilities.kinetic_friction)."""
-        from isorock.analytic.engine_protocol import check_friction, check_isolator_kind
+        from isorock.analytic.engine_protocol import check_body, check_friction, check_isolator_kind
         check_isolator_kind(system, self.capabilities.isolators, f"engine {self.name!r}")
+        check_body(system, getattr(self.capabilities, "two_edges", False), f"engine {self.name!r}")
         check_friction(system, self.capabilities.kinetic_friction, f"engine {self.name!r}",
                        statue_friction=self.capabilities.statue_friction)
 
