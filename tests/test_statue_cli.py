@@ -105,15 +105,24 @@ def test_run_takes_the_bust_on_its_two_edges_and_lifts_it_where_its_centre_of_ma
     assert d["uplifts"] >= 1 and not d["overturned"]
 
 
+def test_run_help_names_every_example_and_unit(capsys):
+    """The run parser names them in its help without loading analytic.shape (and NumPy)."""
+    assert main(["run", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert all(name in text for name in shape.EXAMPLES) and all(unit in text for unit in shape.UNITS)
+
+
 @pytest.mark.parametrize("args, says", [
     (["--statue-example", "bust", "--mass", "80", "--height", "2"], "--height"),
+    (["--statue-example", "bost", "--mass", "80"], "one of bust"),
+    (["--statue-example", "bust", "--mass", "80", "--unit", "furlong"], "one of m"),
     (["--statue-example", "bust", "--mass", "80", "--density", "2600"], "one of the two"),
     (["--statue-example", "bust"], "one of the two"),  # neither (the block's default mass is not the statue's)
     (["--statue", "bust.stl", "--mass", "80"], "--unit"),
     (["--unit", "mm"], "describes a statue's mesh"),
     (["--statue-example", "bust", "--mass", "80", "--engine", "mujoco"], "two different edges"),
     (["--statue-example", "bust", "--mass", "80", "--statue-friction", "0.5"], "--statue-friction"),
-], ids=["height", "mass-and-density", "no-mass", "no-unit", "unit-alone", "contact-engine", "friction"])
+], ids=["height", "unknown-example", "unknown-unit", "mass-and-density", "no-mass", "no-unit", "unit-alone", "contact-engine", "friction"])
 def test_run_with_a_statue_refuses_in_one_line(args, says, capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     code = main(["run", *args, "--fixed-base", "--motion", "sine:amp=0.5,freq=2,cycles=1"])

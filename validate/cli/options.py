@@ -198,12 +198,14 @@ def _isolator_from_args(a, common):
 def add_statue_options(p: argparse.ArgumentParser) -> None:
     """A statue's mesh instead of the block H × B (issue 36): its two tipping edges along the
     shaking direction become the exact model's (System.body; docs/statues.md)."""
-    from isorock.analytic.shape import EXAMPLES, UNITS
+    # the names are checked where they are read (analytic.shape, _statue_body): building this
+    # parser must not load NumPy (`isorock beta` loads no heavy module)
     g = p.add_argument_group("a statue from its mesh, instead of --height and --width (docs/statues.md)")
     g.add_argument("--statue", metavar="FILE", help="the statue's mesh (STL, OBJ, PLY, OFF, GLB), standing as it "
                    "stands on its plinth, z up; with --unit and --mass (or --density)")
-    g.add_argument("--statue-example", choices=EXAMPLES, help="a statue made by code instead (metres)")
-    g.add_argument("--unit", choices=tuple(UNITS), help="the mesh file's length unit (required: never guessed)")
+    g.add_argument("--statue-example", metavar="NAME", help="a statue made by code instead (metres): bust, amphora "
+                   "or obelisk")
+    g.add_argument("--unit", help="the mesh file's length unit, m, cm, mm, in or ft (required: never guessed)")
     g.add_argument("--density", type=number, help="the statue's density, kg/m³, instead of --mass")
     g.add_argument("--azimuth", type=number, help="the shaking direction, degrees from the mesh's x towards y "
                    "(default: the direction it tips first)")
@@ -230,6 +232,10 @@ def _statue_body(a):
     mass = a.mass if given(a.mass) else None
     if (mass is None) == (a.density is None):
         raise InputError("statue: give its --mass (kg) or its --density (kg/m³), one of the two")
+    if example is not None and example not in shape.EXAMPLES:
+        raise InputError(f"--statue-example = {example!r}: one of {', '.join(shape.EXAMPLES)}")
+    if a.unit is not None and a.unit not in shape.UNITS:
+        raise InputError(f"--unit = {a.unit!r}: one of {', '.join(shape.UNITS)}")
     if example is not None:
         if a.unit not in (None, "m"):
             raise InputError(f"--unit = {a.unit!r}: an example statue is made in metres; leave --unit out")
