@@ -146,7 +146,7 @@ _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0  # scipy.integrate._ivp.rk
 _EPS = float(np.finfo(float).eps)
 
 # packed system and motion parameters: analytic.physics's layout
-from .physics import (GRAZE_MARGIN as _GRAZE, ALPHA as _ALPHA, FIXED as _FIXED, INV_DT as _INV_DT, KIND as _KIND,  # noqa: E402
+from .physics import (ALPHA_NEG as _ALPHA_NEG, GRAZE_MARGIN as _GRAZE, ALPHA as _ALPHA, FIXED as _FIXED, INV_DT as _INV_DT, KIND as _KIND,  # noqa: E402
                       M_BLOCK as _M_BLOCK, M_TOTAL as _M_TOTAL, PA0 as _PA0, PA1 as _PA1, PI as _PI,
                       PIECE as _PIECE, DT as _DT, END as _END, SAMPLED as _SAMPLED, THR as _THR, SIDE_ANGLE as _SIDE,
                       C_DAMP as _C_DAMP, K as _K, INV_M as _INV_M, G as _G)
@@ -234,8 +234,9 @@ def _compile_physics():
               "isolator_element_force", "isolator_translation_acceleration", "isolator_rocking_accelerations",
               "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
               "slip_power", "slip_force", "rigid_demand", "element_hold", "slip_phase", "slider_position",
-              "hidden_crossing", "vertex_function", "edge", "landing_side")
-    for name in ("edge", "landing_side", "ground_acceleration", "piece_acceleration", "record_piece", "pulse_acceleration",
+              "hidden_crossing", "vertex_function", "edge", "landing_side", "other_threshold")
+    for name in ("edge", "landing_side", "other_threshold", "_pulse_uplift_two_edges", "ground_acceleration",
+                 "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",
                  "relift", "lifts_clearly", "impact_function_order", "lift_order", "impact_continues", "impact_map", "kinetic_energy",
@@ -257,6 +258,8 @@ def _compile_physics():
 
 
 _P = _compile_physics()
+_edge = _P["edge"]
+_other_thr = _P["other_threshold"]
 _xg = _P["ground_acceleration"]
 _xgp = _P["piece_acceleration"]
 _record_piece = _P["record_piece"]
@@ -389,22 +392,23 @@ def _slider_event(e, mode, t, u, ud, th, thd, xg, t0, sp, iso):
 
 
 @njit(inline="always")
-def _event(e, mode, t, ud, th, thd, a, alpha, t0, kpow, limit, thr, u, xg, sp, iso):
+def _event(e, mode, t, ud, th, thd, a, t0, kpow, limit, thr, u, xg, sp, iso):
     """Event slot e's function (see _DIRECTION) in `mode`; a: the base's absolute
-    acceleration (translation), thr: the uplift threshold. Scalars only (see _sp_tuple);
-    u, xg, sp and iso are read by the slider's slots only."""
+    acceleration (translation), thr: the forward edge's uplift threshold (the backward edge's
+    follows it, physics.other_threshold). Scalars only (see _sp_tuple); u, xg, sp and iso are
+    read by the slider's slots only."""
     if _ISO:
         if e >= 5:
             return _slider_event(e, mode, t, u, ud, th, thd, xg, t0, sp, iso)
     if mode == 0:
         if e == 3:
             return ud
-        return (-a - thr) if e == 0 else (a - thr)
+        return (-a - thr) if e == 0 else (a - _other_thr(sp, thr))
     s = float(mode)
     if e == 0:
         return _impact_fun(s, th, t, t0, kpow, limit)
     if e == 1:
-        return s * th - alpha
+        return s * th - _edge(sp, s, _ALPHA, _ALPHA_NEG)
     if e == 2:
         return thd
     if e == 4:
@@ -453,7 +457,7 @@ def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr, i
         if mode == 0 and e < 3:
             a = _iso_base_acc(sp, iso, iso[_IS_PH], _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1),
                               iso[_IS_UP], _xgp(t, mp))
-            return (-a - thr) if e == 0 else (a - thr)
+            return (-a - thr) if e == 0 else (a - _other_thr(sp, thr))
     if mode == 0:
         if e == 3:
             return _dense1(F, y_old, x, 1)
@@ -461,11 +465,11 @@ def _event_dense(e, mode, t, F, y_old, t_old, h, sp, mp, t0, kpow, limit, thr, i
             a = _xgp(t, mp)
         else:
             a = _base_acc(sp, _dense1(F, y_old, x, 0), _dense1(F, y_old, x, 1), 0.0)
-        return (-a - thr) if e == 0 else (a - thr)
+        return (-a - thr) if e == 0 else (a - _other_thr(sp, thr))
     if e == 0:
         return _impact_fun(float(mode), _dense1(F, y_old, x, 2), t, t0, kpow, limit)
     if e == 1:
-        return float(mode) * _dense1(F, y_old, x, 2) - sp[_ALPHA]
+        return float(mode) * _dense1(F, y_old, x, 2) - _edge(sp, float(mode), _ALPHA, _ALPHA_NEG)
     if e == 2:
         return _dense1(F, y_old, x, 3)
     if e == 4:
@@ -900,7 +904,6 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     acc = _borrowed(acc)
     breaks = _borrowed(breaks)
     fixed = sp[_FIXED] != 0.0
-    alpha = sp[_ALPHA]
     own = np.zeros(mp.size + _NY + 16 * _NY + 7 * _NY + 4 * _NY + 3 * _N_EV + 4)
     own_flags = np.zeros(3 * _N_EV, dtype=np.bool_)
     own_ev = np.zeros(_N_EV, dtype=np.int64)
@@ -1141,7 +1144,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 peak = 0.0
                 graze = False
             continue
-        if (mode != 0 and not rule_alpha and fixed and t >= motion_end and s * y[2] > sp[_ALPHA]
+        if (mode != 0 and not rule_alpha and fixed and t >= motion_end
+                and s * y[2] > _edge(sp, s, _ALPHA, _ALPHA_NEG)
                 and s * y[3] > 0.0):
             verdict = 3  # past α and falling after the motion: nothing can pull it back
             break
@@ -1191,7 +1195,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
         a_now = _base_acc_of(sp, y[0], y[1], _xgp(t, mpt), iso) if mode == 0 else 0.0
         for e in range(_N_EV):
             if use[e]:
-                g_old[e] = _event(e, mode, t, y[1], y[2], y[3], a_now, alpha, tp0, kpow, limit, thr,
+                g_old[e] = _event(e, mode, t, y[1], y[2], y[3], a_now, tp0, kpow, limit, thr,
                                   y[0], xg_now, sp, iso)
         piece_out = n_out
         if history:
@@ -1254,7 +1258,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 active[e] = False
                 if not use[e]:
                     continue
-                g_new[e] = _event(e, mode, t_new, y_new[1], y_new[2], y_new[3], a_new, alpha,
+                g_new[e] = _event(e, mode, t_new, y_new[1], y_new[2], y_new[3], a_new,
                                   tp0, kpow, limit, thr, y_new[0], xg_new, sp, iso)
                 d = _DIRECTION[mi, e]
                 if _ISO:
@@ -1503,7 +1507,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             imp[n_imp, 4] = ud_post
             imp[n_imp, 5] = 1.0 if continued else 0.0
             imp[n_imp, 6] = peak
-            imp[n_imp, 7] = 1.0 if peak > impact_frac * sp[_ALPHA] else 0.0
+            imp[n_imp, 7] = 1.0 if peak > impact_frac * _edge(sp, float(mode), _ALPHA, _ALPHA_NEG) else 0.0
             imp[n_imp, 8] = _impact_loss(sp, ud_pre, thd_pre, ud_post, thd_post)
             imp_loss += imp[n_imp, 8]
             n_imp += 1
@@ -1550,7 +1554,8 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
     if not room:
         status = _NO_ROOM
     if status == _COMPLETED and verdict == 0:
-        verdict = _overturn_code(rule_alpha, y[2], sp[_ALPHA], False)
+        end_side = 1.0 if y[2] >= 0.0 else -1.0
+        verdict = _overturn_code(rule_alpha, y[2], _edge(sp, end_side, _ALPHA, _ALPHA_NEG), False)
     if verdict != 0:
         status = _OVERTURNED
     own[0] = own_flags.size + own_ev.size  # the owners of the borrowed views live until here
@@ -1662,7 +1667,7 @@ def _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0, impact_
     """The input checks every engine shares (analytic.protocol)."""
     _check_isolator(system)
     return run_inputs(system, motion, duration, theta0, impact_threshold,
-                      theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS)
+                      theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS, two_edges=True)
 
 
 def simulate_fast(system: System, motion: GroundMotion | None = None, *,
@@ -1681,13 +1686,6 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
     """
     start = time.perf_counter()  # runtime_s: everything this call takes, the kernel's loading included
     settings = _check_settings(settings)
-    if isinstance(system, System) and system.asymmetric:
-        # the kernel reads one threshold both ways at rest and one α per run (physics.first_uplift,
-        # its events): a statue of two edges runs on the reference path, which the Trajectory's
-        # engine says ("analytic-reference"; docs/statues.md)
-        from .hybrid import simulate as reference
-        return reference(system, motion, settings=settings, duration=duration, theta0=theta0,
-                         theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, impact_threshold=impact_threshold)
     motion, duration = _check_run(system, motion, duration, theta0, theta_dot0, u0, u_dot0,
                                   impact_threshold)
     odt = settings.output_dt if output_dt is None else require_positive_finite("output_dt", output_dt)
@@ -1729,7 +1727,8 @@ def _trajectory(system, settings, sp, mp, acc, r, impact_threshold, start, ip) -
     if status == "completed":
         message = "reached the end time"
     elif status == "overturned":
-        message = describe(verdict, t_last, t_alpha, float(y[2, -1]) / system.alpha)
+        end_alpha = system.edge_alpha(1 if y[2, -1] >= 0 else -1)
+        message = describe(verdict, t_last, t_alpha, float(y[2, -1]) / end_alpha)
     elif status == "event-limit":
         message = f"stopped after {settings.max_events} events at t = {t_last:.6g} s (max_events)"
     else:

@@ -294,9 +294,7 @@ class _Integrator:
     def rests_still(self):
         """Whether the state cannot change while the block rests (a fixed base): the run then
         finds the first uplift from the motion itself (physics.first_uplift)."""
-        # physics.first_uplift reads one threshold g·tanα for both ways: a statue of two edges
-        # is integrated at rest like an isolated one, its uplift found as an event
-        return self.sys.fixed_base and not self.sys.asymmetric
+        return self.sys.fixed_base
 
     def begin(self, t, y, mode):
         """The mode the run starts in (a model that tells more than the corner refines it)."""
@@ -375,8 +373,8 @@ class _Integrator:
 
     def uplift_thresholds(self):
         """(g·tanα₊, g·tanα₋), raised by GRAZE_MARGIN after a grazing landing (physics.relift)."""
-        raise_by = 1.0 + (physics.GRAZE_MARGIN if self.graze else 0.0)
-        return self.sp[physics.THR] * raise_by, self.sp[physics.THR_NEG] * raise_by
+        thr = self.sp[physics.THR] * (1.0 + (physics.GRAZE_MARGIN if self.graze else 0.0))
+        return thr, physics.other_threshold(self.sp, thr)
 
     def rocking_events(self, s, t0, y0):
         alpha = self.sys.edge_alpha(s)

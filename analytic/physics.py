@@ -216,6 +216,15 @@ def uplift_direction(sp, a):
     return 0
 
 
+def other_threshold(sp, thr):
+    """The backward edge's uplift threshold (m/s²) for the forward edge's `thr`, raised alike
+    (GRAZE_MARGIN, a rest scale): thr itself for the rectangle (to the bit), thr·tanα₋/tanα₊
+    for a statue of two edges."""
+    if sp[THR_NEG] == sp[THR]:
+        return thr
+    return thr * sp[THR_NEG] / sp[THR]
+
+
 #: A block whose rocking phase ended while its base acceleration only grazed g·tanα
 #: re-lifts when |a| exceeds g·tanα·(1 + GRAZE_MARGIN): far above rounding, far below physics.
 GRAZE_MARGIN = 1e-8
@@ -698,9 +707,12 @@ def first_uplift(sp, mp, acc, t0, t1, margin):
     Already above the threshold at t0 lifts at t0. margin: the threshold is
     g·tanα·(1 + margin) (GRAZE_MARGIN after a grazing uplift stayed down)."""
     thr = sp[THR] * (1.0 + margin)
+    thr_neg = other_threshold(sp, thr)  # a statue of two edges: each its own (thr for the rectangle)
     xg0 = ground_acceleration(t0, mp, acc)
-    if abs(xg0) > thr:
-        return t0, (1 if xg0 < 0.0 else -1)
+    if xg0 < -thr:
+        return t0, 1
+    if xg0 > thr_neg:
+        return t0, -1
     kind = int(mp[KIND])
     if kind == SAMPLED:
         n = acc.size
@@ -713,18 +725,21 @@ def first_uplift(sp, mp, acc, t0, t1, margin):
             if ta > t1:
                 break
             a0, a1 = acc[i], acc[i + 1]
-            for sgn in (1.0, -1.0):  # a > thr lifts about O' (s = −1), a < −thr about O
-                c0, c1 = sgn * a0 - thr, sgn * a1 - thr
+            for sgn in (1.0, -1.0):  # a > thr₋ lifts about O' (s = −1), a < −thr about O
+                level = thr_neg if sgn > 0.0 else thr
+                c0, c1 = sgn * a0 - level, sgn * a1 - level
                 if c1 > 0.0 and c0 <= 0.0 or (c0 > 0.0 and c1 > 0.0):
                     f = 0.0 if c0 > 0.0 else c0 / (c0 - c1)
                     tc = ta + f * dt
                     if tc < t0:
                         tc = t0
-                    if tc <= t1 and (tc > t0 or abs(ground_acceleration(tc, mp, acc)) > thr):
+                    if tc <= t1 and (tc > t0 or sgn * ground_acceleration(tc, mp, acc) > level):
                         return tc, (-1 if sgn > 0.0 else 1)
             i += 1
         return t1, 0
     amp = abs(mp[SCALE] * mp[AMP])
+    if thr_neg != thr:
+        return _pulse_uplift_two_edges(sp, mp, t0, t1, thr, thr_neg, amp)
     if amp <= thr:
         return t1, 0
     r = thr / amp
@@ -753,6 +768,36 @@ def first_uplift(sp, mp, acc, t0, t1, margin):
         return t1, 0
     a = mp[SCALE] * pulse_acceleration(kind, mp[AMP], omega, mp[FREQ], min(best + 1e-12 / mp[FREQ], pend))
     return max(tc, t0), (1 if a < 0.0 else -1)
+
+
+def _pulse_uplift_two_edges(sp, mp, t0, t1, thr, thr_neg, amp):
+    """first_uplift of a closed-form pulse for a statue of two edges: each edge's crossings of
+    its own level (|pulse| = thr/amp or thr₋/amp, _pulse_crossings), kept where the pulse just
+    after the crossing lifts about that edge (a < −thr about O, a > thr₋ about O'); the earliest."""
+    shift, pend, omega, freq = mp[SHIFT], mp[PEND], mp[OMEGA], mp[FREQ]
+    kind = int(mp[KIND])
+    period = 2.0 * math.pi / omega if kind != RICKER else 0.0
+    tt0 = t0 + shift
+    k0 = math.floor(tt0 / period) if period > 0.0 else 0.0
+    dtt = 1e-9 * (period if period > 0.0 else 1.0 / freq)
+    base = np.zeros(6)
+    best, best_side = math.inf, 0
+    for side in (1, -1):
+        level = thr if side == 1 else thr_neg
+        if amp <= level:
+            continue
+        nb = _pulse_crossings(kind, omega, freq, level / amp, base)
+        for rep in range(3 if period > 0.0 else 1):
+            for q in range(nb):
+                tt = base[q] + (k0 + rep) * period
+                if tt < max(tt0, 0.0) or tt > pend or tt >= best:
+                    continue
+                after = mp[SCALE] * pulse_acceleration(kind, mp[AMP], omega, freq, min(tt + dtt, pend))
+                if (side == 1 and after < -level) or (side == -1 and after > level):
+                    best, best_side = tt, side
+    if best == math.inf or best - shift > t1:
+        return t1, 0
+    return max(best - shift, t0), best_side
 
 
 # --- pure translation of an isolated base, in closed form ----------------------------------
@@ -966,7 +1011,8 @@ def _oscillator_zeros(sp, wu, wv, sigma, c0, c1, bound, h, rising, out):
 
 def translation_uplift(sp, zu0, zv0, a0, a1, h, thr, a_end):
     """(τ, s): the first τ in [0, h] at which the base's absolute acceleration a(τ) =
-    a0 + a1·τ + (A z(τ))_v reaches −thr (s = 1, lifting about O) or +thr (s = −1, about O')
+    a0 + a1·τ + (A z(τ))_v reaches −thr (s = 1, lifting about O) or +thr₋ (s = −1, about O';
+    other_threshold: thr for the rectangle)
     from inside the band, in the closed form of a translation interval; (h, 0) if none.
     Already beyond the threshold at τ = 0 lifts at 0. a_end: a(h), as the caller has it
     from the end state (base_acceleration); it only lets the search be skipped when both
@@ -979,13 +1025,14 @@ def translation_uplift(sp, zu0, zv0, a0, a1, h, thr, a_end):
     best, side = h, 0
     for k in range(2):
         sigma = -1.0 if k == 0 else 1.0  # k = 0: a < −thr lifts about O (s = 1)
-        g0 = sigma * a_start - thr
+        level = thr if k == 0 else other_threshold(sp, thr)  # a > thr₋ lifts about O'
+        g0 = sigma * a_start - level
         if g0 > 0.0:
             return 0.0, (1 if k == 0 else -1)
-        if max(g0, sigma * a_end - thr) + bow < -1e-12 * thr:
+        if max(g0, sigma * a_end - level) + bow < -1e-12 * level:
             continue  # the common case: far inside the band
         zs = np.empty(1)
-        if (_oscillator_zeros(sp, wu, wv, sigma, sigma * a0 - thr, sigma * a1, bound, h, True, zs)
+        if (_oscillator_zeros(sp, wu, wv, sigma, sigma * a0 - level, sigma * a1, bound, h, True, zs)
                 and zs[0] < best):
             best, side = zs[0], (1 if k == 0 else -1)
     return best, side

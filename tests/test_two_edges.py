@@ -209,6 +209,36 @@ def test_the_separate_integrator_on_a_record():
     assert tr.theta_max_over_alpha == pytest.approx(per_edge * BODY.alpha(1) / fixed(BODY).alpha, rel=1e-12)
 
 
+@pytest.mark.parametrize("make, body, motion", [
+    (fixed, BODY, lambda sign: _record(sign)),
+    (fixed, BODY, lambda sign: load_motion("sine:amp=0.3,freq=1.5,cycles=3")),
+    # the Ricker's peak (0.6 g) lifts it about the backward edge (0.45 g), its lobes (0.27 g)
+    # about the forward one (0.25 g)
+    (fixed, BODY, lambda sign: load_motion("ricker:amp=0.6,freq=2")),
+    (isolated, STOCKY, _sine),
+    (isolated, STOCKY, lambda sign: _record(sign, amp=20.0)),
+    (lambda b: isolated(b, PENDULUM), STOCKY, _sine),
+], ids=["fixed-record", "fixed-sine", "fixed-ricker", "isolated-sine", "isolated-record", "pendulum"])
+def test_the_compiled_kernel_runs_two_edges_as_the_reference_does(make, body, motion):
+    """Both paths of the exact model on a statue of two edges: the compiled kernel's closed forms at
+    rest (a fixed base's first uplift from the motion itself, each edge its own threshold:
+    physics.first_uplift, _pulse_uplift_two_edges; an isolated base's closed-form translation,
+    physics.translation_uplift) and its events against SciPy's DOP853 with event location: the same
+    impacts and uplifts, the impacts' times to 1e-9 s, θ on the output grid both store to 1e-8 rad
+    (test_fast.py's limits for the rectangle)."""
+    from isorock.analytic.fast import compare_on_grid, simulate_fast
+    system, m = make(body), motion(1.0)
+    ref = simulate(system, m, duration=8.0)
+    fast = simulate_fast(system, m, duration=8.0)
+    assert ref.impact_count == fast.impact_count >= 2
+    assert len(ref.uplift_times) == len(fast.uplift_times) >= 1
+    assert np.allclose(ref.uplift_times, fast.uplift_times, atol=1e-9)
+    assert np.allclose([i.t for i in ref.impacts], [i.t for i in fast.impacts], atol=1e-9)
+    assert compare_on_grid(ref, fast) < 1e-8
+    assert fast.overturned == ref.overturned
+    assert fast.theta_max_over_alpha == pytest.approx(ref.theta_max_over_alpha, rel=1e-7)
+
+
 def test_the_energy_balance_on_an_isolated_base():
     tr = simulate(isolated(STOCKY), _sine(), duration=8.0)
     assert tr.impact_count >= 3 and not tr.overturned
@@ -225,7 +255,7 @@ def test_contact_engines_refuse_a_body_in_one_line():
             get_engine(engine).simulate(fixed(BODY), None, duration=1.0)
         assert "\n" not in str(e.value)
     tr = get_engine("analytic").simulate(fixed(BODY), None, duration=1.0, theta0=0.1)
-    assert tr.engine == "analytic-reference" and tr.impact_count >= 1  # the kernel hands it over, and says so
+    assert tr.engine == "analytic" and tr.impact_count >= 1
 
 
 def test_a_body_and_the_options_it_does_not_take():

@@ -194,9 +194,6 @@ def first_run_engines(loaded, system, motion, duration):
     out = []
     for label, engine, settings in loaded:
         why = first_run_reference(system, motion, duration) if engine.name == "analytic" else None
-        if engine.name == "analytic" and system.asymmetric:
-            why = ("a statue of two different edges runs on the same model on SciPy (analytic-reference): the "
-                   "compiled kernel takes the block H × B (docs/statues.md)")
         if why:
             print(f"isorock: {label}: {why}", file=sys.stderr, flush=True)
             engine = get_engine("analytic-reference")
