@@ -4,8 +4,8 @@ Engines (each a predictor of "specimen s overturned in test k"):
 - analytic:forward / analytic:backward — the rigid rocking model (isorock.analytic, fixed
   base) on the specimen's equivalent symmetric block of its forward (smaller α) or backward
   (larger α) rocking edge: the planar symmetric model cannot have both (see docs).
-- asymmetric:+x / asymmetric:-x — the rigid model of the rock's own two edges (α, R, I of
-  each, the impact law re-derived for an asymmetric body: asymmetric.py), the record along
+- asymmetric:+x / asymmetric:-x — the exact model of the rock's own two edges (α, R, I of
+  each, the impact law re-derived for two edges: System.body, asymmetric.py), the record along
   +x or −x of the rest pose.
 - mujoco:±x, bullet:±x, drake:±x — the rock's convex hull on a free joint
   (mujoco_models.mesh_scene, bullet_models.mesh_scene, drake_models.mesh_scene), the measured acceleration along +x
@@ -151,16 +151,16 @@ SIGNS = (("+x", 1.0), ("-x", -1.0))
 
 
 def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
-    """The asymmetric rigid model (asymmetric.py) with the rock's own two edges, the
-    acceleration along +x and along −x of the rest pose."""
+    """The exact model of the rock's own two edges (asymmetric.py: System.body), the acceleration
+    along +x and along −x of the rest pose."""
     from . import asymmetric
-    params = asymmetric.parameters(spec)
+    rock = asymmetric.system(spec)
     out = {}
     for name, sign in SIGNS:
         rows = {}
         for test, a in accel.items():
             start = time.perf_counter()
-            over, peak, _ = asymmetric.simulate(params, sign * a, dt[test], pad=PAD)
+            over, peak, _ = asymmetric.simulate(rock, sign * a, dt[test], pad=PAD)
             rows[test] = (bool(over), OVERTURNED_SCORE if over else float(peak), time.perf_counter() - start)
         out[f"asymmetric:{name}"] = rows
     return out

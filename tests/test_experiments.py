@@ -431,7 +431,7 @@ def test_overturning_scale_needs_the_analytic_engine_and_is_scored_by_the_comman
 # --- the asymmetric rigid model -----------------------------------------------------------
 
 def test_asymmetric_impact_map_reduces_to_housner_for_a_rectangle():
-    from isorock.experiments.asymmetric import impact_ratio
+    from asymmetric_rk4 import impact_ratio
     h, b, m = 0.6, 0.15, 10.0
     R = math.hypot(h, b)
     alpha = math.atan2(b, h)
@@ -448,7 +448,7 @@ def test_asymmetric_model_of_a_rectangle_agrees_with_the_exact_analytic_model():
     engine (event-located impacts, rtol 1e-10) against the asymmetric model's RK4."""
     from isorock.analytic.motion import GroundMotion
     from isorock.analytic.system import System
-    from isorock.experiments import asymmetric
+    import asymmetric_rk4 as asymmetric
     from isorock.validate.core.engines import get_engine
     from isorock.validate.core.tolerances import tolerance
     H, B, m = 0.7, 0.2, 100.0
@@ -475,7 +475,7 @@ def test_asymmetric_free_rocking_follows_the_energy_balance_across_an_impact():
     m g R_f (cos(α_f − φ) − cos α_f) equals ½ I_f ω'², or overturns when that energy passes
     the forward edge's barrier m g R_f (1 − cos α_f). Exercises the impact's location, the map
     on the right edge, and the switch of α, R and I."""
-    from isorock.experiments import asymmetric
+    import asymmetric_rk4 as asymmetric
     from isorock.validate.core.tolerances import tolerance
     m, h, bf, bb = 50.0, 0.5, 0.05, 0.2
     I_c = m * (h * h + ((bf + bb) / 2) ** 2) / 3
@@ -506,7 +506,7 @@ def test_asymmetric_model_of_the_forward_block_agrees_with_the_exact_model_on_re
     the verdict, and θmax/α of a standing run within its tolerance."""
     from isorock.analytic.motion import GroundMotion
     from isorock.analytic.system import System
-    from isorock.experiments import asymmetric
+    import asymmetric_rk4 as asymmetric
     from isorock.validate.core.engines import get_engine
     from isorock.validate.core.tolerances import tolerance
     tol = tolerance("asymmetric", "theta_max_diff").limit

@@ -8,7 +8,7 @@ Independent oracles:
 - the mirror law: the body (b₊, b₋) under ẍg(t) is the body (b₋, b₊) under −ẍg(t) with θ → −θ;
 - free rocking on a fixed base: the time to the first impact by quadrature of the energy
   integral, and the peak on the other edge from the energy after the impact;
-- a separate integrator written from the same equations (experiments/asymmetric.py: RK4 with its
+- a separate integrator written from the same equations (tests/asymmetric_rk4.py: RK4 with its
   impacts located in the step) on a record: the peak φ/α per edge, impacts and the verdict;
 - the energy balance on an isolated base.
 """
@@ -187,10 +187,10 @@ def test_free_rocking_first_impact_and_next_peak_from_energy(start_side):
 
 
 def test_the_separate_integrator_on_a_record():
-    """experiments/asymmetric.py integrates the same body by RK4, its impacts located inside the
+    """tests/asymmetric_rk4.py integrates the same body by RK4, its impacts located inside the
     step (written from the equations apart from analytic/): the same verdict, the peak φ/α per
     edge to its O(h⁴) step error (measured 2e-7), and as many impacts."""
-    from isorock.experiments import asymmetric
+    import asymmetric_rk4 as asymmetric
     record = _record(1.0, seed=11, amp=5.0)
     tr = simulate(fixed(BODY), record, duration=record.end_time + 3.0)
     i_c, h = BODY.inertia, BODY.centre_height

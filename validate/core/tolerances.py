@@ -127,14 +127,16 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
               "docs/scripts/kernel_isolator_agreement.py)"),
     # --- the asymmetric planar model (experiments/asymmetric.py) against the exact model --------
     ("asymmetric", "theta_max_diff"): Tolerance(
-        1e-4, "|Δ θmax/α| of the asymmetric model run as a symmetric block against the exact model on a "
+        1e-4, "|Δ θmax/α| of the RK4 oracle of two edges (tests/asymmetric_rk4.py) run as a symmetric block "
+              "against the exact model on a "
               "measured record (docs/scripts/asymmetric_agreement.py): impacts located to rounding within "
               "RK4 steps of 1/8 of a sample, so only RK4's O(h⁴) flight error remains, carried through up to "
               "hundreds of impacts; measured ≤ 5e-6 on the 587 of 610 records whose exact θmax/α holds within this "
               "limit under the record scaled by 1 ± 1e-10 (the others are chaotic at rounding level: no "
               "integrator is held to them)"),
     ("asymmetric", "free_rocking_peak_diff"): Tolerance(
-        1e-6, "|Δ peak φ/α| of free rocking on an asymmetric body against its energy balance in closed form "
+        1e-6, "|Δ peak φ/α| of the RK4 oracle's free rocking on an asymmetric body against its energy balance "
+              "in closed form "
               "(one half-cycle, one impact): RK4 at 1/8 of a 1.25 ms sample has a local error ~(p·h)⁵ and "
               "the peak is read at step ends (~½·φ̈·h², 1e-8 rad); measured ≤ 3e-8"),
     # --- MuJoCo (default Settings; measured values from the full report, 2026-11) ------
