@@ -168,6 +168,13 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
               "its bootstrap interval (core.verdict); as a single history's θmax/α: β within 1% per impact "
               "over ~10 impacts moves a peak by ~1%; measured ≤ 0.004"),
     **{("mujoco", m): t for m, t in _ENSEMBLE_OVERTURN.items()},
+    ("mujoco", "hull_theta_max_rel_error"): Tolerance(
+        0.02, "|θmax/θmax_exact − 1| of a statue's convex hull on a free joint (the shake-table scene, "
+              "EngineSpec.simulate_body) against the exact model of its two edges, one sine cycle along the "
+              "direction it tips first (docs/scripts/hull_two_edges.py): measured ≤ 0.2% on the bust at 1× and 3× "
+              "and ≤ 1.2% on the obelisk at 0.5×–3×; not met, and not judged, on the 0.5× bust (+65%: the "
+              "scene's 4 ms contact is soft for a 0.25 m statue) and the amphora (+16% to +102%: its round foot "
+              "rocks about a vertex, in 3-D, which the planar model cannot)"),
     ("mujoco", "beta_rel_error_per_impact"): Tolerance(
         0.01, "measured ≤ 0.7% over θ0 = 0.3–0.8α, λ 2.857 and 5, fixed and μ = 1 (docs/mujoco.md)"),
     ("mujoco", "rest_tilt"): Tolerance(
