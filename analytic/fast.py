@@ -312,6 +312,15 @@ def _sp_tuple(a):
 
 
 @njit(inline="always")
+def _tilt_share(sp, theta):
+    """|θ| against its own edge's α, as a tilt of the weaker edge: θmax/α of a statue of two
+    edges is the larger of θ⁺/α₊ and θ⁻/α₋ (Trajectory.theta_max_over_alpha); |θ| itself for the
+    rectangle (α/α is 1 to the bit)."""
+    alpha = _edge(sp, 1.0 if theta >= 0.0 else -1.0, _ALPHA, _ALPHA_NEG)
+    return abs(theta) * (min(sp[_ALPHA], sp[_ALPHA_NEG]) / alpha)
+
+
+@njit(inline="always")
 def _mp_tuple(a):
     """The packed motion parameters of the current piece as a tuple (see _sp_tuple)."""
     return (a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7], a[8], a[9], a[10], a[11], a[12], a[13])
@@ -1205,7 +1214,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
             n_out += 1
         if mode != 0:
             peak = max(peak, abs(y[2]))
-            th_max = max(th_max, abs(y[2]))
+            th_max = max(th_max, _tilt_share(sp, y[2]))
         u_max = max(u_max, abs(y[0]))
         demand = max(demand, _pivot_ratio(sp, mode, y[2], y[3], y[0], y[1], _xgp(t, mpt), iso))
         kg = math.ceil(t / odt - 1e-9)
@@ -1361,7 +1370,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     last_t = tq
                     if mode != 0:
                         peak = max(peak, abs(yq[2]))
-                        th_max = max(th_max, abs(yq[2]))
+                        th_max = max(th_max, _tilt_share(sp, yq[2]))
                     u_max = max(u_max, abs(yq[0]))
                     demand = max(demand, _pivot_ratio(sp, mode, yq[2], yq[3], yq[0], yq[1], _xgp(tq, mpt), iso))
             else:
@@ -1371,7 +1380,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                     _dense_all(F, y, t_old, h, roots[k], yq, mode != 0)
                     if mode != 0:
                         peak = max(peak, abs(yq[2]))
-                        th_max = max(th_max, abs(yq[2]))
+                        th_max = max(th_max, _tilt_share(sp, yq[2]))
                     u_max = max(u_max, abs(yq[0]))
                     demand = max(demand, _pivot_ratio(sp, mode, yq[2], yq[3], yq[0], yq[1],
                                                       _xgp(roots[k], mpt), iso))
@@ -1394,7 +1403,7 @@ def _integrate(sp, mp, acc, breaks, T, y_init, rtol, atol, max_step, max_events,
                 last_t = t_stop
             if mode != 0:
                 peak = max(peak, abs(yq[2]))
-                th_max = max(th_max, abs(yq[2]))
+                th_max = max(th_max, _tilt_share(sp, yq[2]))
             u_max = max(u_max, abs(yq[0]))
             if mode != 0 and term < 0:  # the step's end: its last stage has ü and θ̈ there
                 demand = max(demand, _friction_rocking(sp, s, yq[2], yq[3], K[12, 1], K[12, 3],
@@ -1827,9 +1836,6 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
     systems = _as_list(systems, System, "systems")
     for system in systems:
         _check_isolator(system)
-        if system.asymmetric:
-            raise InputError("body: a statue of two different edges runs one at a time on the reference path "
-                             "(analytic.hybrid: engine 'analytic-reference'); the compiled batch takes the rectangle")
     motions = _as_list(motions if motions is not None else GroundMotion.zero(), GroundMotion, "motions")
     case_sys, case_mot = _cases(systems, motions, product)
     n = case_sys.size
@@ -1840,12 +1846,14 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
     T = _per_case(duration, n, "duration")
     require(bool(np.all(T > 0)), "duration", duration, "positive")
     th0 = _per_case(theta0, n, "theta0")
-    alphas = np.array([s.alpha for s in systems])
-    bad = np.abs(th0) >= alphas[case_sys]
+    # θ0 below the α of the edge it tilts onto (a statue's two edges differ)
+    edge_alphas = np.array([[s.edge_alpha(1), s.edge_alpha(-1)] for s in systems])
+    limit = np.where(th0 >= 0, edge_alphas[case_sys, 0], edge_alphas[case_sys, 1])
+    bad = np.abs(th0) >= limit
     if bad.any():
         k = int(np.argmax(bad))
         raise InputError(f"theta0 = {th0[k]!r} (case {k}): must be smaller than α = "
-                         f"{alphas[case_sys[k]]:.6g} rad in magnitude")
+                         f"{limit[k]:.6g} rad in magnitude")
     require(0 <= impact_threshold < 1, "impact_threshold", impact_threshold, "in [0, 1)")
     if workers is not None:
         require(isinstance(workers, int) and workers >= 1, "workers", workers, "a positive integer")

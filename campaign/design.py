@@ -22,14 +22,14 @@ and says how far it agrees.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from isorock.analytic.errors import InputError, python_number
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, BallInBowl, BallInCone,
-                                     FrictionPendulum, System)
+                                     FrictionPendulum, PlanarBody, System)
 from isorock.validate.core.cases import Case, _LazyScaled, record_factor
 
 #: The engine that answers the design question (the compiled kernel).
@@ -144,6 +144,11 @@ class Statue:
     #: it may walk on the plinth before it walks off (m; None: not asked)
     friction: float | None = None
     plinth_margin: float | None = None
+    #: a statue of two different tipping edges (its mesh along the shaking direction:
+    #: System.body, docs/statues.md); None: the block H × B
+    body: PlanarBody | None = None
+    #: what the statue is, for the report (its mesh's file, or an example's name)
+    name: str | None = None
 
     def __post_init__(self):
         self.fixed()  # the block's own checks, its friction's too
@@ -157,11 +162,21 @@ class Statue:
                 raise InputError(f"plinth-margin = {self.plinth_margin!r}: must be a positive finite length, m")
 
     def fixed(self) -> System:
-        return System.fixed(height=self.height, width=self.width, mass=self.mass).with_friction(self.friction)
+        return self.carried(System.fixed(height=self.height, width=self.width, mass=self.mass))
+
+    def carried(self, system: System) -> System:
+        """`system` (its base, its isolator) carrying this statue: its friction, its two edges."""
+        return replace(system, body=self.body).with_friction(self.friction)
 
     @property
     def label(self) -> str:
         s = self.fixed()
+        if self.body is not None:
+            e = self.body
+            return (f"{self.name or 'a statue of two edges'}: centre of mass {e.centre_height:.3g} m up, edges "
+                    f"{e.lever_forward:.3g} m and {e.lever_backward:.3g} m from it (α₊ {e.alpha(1):.3g}, α₋ "
+                    f"{e.alpha(-1):.3g} rad), m {self.mass:.4g} kg on a {self.base_mass:.4g} kg base "
+                    f"(μ = {self.mass / self.base_mass:.3g})")
         return (f"H {self.height:g} m, B {self.width:g} m (λ = H/B = {s.slenderness:.3g}, α = {s.alpha:.3g} rad), "
                 f"m {self.mass:g} kg on a {self.base_mass:g} kg base (μ = {self.mass / self.base_mass:.3g})"
                 + ("" if self.friction is None else f", statue friction μ_s {self.friction:g}"
@@ -199,9 +214,8 @@ class Family:
         raise NotImplementedError
 
     def system(self, statue: Statue, x: float, y: float) -> System:
-        return System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
-                                    base_mass=statue.base_mass, isolator=self.isolator(x, y)).with_friction(
-                                        statue.friction)
+        return statue.carried(System.with_isolator(height=statue.height, width=statue.width, mass=statue.mass,
+                                                   base_mass=statue.base_mass, isolator=self.isolator(x, y)))
 
 
 @dataclass(frozen=True)
@@ -221,8 +235,8 @@ class LinearFamily(Family):
 
     def system(self, statue: Statue, x: float, y: float) -> System:
         # given by period and damping ratio, which the System derives k and c from
-        return System.isolated(height=statue.height, width=statue.width, mass=statue.mass,
-                               base_mass=statue.base_mass, period=x, damping_ratio=y).with_friction(statue.friction)
+        return statue.carried(System.isolated(height=statue.height, width=statue.width, mass=statue.mass,
+                                              base_mass=statue.base_mass, period=x, damping_ratio=y))
 
 
 @dataclass(frozen=True)

@@ -62,7 +62,9 @@ def chart(d: Design, target: float, max_stroke: float | None, path) -> None:
     cbar.ax.set_yticklabels([f"{100 * v:g}%" for v in P_BANDS])
     ax.set_xlabel(fam.x_label)
     ax.set_ylabel(fam.y_label)
-    ax.set_title(f"{d.statue.height:g} × {d.statue.width:g} m statue, μ = {d.statue.mass / d.statue.base_mass:.3g}: "
+    shape = (f"{d.statue.name or 'statue'} (α₊ {d.statue.body.alpha(1):.3g}, α₋ {d.statue.body.alpha(-1):.3g} rad)"
+             if d.statue.body is not None else f"{d.statue.height:g} × {d.statue.width:g} m statue")
+    ax.set_title(f"{shape}, μ = {d.statue.mass / d.statue.base_mass:.3g}: "
                  f"fixed base P = {_pct(d.p_hazard()[0])}\nblue: recommended (P ≤ {_pct(target)}"
                  + (f", stroke ≤ {max_stroke:g} m" if max_stroke is not None else "")
                  + f"); lines: 84th-pct stroke at {h.levels[-1]:g} g", fontsize=9)
@@ -234,7 +236,9 @@ def write_design(d: Design, target: float, max_stroke: float | None, folder: Pat
                       "base_mass": d.statue.base_mass,
                       # the statue that may slip, as designed for (without them the file read as one that cannot)
                       **({} if d.statue.friction is None else {"friction": d.statue.friction}),
-                      **({} if d.statue.plinth_margin is None else {"plinth_margin": d.statue.plinth_margin})},
+                      **({} if d.statue.plinth_margin is None else {"plinth_margin": d.statue.plinth_margin}),
+                      # a statue's mesh: its two edges along the direction designed for
+                      **({} if d.statue.body is None else {"name": d.statue.name, "body": d.statue.body.describe()})},
            "hazard": {"records": h.names, "source": h.source, "pga_levels": list(h.levels),
                       "level_weights": list(h.weights)},
            "family": {"isolator": fam.kind, "x": fam.x_name, "x_values": list(fam.x_values), "y": fam.y_name,

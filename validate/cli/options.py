@@ -211,7 +211,7 @@ def add_statue_options(p: argparse.ArgumentParser) -> None:
                    "(default: the direction it tips first)")
 
 
-def _statue_body(a):
+def statue_body(a):
     """(mass, PlanarBody) of the statue's mesh along the shaking direction; None without one."""
     import math
     from isorock.analytic import shape
@@ -224,11 +224,13 @@ def _statue_body(a):
         return None
     if path is not None and example is not None:
         raise InputError("statue: give its mesh (--statue FILE) or --statue-example NAME, one of the two")
-    for name in ("height", "width"):
+    for name in ("height", "width", "slenderness"):
         if given(getattr(a, name, None)):
             raise InputError(f"--{name} = {getattr(a, name)!r}: the statue's mesh gives its shape; leave --{name} out")
-    if given(getattr(a, "statue_friction", None)):
-        raise InputError("--statue-friction: the sliding model takes the block H × B, not a statue's mesh yet")
+    for name in ("statue_friction", "friction"):
+        if given(getattr(a, name, None)):
+            raise InputError(f"--{name.replace('_', '-')}: the sliding model takes the block H × B, not a statue's "
+                             "mesh yet")
     mass = a.mass if given(a.mass) else None
     if (mass is None) == (a.density is None):
         raise InputError("statue: give its --mass (kg) or its --density (kg/m³), one of the two")
@@ -256,7 +258,7 @@ def system_from_args(a, *, default_isolator=None):
     """The System the options describe; `default_isolator` (period, damping ratio)
     is used when no isolator option is given (the scene command's paper defaults). With a
     statue's mesh (add_statue_options), its two edges along the shaking direction."""
-    statue = _statue_body(a)
+    statue = statue_body(a)
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
     if statue is not None:
         mass, body = statue
