@@ -81,8 +81,9 @@ def verdict(label: str, s: dict) -> str:
              f"backward at {b['uplift_g']:.3g} g, α {b['alpha']:.4g} rad, R {b['R']:.4g} m, I_O {b['I_O']:.4g} kg·m², "
              f"p {b['p']:.4g} rad/s."]
     if abs(f["alpha"] - b["alpha"]) > 1e-9 * max(f["alpha"], b["alpha"]):
-        lines.append("Its two edges differ: `isorock run --statue FILE` runs the exact model of both (the analytic "
-                     "engines); validate, design and the contact engines take the block H × B still (issue 36).")
+        lines.append("Its two edges differ: `isorock run --statue FILE` and `isorock design --statue FILE` take the "
+                     "exact model of both (the analytic engines); validate and the contact engines take the block H × B "
+                     "still (issue 36).")
     return "\n".join(lines)
 
 

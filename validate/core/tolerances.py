@@ -266,6 +266,12 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
                "measured ≤ 0.7 ms"),
     ("bullet", "overturn_agree"): Tolerance(
         1, "robust histories only: overturning does not flip under ±1% PGA there", kind="equal"),
+    ("bullet", "hull_theta_max_rel_error"): Tolerance(
+        0.02, "as MuJoCo's, the same scene and pulses (docs/scripts/hull_two_edges.py); NOT MET and not tested "
+              "as agreement: PyBullet's hull scene (its rock settings, restitution 0.3) peaks 87–99% below the "
+              "exact model of two edges on the bust and the obelisk at every size, and overturns the 0.5× and 1× "
+              "amphora where the model stands; restitution 0 or a 1e-4 m collision margin do not change it "
+              "(docs/statues.md, \"The contact engines on the hull\")"),
     ("bullet", "beta_rel_error_per_impact"): Tolerance(
         0.01, "measured ≤ 0.38% over the first four impacts of five free-rocking cases (docs/bullet.md)"),
     ("bullet", "rest_tilt"): Tolerance(
