@@ -68,6 +68,9 @@ def test_a_file_is_read_in_its_unit_and_every_output_is_written(tmp_path, capsys
     (["FILE.stl", "--mass", "80"], "needs --unit"),
     (["FILE.stl", "--example", "bust", "--mass", "80"], "one of the two"),
     (["missing.stl", "--unit", "m", "--mass", "80"], "cannot be read"),
+    (["--example", "bust", "--mass", "80", "--motion", "none"], "zero throughout"),
+    (["--example", "bust", "--mass", "80", "--units", "g"], "needs --motion"),
+    (["--example", "bust", "--mass", "80", "--motion", "missing.at2"], "missing.at2"),
 ])
 def test_bad_input_is_one_line_and_exit_2(args, says, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
@@ -128,3 +131,31 @@ def test_run_with_a_statue_refuses_in_one_line(args, says, capsys, tmp_path, mon
     code = main(["run", *args, "--fixed-base", "--motion", "sine:amp=0.5,freq=2,cycles=1"])
     err = capsys.readouterr().err.strip()
     assert code == 2 and says in err and len(err.splitlines()) == 1, err
+
+
+def test_the_direction_sweep_of_a_box_is_the_rectangles_own_overturning_pga(tmp_path, capsys):
+    """`isorock statue BOX --motion SPEC`: a 0.35 × 0.5 × 1.2 m box shaken along its x (0°) is the
+    exact model's rectangle H 1.2 m, B 0.35 m, and along 90° the rectangle of B 0.5 m: the lowest
+    PGA of the sweep's levels that overturns each, found here by running those rectangles directly
+    (System(height, width) on a fixed base, never built from the mesh)."""
+    from isorock.analytic.fast import simulate_fast
+    from isorock.analytic.motion import load_motion
+    from isorock.analytic.system import System
+    box = trimesh.creation.box(extents=(0.35, 0.5, 1.2))
+    box.apply_translation((0.0, 0.0, 0.6))
+    path = tmp_path / "box.stl"
+    box.export(path)
+    spec = "ricker:amp=1,freq=1.5"
+    code = main(["statue", str(path), "--unit", "m", "--density", "2000", "--motion", spec, "--json", "-"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    d = json.loads(out.out)["overturning_by_azimuth"]
+    motion = load_motion(spec)
+    for azimuth, width in ((0.0, 0.35), (90.0, 0.5), (180.0, 0.35)):
+        k = d["azimuth_deg"].index(azimuth)
+        block = System.fixed(height=1.2, width=width, mass=0.35 * 0.5 * 1.2 * 2000)
+        want = next((lv for lv in d["levels_g"] if simulate_fast(block, motion.scaled_to_pga(lv),
+                                                                 duration=motion.end_time + 5.0).overturned), None)
+        assert want is not None and d["overturning_pga_g"][k] == pytest.approx(want, rel=1e-12), (azimuth, want)
+    assert d["worst"]["pga_g"] == min(p for p in d["overturning_pga_g"] if p is not None)
+    assert "first overturns at" in out.err and "1,764 runs" in out.err
