@@ -433,3 +433,33 @@ def test_a_design_of_a_statue_of_two_edges_is_its_runs_one_by_one():
                     assert abs(d.u_max[k, r, li] - tr.u_max) <= 1e-6 * max(tr.u_max, 1e-9), (k, name, level)
                 differs.add(tr.overturned)
     assert differs == {True, False}  # both verdicts occur: the comparison means something
+
+
+def test_the_worst_direction_is_where_the_fixed_base_overturns_most_often_run_by_run():
+    """campaign.design.worst_direction (design --statue's default direction) against direct runs:
+    for each of its 36 directions the bust's two edges along it on a fixed base under every record
+    and level of a small hazard (simulate_fast one run at a time), P over the hazard weighted by
+    hand; the direction chosen has the largest, and its P is that one's."""
+    trimesh = pytest.importorskip("trimesh")  # noqa: F841 — the example's mesh is made by trimesh
+    from dataclasses import replace
+    from isorock.analytic import shape
+    from isorock.analytic.system import PlanarBody
+    from isorock.campaign.design import DIRECTIONS, worst_direction
+    resting = shape.standing(*shape.example_statue("bust"), mass=80.0)
+    hazard = Hazard(dict(list(RECORDS.items())[:2]), (0.5, 0.9), (1.0, 3.0))
+    statue = Statue(height=0.448, width=0.24, mass=80.0, base_mass=150.0, body=PlanarBody.from_resting(resting))
+    w = worst_direction(resting, statue, hazard, TAIL)
+    start = shape.weakest_direction(resting)[0]
+    weights = np.array([1.0, 3.0]) / 4.0
+    p = []
+    for k in range(DIRECTIONS):
+        body = PlanarBody.from_resting(resting.along(start + 2 * math.pi * k / DIRECTIONS))
+        system = replace(System.fixed(height=1.0, width=0.3, mass=80.0), body=body)
+        over = np.array([[simulate_fast(system, unit_scaled(hazard.records[n], lv),
+                                        duration=hazard.records[n].end_time + TAIL).overturned
+                          for lv in hazard.levels] for n in hazard.names])
+        p.append(float(over.mean(axis=0) @ weights))
+    assert max(p) > min(p)  # the directions differ: the choice means something
+    assert w["p_hazard"] == pytest.approx(max(p), abs=1e-15)
+    assert w["p_hazard"] == pytest.approx(p[int(np.argmax(p))], abs=1e-15)
+    assert list(w["p_by_azimuth"].values()) == pytest.approx(p, abs=1e-15)

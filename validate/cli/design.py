@@ -200,7 +200,22 @@ def statue_from_args(a, config: dict):
                   base_mass=float(base_mass), **_slip(a, table))
 
 
-def _slip(a, table: dict) -> dict:
+def along_worst_direction(a, statue, hazard):
+    """The statue's mesh along the shaking direction in which it overturns most often on a fixed
+    base under the hazard (campaign.design.worst_direction), said on stderr."""
+    from dataclasses import replace
+    from isorock.campaign.design import DIRECTIONS, worst_direction
+    if not a.quiet:
+        print(f"isorock design: the worst of {DIRECTIONS} shaking directions for the statue's mesh on a fixed base: "
+              f"{DIRECTIONS * len(hazard.names) * len(hazard.levels):,} runs", file=sys.stderr, flush=True)
+    w = worst_direction(a.statue_resting, statue, hazard, a.tail)
+    body = w["body"]
+    return replace(statue, body=body, height=2.0 * body.centre_height, width=body.lever_forward + body.lever_backward,
+                   name=f"{statue.name}, shaken along {w['azimuth_deg']:.0f}° (of {DIRECTIONS} directions the one "
+                        f"where its fixed base overturns most often: P {100 * w['p_hazard']:.1f}%)")
+
+
+
     """The statue's friction (the option over the file's [system] statue_friction) and its plinth margin, checked
     as the System checks them, named as their options."""
     from isorock.analytic.system import System
@@ -296,6 +311,8 @@ def cmd_design(a) -> int:
     with Outputs() as outputs:
         folder = outputs.folder("out", a.out)  # a folder we may not write is refused before the work
         hazard, record_paths = hazard_from_args(a, config)
+        if statue.body is not None and a.azimuth is None:  # a statue's mesh: its worst direction (issue 36)
+            statue = along_worst_direction(a, statue, hazard)
         n_runs = check_size(family, hazard, a.tail)
         check_engines_carry(statue, family, hazard, checks, a.tail)  # each --check engine, before any work
         from isorock.analytic.limits import available_cores

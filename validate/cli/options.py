@@ -251,6 +251,7 @@ def statue_body(a):
     if a.azimuth is not None and not math.isfinite(a.azimuth):
         raise InputError(f"--azimuth = {a.azimuth!r}: must be a finite number of degrees")
     azimuth = shape.weakest_direction(standing)[0] if a.azimuth is None else math.radians(a.azimuth)
+    a.statue_resting = standing  # for a command that chooses the direction itself (design: the worst)
     return standing.mass, PlanarBody.from_resting(standing.along(azimuth))
 
 
