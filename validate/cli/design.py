@@ -215,7 +215,7 @@ def along_worst_direction(a, statue, hazard):
                         f"where its fixed base overturns most often: P {100 * w['p_hazard']:.1f}%)")
 
 
-
+def _slip(a, table: dict) -> dict:
     """The statue's friction (the option over the file's [system] statue_friction) and its plinth margin, checked
     as the System checks them, named as their options."""
     from isorock.analytic.system import System
