@@ -4,7 +4,7 @@ module named in a string for importlib) goes down the building or stays on its f
 never up; every installed module stands on a floor. The floors (README, Layout):
 
     0  analytic/                          the model and the vocabulary every engine speaks
-    1  mujoco_models/ bullet_models/ drake_models/   the engines (they import the model only)
+    1  mujoco_models/ bullet_models/ drake_models/ dart_models/   the engines (they import the model only)
     2  validate/core/                     registry, cases, measure, compare, tolerances, executor
     3  validate/io/                       outputs, provenance, progress, figures
     4  validate/tools/ campaign/ experiments/   the tools: report, bench, stress, atlas, …
@@ -31,6 +31,7 @@ FLOORS = {
     "mujoco_models": (1, "mujoco_models"),
     "bullet_models": (1, "bullet_models"),
     "drake_models": (1, "drake_models"),
+    "dart_models": (1, "dart_models"),
     "validate.core": (2, "validate/core"),
     "validate.io": (3, "validate/io"),
     "validate.tools": (4, "validate/tools"),
@@ -40,7 +41,7 @@ FLOORS = {
     # the top package `isorock` (api/): the notebook API's entry points, over the command line
     "isorock": (6, "api"),
 }
-ENGINES = ("mujoco_models", "bullet_models", "drake_models")
+ENGINES = ("mujoco_models", "bullet_models", "drake_models", "dart_models")
 
 
 def package_of(module: str) -> str | None:

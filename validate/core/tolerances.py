@@ -330,6 +330,17 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
         5e-3, "as for MuJoCo: a slope of −M·ü against u; the spring and element forces held over a control "
               "step; measured 1.4e-3 (regime I), 2.4e-5 (II)"),
     # --- Drake (default Settings: continuous Radau3, point contact on corner spheres) ----
+    # --- DART (dart_models/, the optional dart extra; docs/dart.md, docs/scripts/dart_check.py) --------
+    ("dart", "beta_rel_error"): Tolerance(
+        0.005, f"{_MODEL}: FCL's box–box contact and DART's LCP at a 0.1 ms step, restitution 0; measured ≤ 0.18% "
+               "over the first 4 impacts from 0.5α at H 0.2 m (the smallest block: its contact depth is the "
+               "largest share of it), ≤ 0.09% at 2 m and 10 m, fixed and isolated"),
+    ("dart", "first_impact_time_rel_error"): Tolerance(
+        0.001, "the block starts at rest on its corner and lands on the plate's box; measured ≤ 0.008%"),
+    ("dart", "impacts_diff"): Tolerance(1, "as MuJoCo's and PyBullet's: one impact near the counting threshold"),
+    ("dart", "theta_max_diff"): Tolerance(
+        0.02, "as MuJoCo's and PyBullet's, on the paper's pulses; measured ≤ 7e-4"),
+    ("dart", "first_uplift_diff"): Tolerance(0.005, "as the other contact engines' (s); measured ≤ 6e-5 s"),
     ("drake", "beta_rel_error"): Tolerance(
         0.004, f"{_MODEL}: Hunt–Crossley k 1e10, accuracy 1e-3 gives β within 0.07% fixed / 0.23% "
                "isolated over θ0 = 0.3–0.8α; measured ≤ 0.14% on the first 4 impacts from 0.5α "
