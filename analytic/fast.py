@@ -235,7 +235,7 @@ def _compile_physics():
               "pinned_rocking_accelerations", "isolator_base_acceleration", "stick_demand", "stick_limit",
               "slip_power", "slip_force", "rigid_demand", "element_hold", "slip_phase", "slider_position",
               "hidden_crossing", "vertex_function", "edge", "landing_side", "other_threshold")
-    for name in ("edge", "landing_side", "other_threshold", "_pulse_uplift_two_edges", "ground_acceleration",
+    for name in ("edge", "landing_side", "other_threshold", "ground_acceleration",
                  "piece_acceleration", "record_piece", "pulse_acceleration",
                  "translation_acceleration",
                  "rocking_accelerations", "rocking_accelerations_with", "base_acceleration", "uplift_direction",

@@ -738,52 +738,18 @@ def first_uplift(sp, mp, acc, t0, t1, margin):
             i += 1
         return t1, 0
     amp = abs(mp[SCALE] * mp[AMP])
-    if thr_neg != thr:
-        return _pulse_uplift_two_edges(sp, mp, t0, t1, thr, thr_neg, amp)
-    if amp <= thr:
-        return t1, 0
-    r = thr / amp
-    shift, pend, omega = mp[SHIFT], mp[PEND], mp[OMEGA]
-    base = np.zeros(6)
-    nb = _pulse_crossings(kind, omega, mp[FREQ], r, base)
-    period = 2.0 * math.pi / omega if kind != RICKER else 0.0
-    # candidate crossings: the base ones plus whole periods, from the period holding t0
-    tt0 = t0 + shift
-    k0 = math.floor(tt0 / period) if period > 0.0 else 0.0
-    best = math.inf
-    for rep in range(3 if period > 0.0 else 1):
-        for q in range(nb):
-            tt = base[q] + (k0 + rep) * period
-            if tt < max(tt0, 0.0) or tt > pend:
-                continue
-            # a rising crossing of |a|: just after it |a| exceeds the threshold
-            dtt = 1e-9 * (period if period > 0.0 else 1.0 / mp[FREQ])
-            after = abs(pulse_acceleration(kind, amp, omega, mp[FREQ], min(tt + dtt, pend)))
-            if after > thr and tt < best:
-                best = tt
-    if best == math.inf:
-        return t1, 0
-    tc = best - shift
-    if tc > t1:
-        return t1, 0
-    a = mp[SCALE] * pulse_acceleration(kind, mp[AMP], omega, mp[FREQ], min(best + 1e-12 / mp[FREQ], pend))
-    return max(tc, t0), (1 if a < 0.0 else -1)
-
-
-def _pulse_uplift_two_edges(sp, mp, t0, t1, thr, thr_neg, amp):
-    """first_uplift of a closed-form pulse for a statue of two edges: each edge's crossings of
-    its own level (|pulse| = thr/amp or thr₋/amp, _pulse_crossings), kept where the pulse just
-    after the crossing lifts about that edge (a < −thr about O, a > thr₋ about O'); the earliest."""
     shift, pend, omega, freq = mp[SHIFT], mp[PEND], mp[OMEGA], mp[FREQ]
-    kind = int(mp[KIND])
     period = 2.0 * math.pi / omega if kind != RICKER else 0.0
+    # candidate crossings of each edge's level (the rectangle's one level serves both ways): the
+    # base ones plus whole periods, from the period holding t0; a rising crossing of |a| lifts the
+    # block about the edge whose threshold the pulse passes just after it
     tt0 = t0 + shift
     k0 = math.floor(tt0 / period) if period > 0.0 else 0.0
     dtt = 1e-9 * (period if period > 0.0 else 1.0 / freq)
     base = np.zeros(6)
-    best, best_side = math.inf, 0
-    for side in (1, -1):
-        level = thr if side == 1 else thr_neg
+    best, side = math.inf, 0
+    for k in range(1 if thr_neg == thr else 2):
+        level = thr if k == 0 else thr_neg
         if amp <= level:
             continue
         nb = _pulse_crossings(kind, omega, freq, level / amp, base)
@@ -793,11 +759,12 @@ def _pulse_uplift_two_edges(sp, mp, t0, t1, thr, thr_neg, amp):
                 if tt < max(tt0, 0.0) or tt > pend or tt >= best:
                     continue
                 after = mp[SCALE] * pulse_acceleration(kind, mp[AMP], omega, freq, min(tt + dtt, pend))
-                if (side == 1 and after < -level) or (side == -1 and after > level):
-                    best, best_side = tt, side
+                lifts = 1 if after < -thr else (-1 if after > thr_neg else 0)
+                if lifts != 0:
+                    best, side = tt, lifts
     if best == math.inf or best - shift > t1:
         return t1, 0
-    return max(best - shift, t0), best_side
+    return max(best - shift, t0), side
 
 
 # --- pure translation of an isolated base, in closed form ----------------------------------

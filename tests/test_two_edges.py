@@ -222,7 +222,7 @@ def test_the_separate_integrator_on_a_record():
 def test_the_compiled_kernel_runs_two_edges_as_the_reference_does(make, body, motion):
     """Both paths of the exact model on a statue of two edges: the compiled kernel's closed forms at
     rest (a fixed base's first uplift from the motion itself, each edge its own threshold:
-    physics.first_uplift, _pulse_uplift_two_edges; an isolated base's closed-form translation,
+    physics.first_uplift, a pulse's crossings of each edge's level; an isolated base's closed-form translation,
     physics.translation_uplift) and its events against SciPy's DOP853 with event location: the same
     impacts and uplifts, the impacts' times to 1e-9 s, θ on the output grid both store to 1e-8 rad
     (test_fast.py's limits for the rectangle)."""
