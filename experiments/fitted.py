@@ -32,7 +32,7 @@ import numpy as np
 
 from isorock.analytic.errors import InputError
 
-from . import data, processing, scores, specimen, study
+from . import data, processing, scores, study
 
 #: the model file's format; a file of another format is refused, not guessed at
 FORMAT = "isorock-experiments-model"
@@ -120,16 +120,6 @@ def record_interval(y, pred, groups, n: int = scores.BOOTSTRAP, level: float = s
     return [float(np.quantile(acc, (1 - level) / 2)), float(np.quantile(acc, (1 + level) / 2))]
 
 
-def _read(folder, tests, steps, lowpass_hz):
-    outcomes, files = data.load(folder, tests)
-    testlist = sorted(outcomes)
-    motions = {t: data.read_test(files[t], t) for t in testlist}
-    accel = {t: study._motion(motions[t], steps, lowpass_hz) for t in testlist}
-    dts = {t: motions[t].dt for t in testlist}
-    specimens = {s: specimen.load_specimen(folder, s) for s in data.SPECIMENS}
-    return outcomes, testlist, accel, dts, specimens
-
-
 def _runs(settings, spec, accel, dts) -> dict:
     """The run settings asked for, of one specimen: {setting: {test: (verdict, score, wall)}}."""
     runs: dict = {}
@@ -162,7 +152,7 @@ def _intensity(outcomes, testlist):
 def fit(folder, *, tests=None, steps=processing.DEFAULT_STEPS, lowpass_hz=processing.LOWPASS_HZ) -> dict:
     """The model file's content: per specimen the candidate chosen on these tests (nested,
     grouped by record) and fitted on all of them, with the nested held-out score of the choice."""
-    outcomes, testlist, accel, dts, specimens = _read(folder, tests, steps, lowpass_hz)
+    outcomes, testlist, _, accel, dts, specimens, _ = study.read(folder, tests, steps, lowpass_hz)
     pga, period, groups = _intensity(outcomes, testlist)
     settings = {s for _, s in CANDIDATES.values() if s is not None}
     out = {"format": FORMAT, "version": VERSION, "processing": {"steps": list(steps), "lowpass_hz": lowpass_hz},
@@ -228,7 +218,7 @@ def predict(folder, model: dict, *, tests=None) -> dict:
     scores (intervals over tests and over records), the tests that no scale up to 2 overturns
     apart, and which of these tests the fit had seen (none, for an honest score)."""
     proc = model["processing"]
-    outcomes, testlist, accel, dts, specimens = _read(folder, tests, proc["steps"], proc["lowpass_hz"])
+    outcomes, testlist, _, accel, dts, specimens, _ = study.read(folder, tests, proc["steps"], proc["lowpass_hz"])
     pga, period, groups = _intensity(outcomes, testlist)
     seen = sorted(set(testlist) & set(model["fit"]["tests"]))
     out = {"tests": testlist, "records": int(np.unique(groups).size), "seen_in_fit": seen, "specimens": {}}

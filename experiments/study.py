@@ -238,6 +238,21 @@ def select_cv(y, candidates: dict, k=scores.FOLDS, threshold=True) -> tuple[np.n
     return out, chosen
 
 
+def read(folder, tests, steps, lowpass_hz):
+    """The tests of `folder` (`tests`: those; None: all) read and processed, and the specimens:
+    (outcomes, the tests sorted, their table motions, processed accelerations, sample steps,
+    specimens, the seconds reading the motions took)."""
+    outcomes, files = data.load(folder, tests)
+    t0 = time.perf_counter()
+    motions = {t: data.read_test(files[t], t) for t in outcomes}
+    read_s = time.perf_counter() - t0
+    specimens = {s: specimen.load_specimen(folder, s) for s in data.SPECIMENS}
+    testlist = sorted(outcomes)
+    dts = {t: motions[t].dt for t in testlist}
+    accel = {t: _motion(motions[t], steps, lowpass_hz) for t in testlist}
+    return outcomes, testlist, motions, accel, dts, specimens, read_s
+
+
 def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz=processing.LOWPASS_HZ,
           tests=None, sensitivity=False, progress=None, contact=None, overturning_scale=False,
           announce=None) -> dict:
@@ -247,18 +262,11 @@ def build(folder, *, engines=ENGINES, steps=processing.DEFAULT_STEPS, lowpass_hz
     overturns (run_overturning_scale: 17 runs of a standing test instead of one). announce:
     called with the hull engines' simulated seconds (hull_seconds) once the tests are read,
     before any run, to say the cost."""
-    outcomes, files = data.load(folder, tests)
-    t0 = time.perf_counter()
-    motions = {t: data.read_test(files[t], t) for t in outcomes}
-    read_s = time.perf_counter() - t0
-    specimens = {s: specimen.load_specimen(folder, s) for s in data.SPECIMENS}
-    testlist = sorted(outcomes)
-    dts = {t: motions[t].dt for t in testlist}
+    outcomes, testlist, motions, accel, dts, specimens, read_s = read(folder, tests, steps, lowpass_hz)
     result = dict(tests=testlist, steps=list(steps), lowpass_hz=lowpass_hz, read_s=read_s,
                   specimens={s: sp.describe() for s, sp in specimens.items()}, runs={}, scores={}, cost={},
                   outcomes={t: dict(measured=outcomes[t].measured, pga=outcomes[t].scaled_pga_g,
                                     pgv_over_pga=outcomes[t].pgv_over_pga_s) for t in testlist})
-    accel = {t: _motion(motions[t], steps, lowpass_hz) for t in testlist}
     if announce is not None:
         announce(hull_seconds(accel, dts, engines))
     for s, sp in specimens.items():
