@@ -312,6 +312,13 @@ def weakest_direction(body: RestingBody) -> tuple[float, float]:
     return float(math.atan2(n[1], n[0]) % (2 * math.pi)), float(-c / body.com[2])
 
 
+def along_directions(body: RestingBody, azimuths) -> list:
+    """The exact model's System of the statue's two edges along each shaking direction (rad), on
+    a fixed base (System.of_body)."""
+    from .system import PlanarBody, System
+    return [System.of_body(PlanarBody.from_resting(body.along(a)), mass=body.mass) for a in azimuths]
+
+
 #: the PGA levels (g) of the direction sweep: 2^(k/8) from 0.05 g to 3.2 g (9% apart), fixed
 #: before any run, as the shake-table study's overturning scale is
 SWEEP_LEVELS = tuple(0.05 * 2.0 ** (k / 8) for k in range(49))
@@ -327,16 +334,9 @@ def overturning_by_azimuth(body: RestingBody, motion, *, azimuths: int = SWEEP_A
     (None: none up to the last). Rocking is not monotone in amplitude: the lowest level that
     overturns, not a boundary above which all do. One batch of the compiled kernel
     (fast.simulate_batch). {azimuth_deg, overturning_pga_g, worst: (azimuth_deg, pga_g)}."""
-    from dataclasses import replace
     from .fast import simulate_batch
-    from .system import PlanarBody, System
     angles = [2.0 * math.pi * k / azimuths for k in range(azimuths)]
-    systems = []
-    for a in angles:
-        edges = PlanarBody.from_resting(body.along(a))
-        systems.append(replace(System.fixed(height=2.0 * edges.centre_height,
-                                            width=edges.lever_forward + edges.lever_backward, mass=body.mass),
-                               body=edges))
+    systems = along_directions(body, angles)
     motions = [motion.scaled_to_pga(level) for level in levels]
     rows = simulate_batch(systems, motions, duration=motion.end_time + tail, product=True, workers=workers)
     first = []

@@ -73,6 +73,12 @@ class PlanarBody:
         return cls(centre_height=fw["h"], lever_forward=fw["b"], lever_backward=bw["b"],
                    inertia=float(body.inertia[1, 1]))
 
+    @property
+    def box(self) -> dict:
+        """height 2h and width b₊ + b₋ of the block whose place it takes in a System: what the
+        System's own checks and a report read (its physics reads the body's edges)."""
+        return dict(height=2.0 * self.centre_height, width=self.lever_forward + self.lever_backward)
+
     def describe(self) -> dict:
         return {"centre_height": self.centre_height, "lever_forward": self.lever_forward,
                 "lever_backward": self.lever_backward, "centroidal_inertia": self.inertia,
@@ -418,6 +424,11 @@ class System:
         return cls(height=height, width=width, mass=mass,
                    base_mass=mass if base_mass is None else base_mass,
                    fixed_base=True, gravity=gravity)
+
+    @classmethod
+    def of_body(cls, body: PlanarBody, *, mass, gravity=STANDARD_GRAVITY) -> "System":
+        """A statue of two edges (`body`, mass kg) on a fixed base."""
+        return replace(cls.fixed(**body.box, mass=mass, gravity=gravity), body=body)
 
     def on_fixed_base(self) -> "System":
         """The same block (and its friction) on a fixed base (its base mass kept for a scene's plate)."""

@@ -161,11 +161,19 @@ class Trajectory:
             return 0.0
         theta_max = float(np.max(np.abs(self.theta)))
         if self.system.asymmetric:  # each way against its own edge's α, as the weaker edge's share
-            sy = self.system
-            theta_max = self.alpha * max(max(float(np.max(self.theta)), 0.0) / sy.edge_alpha(1),
-                                         max(-float(np.min(self.theta)), 0.0) / sy.edge_alpha(-1))
+            theta_max = self.alpha * self.edge_tilt_max
         return float(theta_max_over_alpha(theta_max, self.alpha, self.overturned,
                                           self.extras.get("overturn_rule", PAST_ALPHA)))
+
+    @property
+    def edge_tilt_max(self) -> float:
+        """The largest tilt each way against the α of the edge it tilts onto, max(θ⁺/α₊, θ⁻/α₋):
+        a statue of two edges' θmax/α (before an overturned run's end is taken as π/2)."""
+        if not self.theta.size:
+            return 0.0
+        sy = self.system
+        return max(max(float(np.max(self.theta)), 0.0) / sy.edge_alpha(1),
+                   max(-float(np.min(self.theta)), 0.0) / sy.edge_alpha(-1))
 
     def _theta_max_definition(self) -> str:
         from .overturning import PAST_ALPHA, THETA_MAX_DEFINITION

@@ -911,7 +911,7 @@ def _isolator_label(d: Design, k: int) -> str:
 DIRECTIONS = 36
 
 
-def worst_direction(resting, statue: Statue, hazard: Hazard, tail: float, *, threads=None) -> dict:
+def worst_direction(resting, hazard: Hazard, tail: float, *, threads=None) -> dict:
     """The shaking direction in which the statue on a fixed base overturns most often under the
     hazard (issue 36: design on the worst direction by default): for each of DIRECTIONS
     directions, from the one it tips first (analytic.shape.weakest_direction), the exact model
@@ -920,12 +920,10 @@ def worst_direction(resting, statue: Statue, hazard: Hazard, tail: float, *, thr
     first, so a statue that overturns nowhere keeps the direction it tips first.
     {azimuth_deg, body, p_hazard, p_by_azimuth}."""
     from isorock.analytic.fast import simulate_batch
-    from isorock.analytic.shape import weakest_direction
+    from isorock.analytic.shape import along_directions, weakest_direction
     start = weakest_direction(resting)[0]
     angles = [(start + 2.0 * math.pi * k / DIRECTIONS) % (2.0 * math.pi) for k in range(DIRECTIONS)]
-    bodies = [PlanarBody.from_resting(resting.along(a)) for a in angles]
-    systems = [replace(statue, body=b, height=2.0 * b.centre_height, width=b.lever_forward + b.lever_backward).fixed()
-               for b in bodies]
+    systems = along_directions(resting, angles)
     cases = [(name, level) for name in hazard.names for level in hazard.levels]
     motions = [unit_scaled(hazard.records[name], level) for name, level in cases]
     durations = [hazard.records[name].end_time + tail for name, _ in cases]
@@ -935,7 +933,7 @@ def worst_direction(resting, statue: Statue, hazard: Hazard, tail: float, *, thr
                                                                    len(hazard.levels))
     p = over.mean(axis=1) @ np.asarray(hazard.weights)
     k = int(np.argmax(p))
-    return dict(azimuth_deg=math.degrees(angles[k]), body=bodies[k], p_hazard=float(p[k]),
+    return dict(azimuth_deg=math.degrees(angles[k]), body=systems[k].body, p_hazard=float(p[k]),
                 p_by_azimuth=dict(zip([round(math.degrees(a), 6) for a in angles], p.tolist())))
 
 

@@ -10,8 +10,6 @@ energy loss (the impact law is the rigid one).
 """
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 
 from isorock.analytic.system import PlanarBody, System
@@ -20,10 +18,7 @@ from isorock.analytic.system import PlanarBody, System
 def system(spec) -> System:
     """The specimen (a specimen.Specimen, table frame) as the exact model's System: its mass and
     its two edges along the table's x on a fixed base."""
-    fw, bw = spec.direction(1), spec.direction(-1)
-    body = PlanarBody(centre_height=fw["h"], lever_forward=fw["b"], lever_backward=bw["b"],
-                      inertia=float(spec.inertia[1, 1]))
-    return replace(System.fixed(height=2.0 * fw["h"], width=fw["b"] + bw["b"], mass=float(spec.mass)), body=body)
+    return System.of_body(PlanarBody.from_resting(spec), mass=float(spec.mass))
 
 
 def simulate(rock: System, acceleration, dt: float, pad: float = 5.0) -> tuple[bool, float, int]:
@@ -37,6 +32,4 @@ def simulate(rock: System, acceleration, dt: float, pad: float = 5.0) -> tuple[b
     tr = get_engine("analytic").simulate(rock, motion, duration=(a.size - 1) * dt + pad)
     if tr.status.is_failure:
         raise RuntimeError(f"asymmetric model: the exact model's run failed: {tr.message}")
-    theta = tr.theta
-    peak = max(max(float(np.max(theta)), 0.0) / rock.edge_alpha(1), max(-float(np.min(theta)), 0.0) / rock.edge_alpha(-1))
-    return bool(tr.overturned), peak, len(tr.impacts)
+    return bool(tr.overturned), tr.edge_tilt_max, len(tr.impacts)

@@ -447,8 +447,7 @@ def test_the_worst_direction_is_where_the_fixed_base_overturns_most_often_run_by
     from isorock.campaign.design import DIRECTIONS, worst_direction
     resting = shape.standing(*shape.example_statue("bust"), mass=80.0)
     hazard = Hazard(dict(list(RECORDS.items())[:2]), (0.5, 0.9), (1.0, 3.0))
-    statue = Statue(height=0.448, width=0.24, mass=80.0, base_mass=150.0, body=PlanarBody.from_resting(resting))
-    w = worst_direction(resting, statue, hazard, TAIL)
+    w = worst_direction(resting, hazard, TAIL)
     start = shape.weakest_direction(resting)[0]
     weights = np.array([1.0, 3.0]) / 4.0
     p = []

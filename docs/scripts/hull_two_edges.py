@@ -15,7 +15,6 @@ should an engine.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import math
 import time
 
@@ -38,11 +37,7 @@ def statue(name: str, scale: float):
     vertices, faces = shape.example_statue(name)
     body = shape.standing(vertices * scale, faces, density=DENSITY, name=name)
     body = body.along(shape.weakest_direction(body)[0])
-    edges = PlanarBody.from_resting(body)
-    system = dataclasses.replace(System.fixed(height=2 * edges.centre_height,
-                                              width=edges.lever_forward + edges.lever_backward, mass=body.mass),
-                                 body=edges)
-    return body, system
+    return body, System.of_body(PlanarBody.from_resting(body), mass=body.mass)
 
 
 def pulse(system: System, k: float, dt: float = 1e-3):

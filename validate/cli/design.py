@@ -12,7 +12,7 @@ import numpy as np
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK
 from isorock.campaign.design import DEFAULT_GRIDS, DEFAULT_LEVELS
-from isorock.validate.cli.options import add_statue_options, number
+from isorock.validate.cli.options import add_statue_options, number, statue_body
 
 DEFAULT_OUT = "isorock-design"
 
@@ -146,26 +146,26 @@ def read_design_config(a) -> dict:
     return config
 
 
-def statue_from_args(a, config: dict):
+def statue_from_args(a, config: dict, mesh=None):
     """The Statue the options (over a --config file's [system] table) describe; the paper's
-    block when none is given."""
+    block when none is given. `mesh`: options.statue_body's (the statue at rest, its two edges)
+    of --statue FILE or --statue-example NAME."""
     from isorock.campaign.design import Statue
-    from isorock.validate.cli.options import statue_body
     table = config.get("system", {})
-    mesh = statue_body(a)  # --statue FILE or --statue-example NAME: (mass, its two edges)
     if mesh is not None:
         if table:
             raise InputError("--config: its [system] statue and --statue are two statues; give one")
         if a.plinth_margin is not None:
             raise InputError("--plinth-margin: needs --friction, which a statue's mesh does not take yet")
-        mass, body = mesh
+        resting, body = mesh
+        mass = resting.mass
         if a.mass_ratio is not None and a.base_mass is not None:
             raise InputError("--mass-ratio: give --base-mass or --mass-ratio, not both")
         base_mass = a.base_mass if a.base_mass is not None else mass / (a.mass_ratio if a.mass_ratio else 1.0)
         if not (base_mass > 0 and math.isfinite(base_mass)):
             raise InputError(f"--base-mass = {base_mass!r}: must be a positive finite number")
-        return Statue(height=2.0 * body.centre_height, width=body.lever_forward + body.lever_backward, mass=mass,
-                      base_mass=float(base_mass), body=body, name=a.statue or f"the example {a.statue_example}")
+        return Statue(**body.box, mass=mass, base_mass=float(base_mass), body=body,
+                      name=a.statue or f"the example {a.statue_example}")
     values = {k: table[k] for k in ("height", "width", "mass", "base_mass") if k in table}
     for k in ("height", "width", "mass", "base_mass"):
         if getattr(a, k) is not None:
@@ -200,17 +200,16 @@ def statue_from_args(a, config: dict):
                   base_mass=float(base_mass), **_slip(a, table))
 
 
-def along_worst_direction(a, statue, hazard):
-    """The statue's mesh along the shaking direction in which it overturns most often on a fixed
-    base under the hazard (campaign.design.worst_direction), said on stderr."""
+def along_worst_direction(a, statue, resting, hazard):
+    """The statue's mesh (`resting`) along the shaking direction in which it overturns most often
+    on a fixed base under the hazard (campaign.design.worst_direction), said on stderr."""
     from dataclasses import replace
     from isorock.campaign.design import DIRECTIONS, worst_direction
     if not a.quiet:
         print(f"isorock design: the worst of {DIRECTIONS} shaking directions for the statue's mesh on a fixed base: "
               f"{DIRECTIONS * len(hazard.names) * len(hazard.levels):,} runs", file=sys.stderr, flush=True)
-    w = worst_direction(a.statue_resting, statue, hazard, a.tail)
-    body = w["body"]
-    return replace(statue, body=body, height=2.0 * body.centre_height, width=body.lever_forward + body.lever_backward,
+    w = worst_direction(resting, hazard, a.tail)
+    return replace(statue, body=w["body"], **w["body"].box,
                    name=f"{statue.name}, shaken along {w['azimuth_deg']:.0f}° (of {DIRECTIONS} directions the one "
                         f"where its fixed base overturns most often: P {100 * w['p_hazard']:.1f}%)")
 
@@ -305,14 +304,15 @@ def cmd_design(a) -> int:
     check_decision(a.target, a.max_stroke, a.tail, a.check_runs, named=lambda key: "--" + key.replace("_", "-"))
     checks = check_engines(a.check)
     config = read_design_config(a)
-    statue = statue_from_args(a, config)
+    mesh = statue_body(a)  # --statue FILE or --statue-example NAME: (the statue at rest, its two edges)
+    statue = statue_from_args(a, config, mesh)
     family = family_from_args(a)
     check_family_runs(family)
     with Outputs() as outputs:
         folder = outputs.folder("out", a.out)  # a folder we may not write is refused before the work
         hazard, record_paths = hazard_from_args(a, config)
-        if statue.body is not None and a.azimuth is None:  # a statue's mesh: its worst direction (issue 36)
-            statue = along_worst_direction(a, statue, hazard)
+        if mesh is not None and a.azimuth is None:  # a statue's mesh: its worst direction (issue 36)
+            statue = along_worst_direction(a, statue, mesh[0], hazard)
         n_runs = check_size(family, hazard, a.tail)
         check_engines_carry(statue, family, hazard, checks, a.tail)  # each --check engine, before any work
         from isorock.analytic.limits import available_cores

@@ -198,7 +198,7 @@ def _isolator_from_args(a, common):
 def add_statue_options(p: argparse.ArgumentParser) -> None:
     """A statue's mesh instead of the block H × B (issue 36): its two tipping edges along the
     shaking direction become the exact model's (System.body; docs/statues.md)."""
-    # the names are checked where they are read (analytic.shape, _statue_body): building this
+    # the names are checked where they are read (analytic.shape, statue_mesh): building this
     # parser must not load NumPy (`isorock beta` loads no heavy module)
     g = p.add_argument_group("a statue from its mesh, instead of --height and --width (docs/statues.md)")
     g.add_argument("--statue", metavar="FILE", help="the statue's mesh (STL, OBJ, PLY, OFF, GLB), standing as it "
@@ -211,8 +211,25 @@ def add_statue_options(p: argparse.ArgumentParser) -> None:
                    "(default: the direction it tips first)")
 
 
+def statue_mesh(path, example, unit):
+    """(vertices, faces, label) of a statue's mesh file in its `unit` (required: never guessed),
+    or of an example made by code (in metres): what `isorock statue` and --statue read."""
+    from isorock.analytic import shape
+    if example is not None:
+        if unit not in (None, "m"):
+            raise InputError(f"unit = {unit!r}: an example statue is made in metres; leave --unit out")
+        vertices, faces = shape.example_statue(example)
+        return vertices, faces, f"the example {example}"
+    if unit is None:
+        raise InputError(f"unit: {path!r} needs --unit, its length unit ({', '.join(shape.UNITS)}): a mesh file "
+                         "states none this reader trusts, so it is never guessed")
+    vertices, faces = shape.read_mesh(path, unit)
+    return vertices, faces, path
+
+
 def statue_body(a):
-    """(mass, PlanarBody) of the statue's mesh along the shaking direction; None without one."""
+    """(the statue at rest, its PlanarBody along the shaking direction) of its mesh; None without
+    one. The direction is --azimuth, or the one it tips first."""
     import math
     from isorock.analytic import shape
     from isorock.analytic.system import PlanarBody
@@ -238,21 +255,12 @@ def statue_body(a):
         raise InputError(f"--statue-example = {example!r}: one of {', '.join(shape.EXAMPLES)}")
     if a.unit is not None and a.unit not in shape.UNITS:
         raise InputError(f"--unit = {a.unit!r}: one of {', '.join(shape.UNITS)}")
-    if example is not None:
-        if a.unit not in (None, "m"):
-            raise InputError(f"--unit = {a.unit!r}: an example statue is made in metres; leave --unit out")
-        vertices, faces = shape.example_statue(example)
-    else:
-        if a.unit is None:
-            raise InputError(f"--unit: {path!r} needs its length unit ({', '.join(shape.UNITS)}): a mesh file states "
-                             "none this reader trusts, so it is never guessed")
-        vertices, faces = shape.read_mesh(path, a.unit)
-    standing = shape.standing(vertices, faces, mass=mass, density=a.density, name=path or example)
+    vertices, faces, label = statue_mesh(path, example, a.unit)
+    standing = shape.standing(vertices, faces, mass=mass, density=a.density, name=label)
     if a.azimuth is not None and not math.isfinite(a.azimuth):
         raise InputError(f"--azimuth = {a.azimuth!r}: must be a finite number of degrees")
     azimuth = shape.weakest_direction(standing)[0] if a.azimuth is None else math.radians(a.azimuth)
-    a.statue_resting = standing  # for a command that chooses the direction itself (design: the worst)
-    return standing.mass, PlanarBody.from_resting(standing.along(azimuth))
+    return standing, PlanarBody.from_resting(standing.along(azimuth))
 
 
 def system_from_args(a, *, default_isolator=None):
@@ -262,8 +270,8 @@ def system_from_args(a, *, default_isolator=None):
     statue = statue_body(a)
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
     if statue is not None:
-        mass, body = statue
-        common.update(height=2 * body.centre_height, width=body.lever_forward + body.lever_backward, mass=mass)
+        resting, body = statue
+        common.update(body.box, mass=resting.mass)
     system = _isolator_from_args(a, common)
     if system is None:
         system = _linear_from_args(a, common, default_isolator=default_isolator)

@@ -46,19 +46,10 @@ def load(a):
     """(the statue at rest, its vertices and faces in m, a label) from the options."""
     from isorock.analytic import shape
     from isorock.analytic.errors import InputError
+    from isorock.validate.cli.options import statue_mesh
     if (a.file is None) == (a.example is None):
         raise InputError("statue: give its mesh FILE or --example NAME, one of the two")
-    if a.file is not None:
-        if a.unit is None:
-            raise InputError(f"unit: {a.file!r} needs --unit, its length unit ({', '.join(shape.UNITS)}): a mesh "
-                             "file states none this reader trusts, so it is never guessed")
-        vertices, faces = shape.read_mesh(a.file, a.unit)
-        label = a.file
-    else:
-        if a.unit not in (None, "m"):
-            raise InputError(f"unit = {a.unit!r}: an --example is made in metres; leave --unit out")
-        vertices, faces = shape.example_statue(a.example)
-        label = f"the example {a.example}"
+    vertices, faces, label = statue_mesh(a.file, a.example, a.unit)
     return shape.standing(vertices, faces, mass=a.mass, density=a.density, name=label), vertices, faces, label
 
 
