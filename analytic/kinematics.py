@@ -20,10 +20,11 @@ from .system import System
 # --- pose -----------------------------------------------------------------------------
 
 def tilted_centroid(system: System, theta: float) -> tuple[float, float]:
-    """(x, z) of the centroid of a block resting on its corner s·b (s = sign θ) of the
-    base's top face and tilted by θ about it: the corner stays where it rests upright."""
+    """(x, z) of the centroid of a block resting on its corner s·b (s = sign θ; b_s for a
+    statue of two edges) of the base's top face and tilted by θ about it: the corner stays
+    where it rests upright."""
     s = 1.0 if theta >= 0 else -1.0
-    h, b = system.h, system.b
+    h, b = system.h, system.lever(s)
     return (s * b + h * math.sin(theta) - s * b * math.cos(theta),
             h * math.cos(theta) + s * b * math.sin(theta))
 
@@ -70,13 +71,21 @@ def tilts_from_quaternion(w, x, y, z):
 
 # --- corners --------------------------------------------------------------------------
 
+def _levers(system: System, s):
+    """b_s of the corner on side s (an array of ±1): b for the block; a statue of two edges
+    (System.body) has its own on each side (System.lever)."""
+    if system.body is None:
+        return system.b
+    return np.where(s > 0, system.lever(1), system.lever(-1))
+
+
 def pivot_slip(system: System, x_centroid, theta, u):
     """How far (m) the corner the block rocks on has moved along x relative to the point
     of the base it rests on (s·b + u): zero for pure rocking, non-zero when it slides.
     The corner (s·b, −h) of the body frame is at x_c + s·b·cosθ − h·sinθ."""
     theta = np.asarray(theta, dtype=float)
     s = np.where(theta >= 0, 1.0, -1.0)
-    b, h = system.b, system.h
+    b, h = _levers(system, s), system.h
     return np.asarray(x_centroid) + s * b * np.cos(theta) - h * np.sin(theta) - np.asarray(u) - s * b
 
 
@@ -86,7 +95,7 @@ def pivot_slip_rate(system: System, x_centroid_dot, theta, theta_dot, u_dot):
     where both bottom corners move alike."""
     theta = np.asarray(theta, dtype=float)
     s = np.where(theta >= 0, 1.0, -1.0)
-    b, h = system.b, system.h
+    b, h = _levers(system, s), system.h
     return (np.asarray(x_centroid_dot) - np.asarray(theta_dot) * (s * b * np.sin(theta) + h * np.cos(theta))
             - np.asarray(u_dot))
 
@@ -109,7 +118,8 @@ def lift_off(system: System, z_centroid, theta):
     """Height (m) of the block's lowest bottom corner above the base's top face
     (negative: penetration), for an in-plane rotation θ."""
     theta = np.asarray(theta, dtype=float)
-    return np.asarray(z_centroid) - system.h * np.cos(theta) - system.b * np.abs(np.sin(theta))
+    b = _levers(system, np.where(theta >= 0, 1.0, -1.0))
+    return np.asarray(z_centroid) - system.h * np.cos(theta) - b * np.abs(np.sin(theta))
 
 
 def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_from: int | None,
@@ -122,7 +132,8 @@ def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_
     leave its plane, out_of_plane_max (largest of |y| in m and the roll and yaw tilts in
     rad; both small). `counted_from`: index of the first counted impact, or None."""
     theta = np.asarray(theta, dtype=float)
-    upright = np.abs(theta) <= system.alpha
+    alpha = system.alpha if system.body is None else np.where(theta >= 0, system.edge_alpha(1), system.edge_alpha(-1))
+    upright = np.abs(theta) <= alpha
     slip = pivot_slip(system, x_centroid, theta, u)[upright]
     low = lift_off(system, z_centroid, theta)
     after = low[counted_from:] if counted_from is not None else low[:0]

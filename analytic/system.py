@@ -24,6 +24,37 @@ ISOLATOR_KINDS = (LINEAR, BILINEAR, FRICTION_PENDULUM, BALL_IN_CONE, BALL_IN_BOW
 
 
 @dataclass(frozen=True)
+class Solid:
+    """A statue's own shape, for the contact engines that carry it (issue 36; docs/statues.md,
+    "The contact engines on the base and isolator"): the vertices of its convex hull relative
+    to its centre of mass (m; x the shaking direction, z up, the plinth at z = −h), and its
+    inertia tensor about the centre of mass in the same frame (kg·m²). The hull is exact for
+    contact with a flat plinth: nothing inside it can touch one. The exact model reads none
+    of it (its PlanarBody's edges are the hull's, in that direction); a scene builds it."""
+
+    vertices: tuple  # ((x, y, z), ...)
+    inertia: tuple  # ((Ixx, Ixy, Ixz), (Ixy, Iyy, Iyz), (Ixz, Iyz, Izz))
+
+    def __post_init__(self):
+        rows = tuple(tuple(float(c) for c in v) for v in self.vertices)
+        require(len(rows) >= 4 and all(len(v) == 3 and all(math.isfinite(c) for c in v) for v in rows),
+                "vertices", f"{len(rows)} rows", "at least 4 finite (x, y, z) points (a solid's hull)")
+        inertia = tuple(tuple(float(c) for c in r) for r in self.inertia)
+        require(len(inertia) == 3 and all(len(r) == 3 and all(math.isfinite(c) for c in r) for r in inertia)
+                and all(inertia[i][i] > 0 for i in range(3)), "inertia", inertia,
+                "a 3×3 tensor with positive finite diagonal (kg·m²)")
+        object.__setattr__(self, "vertices", rows)
+        object.__setattr__(self, "inertia", inertia)
+
+    @classmethod
+    def of_resting(cls, body) -> "Solid":
+        """The solid of a statue's mesh at rest (analytic.shape.RestingBody, turned onto its
+        shaking direction): its hull's vertices about the centre of mass, and its inertia."""
+        return cls(vertices=tuple(map(tuple, (body.vertices - body.com).tolist())),
+                   inertia=tuple(map(tuple, body.inertia.tolist())))
+
+
+@dataclass(frozen=True)
 class PlanarBody:
     """A statue that is not a symmetric rectangle, as the planar model sees it in one shaking
     direction (issue 36; docs/statues.md): its centre of mass `centre_height` h above the
@@ -39,6 +70,9 @@ class PlanarBody:
     lever_forward: float
     lever_backward: float
     inertia: float
+    #: its own shape (a Solid), where it came from a mesh: what a contact engine carries on a
+    #: free joint; None: a planar body of two edges only (a scene makes it a box on its edges)
+    solid: Solid | None = None
 
     def __post_init__(self):
         for name in ("centre_height", "lever_forward", "lever_backward", "inertia"):
@@ -71,7 +105,7 @@ class PlanarBody:
         turned with .along(azimuth)): b± from the centre of mass to the footprint's extremes."""
         fw, bw = body.direction(1), body.direction(-1)
         return cls(centre_height=fw["h"], lever_forward=fw["b"], lever_backward=bw["b"],
-                   inertia=float(body.inertia[1, 1]))
+                   inertia=float(body.inertia[1, 1]), solid=Solid.of_resting(body))
 
     @property
     def box(self) -> dict:

@@ -83,6 +83,8 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     block.find("inertial").set("mass", repr(m))
     block.find("inertial").set("diaginertia", _fmt(m * (d**2 + h**2) / 3, m * (b**2 + h**2) / 3,
                                                     m * (b**2 + d**2) / 3))
+    if system.body is not None:
+        _statue(root, named, system.body, settings)
     if settings.joint == "free":
         for name in ("block_x", "block_z", "block_theta"):
             block.remove(named[name])
@@ -95,7 +97,9 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     pair.set("solref", _fmt(*settings.solref))
     pair.set("solimp", _fmt(*settings.solimp))
     if settings.contact == "corners":
-        _corner_pairs(root, block, pair, b, h, d, settings.joint == "free")
+        body = system.body
+        levers = (b, b) if body is None else (body.lever_forward, body.lever_backward)
+        _corner_pairs(root, block, pair, levers, h, d, settings.joint == "free")
     sd = system.describe()
     root.insert(0, ET.Comment(
         " written by isorock.mujoco_models for H = {height:g} m, B = {width:g} m, m = {mass:g} kg, "
@@ -181,15 +185,54 @@ def _isolator_element(root, named, system, settings):
     ET.SubElement(fixed, "joint", joint="slider_slide", coef="-1")
 
 
-def _corner_pairs(root, block, pair, b, h, d, free):
+def _statue(root, named, body, settings) -> None:
+    """A statue of two edges (System.body) in the block's place, centre of mass h above the
+    base top: with its own shape (body.solid), its convex hull as a mesh with its inertia
+    tensor, on the free joint (Settings.for_system asks for it: a hull rocks, wobbles and
+    twists in 3-D); without one, the box spanning its two edges (x from −b₋ to +b₊ about
+    the centre of mass) with I_y = I_c, on the planar joints. Contact, as the block's, is the
+    one pair between it and the base plate."""
+    geom = named["block_geom"]
+    inertial = named["block"].find("inertial")
+    if body.solid is None:
+        b_f, b_b, h = body.lever_forward, body.lever_backward, body.centre_height
+        half = 0.5 * (b_f + b_b)
+        geom.set("pos", _fmt(0.5 * (b_f - b_b), 0, 0))
+        geom.set("size", _fmt(half, DEPTH_FRACTION * half, h))
+        i_x, _, i_z = (float(v) for v in inertial.get("diaginertia").split())
+        inertial.set("diaginertia", _fmt(i_x, body.inertia, i_z))  # only I_y acts on planar joints
+        return
+    require(settings.joint == "free", "joint", settings.joint, "free for a statue's own shape (its hull rocks in 3-D)")
+    require(settings.contact == "box", "contact", settings.contact, "box for a statue's own shape (its hull is the geom)")
+    vertices = body.solid.vertices
+    asset = root.find("asset")
+    if asset is None:
+        asset = ET.Element("asset")
+        root.insert(list(root).index(root.find("worldbody")), asset)
+    ET.SubElement(asset, "mesh", name="statue_hull", vertex=" ".join(_fmt(*v) for v in vertices))
+    for key in ("size", "pos"):
+        geom.attrib.pop(key, None)
+    geom.set("type", "mesh")
+    geom.set("mesh", "statue_hull")
+    I = body.solid.inertia
+    inertial.attrib.pop("diaginertia", None)
+    inertial.set("fullinertia", _fmt(I[0][0], I[1][1], I[2][2], I[0][1], I[0][2], I[1][2]))
+    # the plate reaches past the hull across the shaking direction too
+    base = named["base_geom"]
+    sx, sy, sz = (float(v) for v in base.get("size").split())
+    base.set("size", _fmt(sx, max(sy, max(abs(v[1]) for v in vertices) + 0.1), sz))
+
+
+def _corner_pairs(root, block, pair, levers, h, d, free):
     """Replace the box–box pair by one pair per bottom corner: a sphere of radius
-    CORNER_RADIUS inscribed in the corner against the base box. Planar joints need
+    CORNER_RADIUS inscribed in the corner against the base box (`levers`: the corners'
+    distances b₊, b₋ from the centre of mass, b and b for the block). Planar joints need
     the two corners of the rocking plane (y = 0); the free joint all four."""
     r = CORNER_RADIUS
     contact = root.find("contact")
     contact.remove(pair)
     ys = (-(d - r), d - r) if free else (0.0,)
-    for sx, xname in ((1, "pos"), (-1, "neg")):
+    for sx, xname, b in ((1, "pos", levers[0]), (-1, "neg", levers[1])):
         for k, y in enumerate(ys):
             name = f"corner_{xname}" + (f"_{k}" if free else "")
             # no mass: the block's <inertial> is explicit, the box geom stays for display

@@ -94,6 +94,9 @@ class Settings:
         shortened (by less than a step in the run) to a whole divisor of it, so that the
         run ends on its duration, as a step given in seconds that divides it does. The
         result has follow_system False: it is final, and applying it again changes nothing."""
+        if getattr(system.body, "solid", None) is not None and (self.joint, self.contact) != ("free", "box"):
+            # a statue's own shape is its hull on the free joint (scene._statue): it rocks in 3-D
+            return replace(self, joint="free", contact="box").for_system(system, duration)
         if not self.follow_system:
             return self
         width = self.solimp[2] * system.R / REFERENCE_R

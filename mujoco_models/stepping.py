@@ -143,7 +143,7 @@ def _inputs(given: Settings, system: System, motion, duration, theta0):
     step a whole divisor of it, so the run ends on it)."""
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
                                   settings=given.for_system(system), isolators=CONTACT_ISOLATORS,
-                                  kinetic_friction=False)
+                                  kinetic_friction=False, two_edges=True)
     check_contact_isolator(system, "mujoco")
     derived = given.for_system(system, duration)
     if system.isolator_kind != LINEAR:

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from isorock.analytic.coefficients import beta as beta_closed_form
+from isorock.analytic.coefficients import beta as beta_closed_form, edge_impact
 from isorock.analytic.hybrid import map_to_impact
 from isorock.analytic.isolator_map import (MAPPED, PENDULUMS, image_after_impact, pendulum_forward, phase_at,
                                            reads_slider)
@@ -299,9 +299,18 @@ def mode_sequence(traj: Trajectory) -> tuple[str, ...]:
 
 
 def beta_errors(traj: Trajectory, n: int | None = None) -> list[float]:
-    """Relative error of each counted impact's effective β against the closed form."""
-    ref = beta_closed_form(traj.system.slenderness, traj.system.mu)
-    errs = [i.beta / ref - 1 for i in traj.counted_impacts]
+    """Relative error of each counted impact's effective β against the closed form: the
+    paper's β for the block; for a statue of two edges (System.body) the one of the edge it
+    rocked on (the side opposite to θ̇⁻) onto the other (coefficients.edge_impact)."""
+    system = traj.system
+    if system.asymmetric:
+        base_mass = None if system.fixed_base else system.base_mass
+        ref = {s: edge_impact(system.mass, base_mass, system.h, system.inertia, system.lever(s), system.lever(-s))[0]
+               for s in (1, -1)}
+        errs = [i.beta / ref[-1 if i.theta_dot_pre > 0 else 1] - 1 for i in traj.counted_impacts]
+    else:
+        ref = beta_closed_form(system.slenderness, system.mu)
+        errs = [i.beta / ref - 1 for i in traj.counted_impacts]
     return errs[:n] if n is not None else errs
 
 
