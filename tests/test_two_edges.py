@@ -318,3 +318,24 @@ def test_the_batch_gives_each_runs_summary_on_two_edges():
         assert row["theta_max_over_alpha"] == pytest.approx(tr.theta_max_over_alpha, rel=1e-9)
         per_edge = max(-np.min(tr.theta) / system.edge_alpha(-1), np.max(tr.theta) / system.edge_alpha(1))
         assert per_edge == pytest.approx(tr.theta_max_over_alpha, rel=1e-12)
+
+
+@pytest.mark.parametrize("body", [BODY, MIRROR], ids=["weaker-forward", "weaker-backward"])
+def test_the_rest_pass_never_settles_a_statue_that_lifts_on_either_edge(body):
+    """design's rest pass (analytic.rest_scales) answers without the kernel the runs whose block
+    never lifts: for a statue of two edges it read the forward edge's threshold only, so a bust
+    shaken along 180° (its weaker edge backward) was 'never lifting' where it overturns (found by
+    `design --check mujoco`). Oracle: the exact model's own first uplift."""
+    from isorock.analytic.fast import simulate_fast
+    from isorock.analytic.rest_scales import rest_phases
+    system = dataclasses.replace(System.isolated(**body.box, mass=M, base_mass=M, period=0.3, damping_ratio=0.1),
+                                 body=body)
+    t = np.arange(0.0, 6.0, 0.005)
+    # a stiff isolator (T 0.3 s) passes a 0.5 Hz motion nearly whole: the base peaks between the two
+    # edges' thresholds (0.25 and 0.45 g), so the statue lifts on its weaker edge only
+    record = GroundMotion.from_array(0.36 * 9.80665 * np.sin(2 * np.pi * 0.5 * t) * np.minimum(1, t / 2), dt=0.005,
+                                     units="m/s2", name="ramped sine")
+    tr = simulate_fast(system, record, duration=6.0)
+    assert tr.uplifts, "the case must lift for the test to mean anything"
+    uplift, _ = rest_phases([system], [record], [[1.0]], [6.0])
+    assert uplift[0, 0, 0] <= tr.uplift_times[0] + 1e-9
