@@ -71,8 +71,20 @@ class SystemTable(_Strict):
         return v
 
 
+class StatueTable(_Strict):
+    """A statue's mesh instead of the block H × B (as --statue, --statue-example, --unit,
+    --density, --azimuth): `mesh` relative to the config file's folder; its mass is
+    [system] mass, or `density` here."""
+    mesh: str | None = None
+    example: str | None = None
+    unit: str | None = None
+    density: Positive | None = None
+    azimuth: float | None = None
+
+
 class ConfigFile(_Strict):
     system: SystemTable | None = None
+    statue: StatueTable | None = None
     engines: Strings | None = None
     motions: Strings | None = None
     settings: dict[str, dict[str, object]] | None = None
@@ -162,6 +174,9 @@ def read_config(path) -> dict:
     out = model.model_dump(exclude_unset=True)
     if "system" in out:
         out["system"] = {k: v for k, v in out["system"].items()}
+    if out.get("statue", {}).get("mesh") is not None:  # a mesh beside the file, wherever it is run from
+        from pathlib import Path
+        out["statue"]["mesh"] = str(Path(path).parent / out["statue"]["mesh"])
     return out
 
 

@@ -313,14 +313,18 @@ def _linear_from_args(a, common, *, default_isolator=None):
     raise InputError("isolator: give --period T --damping-ratio XI, or --stiffness K --dashpot C, or --fixed-base")
 
 
+#: The options of a statue's mesh (add_statue_options), as argparse names them.
+STATUE_KEYS = ("statue", "statue_example", "unit", "density", "azimuth")
+
 #: The system options, as argparse names them (and a TOML [system] table does).
 SYSTEM_KEYS = ("height", "width", "mass", "base_mass", "period", "damping_ratio", "stiffness", "dashpot",
                "fixed_base", "statue_friction", "kinetic_friction")
 
 
-def system_from_options(a, defaults: dict | None = None):
+def system_from_options(a, defaults: dict | None = None, statue: dict | None = None):
     """The System of the system options given with optional ones (`add_system_options(p,
-    required=False)`), over `defaults` (a TOML [system] table); None when none is given,
+    required=False)`), over `defaults` (a TOML [system] table) and `statue` (a TOML [statue]
+    table: mesh, example, unit, density, azimuth; the options win); None when none is given,
     for the command's own default system."""
     from types import SimpleNamespace
     values = {k: (defaults or {}).get(k) for k in SYSTEM_KEYS}
@@ -328,6 +332,13 @@ def system_from_options(a, defaults: dict | None = None):
         v = getattr(a, k, None)
         if v not in (None, False):
             values[k] = v
+    table = {"statue": "mesh", "statue_example": "example"}
+    statue = {k: getattr(a, k, None) if getattr(a, k, None) is not None else (statue or {}).get(table.get(k, k))
+              for k in STATUE_KEYS}
+    if any(v is not None for v in statue.values()):  # a statue's mesh gives height and width (--statue)
+        if values["base_mass"] is None and not values["fixed_base"]:
+            raise InputError("--base-mass: give the base plate's mass for an isolated base (or --fixed-base)")
+        return system_from_args(SimpleNamespace(**values, **statue))
     if not any(v not in (None, False) for v in values.values()):
         return None
     if not any(values[k] not in (None, False) for k in SYSTEM_KEYS if k not in ("statue_friction", "kinetic_friction")):

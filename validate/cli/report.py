@@ -64,6 +64,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="processes for the contact engines (default: 2, or the cores there are; 1: one process)")
     p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     add_system_options(p, required=False)
+    from isorock.validate.cli.options import add_statue_options
+    add_statue_options(p)  # its mesh instead of H × B: the engines that carry it judged on it (docs/statues.md)
     add_engine_options(p)
     p.set_defaults(func=run)
     return p
@@ -113,7 +115,7 @@ def report_config(args):
                           quick=args.quick or bool(config.get("quick")),
                           duration=args.duration if args.duration is not None else config.get("duration"),
                           scales=_scales(args.scales), format=args.format or config.get("format"),
-                          units=args.units or config.get("units"), system=system_from_options(args, config.get("system")),
+                          units=args.units or config.get("units"), system=system_from_options(args, config.get("system"), config.get("statue")),
                           overrides=overrides, workers=args.workers, overturn_rule=args.overturn,
                           # a target on the command line wins over the file's, whichever it names
                           **({"pga": args.pga, "pgv": args.pgv} if args.pga is not None or args.pgv is not None

@@ -181,21 +181,27 @@ def first_tilt(traj: Trajectory, fraction: float = REST_FRACTION) -> float | Non
 
 def exact_first_impact_time(system: System, theta0: float) -> float:
     """model.md's exact time (s) from rest at tilt θ0 (rad) to the first impact, fixed
-    base: t₁ = ∫₀^θ0 dθ/θ̇, θ̇² = (3g/2R)[cos(α − θ0) − cos(α − θ)], with θ = θ0 − s²
-    to remove the end-point singularity."""
+    base: t₁ = ∫₀^θ0 dθ/θ̇, θ̇² = K[cos(α − θ0) − cos(α − θ)] with K = 2·m·g·R/I_O (3g/2R for
+    the block), with θ = θ0 − s² to remove the end-point singularity. A statue of two edges
+    rocks on the edge s = sign θ0: its own α_s, R_s and I_s."""
     if not system.fixed_base:
         raise ValueError("exact_first_impact_time: the closed form holds on a fixed base only")
     th0 = abs(theta0)
-    if not 0 < th0 < system.alpha:
+    side = 1 if theta0 > 0 else -1
+    alpha = system.edge_alpha(side)
+    if not 0 < th0 < alpha:
         raise ValueError(f"theta0 = {theta0!r}: must be non-zero and smaller than α in magnitude")
-    K = 3 * system.gravity / (2 * system.R)
+    if system.asymmetric:
+        K = 2 * system.mass * system.gravity * system.edge_radius(side) / system.edge_inertia(side)
+    else:
+        K = 3 * system.gravity / (2 * system.R)
 
     def integrand(s):
         if s == 0:
-            return 2 / math.sqrt(K * math.sin(system.alpha - th0))
+            return 2 / math.sqrt(K * math.sin(alpha - th0))
         # cos(a) − cos(a + x) written as 2 sin(a + x/2) sin(x/2) to keep digits for small x
         x = s * s
-        diff = 2 * math.sin(system.alpha - th0 + x / 2) * math.sin(x / 2)
+        diff = 2 * math.sin(alpha - th0 + x / 2) * math.sin(x / 2)
         return 2 * s / math.sqrt(K * diff)
 
     value, _ = quad(integrand, 0.0, math.sqrt(th0), epsabs=1e-14, epsrel=1e-13, limit=200)

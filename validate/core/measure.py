@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from isorock.analytic.coefficients import beta as beta_closed_form, edge_impact
+from isorock.analytic.coefficients import beta as beta_closed_form, beta2 as beta2_closed_form, edge_impact
 from isorock.analytic.hybrid import map_to_impact
 from isorock.analytic.isolator_map import (MAPPED, PENDULUMS, image_after_impact, pendulum_forward, phase_at,
                                            reads_slider)
@@ -298,20 +298,24 @@ def mode_sequence(traj: Trajectory) -> tuple[str, ...]:
     return tuple(seen)
 
 
-def beta_errors(traj: Trajectory, n: int | None = None) -> list[float]:
-    """Relative error of each counted impact's effective β against the closed form: the
-    paper's β for the block; for a statue of two edges (System.body) the one of the edge it
-    rocked on (the side opposite to θ̇⁻) onto the other (coefficients.edge_impact)."""
-    system = traj.system
+def impact_closed_forms(system, impact=None) -> tuple[float, float]:
+    """(β, β₂) of the closed forms for one impact: the paper's for the block; for a statue of
+    two edges (System.body), those of the edge it rocked on (the side opposite to θ̇⁻; with no
+    impact, the edge it tips about first) onto the other (coefficients.edge_impact). β₂ in m
+    (u̇⁺ = u̇⁻ + β₂ θ̇⁻, model.md); 0 on a fixed base."""
     if system.asymmetric:
-        base_mass = None if system.fixed_base else system.base_mass
-        ref = {s: edge_impact(system.mass, base_mass, system.h, system.inertia, system.lever(s), system.lever(-s))[0]
-               for s in (1, -1)}
-        errs = [i.beta / ref[-1 if i.theta_dot_pre > 0 else 1] - 1 for i in traj.counted_impacts]
-    else:
-        ref = beta_closed_form(system.slenderness, system.mu)
-        errs = [i.beta / ref - 1 for i in traj.counted_impacts]
+        s = system.body.weaker_side if impact is None else (-1 if impact.theta_dot_pre > 0 else 1)
+        return edge_impact(system.mass, None if system.fixed_base else system.base_mass, system.h, system.inertia,
+                           system.lever(s), system.lever(-s))
+    b2 = 0.0 if system.fixed_base else beta2_closed_form(system.slenderness, system.mu, system.h)
+    return beta_closed_form(system.slenderness, system.mu), b2
+
+
+def beta_errors(traj: Trajectory, n: int | None = None) -> list[float]:
+    """Relative error of each counted impact's effective β against its closed form
+    (impact_closed_forms: each edge its own for a statue of two)."""
+    errs = [i.beta / impact_closed_forms(traj.system, i)[0] - 1 for i in traj.counted_impacts]
     return errs[:n] if n is not None else errs
 
 
-__all__ = ["measure", "effective_impacts", "beta_errors", "slide_onset", "mode_sequence", "CONTACT_WINDOW", "contact_window", "REST_FRACTION", "OVERTURN_RULES"]
+__all__ = ["measure", "effective_impacts", "beta_errors", "impact_closed_forms", "slide_onset", "mode_sequence", "CONTACT_WINDOW", "contact_window", "REST_FRACTION", "OVERTURN_RULES"]
