@@ -170,8 +170,7 @@ def cmd_scorecard(a) -> int:
         if a.readme is not None:
             readme = outputs.file("readme", a.readme)
             old_readme = readme_text(a.readme)
-        command = "isorock scorecard " + " ".join(_quoted(x) for x in sys.argv[2:]) if sys.argv[1:2] == ["scorecard"] \
-            else "isorock scorecard (called from Python)"
+        command = command_of(a)
         data = build(labels, effort, budget=budget, workers=a.workers, quiet=a.quiet, command=command)
         import json
         data = json.loads(to_json(data))  # rendered as the JSON holds it: the files agree, and can be re-rendered
@@ -187,9 +186,18 @@ def cmd_scorecard(a) -> int:
     return 0
 
 
-def _quoted(x: str) -> str:
-    import shlex
-    return shlex.quote(x)
+def command_of(a) -> str:
+    """The command line that makes this scorecard again, from its parsed options."""
+    from shlex import quote
+    parts = ["isorock", "scorecard"] + (["--quick"] if a.quick else [])
+    if a.engines:
+        parts += ["--engines", *a.engines]
+    parts += ["--budget", f"{a.budget:g}"]
+    for flag, value in (("--out", a.out if a.out != DEFAULT_OUT else None), ("--json", a.json),
+                        ("--readme", a.readme), ("--workers", a.workers)):
+        if value is not None:
+            parts += [flag, str(value)]
+    return " ".join(quote(x) for x in parts)
 
 
 def labels_of(items) -> list[str]:
@@ -499,7 +507,7 @@ def run_validate(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 def run_stress(labels, effort, grid, *, clock, workers, quiet) -> dict:
     from isorock.validate.io.progress import Progress
-    from isorock.validate.tools.stress import NOT_FAILED, engine_agreement, run_stress as stress_run
+    from isorock.validate.tools.stress import NOT_CARRIED, NOT_FAILED, engine_agreement, run_stress as stress_run
     names = [label.partition(":")[0] for label in labels]
     engines = list(dict.fromkeys(["analytic"] + names))  # the contact engines are judged against it
     results = stress_run(quick=True, engines=engines, drawn=effort.stress_drawn, workers=workers or 2,
@@ -510,8 +518,11 @@ def run_stress(labels, effort, grid, *, clock, workers, quiet) -> dict:
         mine = [r for r in results if r["engine"] == name]
         cross = [r.get("cross") for r in mine]
         v = counts.get(name)
+        refused = [r for r in mine if r["verdict"] == NOT_CARRIED]
         out[("stress", label)] = {
             "runs": len(mine), "broke": sum(r["verdict"] not in NOT_FAILED for r in mine),
+            # cases the engine declares it cannot carry (Capabilities): not run, and why (the first's words)
+            "not_carried": len(refused), "not_carried_why": refused[0].get("error") if refused else None,
             "disagree": cross.count("DISAGREE"), "compared": cross.count("DISAGREE") + cross.count("agree"),
             "rate_word": None if v is None else v.word,
             "rate_interval": None if v is None else list(v.interval),
@@ -604,8 +615,11 @@ def stress_cell(c: dict) -> str:
         return _not_run(c)
     if c["reference"]:
         return f"the reference; {c['broke']} of {c['runs']} runs broke"
-    return f"{c['disagree']} of {c['compared']} robust comparisons; {c['broke']} of {c['runs']} runs broke" + (
-        f" ({c['rate_word']})" if c["rate_word"] else "")
+    if c.get("not_carried") and c["not_carried"] == c["runs"]:
+        return f"no comparison: none of its {c['runs']} cases is one it carries ({c['not_carried_why']})"
+    return (f"{c['disagree']} of {c['compared']} robust comparisons; {c['broke']} of {c['runs']} runs broke"
+            + (f", {c['not_carried']} not carried" if c.get("not_carried") else "")
+            + (f" ({c['rate_word']})" if c["rate_word"] else ""))
 
 
 def experiments_cell(c: dict) -> str:
@@ -705,7 +719,8 @@ def summary_lines(data: dict) -> list[str]:
     st = [r for r in contact if _measured(r["stress"])]
     if st:
         out.append("- Stress, robust disagreements with the exact model: " + "; ".join(
-            f"{r['engine']} {r['stress']['disagree']} of {r['stress']['compared']}" for r in st) + ".")
+            f"{r['engine']} {r['stress']['disagree']} of {r['stress']['compared']}" if r["stress"]["compared"]
+            else f"{r['engine']} none compared (it carries none of the cases)" for r in st) + ".")
     ex = [r for r in rows if _measured(r["experiments"]) and r["experiments"]["held_out_accuracy"]]
     if ex:
         best = max(ex, key=lambda r: min(v["accuracy"] for v in r["experiments"]["held_out_accuracy"].values()))
