@@ -19,6 +19,7 @@ because it is the one place that may call tools of several packages (tests/test_
 """
 from __future__ import annotations
 
+import json
 import math
 import os
 import sys
@@ -172,7 +173,6 @@ def cmd_scorecard(a) -> int:
             old_readme = readme_text(a.readme)
         command = command_of(a)
         data = build(labels, effort, budget=budget, workers=a.workers, quiet=a.quiet, command=command)
-        import json
         data = json.loads(to_json(data))  # rendered as the JSON holds it: the files agree, and can be re-rendered
         md.write_text(markdown(data))
         if js is not None:
@@ -218,16 +218,6 @@ def _speed_of(engine: str) -> float:
     return SPEEDS.get(engine, min(SPEEDS.values()))
 
 
-def _loadable(label: str) -> str:
-    """'' when the engine of `label` loads here, else why not."""
-    from isorock.validate.core.engines import get_engine
-    try:
-        get_engine(label.partition(":")[0])
-    except ImportError as e:
-        return f"the engine cannot be loaded here ({type(e).__name__}: {e})"
-    return ""
-
-
 def default_label(name: str, labels: list[str]) -> str | None:
     """The label of engine `name`'s defaults among `labels` (its "default" preset), if any."""
     return f"{name}:default" if f"{name}:default" in labels else None
@@ -239,7 +229,6 @@ def plan(labels: list[str], effort: Effort, budget: float, grid) -> tuple[list[d
     or the engine's default label for a per-engine measure), estimate_s. Admitted greedily in
     priority order (each engine's defaults first, every measure; then the other presets' atlas and
     speed) while the admitted estimates stay within ADMIT_SHARE of the budget."""
-    from isorock.validate.cli.atlas import expand  # noqa: F401 (labels are already expanded)
     from isorock.validate.core.engines import get_engine
     from isorock.validate.tools.atlas import distinct
     run, aliases, skipped = distinct(labels)
