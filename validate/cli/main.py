@@ -13,6 +13,7 @@
     isorock sweep    campaigns: spectra, fragility curves, agreement maps (Dask)
     isorock design   which isolator keeps a statue standing at a site: P(overturn) and stroke per isolator
     isorock experiments  the engines scored against measured shake-table tests of two rocks
+    isorock scorecard  every engine and preset on the same rows, written to docs/engines.md
 
 Bad input exits with code 2 and one line on stderr, and leaves no output file.
 Outputs go through validate.io.output: checked before the work, written all or none.
@@ -54,6 +55,8 @@ EXTRA_COMMANDS = {
                                               "edges"),
     "experiments": ("isorock.validate.cli.experiments", "score the rigid model and the contact engines against measured "
                                                         "shake-table tests"),
+    "scorecard": ("isorock.validate.cli.scorecard", "every engine and preset on the same rows (atlas, validate, stress, "
+                                                    "speed, shake table), written to docs/engines.md"),
 }
 
 

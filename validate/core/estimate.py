@@ -15,7 +15,10 @@ from __future__ import annotations
 #: `isorock bench`'s speed goals, README), and docs/drake.md's free-rocking table for Drake
 #: (continuous preset: 0.27). An engine not listed counts as the slowest.
 SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.0, "mujoco": 40.0,
-          "bullet": 10.0, "drake": 0.27}
+          "bullet": 10.0, "drake": 0.27,
+          # DART at its 0.1 ms step: 8.4 on the atlas grid, 5 on Kobe 40 s (docs/dart.md); MJX on a CPU,
+          # stepped throughout: 0.15 on the atlas grid (docs/mjx.md)
+          "dart": 5.0, "mjx": 0.15}
 #: wall seconds from which the estimate is announced
 ANNOUNCE_AFTER = 120.0
 

@@ -133,7 +133,7 @@ def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], 
     return rows, extra
 
 
-def speed_goals(engines=None, *, repeats: int = 3, progress=True) -> list[dict]:
+def speed_goals(engines=None, *, repeats: int = 3, progress=True, labels=None) -> list[dict]:
     """Issue 19's speed goals, measured side by side in this run: for each goal engine asked
     for (SPEED_GOALS), its default and its former default (preset FORMER) on Kobe 40 s, the
     paper's block, isolated and fixed: one run alone (medians of `repeats` of the wall and
@@ -141,7 +141,12 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True) -> list[dict]:
     tolerance, a batch of BATCH_RUNS (half isolated, half fixed) through the registry's
     simulate_many on BATCH_THREADS threads, and the engine's step cost (EngineSpec.step_cost:
     one physics step of the scene in C, the block at rest) as the limit each speed is a
-    fraction of. Rows: one per (label, base), the batch on the isolated row."""
+    fraction of. Rows: one per (label, base), the batch on the isolated row.
+
+    `labels`: measure exactly these ENGINE:PRESET labels instead, of any engine (the
+    scorecard's rows): the batch where the engine has a batch path (EngineSpec.simulate_many;
+    None otherwise, as it would only run them one by one), the step's limit where it has a
+    step cost, θ judged where the table has its theta_max_diff tolerance (None otherwise)."""
     from isorock.analytic import limits, paper_system
     from isorock.validate.core.engines import get_engine, resolve, settings_used
     from isorock.validate.core.scenarios import KOBE
@@ -149,71 +154,76 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True) -> list[dict]:
     from isorock.analytic.motion import load_motion
     if not KOBE.is_file():
         return []
-    names = [n for n in SPEED_GOALS if _importable(n)
-             and (engines is None or any(e.partition(":")[0] == n for e in engines))]
+    from isorock.validate.core.tolerances import has_tolerance
+    if labels is None:
+        names = [n for n in SPEED_GOALS if _importable(n)
+                 and (engines is None or any(e.partition(":")[0] == n for e in engines))]
+        chosen = [f"{n}:{p}" for n in names for p in ("default", FORMER) if p in get_engine(n).spec.presets]
+    else:
+        chosen = list(labels)
     motion = load_motion(str(KOBE))
     bases = {"isolated": paper_system(), "fixed": paper_system(fixed_base=True)}
     ref = {b: get_engine("analytic").simulate(s, motion, duration=40.0).theta_max_over_alpha for b, s in bases.items()}
     rows = []
-    for name in names:
+    for label in chosen:
+        name = label.partition(":")[0]
         engine = get_engine(name)
-        for preset in ("default", FORMER):
-            if preset not in engine.spec.presets:
-                continue
-            label = f"{name}:{preset}"
-            settings = resolve(label)[1]
-            engine.simulate(bases["fixed"], motion, settings=settings, duration=1.0)  # loaded outside the clock
-            batch = None
-            if SPEED_GOALS[name][1] is not None:
-                runs = [(bases[b], motion, 40.0, 0.0) for b in ("isolated", "fixed") for _ in range(BATCH_RUNS // 2)]
-                start = time.perf_counter()
-                out = engine.simulate_many(runs, settings=settings, threads=BATCH_THREADS, effective_beta=False,
+        settings = resolve(label)[1]
+        engine.simulate(bases["fixed"], motion, settings=settings, duration=1.0)  # loaded outside the clock
+        batch = None
+        if (SPEED_GOALS[name][1] is not None if labels is None
+                else engine.spec.simulate_many is not None and not engine.capabilities.exact_impacts):
+            runs = [(bases[b], motion, 40.0, 0.0) for b in ("isolated", "fixed") for _ in range(BATCH_RUNS // 2)]
+            start = time.perf_counter()
+            out = engine.simulate_many(runs, settings=settings, threads=BATCH_THREADS, effective_beta=False,
+                                       budget_s=limits.RUN_BUDGET_S)
+            wall = time.perf_counter() - start
+            # simulated seconds as run: a block that overturned and lies on its side stops early
+            batch = (None if any(isinstance(x, Exception) for x in out)
+                     else sum(float(x.t[-1]) for x in out) / wall)
+        for base, system in bases.items():
+            walls, cpus, mapped, traj = [], [], [], None
+            try:
+                for _ in range(repeats):
+                    # the run as a campaign's row makes it (impacts counted, not mapped to β) ...
+                    w, c = time.perf_counter(), time.process_time()
+                    traj = engine.simulate(system, motion, settings=settings, duration=40.0,
+                                           budget_s=limits.RUN_BUDGET_S, effective_beta=False)
+                    walls.append(time.perf_counter() - w)
+                    cpus.append(time.process_time() - c)
+                    # ... and with every counted impact mapped to its effective β (a report's run)
+                    w = time.perf_counter()
+                    traj = engine.simulate(system, motion, settings=settings, duration=40.0,
                                            budget_s=limits.RUN_BUDGET_S)
-                wall = time.perf_counter() - start
-                # simulated seconds as run: a block that overturned and lies on its side stops early
-                batch = (None if any(isinstance(x, Exception) for x in out)
-                         else sum(float(x.t[-1]) for x in out) / wall)
-            for base, system in bases.items():
-                walls, cpus, mapped, traj = [], [], [], None
-                try:
-                    for _ in range(repeats):
-                        # the run as a campaign's row makes it (impacts counted, not mapped to β) ...
-                        w, c = time.perf_counter(), time.process_time()
-                        traj = engine.simulate(system, motion, settings=settings, duration=40.0,
-                                               budget_s=limits.RUN_BUDGET_S, effective_beta=False)
-                        walls.append(time.perf_counter() - w)
-                        cpus.append(time.process_time() - c)
-                        # ... and with every counted impact mapped to its effective β (a report's run)
-                        w = time.perf_counter()
-                        traj = engine.simulate(system, motion, settings=settings, duration=40.0,
-                                               budget_s=limits.RUN_BUDGET_S)
-                        mapped.append(time.perf_counter() - w)
-                except limits.BudgetExceeded as e:  # as a ladder's rung: said, no speed claimed, the bench goes on
-                    if progress:
-                        print(f"  kobe-40s {base:8s} {label:16s} {e}", file=sys.stderr, flush=True)
-                    continue
-                used = settings_used(settings, system, 40.0)
-                cost = engine.spec.step_cost(system, settings) if engine.spec.step_cost else None
-                limit_cpu = used.timestep / cost if cost else None
-                simulated = float(traj.t[-1])  # a run that overturned and lies on its side stops early
-                sim_cpu = simulated / statistics.median(cpus)
-                diff = traj.theta_max_over_alpha - ref[base]
-                rows.append(dict(
-                    engine=label, base=base, timestep=used.timestep, simulated_s=simulated,
-                    sim_per_wall=simulated / statistics.median(walls),
-                    sim_per_wall_mapped=simulated / statistics.median(mapped),
-                    sim_per_cpu=sim_cpu, theta_max_over_alpha=traj.theta_max_over_alpha,
-                    reference_theta_max_over_alpha=ref[base], theta_max_diff=diff,
-                    theta_ok=abs(diff) <= tolerance(name, "theta_max_diff").limit or (traj.overturned and ref[base] > 1),
-                    overturned=traj.overturned, step_us=None if cost is None else cost * 1e6,
-                    limit_sim_per_cpu=limit_cpu, fraction_of_limit=None if not limit_cpu else sim_cpu / limit_cpu,
-                    batch_sim_per_wall=batch if base == "isolated" else None))
+                    mapped.append(time.perf_counter() - w)
+            except limits.BudgetExceeded as e:  # as a ladder's rung: said, no speed claimed, the bench goes on
                 if progress:
-                    r = rows[-1]
-                    print(f"  kobe-40s {base:8s} {label:16s} {r['sim_per_wall']:8.3g} sim s/wall s alone, "
-                          f"{r['sim_per_cpu']:.3g} per CPU s ({_times(r['fraction_of_limit'])} the step's limit)"
-                          + (f", batch of {BATCH_RUNS}: {batch:.3g}" if batch and base == "isolated" else ""),
-                          file=sys.stderr, flush=True)
+                    print(f"  kobe-40s {base:8s} {label:16s} {e}", file=sys.stderr, flush=True)
+                continue
+            used = settings_used(settings, system, 40.0)
+            cost = engine.spec.step_cost(system, settings) if engine.spec.step_cost else None
+            timestep = getattr(used, "timestep", None)  # an event-driven engine (analytic) has none
+            limit_cpu = timestep / cost if cost and timestep else None
+            simulated = float(traj.t[-1])  # a run that overturned and lies on its side stops early
+            sim_cpu = simulated / statistics.median(cpus)
+            diff = traj.theta_max_over_alpha - ref[base]
+            rows.append(dict(
+                engine=label, base=base, timestep=timestep, simulated_s=simulated,
+                sim_per_wall=simulated / statistics.median(walls),
+                sim_per_wall_mapped=simulated / statistics.median(mapped),
+                sim_per_cpu=sim_cpu, theta_max_over_alpha=traj.theta_max_over_alpha,
+                reference_theta_max_over_alpha=ref[base], theta_max_diff=diff,
+                theta_ok=(abs(diff) <= tolerance(name, "theta_max_diff").limit or (traj.overturned and ref[base] > 1))
+                if has_tolerance(name, "theta_max_diff") else None,
+                overturned=traj.overturned, step_us=None if cost is None else cost * 1e6,
+                limit_sim_per_cpu=limit_cpu, fraction_of_limit=None if not limit_cpu else sim_cpu / limit_cpu,
+                batch_sim_per_wall=batch if base == "isolated" else None))
+            if progress:
+                r = rows[-1]
+                print(f"  kobe-40s {base:8s} {label:16s} {r['sim_per_wall']:8.3g} sim s/wall s alone, "
+                      f"{r['sim_per_cpu']:.3g} per CPU s ({_times(r['fraction_of_limit'])} the step's limit)"
+                      + (f", batch of {BATCH_RUNS}: {batch:.3g}" if batch and base == "isolated" else ""),
+                      file=sys.stderr, flush=True)
     return rows
 
 
@@ -237,7 +247,7 @@ def goal_lines(goal_rows: list[dict]) -> list[str]:
     def num(x, fmt=".3g"):
         return "—" if x is None else format(x, fmt)
     for r in goal_rows:
-        lines.append(f"| {r['engine']} | {r['base']} | {num(1000 * r['timestep'])} | {num(r['sim_per_wall'])} | "
+        lines.append(f"| {r['engine']} | {r['base']} | {num(None if r['timestep'] is None else 1000 * r['timestep'])} | {num(r['sim_per_wall'])} | "
                      f"{num(r['sim_per_cpu'])} | {num(r.get('sim_per_wall_mapped'))} | {num(r['step_us'], '.2f')} | {num(r['limit_sim_per_cpu'])} | "
                      f"{_times(r['fraction_of_limit'])} | {num(r['batch_sim_per_wall'])} | "
                      f"{r['theta_max_over_alpha']:.4g} ({r['reference_theta_max_over_alpha']:.4g}) | "

@@ -1,0 +1,202 @@
+"""`isorock scorecard`: every engine and preset on the same rows, each from its tool; a budget
+said first and kept; what does not fit or cannot run says 'not run' and why; outputs whole or
+absent; and the committed docs/engines.md and the README's table are the command's output.
+
+The oracles are the tools themselves, called here directly on the same grid (atlas.build), and
+the committed JSON re-rendered (nobody edits docs/engines.md or the README's table by hand).
+About 45 s on 2 cores (40 s with -n auto), most of it the one quick run of analytic, MuJoCo and PyBullet."""
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import pytest
+
+from isorock.validate.cli import scorecard as sc
+from isorock.validate.cli.main import main
+
+ROOT = Path(__file__).resolve().parents[1]
+#: the quick run's budget (s); CI's whole suite must stay under ~5 minutes on 2 cores
+BUDGET = 45.0
+#: s a run may end past its budget: the last measurement's estimate is a bound, not a promise,
+#: and the interpreter's start and the files' writing are outside the clock
+SLACK = 15.0
+QUICK_ENGINES = ("analytic:default", "mujoco:default", "bullet:default")
+
+
+def _readme_copy(tmp_path) -> Path:
+    readme = tmp_path / "README.md"
+    readme.write_text("# mine\n\nbefore\n\n" + sc.README_BEGIN + "\nold table\n" + sc.README_END + "\n\nafter\n",
+                      encoding="utf-8")
+    return readme
+
+
+def _quick_run(tmp):
+    """One quick scorecard of the fast engines' defaults, as CI runs it: (data, stderr, wall s, paths)."""
+    import contextlib
+    import io
+    readme = _readme_copy(tmp)
+    md, js = tmp / "engines.md", tmp / "engines.json"
+    err = io.StringIO()
+    start = time.perf_counter()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        code = main(["scorecard", "--quick", "--engines", *QUICK_ENGINES, "--budget", f"{BUDGET:g}",
+                     "--out", str(md), "--json", str(js), "--readme", str(readme)])
+    wall = time.perf_counter() - start
+    assert code == 0, err.getvalue()[-2000:]
+    return json.loads(js.read_text()), err.getvalue(), wall, {"md": md, "json": js, "readme": readme}
+
+
+def check_the_budget_is_said_before_the_work_and_kept(quick):
+    data, err, wall, _ = quick
+    lines = [x for x in err.splitlines() if x.startswith("scorecard:")]
+    assert lines[0].startswith(f"scorecard: budget {BUDGET:g} s (quick); planned")
+    assert "estimated" in lines[0]
+    assert wall <= BUDGET + SLACK, f"{wall:.0f} s against a budget of {BUDGET:g} s"
+    assert data["budget_s"] == BUDGET and data["wall_s"] <= BUDGET + SLACK
+    assert data["effort"] == "quick" and data["cells"] == len(sc.QUICK.heights) * len(sc.QUICK.mass_ratios) * len(
+        sc.QUICK.slenderness)
+
+
+def check_every_cell_is_measured_or_says_why_not(quick):
+    data, _, _, _ = quick
+    assert [r["label"] for r in data["rows"]] == list(QUICK_ENGINES)
+    for r in data["rows"]:
+        for m in sc.MEASURES:
+            cell = r[m]
+            assert isinstance(cell, dict) and cell, (r["label"], m)
+            if "not_run" in cell:
+                assert cell["not_run"].startswith("not run: ") and len(cell["not_run"]) > len("not run: ") + 10
+            else:
+                assert not any(v is None for k, v in cell.items() if k in ("worst_beta_error", "verdict", "runs")), cell
+    # the fast engines' atlas and the analytic model's every measure fit a 45 s budget
+    assert all("not_run" not in r["atlas"] for r in data["rows"])
+    assert all("not_run" not in data["rows"][0][m] for m in sc.MEASURES)
+    md = (quick[3]["md"]).read_text()
+    assert "| — |" not in md.replace("| — (", "")  # never a bare blank in a cell
+
+
+def check_the_atlas_cells_are_the_atlas_tools_worst_values_on_the_same_grid(quick):
+    from isorock.validate.tools.atlas import Grid, build
+    data, _, _, _ = quick
+    grid = Grid(tuple(data["grid"]["slenderness"]), tuple(data["grid"]["mass_ratios"]),
+                tuple(data["grid"]["heights_m"]))
+    assert grid.cells() and len(grid.cells()) == data["cells"]
+    labels = [r["label"] for r in data["rows"] if r["engine"] != "analytic"]
+    atlas = build(labels, grid, workers=1)
+    for s in atlas["presets"]:
+        row = next(r for r in data["rows"] if r["label"] == s["engine"])["atlas"]
+        # the worst over the grid, recomputed here from the tool's own rows: the oracle
+        judged = [r for r in atlas["rows"] if r["engine"] == s["engine"] and r["status"] == "ok"]
+        assert len(judged) == len(grid.cells())
+        assert row["worst_beta_error"] == pytest.approx(max(abs(r["beta_error"]) for r in judged), rel=1e-12)
+        assert row["worst_t1_error"] == pytest.approx(max(abs(r["t1_error"]) for r in judged), rel=1e-12)
+        assert row["impacts_lost"] == sum(r["impacts_lost"] for r in judged)
+        assert row["judged"] == len(judged) and row["complete"]
+
+
+def check_the_files_agree_with_each_other_and_the_readme_keeps_the_rest(quick):
+    data, _, _, paths = quick
+    assert paths["md"].read_text(encoding="utf-8") == sc.markdown(data)
+    text = paths["readme"].read_text(encoding="utf-8")
+    assert text.startswith("# mine\n\nbefore\n\n") and text.endswith("\n\nafter\n") and "old table" not in text
+    assert sc.readme_block(text) == sc.readme_table(data)
+    assert data["command"].startswith("isorock scorecard --quick --engines analytic:default")
+    assert "## Summary" in paths["md"].read_text() and "## How this file was made" in paths["md"].read_text()
+
+
+def test_a_quick_scorecard_of_the_fast_engines(tmp_path):
+    """One run (CI's: the fast engines' defaults, --quick, a 45 s budget), checked four ways; one
+    test, so that pytest-xdist never runs it twice on the two cores."""
+    quick = _quick_run(tmp_path)
+    check_the_budget_is_said_before_the_work_and_kept(quick)
+    check_every_cell_is_measured_or_says_why_not(quick)
+    check_the_atlas_cells_are_the_atlas_tools_worst_values_on_the_same_grid(quick)
+    check_the_files_agree_with_each_other_and_the_readme_keeps_the_rest(quick)
+
+
+def test_the_committed_scorecard_and_readme_table_are_the_commands_output():
+    """docs/engines.md and the README's table are re-rendered from docs/engines.json, which the
+    same command wrote: an edit by hand to either fails here."""
+    data = json.loads((ROOT / "docs" / "engines.json").read_text(encoding="utf-8"))
+    assert data["command"].startswith("isorock scorecard") and "--readme README.md" in data["command"]
+    assert (ROOT / "docs" / "engines.md").read_text(encoding="utf-8") == sc.markdown(data)
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert sc.readme_block(readme) == sc.readme_table(data)
+    # every engine's defaults have a row in the README's table, measured or with the reason
+    names = {r["engine"] for r in data["rows"]}
+    assert {"analytic", "mujoco", "bullet", "dart", "mjx"} <= names
+
+
+def test_an_engine_that_cannot_be_loaded_is_not_run_with_the_reason(monkeypatch):
+    from isorock.validate.core import engines
+    real = engines.get_engine
+
+    def get_engine(name):
+        if name == "dart":
+            raise ImportError("No module named 'dartpy' (the test's)")
+        return real(name)
+    monkeypatch.setattr(engines, "get_engine", get_engine)
+    labels = sc.labels_of(["analytic:default", "dart"])
+    assert labels == ["analytic:default", "dart"]
+    data = sc.build(labels, sc.QUICK, budget=1.0)
+    dart = next(r for r in data["rows"] if r["engine"] == "dart")
+    for m in sc.MEASURES:
+        assert "cannot be loaded here" in dart[m]["not_run"] and "dartpy" in dart[m]["not_run"]
+    table = "\n".join(sc.table_lines(json.loads(json.dumps(data))))
+    assert "dartpy" in table
+
+
+def test_work_over_the_budget_is_not_run_with_its_estimate_and_the_file_is_whole(tmp_path, capsys):
+    out, js = tmp_path / "engines.md", tmp_path / "engines.json"
+    assert main(["scorecard", "--quick", "--engines", "mujoco:default", "--budget", "1", "--out", str(out),
+                 "--json", str(js)]) == 0
+    err = capsys.readouterr().err
+    assert "scorecard: budget 1 s (quick); planned 0 measurements" in err
+    data = json.loads(js.read_text())
+    (row,) = data["rows"]
+    for m in ("atlas", "speed", "validate", "stress"):
+        assert row[m]["not_run"].startswith("not run: estimated ") and "over the --budget of 1 s" in row[m]["not_run"]
+    assert out.read_text() == sc.markdown(data)
+
+
+@pytest.mark.parametrize("args, named", [
+    (["--budget", "0"], "budget = 0.0"),
+    (["--budget", "nan"], "budget = nan"),
+    (["--budget", "1e9"], "budget = 1000000000.0"),
+    (["--budget", "soon"], "--budget"),
+    (["--engines", "mujoco:warp"], "'warp'"),
+    (["--engines", "ode45"], "'ode45'"),
+    (["--workers", "0"], "workers"),
+])
+def test_bad_flags_exit_2_with_one_line_and_write_nothing(tmp_path, capsys, args, named):
+    out, js = tmp_path / "engines.md", tmp_path / "engines.json"
+    assert main(["scorecard", "--quick", *args, "--out", str(out), "--json", str(js)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and named in err, err
+    assert not out.exists() and not js.exists()
+
+
+def test_a_readme_without_the_markers_is_refused_before_any_work(tmp_path, capsys):
+    readme = tmp_path / "README.md"
+    readme.write_text("# mine\n\nno markers\n")
+    out = tmp_path / "engines.md"
+    start = time.perf_counter()
+    assert main(["scorecard", "--quick", "--budget", "600", "--out", str(out), "--readme", str(readme)]) == 2
+    assert time.perf_counter() - start < 10  # refused before the work, not after it
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "readme = " in err and "marker" in err
+    assert readme.read_text() == "# mine\n\nno markers\n" and not out.exists()
+
+
+def test_a_refused_output_leaves_the_earlier_scorecard_whole(tmp_path, capsys):
+    out = tmp_path / "engines.md"
+    out.write_text("an earlier scorecard\n")
+    folder = tmp_path / "a-folder"
+    folder.mkdir()
+    assert main(["scorecard", "--quick", "--budget", "1", "--out", str(out), "--json", str(folder)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "json = " in err and "folder" in err
+    assert out.read_text() == "an earlier scorecard\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a-folder", "engines.md"]  # nothing staged left
