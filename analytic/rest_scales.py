@@ -42,7 +42,7 @@ _tr_state = _P["translation_state"]
 _tr_uplift = _P["translation_uplift"]
 _tr_vzeros = _P["translation_velocity_zeros"]
 _tr_ubound = _P["translation_u_bound"]
-_K, _INV_M, _THR, _THR_NEG = physics.K, physics.INV_M, physics.THR, physics.THR_NEG
+_K, _INV_M, _THR = physics.K, physics.INV_M, physics.THR
 _PIECE, _PA0, _PA1, _INV_DT, _DT, _SAMPLED, _KIND = (physics.PIECE, physics.PA0, physics.PA1, physics.INV_DT,
                                                     physics.DT, physics.SAMPLED, physics.KIND)
 
@@ -143,10 +143,9 @@ def rest_phases(systems, records, factors, durations, settings: AnalyticSettings
         sp = sps[i]
         for r, (mp, acc, breaks, T, order) in enumerate(prepared):
             up = np.empty(order.size)
-            # |a₁| against the weaker edge's threshold: a statue of two edges lifts on either
-            # (the block's two are one); the forward one alone settled runs that lift backward
-            threshold = min(sp[_THR], sp[_THR_NEG])
-            u1_max[i, r] = _rest_pass(sp, mp, acc, breaks, T, np.ascontiguousarray(threshold / f[r][order]), up)
+            # the forward edge's threshold per factor; translation_uplift scales the backward
+            # edge's alike (physics.other_threshold), so a statue lifts on either edge
+            u1_max[i, r] = _rest_pass(sp, mp, acc, breaks, T, np.ascontiguousarray(sp[_THR] / f[r][order]), up)
             uplift[i, r, order] = up
             if np.isfinite(up).all():
                 u1_max[i, r] = math.nan  # the pass stopped at the last uplift

@@ -323,3 +323,25 @@ def test_a_build_held_past_the_wait_bound_is_built_here_too(tmp_path, aot_cache,
     err = capsys.readouterr().err
     assert "waiting for another process" in err and "building it here" in err and "compiled" in err, err
     assert len(list(aot_cache.glob("isorock_halve_*"))) == 1
+
+
+def test_every_cached_kernel_is_stamped_with_the_sources_it_compiles_in():
+    """A kernel inlines analytic.physics's functions: its cache must be stamped with physics.py, or
+    a change there runs the old compiled physics. design's rest pass (analytic/rest_scales.py) was
+    stamped by numba with its own file only: after the two-edge physics landed, a checkout that
+    had compiled it before kept the symmetric uplift test, and settled as standing a bust that
+    lifts on its backward edge (design --check mujoco: 1 of 3 outcomes agreed)."""
+    import inspect
+    import pathlib
+    here = pathlib.Path(kernel_cache.__file__).parent
+    users = sorted(p for p in here.glob("*.py") if p.name != "kernel_cache.py" and "@cached_jit" in p.read_text())
+    assert {p.name for p in users} >= {"fast.py", "slide_fast.py", "rest_scales.py"}
+    for path in users:
+        sources = kernel_cache.KERNEL_FILES.get(str(path.resolve()))
+        assert sources is not None, f"{path.name}: its kernels' caches are stamped by numba with their own file only"
+        assert {pathlib.Path(s).name for s in sources} >= {path.name, "physics.py"}, path.name
+    from isorock.analytic import rest_scales
+    locator_cls = kernel_cache._locator_class()
+    f = rest_scales._rest_pass.py_func
+    loc = locator_cls.from_function(f, inspect.getfile(f))
+    assert loc is not None and len(loc.get_source_stamp()) >= 3  # rest_scales.py, fast.py, physics.py

@@ -323,9 +323,10 @@ def test_the_batch_gives_each_runs_summary_on_two_edges():
 @pytest.mark.parametrize("body", [BODY, MIRROR], ids=["weaker-forward", "weaker-backward"])
 def test_the_rest_pass_never_settles_a_statue_that_lifts_on_either_edge(body):
     """design's rest pass (analytic.rest_scales) answers without the kernel the runs whose block
-    never lifts: for a statue of two edges it read the forward edge's threshold only, so a bust
-    shaken along 180° (its weaker edge backward) was 'never lifting' where it overturns (found by
-    `design --check mujoco`). Oracle: the exact model's own first uplift."""
+    never lifts: it must see a statue lift on either edge, the weaker backward one too (a bust
+    shaken along 180°). A rest pass compiled before the two-edge physics, kept by a cache stamped
+    with rest_scales.py alone, did not (tests/test_kernel_cache.py; found by `design --check
+    mujoco`). Oracle: the exact model's own first uplift."""
     from isorock.analytic.fast import simulate_fast
     from isorock.analytic.rest_scales import rest_phases
     system = dataclasses.replace(System.isolated(**body.box, mass=M, base_mass=M, period=0.3, damping_ratio=0.1),
