@@ -33,6 +33,8 @@ ENGINE_MODULES = {
     "drake": "isorock.drake_models",
     # MuJoCo's JAX port on MuJoCo's own scene (optional: the mjx extra; docs/mjx.md)
     "mjx": "isorock.mujoco_models.mjx:ENGINE",
+    # MuJoCo Warp, MuJoCo's port to NVIDIA Warp, on MuJoCo's own scene (optional: the mjwarp extra; docs/mjwarp.md)
+    "mjwarp": "isorock.mujoco_models.mjwarp:ENGINE",
     # DART's contact and constraint solver (optional: the dart extra; docs/dart.md)
     "dart": "isorock.dart_models:ENGINE",
     # the former name of the compiled engine, kept so that nothing breaks
