@@ -15,6 +15,7 @@ MuJoCo's phased or event-resolved stepping. An optional engine: `pip install 'is
 # no `from __future__ import annotations`: Warp reads the kernels' annotations (wp.array…) as objects
 import contextlib
 import functools
+import importlib.util
 import io
 import time
 
@@ -31,6 +32,14 @@ from .batch import ISOLATORS
 from .scene import SCENE_FORMAT, check_representable, scene_text
 from .settings import Settings, settings_for
 
+# Registered, but where the extra is not installed the engine cannot be loaded (an ImportError, as
+# Drake's where pydrake is absent): every loop over the engines skips it with this reason, and a
+# command that names it says it in one line. find_spec: Warp itself is imported on the first run only.
+for _package in ("warp", "mujoco_warp"):
+    if importlib.util.find_spec(_package) is None:
+        raise ModuleNotFoundError(f"MuJoCo Warp cannot run here without the package {_package!r}: "
+                                  "pip install 'isorock[mjwarp]'", name=_package)
+
 #: steps recorded in one capture, replayed as often as a run needs: recording costs ~20 ms a step
 #: on this CPU (once per scene), a replayed step ~0.08 ms
 GRAPH_STEPS = 50
@@ -39,10 +48,13 @@ CHUNK_STEPS = 2000
 
 
 def _warp():
-    """(warp, mujoco_warp), Warp initialised quietly: its banner would land in `--json -`'s output."""
+    """(warp, mujoco_warp), Warp initialised quietly: its banner and its line per module loaded go to
+    standard output, where they would land in `--json -`'s output (its warnings go to standard error)."""
     wp = import_extra("warp", "mjwarp", "the MuJoCo Warp engine")
     mjw = import_extra("mujoco_warp", "mjwarp", "the MuJoCo Warp engine")
     wp.config.quiet = True
+    if hasattr(wp, "LOG_WARNING"):  # warp-lang 1.19 prints its module loads at its log level INFO
+        wp.config.log_level = wp.LOG_WARNING
     with contextlib.redirect_stdout(io.StringIO()):
         wp.init()
     return wp, mjw

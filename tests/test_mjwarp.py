@@ -13,7 +13,8 @@ import pytest
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import BilinearIsolator, System, paper_system
 from isorock.mujoco_models import Settings
-from isorock.validate.core.engines import get_engine
+from isorock.validate.cli.main import main
+from isorock.validate.core.engines import ALL_ENGINES, get_engine, presets_of
 from isorock.validate.core.measure import beta_errors
 from isorock.validate.core.tolerances import tolerance
 
@@ -73,8 +74,9 @@ def test_a_batch_is_its_runs_alone():
         assert float(np.max(np.abs(raw.theta - alone.theta))) <= tolerance("mjwarp", "batch_vs_alone").limit
 
 
+@installed
 def test_what_mjwarp_cannot_carry_is_refused_in_one_line():
-    """Before any Warp work, so installed or not."""
+    """Before any Warp work."""
     bearing = System.with_isolator(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0,
                                    isolator=BilinearIsolator(stiffness=3e5, post_yield_ratio=0.5,
                                                              yield_displacement=0.005))
@@ -86,9 +88,27 @@ def test_what_mjwarp_cannot_carry_is_refused_in_one_line():
                                       settings=Settings(impact_timestep=2.5e-4, timestep=3e-3))
 
 
-def test_without_the_extra_mjwarp_says_what_to_install(monkeypatch):
+def test_without_the_extra_mjwarp_is_registered_and_cannot_run_here(monkeypatch, capsys):
+    """Where mujoco-warp or warp-lang is absent (installed or not here): the engine is a name of the
+    registry that cannot be loaded, skipped by every loop over the engines, and named, one line
+    saying what to install."""
     for name in ("warp", "mujoco_warp"):
-        monkeypatch.setitem(sys.modules, name, None)  # an import of it fails as where it is absent
+        monkeypatch.setitem(sys.modules, name, None)  # found nowhere, as where it is not installed
+    monkeypatch.delitem(sys.modules, "isorock.mujoco_models.mjwarp", raising=False)
+    assert "mjwarp" in ALL_ENGINES
+    with pytest.raises(ImportError, match=r"cannot run here without the package 'warp': pip install 'isorock\[mjwarp\]'"):
+        get_engine("mjwarp")
     with pytest.raises(InputError) as e:
-        get_engine("mjwarp").simulate(paper_system(), None, duration=0.1)
-    assert "\n" not in str(e.value) and "isorock[mjwarp]" in str(e.value)
+        presets_of("mjwarp")
+    assert "\n" not in str(e.value) and "cannot run here" in str(e.value) and "isorock[mjwarp]" in str(e.value)
+    assert main(["run", "--engine", "mjwarp", "--fixed-base", "--theta0", "0.5", "--duration", "0.5"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "cannot run here" in err and "isorock[mjwarp]" in err
+
+
+@installed
+def test_mjwarp_keeps_standard_output_clean(capfd):
+    """Warp prints its banner and each module it loads on standard output: `--json -` writes there."""
+    system = paper_system(fixed_base=True)
+    get_engine("mjwarp").simulate(system, None, settings=FULL, duration=0.05, theta0=0.3 * system.alpha)
+    assert capfd.readouterr().out == ""
