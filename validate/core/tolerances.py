@@ -207,6 +207,11 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
               "`full` preset), 2 s of the paper's block: one solver in two implementations, Warp's in float32 "
               "(positions rounded to ~6e-8 of their size); measured 1.8e-4 α (free rocking, fixed), 2.8e-5 α "
               "and 1.0e-4 u_max (isolated), 5.0e-4 α (under a sine): as MJX's, half MuJoCo's own θmax limit"),
+    ("mjwarp", "beta_rel_error"): Tolerance(
+        0.01, "MuJoCo's limit, which Warp steps MuJoCo's scene to: measured ≤ 0.1% at H 0.1 and 1 m on the atlas grid "
+              "(λ 2–6 × fixed and μ 1: C stepping the same scene 0.11%), up to 1.01% at H 10 m (λ 2, fixed: the one cell "
+              "past this limit) and 0.67% (λ 4, μ 1): Warp's own step at 10 m (MJX in float32 on that cell: 0.08%; "
+              "not its solver's tolerance or line search), docs/mjwarp.md"),
     ("mjwarp", "batch_vs_alone"): Tolerance(
         1e-12, "rad: each world's kernels read and write its own rows only, so a run is the same float32 run "
                "in a batch of 2 as alone (the paper's block, 0.5 s from 0.3α and 0.6α); measured 0"),
@@ -390,7 +395,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
 TOLERANCES.update({(port, m): Tolerance(t.limit, f"as MuJoCo's ({label} steps its scene): {t.reason}", kind=t.kind)
                    for port, label in (("mjx", "MJX"), ("mjwarp", "MuJoCo Warp"))
                    for (e, m), t in list(TOLERANCES.items())
-                   if e == "mujoco" and m in ("beta_rel_error", "beta2_abs_error", "first_impact_time_rel_error",
+                   if e == "mujoco" and (port, m) not in TOLERANCES and m in ("beta_rel_error", "beta2_abs_error", "first_impact_time_rel_error",
                                               "theta_max_diff", "impacts_diff", "u_max_rel_error", "first_uplift_diff",
                                               "overturn_agree", "beta_rel_error_per_impact")})
 
