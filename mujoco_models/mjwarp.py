@@ -6,10 +6,9 @@ finds one (never required).
 
 MuJoCo Warp computes in float32 (its arrays are Warp's `float`, no float64 build): the scene's
 positions and contact depth are rounded to ~6e-8 of their size, which MJX in float64 does not do
-(docs/mjwarp.md measures what that does to β). A step is ~100 kernel launches; each chunk of steps
-is recorded once per scene (`wp.ScopedCapture`, a CUDA graph on a GPU, Warp's API capture on a
-CPU) and replayed, which on this CPU made a step 100× cheaper than launching its kernels from
-Python. What it cannot carry is refused before any work, as MJX refuses it: a non-linear isolator,
+(docs/mjwarp.md measures what that does to β). A step is ~100 kernel launches; GRAPH_STEPS steps
+are recorded once per call (`wp.ScopedCapture`: a CUDA graph on a GPU, Warp's API capture on a CPU)
+and replayed, which on this CPU made a step ~100× cheaper than launching its kernels from Python. What it cannot carry is refused before any work, as MJX refuses it: a non-linear isolator,
 MuJoCo's phased or event-resolved stepping. An optional engine: `pip install 'isorock[mjwarp]'`
 (mujoco-warp, with warp-lang). Measured against MuJoCo's C engine and the exact model: docs/mjwarp.md."""
 # no `from __future__ import annotations`: Warp reads the kernels' annotations (wp.array…) as objects
@@ -41,7 +40,7 @@ for _package in ("warp", "mujoco_warp"):
                                   "pip install 'isorock[mjwarp]'", name=_package)
 
 #: steps recorded in one capture, replayed as often as a run needs: recording costs ~20 ms a step
-#: on this CPU (once per scene), a replayed step ~0.08 ms
+#: on this CPU (once per call: the capture holds that call's arrays), a replayed step ~0.08 ms
 GRAPH_STEPS = 50
 #: steps between two reads of the stepped rows back into numpy (a multiple of GRAPH_STEPS)
 CHUNK_STEPS = 2000
