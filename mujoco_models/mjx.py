@@ -10,30 +10,24 @@ docs/mjx.md."""
 from __future__ import annotations
 
 import functools
-import math
 import time
-from dataclasses import replace
 
 import numpy as np
 
-from isorock.analytic.engine_protocol import run_inputs
-from isorock.analytic.errors import import_extra, require
+from isorock.analytic.errors import import_extra
 from isorock.analytic.motion import GroundMotion
-from isorock.analytic.status import Status
 from isorock.analytic.system import System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
+from isorock.analytic.trajectory import RawHistory
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset
 
-from . import ladder  # MuJoCo's work-precision ladder: the same scene, the same timesteps
-from .scene import SCENE_FORMAT, build_model, check_representable, scene_text
+from . import batch, ladder  # ladder: MuJoCo's work-precision ladder, the same scene, the same timesteps
+from .batch import ISOLATORS
+from .scene import SCENE_FORMAT, check_representable, scene_text
 from .settings import Settings, settings_for
-from .state import Layout, StepRecord, raw_history, vertical_record
 
 #: steps per compiled chunk: one compilation serves every run of a scene layout whatever its
 #: duration (the chunk's length is static to XLA), and a run ends within a chunk of its end
 CHUNK_STEPS = 2000
-#: isolators MJX carries: the linear one (a spring and dashpot on the base's joint)
-ISOLATORS = ("linear",)
 
 
 def _jax():
@@ -48,16 +42,6 @@ def _jax():
     with contextlib.redirect_stdout(io.StringIO()):
         mjx = import_extra("mujoco.mjx", "mjx", "the MJX engine")
     return jax, mjx
-
-
-def _inputs(given: Settings, system: System, motion, duration, theta0):
-    """(motion, duration, settings) of one run, checked as the MuJoCo engine checks its own."""
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
-                                  settings=given.for_system(system), isolators=ISOLATORS, kinetic_friction=False)
-    derived = given.for_system(system, duration)
-    require(derived.impact_timestep is None, "impact_timestep", derived.impact_timestep,
-            "None: MJX steps the scene throughout at the timestep")
-    return motion, duration, replace(derived, phased=False)
 
 
 @functools.cache
@@ -82,17 +66,6 @@ def _chunk():
     return chunk
 
 
-def _start(model, lay, system, theta0):
-    """MJX's data at t = 0: at rest, tilted by θ0 about its corner."""
-    import mujoco
-    _, mjx = _jax()
-    state0 = lay.initial_state(model, system, theta0)
-    data = mujoco.MjData(model)
-    data.qpos[:] = state0[1:1 + model.nq]
-    mujoco.mj_forward(model, data)
-    return mjx.put_data(model, data)
-
-
 def simulate(system: System, motion: GroundMotion | None = None, *, settings: Settings | None = None,
              duration: float | None = None, theta0: float = 0.0, progress=None) -> RawHistory:
     """The scene from t = 0 to `duration` (default: the motion's end + 5 s, or 10 s without
@@ -107,25 +80,14 @@ def simulate_batch(system: System, motions, *, settings: Settings | None = None,
     one compiled chunk. Each history is the run's own, as `simulate` makes it alone."""
     jax, mjx = _jax()
     import jax.numpy as jnp
-    motions = [GroundMotion.zero() if m is None else m for m in motions]
-    theta0 = [0.0] * len(motions) if theta0 is None else list(theta0)
-    require(len(theta0) == len(motions), "theta0", len(theta0), f"one per motion ({len(motions)})")
     start = time.perf_counter()
-    checked = [_inputs(settings or Settings(), system, m, duration, th) for m, th in zip(motions, theta0)]
-    durations = {d for _, d, _ in checked}
-    require(len(durations) == 1, "duration", sorted(durations), "one duration for a batch")
-    duration, derived = checked[0][1], checked[0][2]
-    model = build_model(system, derived)
-    lay = Layout(model, system, derived.joint)
-    dt = model.opt.timestep
-    nstep = int(math.floor(duration / dt + 1e-9))
+    b = batch.prepare(system, motions, settings, duration, theta0, "MJX")
+    model, duration, dt, nstep = b.model, b.duration, b.dt, b.nstep
     n_chunks = -(-nstep // CHUNK_STEPS)
-    forces = np.zeros((len(motions), n_chunks * CHUNK_STEPS, model.nv))
-    for k, (m, _, _) in enumerate(checked):
-        xg, zg = StepRecord(m, dt, nstep), vertical_record(m, dt, nstep)
-        forces[k, :nstep] = lay.forces(system, xg[0:nstep], None if zg is None else zg[0:nstep])
+    forces = np.zeros((len(b.motions), n_chunks * CHUNK_STEPS, model.nv))
+    forces[:, :nstep] = b.forces
     mx = mjx.put_model(model)
-    starts = [_start(model, lay, system, th) for th in theta0]
+    starts = [mjx.put_data(model, data) for data in b.starts]
     chunk = _chunk()
     if len(starts) == 1:
         # one run is stepped as it is: under vmap every branch of a step (each collision
@@ -150,26 +112,8 @@ def simulate_batch(system: System, motions, *, settings: Settings | None = None,
             progress(min(duration, (c + 1) * CHUNK_STEPS * dt), duration)
     qpos = np.concatenate(qpos, axis=1)[:, :nstep]
     qvel = np.concatenate(qvel, axis=1)[:, :nstep]
-    runtime = (time.perf_counter() - start) / len(motions)
-    out = []
-    for k, (m, _, _) in enumerate(checked):
-        state0 = lay.initial_state(model, system, theta0[k])
-        states = np.zeros((nstep + 1, lay.nstate))
-        states[0] = state0
-        states[1:, 1:1 + model.nq] = qpos[k]
-        states[1:, 1 + model.nq:1 + model.nq + model.nv] = qvel[k]
-        states[:, 0] = np.arange(nstep + 1) * dt
-        finite = np.all(np.isfinite(states), axis=1)
-        status, message, stop = Status.COMPLETED, "", None
-        if not finite.all():
-            bad = int(np.argmin(finite))
-            states = states[:bad]
-            status, message, stop = Status.FAILED, f"MJX's state is not finite at t = {bad * dt:.6g} s", "non-finite"
-        raw = raw_history(lay, system, m, states, dt, runtime, status, message, stop, t=states[:, 0])
-        raw.extras.update(timestep=float(dt), solref_0=float(derived.solref[0]), solref_1=float(derived.solref[1]),
-                          stepping="throughout at the timestep, by mjx.step in float64")
-        out.append(replace(raw, engine="mjx"))
-    return out
+    runtime = (time.perf_counter() - start) / len(b.motions)
+    return batch.histories(b, qpos, qvel, runtime, "mjx", "MJX", "throughout at the timestep, by mjx.step in float64")
 
 
 ENGINE = EngineSpec(

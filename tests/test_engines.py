@@ -84,3 +84,19 @@ def test_every_contact_impact_is_logged_with_its_counted_flag(engine):
     tr = engine.simulate(SYSTEM, None, duration=1.5, theta0=0.5 * SYSTEM.alpha)
     assert len(tr.impacts) >= tr.impact_count and tr.summary()["impacts_total"] == len(tr.impacts)
     assert all(i.counted == (i.amplitude > tr.impact_threshold * SYSTEM.alpha) for i in tr.impacts)
+
+
+def test_a_built_in_engine_whose_extra_is_absent_is_one_line_where_named(monkeypatch, capsys):
+    """Drake without pydrake: skipped where every engine is looped over (an ImportError), one line
+    where a command names it (exit 2), never a traceback."""
+    import sys
+
+    from isorock.validate.cli.main import main
+    monkeypatch.setitem(sys.modules, "pydrake", None)  # found nowhere, as where it is not installed
+    for name in [m for m in sys.modules if m.startswith("isorock.drake_models")]:
+        monkeypatch.delitem(sys.modules, name)
+    with pytest.raises(ImportError):
+        get_engine("drake")
+    assert main(["presets", "drake"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "isorock[drake]" in err

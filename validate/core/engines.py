@@ -33,6 +33,8 @@ ENGINE_MODULES = {
     "drake": "isorock.drake_models",
     # MuJoCo's JAX port on MuJoCo's own scene (optional: the mjx extra; docs/mjx.md)
     "mjx": "isorock.mujoco_models.mjx:ENGINE",
+    # MuJoCo Warp, MuJoCo's port to NVIDIA Warp, on MuJoCo's own scene (optional: the mjwarp extra; docs/mjwarp.md)
+    "mjwarp": "isorock.mujoco_models.mjwarp:ENGINE",
     # DART's contact and constraint solver (optional: the dart extra; docs/dart.md)
     "dart": "isorock.dart_models:ENGINE",
     # the former name of the compiled engine, kept so that nothing breaks
@@ -274,7 +276,14 @@ def get_engine(name: str) -> Engine:
         raise InputError(f"engine = {name!r}: must be one of {', '.join(ALL_ENGINES)}")
     module, _, attribute = ENGINE_MODULES[name].partition(":")
     if name not in PLUGINS:
-        spec = getattr(importlib.import_module(module), attribute or "ENGINE")
+        try:
+            spec = getattr(importlib.import_module(module), attribute or "ENGINE")
+        except ImportError as e:
+            if isinstance(e, ModuleNotFoundError) and (e.name or "isorock").split(".")[0] == "isorock":
+                raise  # a module of isorock's own: a bug, with its traceback
+            # an optional extra not installed (pydrake, mujoco_warp): skipped where every engine is
+            # looped over (an ImportError), one line where it is named (an InputError)
+            raise EngineUnavailable(f"engine = {name!r}: cannot be loaded here ({e})") from None
         return Engine(name, spec)
     try:  # a package's code: whatever its import raises is the package's, said in one line
         spec = getattr(importlib.import_module(module), attribute or "ENGINE")
@@ -423,6 +432,8 @@ def presets_of(name: str) -> dict:
     from dataclasses import asdict
     try:
         engine = get_engine(name)
+    except EngineUnavailable:
+        raise  # says it already, in one line
     except ImportError as e:
         raise InputError(f"engine = {name!r}: cannot be loaded here ({e})") from None
     default = asdict(engine.settings())

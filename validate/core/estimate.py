@@ -17,8 +17,10 @@ from __future__ import annotations
 SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.0, "mujoco": 40.0,
           "bullet": 10.0, "drake": 0.27,
           # DART at its 0.1 ms step: 8.4 on the atlas grid, 5 on Kobe 40 s (docs/dart.md); MJX on a CPU,
-          # stepped throughout: 0.15 on the atlas grid (docs/mjx.md)
-          "dart": 5.0, "mjx": 0.15}
+          # stepped throughout: 0.15 on the atlas grid (docs/mjx.md); MuJoCo Warp on a CPU, stepped
+          # throughout: 1.5 on the atlas grid (0.08–7.7 a cell: each run records its steps first, ~1 s),
+          # 2.9 on validate --quick (docs/mjwarp.md)
+          "dart": 5.0, "mjx": 0.15, "mjwarp": 1.5}
 #: wall seconds from which the estimate is announced
 ANNOUNCE_AFTER = 120.0
 

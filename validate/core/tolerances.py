@@ -53,6 +53,9 @@ Metrics (units):
     slide_final                    |Δ x at the end| / b, the same runs
     slide_onset                    |Δ first time |x| > 0.01·b| · p, read off both histories alike
     slide_theta_max_diff           |Δ θmax/α| of the same runs (a statue that may slide, or a vertical motion)
+    history_vs_mujoco              max |Δθ|/α (and |Δu|/u_max) of a batched port of MuJoCo (MJX, MuJoCo Warp)
+                                   against MuJoCo C stepping the same scene throughout
+    batch_vs_alone                 max |Δθ| (rad) of a run stepped in a batch against the same run alone
 """
 from __future__ import annotations
 
@@ -197,6 +200,22 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
               "collision and its solver's exit are its own), apart by ~1e-4 at the first impact and growing "
               "with each; measured 9.6e-5 α (free rocking, fixed), 1.8e-3 α (under a sine), 1.5e-3 u_max "
               "(isolated): half MuJoCo's own θmax limit"),
+    # --- MuJoCo Warp, MuJoCo's port to NVIDIA Warp on MuJoCo's own scene (mujoco_models/mjwarp.py;
+    # docs/mjwarp.md): stepped as MJX steps it, throughout at the timestep, but in float32
+    ("mjwarp", "history_vs_mujoco"): Tolerance(
+        0.01, "max |Δθ|/α, and max |Δu| over u_max, against MuJoCo C stepping the same scene throughout (the "
+              "`full` preset), 2 s of the paper's block: one solver in two implementations, Warp's in float32 "
+              "(positions rounded to ~6e-8 of their size); measured 1.8e-4 α (free rocking, fixed), 2.8e-5 α "
+              "and 1.0e-4 u_max (isolated), 5.0e-4 α (under a sine): as MJX's, half MuJoCo's own θmax limit"),
+    ("mjwarp", "beta_rel_error"): Tolerance(
+        0.01, "MuJoCo's limit, which Warp steps MuJoCo's scene to: measured ≤ 0.1% at H 0.1 and 1 m on the atlas grid "
+              "(λ 2–6 × fixed and μ 1: C stepping the same scene 0.11%), up to 1.01% at H 10 m (λ 2, fixed: the one cell "
+              "past this limit) and 0.67% (λ 4, μ 1): handed C's own states, Warp's float32 box–box collision finds no "
+              "contact in 2.1% of those with a shallow one at 10 m (0.6–0.7% at 0.1 and 1 m), just before an impact "
+              "among them (MJX in float32 on that cell: 0.08%), docs/mjwarp.md"),
+    ("mjwarp", "batch_vs_alone"): Tolerance(
+        1e-12, "rad: each world's kernels read and write its own rows only, so a run is the same float32 run "
+               "in a batch of 2 as alone (the paper's block, 0.5 s from 0.3α and 0.6α); measured 0"),
     # a statue that slides (System.friction) and vertical motion: docs/sliding_engines.md, measured by
     # docs/scripts/sliding_engines.py over 100 random pulses × H 0.1, 1, 10 m (92 robust, 76 standing)
     ("mujoco", "slide_closed_form"): Tolerance(
@@ -372,10 +391,12 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("drake", "slide_theta_max_diff"): Tolerance(
         0.02, "as MuJoCo's and PyBullet's theta_max_diff; measured median 2e-5, worst 0.053"),
 }
-#: MJX's limits on the metrics it shares with MuJoCo C: the same scene and solver (docs/mjx.md)
-TOLERANCES.update({("mjx", m): Tolerance(t.limit, f"as MuJoCo's (MJX steps its scene): {t.reason}", kind=t.kind)
+#: MJX's and MuJoCo Warp's limits on the metrics they share with MuJoCo C: the same scene and solver
+#: (docs/mjx.md, docs/mjwarp.md)
+TOLERANCES.update({(port, m): Tolerance(t.limit, f"as MuJoCo's ({label} steps its scene): {t.reason}", kind=t.kind)
+                   for port, label in (("mjx", "MJX"), ("mjwarp", "MuJoCo Warp"))
                    for (e, m), t in list(TOLERANCES.items())
-                   if e == "mujoco" and m in ("beta_rel_error", "beta2_abs_error", "first_impact_time_rel_error",
+                   if e == "mujoco" and (port, m) not in TOLERANCES and m in ("beta_rel_error", "beta2_abs_error", "first_impact_time_rel_error",
                                               "theta_max_diff", "impacts_diff", "u_max_rel_error", "first_uplift_diff",
                                               "overturn_agree", "beta_rel_error_per_impact")})
 
