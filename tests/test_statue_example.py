@@ -6,7 +6,7 @@ import json
 import re
 from pathlib import Path
 
-from isorock.validate.cli.config_file import ConfigFile, SystemTable, read_config
+from isorock.validate.cli.config_file import ConfigFile, StatueTable, SystemTable, read_config
 from isorock.validate.cli.main import main
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "statue.toml"
@@ -23,8 +23,13 @@ def test_it_parses_as_the_bust_it_describes():
 def test_every_key_of_the_format_is_in_it_and_each_commented_one_is_valid(tmp_path):
     text = EXAMPLE.read_text()
     written = set(re.findall(r"^#?\s*\[?([a-z_]+)\s*=", text, re.M)) | set(re.findall(r"^#?\s*\[([a-z_]+)", text, re.M))
-    for key in set(ConfigFile.model_fields) | set(SystemTable.model_fields):
+    for key in set(ConfigFile.model_fields) | set(SystemTable.model_fields) | set(StatueTable.model_fields):
         assert key in written, f"examples/statue.toml does not document {key}"
+    # the [statue] table, uncommented with its lines, is a valid file (its keys read as written)
+    block = [line[1:] for line in text.splitlines() if re.match(r"^#\[statue\]|^#[a-z_]+ =", line)]
+    path = tmp_path / "statue.toml"
+    path.write_text("\n".join(block) + "\n")
+    assert set(read_config(path)["statue"]) == set(StatueTable.model_fields)
     # each commented-out key, uncommented alone into the file, is a valid file too
     head, _, tail = text.partition("\n# [settings")
     lines = head.splitlines()
