@@ -13,6 +13,7 @@ oracles that do not come from the code under test:
 - the energy balance with friction's work, and no slip as μ_s → ∞ (the no-slip model).
 """
 import math
+import zlib
 
 import numpy as np
 import pytest
@@ -306,7 +307,10 @@ ISOLATORS = {
 @pytest.mark.parametrize("path", PATHS)
 @pytest.mark.parametrize("kind", ISOLATORS)
 def test_energy_balance_with_friction_work(path, kind):
-    rng = np.random.default_rng(hash(kind) % 2**32)
+    # a seed of the kind's name, the same in every process: hash() of a str is salted per process
+    # (PYTHONHASHSEED), so the draws changed from run to run, and one CI run drew a block thrown
+    # off its pivot (free flight: outside the model, no energy balance to check)
+    rng = np.random.default_rng(zlib.crc32(kind.encode()))
     for _ in range(4):
         lam = rng.uniform(1.2, 4.0)
         b = rng.uniform(0.1, 0.4)

@@ -402,7 +402,8 @@ def build(labels: list[str], effort: Effort, *, budget: float = DEFAULT_BUDGET, 
             _run_group(i["measure"], [i], effort, grid, clock, workers, quiet, results, why, say)
     rows = []
     for label in labels:
-        row = {"label": label, "engine": label.partition(":")[0], "preset": label.partition(":")[2] or "default"}
+        row = {"label": label, "engine": label.partition(":")[0], "preset": label.partition(":")[2] or "default",
+               **engine_facts(label.partition(":")[0])}
         for m in MEASURES:
             got = results.get((m, label))
             row[m] = got if got is not None else {"not_run": why.get((m, label), "not run: no result (see stderr)")}
@@ -777,23 +778,33 @@ def markdown(data: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
-def readme_table(data: dict) -> str:
-    """The README's engine table: one row per engine at its defaults, from the scorecard's rows."""
+def engine_facts(engine: str) -> dict:
+    """The engine's name in reports and its default setting's reason, as the registry has them
+    where the scorecard is made: kept in each row, so that the README's table renders the same
+    wherever it is rendered (an engine not installed there has neither)."""
     from isorock.validate.core.engines import engine_label, presets_of
+    try:
+        reason = presets_of(engine)["default"]["reason"] or "its defaults"
+    except InputError:
+        reason = "its defaults (the engine cannot be loaded here)"
+    return {"engine_label": engine_label(engine), "default_setting": reason}
+
+
+def readme_table(data: dict) -> str:
+    """The README's engine table: one row per engine at its defaults, from the scorecard's rows
+    alone (the registry only for rows written before they kept their engine_facts)."""
     lines = ["| engine | default setting | accuracy (atlas: worst β / t₁ error, impacts lost; validate) | "
              "simulated s per wall s (Kobe 40 s, the paper's block; isolated / fixed) |", "|---|---|---|---|"]
     for r in data["rows"]:
         if r["preset"] != "default":
             continue
-        try:
-            reason = presets_of(r["engine"])["default"]["reason"] or "its defaults"
-        except InputError:
-            reason = "its defaults (the engine cannot be loaded here)"
+        facts = {**engine_facts(r["engine"]), **{k: r[k] for k in ("engine_label", "default_setting") if k in r}}
+        reason = facts["default_setting"]
         acc = atlas_cell(r["atlas"])
         if _measured(r["atlas"]):
             acc = f"{data['cells']} cells, H {_axis(data['grid']['heights_m'])} m: " + acc
         acc += "; validate: " + validate_cell(r["validate"])
-        lines.append(f"| {_md(engine_label(r['engine']))} | {_md(reason)} | {_md(acc)} | {_md(speed_cell(r['speed']))} |")
+        lines.append(f"| {_md(facts['engine_label'])} | {_md(reason)} | {_md(acc)} | {_md(speed_cell(r['speed']))} |")
     lines += ["", f"From `{data['command']}` ({data['date']}, {data['wall_s']:.0f} s, load "
                   f"{', '.join(f'{v:g}' for v in data['load_before'] or [])}): every preset, the stress, "
                   "shake-table and step-floor columns and how each is measured are in "
