@@ -71,12 +71,10 @@ def tilts_from_quaternion(w, x, y, z):
 
 # --- corners --------------------------------------------------------------------------
 
-def _levers(system: System, s):
-    """b_s of the corner on side s (an array of ±1): b for the block; a statue of two edges
-    (System.body) has its own on each side (System.lever)."""
-    if system.body is None:
-        return system.b
-    return np.where(s > 0, system.lever(1), system.lever(-1))
+def _per_side(s, value):
+    """value(side) for each of s (an array of ±1): a statue of two edges (System.body) has its own
+    lever and α on each side; the block's two are one (System.lever, System.edge_alpha)."""
+    return np.where(s > 0, value(1), value(-1))
 
 
 def pivot_slip(system: System, x_centroid, theta, u):
@@ -85,7 +83,7 @@ def pivot_slip(system: System, x_centroid, theta, u):
     The corner (s·b, −h) of the body frame is at x_c + s·b·cosθ − h·sinθ."""
     theta = np.asarray(theta, dtype=float)
     s = np.where(theta >= 0, 1.0, -1.0)
-    b, h = _levers(system, s), system.h
+    b, h = _per_side(s, system.lever), system.h
     return np.asarray(x_centroid) + s * b * np.cos(theta) - h * np.sin(theta) - np.asarray(u) - s * b
 
 
@@ -95,7 +93,7 @@ def pivot_slip_rate(system: System, x_centroid_dot, theta, theta_dot, u_dot):
     where both bottom corners move alike."""
     theta = np.asarray(theta, dtype=float)
     s = np.where(theta >= 0, 1.0, -1.0)
-    b, h = _levers(system, s), system.h
+    b, h = _per_side(s, system.lever), system.h
     return (np.asarray(x_centroid_dot) - np.asarray(theta_dot) * (s * b * np.sin(theta) + h * np.cos(theta))
             - np.asarray(u_dot))
 
@@ -118,7 +116,7 @@ def lift_off(system: System, z_centroid, theta):
     """Height (m) of the block's lowest bottom corner above the base's top face
     (negative: penetration), for an in-plane rotation θ."""
     theta = np.asarray(theta, dtype=float)
-    b = _levers(system, np.where(theta >= 0, 1.0, -1.0))
+    b = _per_side(np.where(theta >= 0, 1.0, -1.0), system.lever)
     return np.asarray(z_centroid) - system.h * np.cos(theta) - b * np.abs(np.sin(theta))
 
 
@@ -132,8 +130,7 @@ def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_
     leave its plane, out_of_plane_max (largest of |y| in m and the roll and yaw tilts in
     rad; both small). `counted_from`: index of the first counted impact, or None."""
     theta = np.asarray(theta, dtype=float)
-    alpha = system.alpha if system.body is None else np.where(theta >= 0, system.edge_alpha(1), system.edge_alpha(-1))
-    upright = np.abs(theta) <= alpha
+    upright = np.abs(theta) <= _per_side(np.where(theta >= 0, 1.0, -1.0), system.edge_alpha)
     slip = pivot_slip(system, x_centroid, theta, u)[upright]
     low = lift_off(system, z_centroid, theta)
     after = low[counted_from:] if counted_from is not None else low[:0]

@@ -332,25 +332,23 @@ def system_from_options(a, defaults: dict | None = None, statue: dict | None = N
         v = getattr(a, k, None)
         if v not in (None, False):
             values[k] = v
-    table = {"statue": "mesh", "statue_example": "example"}
-    statue = {k: getattr(a, k, None) if getattr(a, k, None) is not None else (statue or {}).get(table.get(k, k))
-              for k in STATUE_KEYS}
-    if any(v is not None for v in statue.values()):  # a statue's mesh gives height and width (--statue)
-        if values["base_mass"] is None and not values["fixed_base"]:
-            raise InputError("--base-mass: give the base plate's mass for an isolated base (or --fixed-base)")
-        return system_from_args(SimpleNamespace(**values, **statue))
-    if not any(v not in (None, False) for v in values.values()):
-        return None
-    if not any(values[k] not in (None, False) for k in SYSTEM_KEYS if k not in ("statue_friction", "kinetic_friction")):
-        raise InputError("--statue-friction: give the block's height, width and mass (and its base) with it: "
-                         "friction is a property of your own system")
-    missing = [k for k in ("height", "width", "mass") if values[k] is None]
-    if missing:
-        raise InputError(f"--{missing[0].replace('_', '-')}: give the block's height, width and mass "
-                         "(and its base) for your own system")
+    in_table = {"statue": "mesh", "statue_example": "example"}  # the option's name → the table's key
+    mesh = {k: getattr(a, k) if getattr(a, k, None) is not None else (statue or {}).get(in_table.get(k, k))
+            for k in STATUE_KEYS}
+    if not any(v is not None for v in mesh.values()):  # the block H × B (a statue's mesh gives both)
+        if not any(v not in (None, False) for v in values.values()):
+            return None
+        if not any(values[k] not in (None, False) for k in SYSTEM_KEYS
+                   if k not in ("statue_friction", "kinetic_friction")):
+            raise InputError("--statue-friction: give the block's height, width and mass (and its base) with it: "
+                             "friction is a property of your own system")
+        missing = [k for k in ("height", "width", "mass") if values[k] is None]
+        if missing:
+            raise InputError(f"--{missing[0].replace('_', '-')}: give the block's height, width and mass "
+                             "(and its base) for your own system")
     if values["base_mass"] is None and not values["fixed_base"]:
         raise InputError("--base-mass: give the base plate's mass for an isolated base (or --fixed-base)")
-    return system_from_args(SimpleNamespace(**values))
+    return system_from_args(SimpleNamespace(**values, **mesh))
 
 
 def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
