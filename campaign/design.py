@@ -3,7 +3,7 @@
 Every isolator of a family (the linear isolator's period × damping ratio grid; any
 family whose `system(statue, x, y)` the compiled kernel carries) and the fixed base are
 run by the analytic kernel under every record of a hazard (a record suite scaled to one
-or more PGA levels), through the one executor (core.executor.run_cases, summary rows).
+or more PGA levels), through the one executor (core.chunks.run_cases, summary rows).
 Per isolator: the probability of overturning at each level (the fraction of records
 that overturn it, under model.md's rule, past α) and over the hazard (the levels
 weighted: equally unless the caller gives weights, e.g. from a hazard curve), the
@@ -559,7 +559,7 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     by the caller."""
     import time
 
-    from isorock.validate.core.executor import run_cases
+    from isorock.validate.core.chunks import run_cases
     check_family_runs(family)
     check_size(family, hazard, tail)
     cases = build_cases(statue, family, hazard, tail)
@@ -844,7 +844,7 @@ def check_with(d: Design, engine: str, picks, *, progress=None) -> dict:
     where neither overturned, judged by the engine's u_max tolerance (a single history's,
     core.tolerances); runs near overturning may part for reasons of chaos, not of the
     engine (model.md), so the outcome count is reported, not judged."""
-    from isorock.validate.core.executor import run_cases
+    from isorock.validate.core.chunks import run_cases
     from isorock.validate.core.tolerances import has_tolerance, tolerance
     fam, h = d.family, d.hazard
     systems = [d.statue.fixed()] + [fam.system(d.statue, x, y) for y in fam.y_values for x in fam.x_values]

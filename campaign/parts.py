@@ -1,8 +1,8 @@
-"""A campaign's results on disk: each finished chunk (core.executor.Chunk) is stored at
+"""A campaign's results on disk: each finished chunk (core.chunks.Chunk) is stored at
 once as `parts/<id>.parquet`, atomically (temporary file, then rename), so a killed run
 leaves whole parts or none, and a run skips the chunks whose part exists: a finished
 campaign run again does no work. The rows are core.summary's; the id is the chunk's
-(core.executor.chunk_id), a hash of what is computed and nothing else."""
+(core.chunks.chunk_id), a hash of what is computed and nothing else."""
 from __future__ import annotations
 
 from pathlib import Path

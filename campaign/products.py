@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.validate.core.executor import runs_as_batch
+from isorock.validate.core.chunks import runs_as_batch
 from isorock.validate.io.naming import cell
 from .spec import AXES
 

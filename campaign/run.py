@@ -16,7 +16,8 @@ from pathlib import Path
 
 from isorock.analytic.errors import InputError
 
-from isorock.validate.core.executor import client_for, close_client, execute, expected_cost, make_tasks, run_cases
+from isorock.validate.core.chunks import chunk_weight, expected_cost, make_tasks, run_cases, run_chunk
+from isorock.validate.core.executor import client_for, close_client, execute
 from isorock.validate.core.summary import rows_to_table, sort_table
 from isorock.validate.io.progress import bar_of, logged
 
@@ -128,7 +129,8 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
             if line:
                 print(line, file=sys.stderr, flush=True)
         bar = bar_of(progress if todo else None, sum(len(t.cases) for t in todo), work=sum(map(expected_cost, todo)))
-        ran = execute(todo, client=live, threads=None, on_done=on_done, progress=bar, cost=expected_cost)
+        ran = execute(todo, run=run_chunk, client=live, threads=None, on_done=on_done, progress=bar, weight=chunk_weight,
+                      cost=expected_cost)
     finally:
         if bar is not None:
             bar.close()

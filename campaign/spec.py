@@ -23,7 +23,7 @@ from isorock.analytic.motion import PULSES
 
 from isorock.validate.core.cases import Case, build_case
 from isorock.validate.core.engines import EngineChoice
-from isorock.validate.core.executor import ANALYTIC_CHUNK, CONTACT_CHUNK
+from isorock.validate.core.chunks import ANALYTIC_CHUNK, CONTACT_CHUNK
 from isorock.validate.io.schema import read_toml
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).

@@ -266,7 +266,7 @@ def test_chunk_ids_of_existing_campaigns_are_kept():
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.analytic.system import System
     from isorock.campaign import Case, EngineSetting
-    from isorock.validate.core.executor import chunk_id
+    from isorock.validate.core.chunks import chunk_id
     s = System.fixed(height=2.0, width=0.7, mass=3800.0)
     m = GroundMotion.from_pulse(Pulse("sine", amp=0.6, freq=1.0))
     cases = [Case(0, s, m, 4.0), Case(1, s, m.scaled(1.5), 4.0)]
@@ -393,7 +393,7 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
     was done. With each task's expected cost, the ETA is elapsed × (work left / work done)."""
     import io
 
-    from isorock.validate.core import executor as ex
+    from isorock.validate.core import chunks as ex
     from isorock.validate.io import progress as bars
     from isorock.campaign.spec import Case, EngineSetting
     from isorock.analytic import GroundMotion, paper_system
@@ -483,8 +483,8 @@ def test_drawing_the_products_has_its_own_progress_line(tmp_path, capsys):
 def test_a_campaign_takes_progress_as_every_tool_does(tmp_path):
     """progress is a factory (total, work) → bar, as atlas, stress and calibrate take it
     (io.progress.bar_of): the bar is made once for the runs to do, counts every case once,
-    and its work is the chunks' expected cost (core.executor.expected_cost)."""
-    from isorock.validate.core.executor import expected_cost, make_tasks
+    and its work is the chunks' expected cost (core.chunks.expected_cost)."""
+    from isorock.validate.core.chunks import expected_cost, make_tasks
     from isorock.validate.io.progress import Silent
     made = []
 

@@ -159,11 +159,11 @@ def test_worker_processes_find_the_analytic_kernel_ready(monkeypatch):
     """Workers load the compiled analytic kernel from its cache; on first use (a fresh
     install) it is built, 1–2 minutes. Built inside a worker, the build counts against the
     task's budget, and a budget shorter than it kills every worker mid-build (a fresh
-    install's `isorock stress --quick` timed out on all its analytic cases): the executor makes
-    it ready in the parent, once, before the first worker starts."""
-    from isorock.validate.core import executor
+    install's `isorock stress --quick` timed out on all its analytic cases): the worker pool
+    (core.chunks.worker_pool) makes it ready in the parent, once, before the first worker starts."""
+    from isorock.validate.core import chunks, executor
     order = []
-    monkeypatch.setattr(executor, "ready_kernel", lambda: order.append("kernel"))
+    monkeypatch.setattr(chunks, "ready_kernel", lambda: order.append("kernel"))
     real = executor._Worker.__init__
 
     def worker(self, *args, **kwargs):
@@ -171,6 +171,33 @@ def test_worker_processes_find_the_analytic_kernel_ready(monkeypatch):
         real(self, *args, **kwargs)
 
     monkeypatch.setattr(executor._Worker, "__init__", worker)
-    with executor.Pool(2):
+    with chunks.worker_pool(2):
         pass
     assert order == ["kernel", "worker", "worker"]
+
+
+def test_the_executor_knows_no_engine():
+    """Issue 35: the executor runs callables; what a task is (a chunk of cases and the engine
+    that runs it) lives in core.chunks. Oracle: the executor's own import statements, read
+    with ast: none names the registry, a case, a summary row or an engine package."""
+    import ast
+    from pathlib import Path
+    source = Path(executor_module_file()).read_text()
+    named = set()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.ImportFrom):
+            named.add(("." * node.level) + (node.module or ""))
+        elif isinstance(node, ast.Import):
+            named.update(alias.name for alias in node.names)
+    engine_facing = {".engines", ".cases", ".summary", ".chunks", "isorock.validate.core.engines",
+                     "isorock.analytic.fast", "isorock.analytic.system"}
+    assert not named & engine_facing, named & engine_facing
+    assert not any(name.split(".")[1:2] in (["mujoco_models"], ["bullet_models"], ["drake_models"], ["dart_models"])
+                   for name in named if name.startswith("isorock."))
+    for word in ("get_engine", "simulate", "Chunk", "run_chunk"):
+        assert word not in source, word
+
+
+def executor_module_file():
+    from isorock.validate.core import executor
+    return executor.__file__

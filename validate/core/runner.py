@@ -6,7 +6,7 @@ the message in that task's result, never a lost batch.
 Where and how tasks run is the one executor's (core.executor.Executor: serially, in worker
 processes that can be killed, or on a Dask cluster, with the analytic model's runs kept in
 this process); runs read only as summaries (ensembles) are cases run into rows
-(core.executor.run_cases) on the same executor.
+(core.chunks.run_cases) on the same executor.
 """
 from __future__ import annotations
 
@@ -58,6 +58,7 @@ def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, executor=None
     functools.partial of one."""
     from functools import partial
 
+    from .chunks import worker_pool
     from .executor import STUCK_AFTER_S, Executor
     out = {}
     own = None
@@ -65,7 +66,7 @@ def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, executor=None
         if client is not None:
             executor = Executor(client=client)
         elif workers > 1 and not all(_light(t) for t in tasks):
-            own = executor = Executor(processes=workers)
+            own = executor = worker_pool(workers)
         else:
             executor = Executor()
 

@@ -409,8 +409,8 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
                   duration=refs[c.key]["duration"], theta0=refs[c.key]["theta0"], overrides=dict(overrides or {}))
              for c in cells for label in labels]
     bar = bar_of(progress, len(tasks))
-    from isorock.validate.core.executor import Pool
-    with Pool(default_workers() if workers is None else workers) as executor:
+    from isorock.validate.core.chunks import worker_pool
+    with worker_pool(default_workers() if workers is None else workers) as executor:
         outcomes = executor.map(run_cell, [(t,) for t in tasks], budget=budget, clock="cpu", progress=bar,
                                 note=lambda args: args[0].key[0])
     results = {t.key: (o.value if o.done else _stopped(o, budget),) for t, o in zip(tasks, outcomes)}

@@ -274,12 +274,13 @@ class Runner:
     `slowest` is the longest run of the last set."""
 
     def __init__(self, engine_name: str, workers: int = 0, on_run=None):
+        from isorock.validate.core.chunks import worker_pool
         from isorock.validate.core.executor import Executor
         from isorock.analytic import limits
         self.engine_name, self.on_run = engine_name, on_run
         # the starting settings' runs, before any is timed, have every run's budget
         self.time_limit, self.slowest = limits.RUN_BUDGET_S, 0.0
-        self.executor = Executor(processes=workers)
+        self.executor = worker_pool(workers) if workers else Executor()
 
     def score(self, settings, case_list, *, until_failure: bool = False) -> Score:
         """The Score of the runs. `until_failure`: stop at the first failed run (the rest

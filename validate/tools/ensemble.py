@@ -101,7 +101,7 @@ def run_ensembles(specs, engines, *, overrides_for=None, overturn_rule: str | No
     one that failed inside the engine (a blow-up) keeps what it measured, as a single
     run reports it. progress: an object with update(n, work), called as runs finish."""
     from isorock.validate.core.cases import Case
-    from isorock.validate.core.executor import run_cases
+    from isorock.validate.core.chunks import run_cases
     from isorock.validate.core.engines import choose as engine_setting
     names = list(engines)
     if REFERENCE not in names:

@@ -536,11 +536,12 @@ def _executor(config: ReportConfig, engines):
     """The one executor (core.executor) on config.workers worker processes (default:
     executor.default_workers) when a contact engine runs, else serial (the analytic
     model runs here in milliseconds)."""
+    from isorock.validate.core.chunks import worker_pool
     from isorock.validate.core.executor import Executor
     workers = default_workers() if config.workers is None else config.workers
     if workers <= 1 or all(runs_here(name) for name in engines):
         return Executor()
-    return Executor(processes=workers)
+    return worker_pool(workers)
 
 
 def _robust(sc: HistoryRuns, scale: float) -> bool:

@@ -268,8 +268,8 @@ def run_cases(todo, time_limit: float, *, workers: int = 2, bar=None) -> list[di
     (core.executor.Executor), `workers` at a time, each stopped and reported as 'timeout'
     past time_limit s of wall time; results in the order of `todo`. `bar`: the progress
     bar (io.progress) the executor updates as each run ends, noting its case."""
-    from isorock.validate.core.executor import Executor
-    with Executor(processes=max(1, min(workers, len(todo) or 1))) as executor:
+    from isorock.validate.core.chunks import worker_pool
+    with worker_pool(max(1, min(workers, len(todo) or 1))) as executor:
         outcomes = executor.map(run_one, todo, budget=time_limit, progress=bar, note=lambda item: item[1].name[:30])
     return [_finish(outcome, item, time_limit) for outcome, item in zip(outcomes, todo)]
 
