@@ -398,3 +398,74 @@ def example_statue(name: str) -> tuple[np.ndarray, np.ndarray]:
 
 
 EXAMPLES = ("bust", "amphora", "obelisk")
+
+
+# --- a statue named by its inputs (one home for every surface that takes one) ----------------
+
+#: how each input of `load_statue` is named in messages by default (a campaign file's keys);
+#: a caller passes its own spelling (the command line's --statue, --unit, …)
+STATUE_NAMES = {"mesh": "mesh", "example": "example", "unit": "unit", "mass": "mass", "density": "density",
+                "azimuth": "azimuth", "source": "its mesh (mesh = FILE) or an example (example = NAME)"}
+
+
+def _one_source(mesh, example, n) -> None:
+    if (mesh is None) == (example is None):
+        raise InputError(f"statue: give {n['source']}, one of the two")
+
+
+def statue_mesh(*, mesh=None, example: str | None = None, unit: str | None = None,
+                names: dict | None = None) -> tuple[np.ndarray, np.ndarray, str]:
+    """(vertices n×3 in m, triangles, a label) of a statue's mesh file (`unit`: the file's length
+    unit, required: never guessed) or of an example made by code (`example`, in metres): the one
+    reader every surface that takes a statue uses (the command line's --statue, a config
+    file's [statue], a campaign's [systems.statue]). `names`: how the caller spells each input
+    in its one-line errors (STATUE_NAMES' keys)."""
+    n = {**STATUE_NAMES, **(names or {})}
+    _one_source(mesh, example, n)
+    if unit is not None and unit not in UNITS:
+        raise InputError(f"{n['unit']} = {unit!r}: one of {', '.join(UNITS)}")
+    if example is not None:
+        if example not in EXAMPLES:
+            raise InputError(f"{n['example']} = {example!r}: one of {', '.join(EXAMPLES)}")
+        if unit not in (None, "m"):
+            raise InputError(f"{n['unit']} = {unit!r}: an example statue is made in metres; leave {n['unit']} out")
+        vertices, faces = example_statue(example)
+        return vertices, faces, f"the example {example}"
+    if unit is None:
+        raise InputError(f"{n['unit']}: {str(mesh)!r} needs {n['unit']}, its length unit ({', '.join(UNITS)}): a "
+                         "mesh file states none this reader trusts, so it is never guessed")
+    if unit not in UNITS:
+        raise InputError(f"{n['unit']} = {unit!r}: one of {', '.join(UNITS)}")
+    vertices, faces = read_mesh(mesh, unit)
+    return vertices, faces, str(mesh)
+
+
+def load_statue(*, mesh=None, example: str | None = None, unit: str | None = None, mass=None, density=None,
+                names: dict | None = None) -> RestingBody:
+    """The statue standing on a flat plinth (statue_mesh's mesh), weighing `mass` kg or
+    `density` kg/m³ (one of the two), its errors naming the inputs as `names` spells them."""
+    n = {**STATUE_NAMES, **(names or {})}
+    _one_source(mesh, example, n)
+    if (mass is None) == (density is None):
+        raise InputError(f"statue: give its {n['mass']} (kg) or its {n['density']} (kg/m³), one of the two")
+    vertices, faces, label = statue_mesh(mesh=mesh, example=example, unit=unit, names=names)
+    try:
+        return standing(vertices, faces, mass=mass, density=density, name=label)
+    except InputError as e:  # mass or density, named as the caller names it
+        text = str(e)
+        for key in ("mass", "density"):
+            if text.startswith(f"{key} = "):
+                raise InputError(n[key] + text[len(key):]) from None
+        raise
+
+
+def shaking_direction(body: RestingBody, azimuth_deg=None, *, names: dict | None = None) -> float:
+    """The azimuth (rad) a statue is shaken along: `azimuth_deg` (degrees, from the table's x
+    towards y), or where none is given the direction it tips first (weakest_direction)."""
+    if azimuth_deg is None:
+        return weakest_direction(body)[0]
+    n = {**STATUE_NAMES, **(names or {})}
+    x = python_number(n["azimuth"], azimuth_deg, "a finite number of degrees")
+    if not math.isfinite(x):
+        raise InputError(f"{n['azimuth']} = {azimuth_deg!r}: must be a finite number of degrees")
+    return math.radians(x)

@@ -165,3 +165,20 @@ def test_a_config_files_statue_table(tmp_path):
     assert r.returncode == 2 and "statue.units: not known" in r.stderr and len(r.stderr.strip().splitlines()) == 1
     r = _isorock("validate", "--config", str(config), "--height", "2", "--out", str(tmp_path / "r3"), cwd=tmp_path)
     assert r.returncode == 2 and "--height" in r.stderr and not (tmp_path / "r3").exists()
+
+
+@pytest.mark.parametrize("table, says", [
+    ('example = "bust"\nazimuth = nan\n', "statue.azimuth = nan: must be a finite number of degrees"),
+    ('example = "bust"\nunit = "mm"\n', "statue.unit = 'mm': an example statue is made in metres; leave statue.unit out"),
+    ('example = "bost"\n', "statue.example = 'bost': one of bust"),
+    ('mesh = "missing.stl"\n', "statue.unit: "),
+], ids=["azimuth", "unit-of-an-example", "example", "unit-missing"])
+def test_a_config_files_statue_errors_name_its_keys(tmp_path, table, says):
+    """An error in a config file's [statue] names the file's key (statue.azimuth), not the
+    command-line option the user never typed (--azimuth)."""
+    config = tmp_path / "statue.toml"
+    config.write_text('[system]\nmass = 80.0\nfixed_base = true\n[statue]\n' + table)
+    r = _isorock("validate", "--config", str(config), "--quick", "--engines", "analytic", "--out",
+                 str(tmp_path / "r"), cwd=tmp_path)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert says in r.stderr and "--" not in r.stderr.split("error:", 1)[1], r.stderr

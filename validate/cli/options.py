@@ -211,36 +211,25 @@ def add_statue_options(p: argparse.ArgumentParser) -> None:
                    "(default: the direction it tips first)")
 
 
-def statue_mesh(path, example, unit):
-    """(vertices, faces, label) of a statue's mesh file in its `unit` (required: never guessed),
-    or of an example made by code (in metres): what `isorock statue` and --statue read."""
-    from isorock.analytic import shape
-    if example is not None:
-        if unit not in (None, "m"):
-            raise InputError(f"unit = {unit!r}: an example statue is made in metres; leave --unit out")
-        vertices, faces = shape.example_statue(example)
-        return vertices, faces, f"the example {example}"
-    if unit is None:
-        raise InputError(f"unit: {path!r} needs --unit, its length unit ({', '.join(shape.UNITS)}): a mesh file "
-                         "states none this reader trusts, so it is never guessed")
-    vertices, faces = shape.read_mesh(path, unit)
-    return vertices, faces, path
+#: the command line's spelling of a statue's inputs, in analytic.shape's one-line errors
+STATUE_OPTIONS = {"mesh": "--statue", "example": "--statue-example", "unit": "--unit", "mass": "--mass",
+                  "density": "--density", "azimuth": "--azimuth",
+                  "source": "its mesh (--statue FILE) or --statue-example NAME"}
 
 
-def statue_body(a):
+def statue_body(a, names: dict = STATUE_OPTIONS):
     """(the statue at rest, its PlanarBody along the shaking direction) of its mesh; None without
-    one. The direction is --azimuth, or the one it tips first."""
-    import math
+    one. The direction is --azimuth, or the one it tips first. `names`: how the inputs are
+    spelled in errors (a config file's [statue] keys, or the options)."""
     from isorock.analytic import shape
     from isorock.analytic.system import PlanarBody
     path, example = getattr(a, "statue", None), getattr(a, "statue_example", None)
     if path is None and example is None:
         for name in ("unit", "density", "azimuth"):
             if getattr(a, name, None) is not None:
-                raise InputError(f"--{name} = {getattr(a, name)!r}: describes a statue's mesh (--statue FILE)")
+                raise InputError(f"{names[name]} = {getattr(a, name)!r}: describes a statue's mesh "
+                                 f"({names['mesh']} FILE)")
         return None
-    if path is not None and example is not None:
-        raise InputError("statue: give its mesh (--statue FILE) or --statue-example NAME, one of the two")
     for name in ("height", "width", "slenderness"):
         if given(getattr(a, name, None)):
             raise InputError(f"--{name} = {getattr(a, name)!r}: the statue's mesh gives its shape; leave --{name} out")
@@ -248,26 +237,17 @@ def statue_body(a):
         if given(getattr(a, name, None)):
             raise InputError(f"--{name.replace('_', '-')}: the sliding model takes the block H × B, not a statue's "
                              "mesh yet")
-    mass = a.mass if given(a.mass) else None
-    if (mass is None) == (a.density is None):
-        raise InputError("statue: give its --mass (kg) or its --density (kg/m³), one of the two")
-    if example is not None and example not in shape.EXAMPLES:
-        raise InputError(f"--statue-example = {example!r}: one of {', '.join(shape.EXAMPLES)}")
-    if a.unit is not None and a.unit not in shape.UNITS:
-        raise InputError(f"--unit = {a.unit!r}: one of {', '.join(shape.UNITS)}")
-    vertices, faces, label = statue_mesh(path, example, a.unit)
-    standing = shape.standing(vertices, faces, mass=mass, density=a.density, name=label)
-    if a.azimuth is not None and not math.isfinite(a.azimuth):
-        raise InputError(f"--azimuth = {a.azimuth!r}: must be a finite number of degrees")
-    azimuth = shape.weakest_direction(standing)[0] if a.azimuth is None else math.radians(a.azimuth)
+    standing = shape.load_statue(mesh=path, example=example, unit=a.unit, mass=a.mass if given(a.mass) else None,
+                                 density=a.density, names=names)
+    azimuth = shape.shaking_direction(standing, a.azimuth, names=names)
     return standing, PlanarBody.from_resting(standing.along(azimuth))
 
 
-def system_from_args(a, *, default_isolator=None):
+def system_from_args(a, *, default_isolator=None, statue_names: dict = STATUE_OPTIONS):
     """The System the options describe; `default_isolator` (period, damping ratio)
     is used when no isolator option is given (the scene command's paper defaults). With a
     statue's mesh (add_statue_options), its two edges along the shaking direction."""
-    statue = statue_body(a)
+    statue = statue_body(a, statue_names)
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
     if statue is not None:
         resting, body = statue
@@ -348,7 +328,17 @@ def system_from_options(a, defaults: dict | None = None, statue: dict | None = N
                              "(and its base) for your own system")
     if values["base_mass"] is None and not values["fixed_base"]:
         raise InputError("--base-mass: give the base plate's mass for an isolated base (or --fixed-base)")
-    return system_from_args(SimpleNamespace(**values, **mesh))
+    # an error names a statue's input as the user gave it: the option, or the file's key
+    names = dict(STATUE_OPTIONS)
+    for k in STATUE_KEYS:
+        key = in_table.get(k, k)
+        if getattr(a, k, None) is None and statue:  # not typed as an option: the file's to give
+            names[key] = f"statue.{key}"
+    if statue:
+        names["source"] = "its mesh (statue.mesh = FILE) or an example (statue.example = NAME)"
+    if getattr(a, "mass", None) in (None, False) and (defaults or {}).get("mass") is not None:
+        names["mass"] = "system.mass"
+    return system_from_args(SimpleNamespace(**values, **mesh), statue_names=names)
 
 
 def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:

@@ -45,22 +45,17 @@ def add_parser(sub) -> None:
 def load(a):
     """(the statue at rest, its vertices and faces in m, a label) from the options."""
     from isorock.analytic import shape
-    from isorock.analytic.errors import InputError
-    from isorock.validate.cli.options import statue_mesh
-    if (a.file is None) == (a.example is None):
-        raise InputError("statue: give its mesh FILE or --example NAME, one of the two")
-    vertices, faces, label = statue_mesh(a.file, a.example, a.unit)
+    names = {"mesh": "FILE", "example": "--example", "unit": "--unit", "mass": "--mass", "density": "--density",
+             "source": "its mesh FILE or --example NAME"}
+    vertices, faces, label = shape.statue_mesh(mesh=a.file, example=a.example, unit=a.unit, names=names)
     return shape.standing(vertices, faces, mass=a.mass, density=a.density, name=label), vertices, faces, label
 
 
 def summary(body, azimuth_deg: float | None) -> dict:
     """Every number the command prints, writes and draws."""
     from isorock.analytic import shape
-    from isorock.analytic.errors import InputError
     weakest, weakest_g = shape.weakest_direction(body)
-    if azimuth_deg is not None and not math.isfinite(azimuth_deg):
-        raise InputError(f"azimuth = {azimuth_deg!r}: must be a finite number of degrees")
-    azimuth = weakest if azimuth_deg is None else math.radians(azimuth_deg)
+    azimuth = shape.shaking_direction(body, azimuth_deg)
     grid = [2 * math.pi * k / N_AZIMUTHS for k in range(N_AZIMUTHS)]
     uplift = [body.along(a).lift_off(1)["accel_g"] for a in grid]  # the forward edge's: the table's polar
     return dict(mass=body.mass, volume=body.checks["volume_m3"], com_height=float(body.com[2]),
