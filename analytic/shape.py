@@ -226,11 +226,12 @@ def resting(vertices: np.ndarray, faces: np.ndarray, mass: float, placement: np.
                                 settle_tilt_deg=tilt, margin_m=face["margin"]))
 
 
-def read_mesh(path, unit: str) -> tuple[np.ndarray, np.ndarray]:
+def read_mesh(path, unit: str, key: str = "statue") -> tuple[np.ndarray, np.ndarray]:
     """(vertices n×3 in m, triangles m×3) of the mesh file at `path` (whatever trimesh reads:
     STL, OBJ, PLY, OFF, GLB), its lengths in `unit` (one of UNITS; required: an STL states
     none). Refused in one line: an unreadable file, no triangles, a mesh that is not closed
-    or not consistently wound (it has no volume to weigh), a non-finite vertex."""
+    or not consistently wound (it has no volume to weigh), a non-finite vertex, each naming the
+    file as `key` (how the caller spells it: --statue, systems.statue.mesh)."""
     if unit not in UNITS:
         raise InputError(f"unit = {unit!r}: must be the mesh file's length unit, one of {', '.join(UNITS)}")
     trimesh = import_extra("trimesh", "statue", "reading a statue's mesh")
@@ -238,21 +239,21 @@ def read_mesh(path, unit: str) -> tuple[np.ndarray, np.ndarray]:
         mesh = trimesh.load_mesh(str(path))
     except Exception as e:  # noqa: BLE001 - every reader's failure is the file's: one line
         why = getattr(e, "strerror", None) or f"{type(e).__name__}: {str(e).splitlines()[0] if str(e) else ''}"
-        raise InputError(f"statue = {str(path)!r}: cannot be read as a mesh ({why})") from None
+        raise InputError(f"{key} = {str(path)!r}: cannot be read as a mesh ({why})") from None
     if isinstance(mesh, trimesh.Scene):  # a file of several bodies (OBJ groups, GLB): one statue
         mesh = mesh.to_geometry() if hasattr(mesh, "to_geometry") else mesh.dump(concatenate=True)
     faces = np.asarray(getattr(mesh, "faces", np.empty((0, 3))), dtype=np.int64)
     vertices = np.asarray(getattr(mesh, "vertices", np.empty((0, 3))), dtype=float)
     if faces.ndim != 2 or faces.shape[0] < 4:
-        raise InputError(f"statue = {str(path)!r}: has {faces.shape[0] if faces.ndim == 2 else 0} triangles; a "
+        raise InputError(f"{key} = {str(path)!r}: has {faces.shape[0] if faces.ndim == 2 else 0} triangles; a "
                          "statue's mesh is a closed surface (at least 4)")
     if not np.all(np.isfinite(vertices)):
-        raise InputError(f"statue = {str(path)!r}: a vertex is not a finite number")
+        raise InputError(f"{key} = {str(path)!r}: a vertex is not a finite number")
     if not mesh.is_watertight:
-        raise InputError(f"statue = {str(path)!r}: the mesh is not closed (holes or edges shared by more than two "
+        raise InputError(f"{key} = {str(path)!r}: the mesh is not closed (holes or edges shared by more than two "
                          "triangles): it has no volume to weigh; close it (e.g. trimesh's fill_holes) first")
     if not mesh.is_winding_consistent:
-        raise InputError(f"statue = {str(path)!r}: its triangles are not wound consistently (inside and outside "
+        raise InputError(f"{key} = {str(path)!r}: its triangles are not wound consistently (inside and outside "
                          "mixed): it has no volume to weigh")
     return vertices * UNITS[unit], faces
 
@@ -436,7 +437,7 @@ def statue_mesh(*, mesh=None, example: str | None = None, unit: str | None = Non
                          "mesh file states none this reader trusts, so it is never guessed")
     if unit not in UNITS:
         raise InputError(f"{n['unit']} = {unit!r}: one of {', '.join(UNITS)}")
-    vertices, faces = read_mesh(mesh, unit)
+    vertices, faces = read_mesh(mesh, unit, key=n["mesh"])
     return vertices, faces, str(mesh)
 
 

@@ -23,7 +23,7 @@ DEFAULT_THETA_TOLERANCE = 0.02
 REGIONS = ("no uplift", "rocks and survives", "safe region", "overturns after impacts",
            "overturns without impact")
 REGION_COLORS = ("#f2f2f2", "#9ecae1", "#a1d99b", "#fdae6b", "#de2d26")
-SYSTEM_KEYS = ("base", "height", "width", "mass_ratio", "period", "damping_ratio")
+SYSTEM_KEYS = ("base", "height", "width", "mass_ratio", "period", "damping_ratio", "statue", "azimuth")
 
 
 def _columns(table) -> dict:
@@ -37,6 +37,8 @@ def _select(cols, mask):
 
 def _system_label(cols, i) -> str:
     geo = f"H {cols['height'][i]:g} m, B {cols['width'][i]:g} m"
+    if "statue" in cols and cols["statue"][i]:  # a statue's mesh along one direction (docs/statues.md)
+        geo = f"{cols['statue'][i]} at {cols['azimuth'][i]:g}°"
     if cols["base"][i] == "fixed":
         return f"fixed base, {geo}"
     return (f"isolated T {cols['period'][i]:g} s, ξ {cols['damping_ratio'][i]:g}, "
@@ -46,6 +48,7 @@ def _system_label(cols, i) -> str:
 def _groups(cols, keys):
     """Indices of rows grouped by the values of `keys` (NaN-safe), in first-seen order."""
     out = {}
+    keys = [k for k in keys if k in cols]  # a table made before a key was a column (statue, azimuth)
     for i in range(len(cols["case"])):
         key = tuple("nan" if isinstance(cols[k][i], float) and math.isnan(cols[k][i]) else cols[k][i]
                     for k in keys)

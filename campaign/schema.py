@@ -100,7 +100,20 @@ class Head(_Strict):
 ISOLATOR_KEYS = ("mass_ratio", "base_mass", "period", "damping_ratio")
 
 
+class Statue(_Strict):
+    """A statue's own mesh instead of the block H × B (docs/statues.md): its file (relative to
+    the campaign file) in its length unit, or an example made by code; its density instead of
+    systems.mass."""
+    mesh: StrictStr | None = None
+    example: StrictStr | None = None
+    unit: StrictStr | None = None
+    density: Positive | None = None
+
+
 class Systems(_Strict):
+    #: a statue's own mesh (docs/statues.md), and the directions it is shaken along (degrees)
+    statue: Statue | None = None
+    azimuth: GridZero = None
     slenderness: Grid = None
     alpha: Grid = None
     size: Grid = None
@@ -115,6 +128,21 @@ class Systems(_Strict):
     damping_ratio: GridZero = None
     #: the statue's friction on its base, μ_s (docs/sliding.md): an axis of its own; absent: no slip
     friction: Grid = None
+
+    @model_validator(mode="after")
+    def _a_statue_is_its_own_shape(self):
+        if self.statue is None:
+            if self.azimuth is not None:
+                raise ValueError("azimuth: the direction a statue's mesh is shaken along; give systems.statue")
+            return self
+        for k in ("height", "width", "slenderness", "alpha", "size"):
+            if getattr(self, k) is not None:
+                raise ValueError(f"{k}: the statue's mesh gives its shape; leave {k} out")
+        if self.friction is not None:
+            raise ValueError("friction: the sliding model takes the block H × B, not a statue's mesh yet")
+        if self.statue.density is not None and self.mass is not None:
+            raise ValueError("mass: the statue's statue.density gives its mass; give one of the two")
+        return self
 
     @model_validator(mode="after")
     def _isolator_needs_its_base(self):

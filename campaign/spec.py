@@ -28,7 +28,7 @@ from isorock.validate.io.schema import read_toml
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).
 AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
-        "width", "period", "damping_ratio", "mass_ratio")
+        "width", "period", "damping_ratio", "mass_ratio", "azimuth")
 
 #: Largest number of rows (case × engine setting) a campaign may have: beyond it a
 #: typo (a grid of 10⁴ × 10⁴) would fill the disk instead of failing.
@@ -127,8 +127,9 @@ class CampaignSpec:
 
     # --- identity -------------------------------------------------------------------
     def fingerprint(self) -> str:
-        """A hash of everything that defines the results (not name/products/source)."""
-        body = {"systems": self.systems, "motions": self.motions, "duration": self.duration,
+        """A hash of everything that defines the results (not name/products/source; a statue by
+        its file's content, not the bodies read from it)."""
+        body = {"systems": {k: v for k, v in self.systems.items() if not k.startswith("_")}, "motions": self.motions, "duration": self.duration,
                 "engines": [(e.engine, list(e.overrides)) for e in self.engines]}
         return hashlib.sha256(json.dumps(body, sort_keys=True, default=str).encode()).hexdigest()[:16]
 
@@ -136,7 +137,9 @@ class CampaignSpec:
     def system_grid(self) -> list[dict]:
         """Every system's defining inputs, in a fixed order (geometry outer, base inner)."""
         s = self.systems
-        if "height" in s:
+        if "statue" in s:
+            geometry = [{"statue": s["statue"]["label"], "azimuth": a} for a in s["azimuth"]]
+        elif "height" in s:
             geometry = [{"height": H, "width": B} for H, B in itertools.product(s["height"], s["width"])]
         else:
             geometry = []
@@ -147,6 +150,8 @@ class CampaignSpec:
                 geometry.append({"height": round(2 * lam * b, 12), "width": round(2 * b, 12)})
         out = []
         for geo, mass in itertools.product(geometry, s["mass"]):
+            if "statue" in s:  # the statue along its direction: its two edges (System.body)
+                geo = {**geo, **self._statue_body(geo["azimuth"], mass)}
             for base in s["base"]:
                 if base == "fixed":
                     out.append({**geo, "mass": mass, "base": "fixed", "mass_ratio": 0.0,
@@ -163,6 +168,13 @@ class CampaignSpec:
         frictions = s.get("friction", (None,))
         return [{**row, "friction": mu} if mu is not None else row for row in out for mu in frictions]
 
+    def _statue_body(self, azimuth_deg: float, mass: float) -> dict:
+        from isorock.analytic.system import PlanarBody
+        s = self.systems
+        resting = s["_resting"][s["mass"].index(mass)]
+        body = PlanarBody.from_resting(resting.along(math.radians(azimuth_deg)))
+        return {**body.box, "body": body, "statue_sha256": s["statue"]["sha256"] or ""}
+
     def n_motions_per_system(self) -> int:
         m = self.motions
         if m["type"] == "pulse":
@@ -173,7 +185,7 @@ class CampaignSpec:
         """len(system_grid()), from the grids' lengths (nothing is built: a grid of 10¹²
         systems is refused in microseconds, not after minutes or a MemoryError)."""
         s = self.systems
-        geometry = (len(s["height"]) * len(s["width"]) if "height" in s
+        geometry = (len(s["azimuth"]) if "statue" in s else len(s["height"]) * len(s["width"]) if "height" in s
                     else len(s["slenderness"]) * len(s["size"]))
         per_geometry = ("fixed" in s["base"]) + ("isolated" in s["base"]) * (
             len(s.get("mass_ratio", s.get("base_mass", ()))) * len(s.get("period", ()))
@@ -212,13 +224,53 @@ class CampaignSpec:
                            "amplitude_ratio": math.nan, "scale_by": m["scale_by"], "intensity": level}
 
 
-def _systems(t) -> dict:
+#: how a campaign file names a statue's inputs in errors (analytic.shape.load_statue)
+STATUE_KEYS = {"mesh": "systems.statue.mesh", "example": "systems.statue.example", "unit": "systems.statue.unit",
+               "mass": "systems.mass", "density": "systems.statue.density", "azimuth": "systems.azimuth",
+               "source": "its mesh (systems.statue.mesh = FILE) or an example (systems.statue.example = NAME)"}
+
+
+def _statue(t, source: Path) -> dict:
+    """A statue's mesh (docs/statues.md), read and stood on its plinth once, here: its mass
+    grid (its density's one mass, or systems.mass), its directions (systems.azimuth, degrees;
+    default: the one it tips first) and what identifies it (an example's name, or the file's
+    path and content's digest, so that a changed file is new work)."""
+    from isorock.analytic import shape
+    table = t["statue"]
+    mesh = table.get("mesh")
+    if mesh is not None:
+        mesh = Path(mesh) if Path(mesh).is_absolute() else Path(source).parent / mesh
+    density = table.get("density")
+    masses = (None,) if density is not None else _grid("systems.mass", t.get("mass", 1000.0))
+    bodies = {}
+    for m in masses:
+        bodies[m] = shape.load_statue(mesh=None if mesh is None else str(mesh), example=table.get("example"),
+                                      unit=table.get("unit"), mass=m, density=density, names=STATUE_KEYS)
+    first = next(iter(bodies.values()))
+    if "azimuth" in t:
+        azimuths = _grid("systems.azimuth", t["azimuth"], allow_zero=True)
+        for a in azimuths:
+            if not a < 360:
+                raise _where("systems.azimuth", a, "degrees from 0 to under 360")
+    else:
+        azimuths = (round(math.degrees(shape.weakest_direction(first)[0]) % 360.0, 9),)
+    identity = {"example": table.get("example"), "unit": table.get("unit"), "density": density,
+                "mesh": None if mesh is None else str(mesh),
+                "sha256": None if mesh is None else hashlib.sha256(mesh.read_bytes()).hexdigest()}
+    label = table["example"] if mesh is None else mesh.name
+    return {"statue": {**identity, "label": label}, "azimuth": azimuths,
+            "mass": tuple(b.mass for b in bodies.values()), "_resting": tuple(bodies.values())}
+
+
+def _systems(t, source: Path = Path("campaign.toml")) -> dict:
     allowed = {"slenderness", "alpha", "size", "height", "width", "mass", "base", "mass_ratio", "base_mass",
-               "period", "damping_ratio", "friction"}
+               "period", "damping_ratio", "friction", "statue", "azimuth"}
     _check_keys("systems", t, allowed)
     out = {}
     geometry_keys = [k for k in ("slenderness", "alpha", "height", "width") if k in t]
-    if "height" in t or "width" in t:
+    if "statue" in t:
+        out.update(_statue(t, source))
+    elif "height" in t or "width" in t:
         if set(geometry_keys) != {"height", "width"} or "size" in t:
             raise InputError("systems: give height and width, or slenderness (or alpha) and size, not a mix")
         out["height"], out["width"] = _grid("systems.height", t["height"]), _grid("systems.width", t["width"])
@@ -236,7 +288,8 @@ def _systems(t) -> dict:
         if "size" not in t:
             raise InputError("systems.size: missing (R = √(b² + h²), the half-diagonal, m)")
         out["size"] = _grid("systems.size", t["size"])
-    out["mass"] = _grid("systems.mass", t.get("mass", 1000.0))
+    if "statue" not in t:
+        out["mass"] = _grid("systems.mass", t.get("mass", 1000.0))
     # the statue's friction (docs/sliding.md): None, a statue that cannot slip, is the axis's one value by default
     out["friction"] = (None,) if "friction" not in t else _grid("systems.friction", t["friction"])
     from isorock.analytic.system import MAX_STATUE_FRICTION
@@ -394,7 +447,7 @@ def parse_spec(data: dict, source: Path = Path("campaign.toml")) -> CampaignSpec
             raise _where(f"campaign.{k}", v, "an integer from 1 to 100000")
         chunks[k] = v
     spec = CampaignSpec(
-        name=str(head.get("name", source.stem)), systems=_systems(data["systems"]),
+        name=str(head.get("name", source.stem)), systems=_systems(data["systems"], source),
         motions=_motions(data["motions"], source), engines=_engines(data["engines"]),
         duration=_duration(data.get("duration", {})), products=_products(data.get("products", {})),
         source=str(source), **chunks)
@@ -459,7 +512,10 @@ def longest_pulse(spec: CampaignSpec) -> float:
     from isorock.validate.core.cases import pulse_for
     from isorock.analytic.system import System
     s, m = spec.systems, spec.motions
-    if "height" in s:
+    if "statue" in s:  # its box along every direction: the largest H, B
+        boxes = [g for g in spec.system_grid()]
+        H, B = max(g["height"] for g in boxes), max(g["width"] for g in boxes)
+    elif "height" in s:
         H, B = max(s["height"]), max(s["width"])
     else:
         lam, R = min(s["slenderness"]), max(s["size"])

@@ -122,16 +122,24 @@ def block_system(*, height: float, slenderness: float, mass: float, mass_ratio: 
 
 
 def build_system(inputs: dict) -> System:
-    geo = dict(height=inputs["height"], width=inputs["width"], mass=inputs["mass"])
+    """The System of a table row's inputs; `body` (a PlanarBody: a statue's mesh along its
+    shaking direction, docs/statues.md) takes the block's place where the row has one."""
+    body = inputs.get("body")
+    geo = dict(body.box if body is not None else dict(height=inputs["height"], width=inputs["width"]),
+               mass=inputs["mass"])
     friction = inputs.get("friction")  # the statue's (docs/sliding.md), None or NaN: it cannot slip
     friction = None if friction is None or math.isnan(friction) else friction
     if inputs["base"] == "fixed":
-        return System.fixed(**geo).with_friction(friction)
-    # the base's mass as the user gave it, where they did (a campaign's base_mass), not
-    # recomputed from the ratio (80/(80/150) is not 150 in floating point)
-    base_mass = inputs.get("base_mass") or inputs["mass"] / inputs["mass_ratio"]
-    return System.isolated(**geo, base_mass=base_mass, period=inputs["period"],
-                           damping_ratio=inputs["damping_ratio"]).with_friction(friction)
+        system = System.fixed(**geo)
+    else:
+        # the base's mass as the user gave it, where they did (a campaign's base_mass), not
+        # recomputed from the ratio (80/(80/150) is not 150 in floating point)
+        base_mass = inputs.get("base_mass") or inputs["mass"] / inputs["mass_ratio"]
+        system = System.isolated(**geo, base_mass=base_mass, period=inputs["period"],
+                                 damping_ratio=inputs["damping_ratio"])
+    if body is not None:
+        system = replace(system, body=body)
+    return system.with_friction(friction)
 
 
 def pulse_for(system: System, kind: str, frequency_ratio: float, amplitude_ratio: float,

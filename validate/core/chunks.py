@@ -73,6 +73,10 @@ def chunk_id(setting: EngineChoice, cases, overturn_rule: str | None = None) -> 
         row, digest = case_inputs(c), record_digest(c)
         if c.system.friction is None:  # a statue that cannot slip hashes as before friction was a column
             row.pop("friction")
+        if not row["statue"]:  # the block H × B hashes as before a statue's mesh was a column
+            row.pop("statue"), row.pop("azimuth")
+        elif c.inputs.get("statue_sha256"):  # a mesh file's content, not only its name
+            row["statue_sha256"] = c.inputs["statue_sha256"]
         if digest is not None:
             row["record_sha256"] = digest
         inputs.append(row)

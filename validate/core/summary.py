@@ -18,6 +18,9 @@ INPUT_COLUMNS = {
     "duration": "float64", "theta0": "float64",
     # the statue's friction on its base (docs/sliding.md; NaN: it cannot slip)
     "friction": "float64",
+    # a statue's own mesh (docs/statues.md; "" : the block H × B) and the direction it is shaken
+    # along, degrees from the mesh's x towards y (NaN for the block)
+    "statue": "string", "azimuth": "float64",
 }
 RESULT_COLUMNS = {
     "status": "string", "message": "string", "theta_max_over_alpha": "float64",
