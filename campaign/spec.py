@@ -254,8 +254,8 @@ def _statue(t, source: Path) -> dict:
                 raise _where("systems.azimuth", a, "degrees from 0 to under 360")
     else:
         azimuths = (round(math.degrees(shape.weakest_direction(first)[0]) % 360.0, 9),)
+    # the file by its content, not its path: the same campaign run from elsewhere is the same work
     identity = {"example": table.get("example"), "unit": table.get("unit"), "density": density,
-                "mesh": None if mesh is None else str(mesh),
                 "sha256": None if mesh is None else hashlib.sha256(mesh.read_bytes()).hexdigest()}
     label = table["example"] if mesh is None else mesh.name
     return {"statue": {**identity, "label": label}, "azimuth": azimuths,
