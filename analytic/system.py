@@ -502,6 +502,12 @@ class System:
         return self.mass * self.edge_radius(side) ** 2 + self.inertia
 
     @property
+    def subject(self) -> str:
+        """How a report names what rocks: "the statue" for a statue's own shape (body), else
+        "the block"."""
+        return "the block" if self.body is None else "the statue"
+
+    @property
     def h(self) -> float:
         """Half height (m): centroid height above the base (a body's centre of mass height)."""
         return 0.5 * self.height if self.body is None else self.body.centre_height

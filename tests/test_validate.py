@@ -394,7 +394,7 @@ def test_the_verdict_says_on_which_base_the_block_never_lifted():
     def check(scenario, status):
         return SimpleNamespace(engine="mujoco", metric="theta_max_diff", status=status, interval=None, note="",
                                scenario=scenario)
-    scenarios = [SimpleNamespace(name=f"{m}, {b}", system=SimpleNamespace(fixed_base=b == "fixed"), runs={})
+    scenarios = [SimpleNamespace(name=f"{m}, {b}", system=SimpleNamespace(fixed_base=b == "fixed", subject="the block"), runs={})
                  for m in ("sine", "ricker") for b in ("isolated", "fixed")]
     checks = ([check("sine, isolated", NOT_EXERCISED)] * 4 + [check("ricker, isolated", NOT_EXERCISED)] * 4
               + [check("sine, fixed", "pass")] * 4 + [check("ricker, fixed", "pass")] * 3

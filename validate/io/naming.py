@@ -44,7 +44,9 @@ def describe_motion(motion, shown: float | None = None) -> str:
 def describe_system(system) -> str:
     """The block and its base in one line: "block 2 × 0.7 m (λ 2.86), isolated base
     T 1.5 s, ξ 0.2, μ 1" or "block 2 × 0.7 m (λ 2.86), fixed base"."""
-    block = f"block {_g(system.height)} × {_g(system.width)} m (λ {system.slenderness:.3g})"
+    block = (f"block {_g(system.height)} × {_g(system.width)} m (λ {system.slenderness:.3g})" if system.body is None
+             else f"statue of edges α₊ {system.body.alpha(1):.3g}, α₋ {system.body.alpha(-1):.3g} rad, its centre "
+                  f"{_g(system.body.centre_height)} m up")
     if system.fixed_base:
         return f"{block}, fixed base"
     if system.isolator_kind == "ball-in-cone":  # no period: a constant restoring force

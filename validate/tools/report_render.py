@@ -116,7 +116,7 @@ def engine_verdicts(results: Results) -> dict:
             reasons.append(f"{len(skips)} skipped (chaotic references are judged by their ensembles)")
         if idle:
             where = _where_never_lifted(results, name)
-            reasons.append(f"{len(idle)} not exercised (no engine lifted the block there"
+            reasons.append(f"{len(idle)} not exercised (no engine lifted {_subject(results)} there"
                            + (f": {where}; nothing about contact was tested there" if where else "") + ")")
         if open_:
             few = [c for c in open_ if _too_few(c)]
@@ -146,9 +146,14 @@ def _where_never_lifted(results: Results, name: str) -> str:
             idle_by_base[base] = idle_by_base.get(base, 0) + all(c.status == NOT_EXERCISED for c in mine)
     whole = [b for b in all_by_base if idle_by_base[b] == all_by_base[b]]
     if whole:
-        return " and ".join(f"the block never lifted on the {b} under any motion" for b in whole)
+        return " and ".join(f"{_subject(results)} never lifted on the {b} under any motion" for b in whole)
     idle = sum(idle_by_base.values())
-    return f"the block never lifted in {idle} of {sum(all_by_base.values())} histories" if idle else ""
+    return f"{_subject(results)} never lifted in {idle} of {sum(all_by_base.values())} histories" if idle else ""
+
+
+def _subject(results: Results) -> str:
+    """"the statue" or "the block": what the report's system is (System.subject)."""
+    return results.scenarios[0].system.subject if results.scenarios else "the block"
 
 
 def _how_many_not_judged(results: Results, name: str) -> str:
@@ -346,9 +351,15 @@ def describe_system(results: Results) -> str:
                 "(the reading "
                 "of the paper that fits its figure: the paper's own values are unreadable in our copy), and on a fixed base")
     s = cfg.system
+    noun = s.subject.removeprefix("the ")
     base = ("a fixed base" if s.fixed_base else
             f"an isolated base (m_b {s.base_mass:g} kg, T {s.period:.3g} s, ξ {s.damping_ratio:.3g}), and the same "
-            "block on a fixed base")
+            f"{noun} on a fixed base")
+    if s.body is not None:  # a statue's mesh: its two edges along the shaking direction
+        e = s.body
+        return (f"your statue (m {s.mass:g} kg; centre of mass {e.centre_height:.3g} m up, edges b₊ "
+                f"{e.lever_forward:.3g} m and b₋ {e.lever_backward:.3g} m from it, α₊ {e.alpha(1):.4g} and α₋ "
+                f"{e.alpha(-1):.4g} rad) on {base}")
     return (f"your block (H {s.height:g} m, B {s.width:g} m, m {s.mass:g} kg; λ {s.slenderness:.3g}, "
             f"α {s.alpha:.4g} rad) on {base}")
 
@@ -368,7 +379,7 @@ def _blocks(results: Results, images: dict) -> list:
     B.append(("p", "Each cell: checks passed, the worst value against its tolerance and the margin left (how far "
                    "inside the limit, as a share of it; negative: outside). Skipped: the analytic history is "
                    "chaotic there (θmax/α moves a lot under ±1% of PGA), so the ensemble judges it. Not exercised: "
-                   "no engine lifted the block, so nothing about contact was tested; counted apart, never passed. "
+                   f"no engine lifted {_subject(results)}, so nothing about contact was tested; counted apart, never passed. "
                    "Every tolerance and its reason is in the folded table at the end (and in isorock's validate/core/tolerances.py)."))
     B.append(("h2", "Where the engines part from the analytic model"))
     for sc, key in zip(results.scenarios, images["histories"]):
@@ -379,7 +390,7 @@ def _blocks(results: Results, images: dict) -> list:
         if not sc.exercised:
             B.append(("p", f"{sc.name}: {sc.why_not_exercised()}."))
     B.append(("img", images["ensemble"], "θmax/α over the motion scaled in amplitude (from just above the scale "
-                                         "at which the block first lifts), and each engine − analytic with its "
+                                         f"at which {_subject(results)} first lifts), and each engine − analytic with its "
                                          "tolerance on the median; × marks overturning."))
     B.append(("img", images["beta_per_impact"], "Effective β of every counted impact against the closed form, "
                                                 "free rocking, judged against each engine's tolerance (dashed), "

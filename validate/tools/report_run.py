@@ -129,9 +129,10 @@ class ReportConfig:
         """(label, System) of every base the histories and ensembles run on."""
         if self.system is None:
             return paper_bases()
+        noun = self.system.subject.removeprefix("the ")  # block, or statue (a statue's mesh)
         if self.system.fixed_base:
-            return (("your block on a fixed base", self.system),)
-        return (("your isolated base", self.system), ("the same block on a fixed base", self.system.on_fixed_base()))
+            return ((f"your {noun} on a fixed base", self.system),)
+        return (("your isolated base", self.system), (f"the same {noun} on a fixed base", self.system.on_fixed_base()))
 
     def overrides_for(self, name: str) -> dict:
         base = name.partition(":")[0]
@@ -516,7 +517,7 @@ def _history_checks(sc: HistoryRuns, engines) -> list[Check]:
             else:
                 note = err or ("uplifted in one engine only" if metric == "first_uplift_diff" and value is None
                                else "slid in one engine only" if metric == "slide_onset" and value is None
-                               else "the block slid on its base" if slid else "")
+                               else f"{sc.system.subject} slid on its base" if slid else "")
                 out.append(check(name, metric, sc.name, value, note=note))
     return out
 
@@ -564,7 +565,7 @@ def _ensemble_checks(ens: Ensemble, label: str, engines) -> list[Check]:
             continue
         note = "; ".join(f"×{f:.3g}: {m}" for f, m in ens.failed.get(name, []))
         if rocked == 0:
-            why = f"not exercised: the block rocks in none of the {ens.scales.size} cases"
+            why = f"not exercised: {ens.system.subject} rocks in none of the {ens.scales.size} cases"
             for metric in ("ensemble_overturn_median", "ensemble_overturn_dispersion", "ensemble_theta_max_diff"):
                 checks.append(not_exercised(name, metric, scenario, why))
             continue
