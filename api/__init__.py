@@ -27,7 +27,7 @@ from __future__ import annotations
 API = {"run": "isorock.validate.cli.api", "report": "isorock.validate.cli.api", "sweep": "isorock.validate.cli.api",
        "design": "isorock.campaign.design",
        # typed, from Python values: one run of any engine, and the values it takes
-       "simulate": "isorock.validate.core.engines", "System": "isorock.analytic.system",
+       "simulate": "isorock.validate.core.plan", "System": "isorock.analytic.system",
        "GroundMotion": "isorock.analytic.motion", "load_motion": "isorock.analytic.motion"}
 
 

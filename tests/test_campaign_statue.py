@@ -64,7 +64,7 @@ def test_each_direction_is_the_statues_own_two_edges(tmp_path):
     from isorock.analytic.motion import GroundMotion
     from isorock.analytic.system import PlanarBody, System
     from isorock.validate.core.cases import pulse_for
-    from isorock.validate.core.engines import simulate
+    from isorock.validate.core.plan import simulate
     (tmp_path / "bust.toml").write_text('[systems]\nstatue = { example = "bust" }\nazimuth = [0, 180]\nmass = 80.0\n'
                                         'base = "fixed"\n' + PULSES)
     rows = _rows(tmp_path / "bust.toml", tmp_path / "o")

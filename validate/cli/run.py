@@ -15,7 +15,7 @@ output (its JSON fields, its CSV) is unchanged.
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass, fields
+from dataclasses import fields
 from pathlib import Path
 
 from isorock.analytic.errors import InputError
@@ -141,85 +141,34 @@ def _progress(quiet):
     return report
 
 
-@dataclass(frozen=True)
-class RunPlan:
-    """What `isorock run` (and `isorock.run`) will simulate, every input checked: the
-    engines with their settings, the system, the motion (cut to the work bounds), the
-    duration and the initial tilt θ0 (rad)."""
-
-    loaded: list
-    system: object
-    motion: object
-    duration: float
-    theta0: float
-
-
 def engine_asked(a) -> str:
     """--engine as given, or the default: the compiled kernel, which carries every isolator
     the model has (docs/isolators.md)."""
     return a.engine if a.engine is not None else "analytic"
 
 
-def plan_runs(a, specs) -> RunPlan:
-    """The run options `a` (the parser's namespace) checked and resolved, before any work."""
-    from isorock.analytic.engine_protocol import run_inputs
+def plan_runs(a, specs):
+    """The run options `a` (the parser's namespace) read into Python values, and the one Plan
+    of them (core.plan.make_plan: every check made there once, before any work)."""
     from isorock.validate.cli.options import motion_from_args, system_from_args
-    from isorock.validate.core.engines import settings_used
-    loaded = load_engines(specs, a)
+    from isorock.validate.core.plan import EngineRun, make_plan
+    runs = [EngineRun(label, engine, settings) for label, engine, settings in load_engines(specs, a)]
     system, motion = system_from_args(a), motion_from_args(a)
-    if a.duration is not None and not a.duration > 0:
-        raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
     if not (abs(a.theta0_over_alpha) < 1):
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     # a fraction of the α of the edge it tilts onto (a statue's two edges differ)
     theta0 = a.theta0_over_alpha * system.edge_alpha(1 if a.theta0_over_alpha >= 0 else -1)
-    # the work bounds (duration, isolator, every engine's steps) before any work
-    duration = a.duration
-    for _, engine, settings in loaded:
-        engine.check_isolator(system)
-        # the steps the run will take (an engine whose settings follow the system derives them)
-        motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold,
-                                      settings=settings_used(settings, system),
-                                      isolators=engine.capabilities.isolators,
-                                      two_edges=getattr(engine.capabilities, "two_edges", False))
-    return RunPlan(first_run_engines(loaded, system, motion, duration), system, motion, duration, theta0)
+    return make_plan(system, motion, runs, duration=a.duration, theta0=theta0, impact_threshold=a.impact_threshold,
+                     overturn_rule=a.overturn, first_run=True)
 
 
-def first_run_engines(loaded, system, motion, duration):
-    """`loaded` with the compiled engine swapped for the SciPy reference (the same model,
-    the same settings) where its kernel is not built yet and the run is short: a first
-    run starts at once instead of waiting minutes for a build (issue 34); said on stderr."""
-    from isorock.analytic.engines import first_run_reference
-    from isorock.validate.core.engines import get_engine
-    out = []
-    for label, engine, settings in loaded:
-        why = first_run_reference(system, motion, duration) if engine.name == "analytic" else None
-        if why:
-            print(f"isorock: {label}: {why}", file=sys.stderr, flush=True)
-            engine = get_engine("analytic-reference")
-        out.append((label, engine, settings))
-    return out
-
-
-def simulate_plan(plan: RunPlan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:
+def simulate_plan(plan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:
     """(label → Trajectory, label → Settings used), in the order the engines were given;
-    each run within `budget` s (analytic.limits.RunBudget): past it, the BudgetExceeded
-    raised carries the run's `label`."""
-    from isorock.analytic.limits import BudgetExceeded
-    runs, used = {}, {}
-    for label, engine, settings in plan.loaded:
-        if announce:
-            print(f"\r{label} …", file=sys.stderr)
-        try:
-            runs[label] = engine.simulate(plan.system, plan.motion, settings=settings, duration=plan.duration,
-                                          theta0=plan.theta0, impact_threshold=a.impact_threshold,
-                                          overturn_rule=a.overturn, progress=_progress(getattr(a, "quiet", True)),
-                                          budget_s=budget)
-        except BudgetExceeded as e:
-            e.label = label
-            raise
-        used[label] = settings
-    return runs, used
+    each run within `budget` s (core.plan.run_plan)."""
+    from isorock.validate.core.plan import run_plan
+    runs = run_plan(plan, progress=_progress(getattr(a, "quiet", True)), budget_s=budget,
+                    on_start=(lambda label: print(f"\r{label} …", file=sys.stderr)) if announce else None)
+    return runs, {r.label: r.settings for r in plan.runs}
 
 
 def cmd_run(a) -> int:
@@ -248,7 +197,7 @@ def cmd_run(a) -> int:
             check_resample("csv-dt", a.csv_dt, duration)
         # every run has a budget, and a long command says what it will cost before it starts
         budget = run_budget(a)
-        announce_cost("run", {label: duration for label, _, _ in plan.loaded}, budget, quiet=a.quiet)
+        announce_cost("run", {r.label: duration for r in plan.runs}, budget, quiet=a.quiet)
         try:
             runs, used = simulate_plan(plan, a, announce=several and not a.quiet and sys.stderr.isatty(), budget=budget)
         except BudgetExceeded as e:

@@ -160,7 +160,8 @@ class Engine:
 
     def simulate(self, system, motion=None, *, settings=None, duration=None, theta0=0.0,
                  impact_threshold=DEFAULT_IMPACT_THRESHOLD, contact_window=None, overturn_rule=None,
-                 progress=None, effective_beta: bool = True, budget_s: float | None = None) -> Trajectory:
+                 progress=None, effective_beta: bool = True, budget_s: float | None = None,
+                 checked: bool = False) -> Trajectory:
         """Run the engine and measure its history: θ0 in rad; impact_threshold as a
         fraction of α (model.md's counting rule); contact_window (s) is how a contact
         engine's history is measured (validate.measure); overturn_rule ("past-alpha" or
@@ -168,13 +169,16 @@ class Engine:
         as their `overturn` setting, a contact engine's history is judged by it (default:
         the analytic setting's, else "past-alpha"). effective_beta=False: a contact engine's
         impacts are located and counted but their velocities not mapped (NaN), for runs
-        read only as summaries (campaign rows, ensembles): the summary is the same."""
+        read only as summaries (campaign rows, ensembles): the summary is the same.
+        checked=True: the inputs come from a Plan (core.plan.make_plan), which checked that this
+        engine carries them; they are not checked again here."""
         from dataclasses import replace
 
         from isorock.analytic.overturning import PAST_ALPHA
         from isorock.analytic.trajectory import RawHistory
         from isorock.validate.core import measure
-        self.check_run(system, motion)
+        if not checked:
+            self.check_run(system, motion)
         if settings is None:
             settings = self.settings()
         if budget_s is not None:  # a wall-clock budget (analytic/limits.py): the run stops past it
@@ -512,41 +516,3 @@ def engine_label(name: str) -> str:
         return get_engine(name).label
     except ImportError:
         return name
-
-
-def simulate(system, motion=None, *, engine: str = REFERENCE, settings=None, duration: float | None = None,
-             theta0: float = 0.0, overturn_rule: str | None = None, budget_s: float | None = None) -> "Trajectory":
-    """One run of any engine, from Python values (issue 35: no command line in between).
-
-    system: an isorock.analytic.System; motion: a GroundMotion (None: no motion, free rocking
-    from theta0, rad); engine: "ENGINE" or "ENGINE:PRESET" (`isorock presets` lists them);
-    settings: None (the engine's or the preset's), a dict of overrides checked against the
-    engine's settings (an unknown one is an InputError naming it), or the engine's own Settings;
-    duration (s; None: the motion's end + 5 s). Returns the measured Trajectory every engine's
-    run becomes (a contact engine's history measured as the commands measure it)."""
-    from isorock.analytic.motion import GroundMotion
-    from isorock.analytic.system import System
-    if not isinstance(system, System):
-        raise InputError(f"system = {type(system).__name__}: must be an isorock System (System.fixed, "
-                         "System.isolated, System.with_isolator)")
-    if motion is not None and not isinstance(motion, GroundMotion):
-        raise InputError(f"motion = {type(motion).__name__}: must be a GroundMotion (isorock.load_motion reads a "
-                         "pulse or a record) or None")
-    if not isinstance(engine, str):
-        raise InputError(f"engine = {engine!r}: must be a name, ENGINE or ENGINE:PRESET")
-    if settings is None or isinstance(settings, dict):
-        choice = choose(engine, settings or {}, strict=True)
-        settings = choice.settings()
-        name = choice.engine
-    else:
-        choice = choose(canonical(engine))  # the engine and its preset checked, as a dict's are
-        name = choice.engine
-        own = get_engine(name).Settings
-        if not isinstance(settings, own):
-            raise InputError(f"settings = {type(settings).__name__}: must be a dict of overrides or engine "
-                             f"{name!r}'s {own.__name__}")
-        if choice.preset:  # the preset's settings or these: one of them would be dropped unsaid
-            raise InputError(f"engine = {engine!r} with settings = {own.__name__}(…): give the preset or the "
-                             "Settings, not both (a dict of overrides goes on top of a preset)")
-    return get_engine(name).simulate(system, motion, settings=settings, duration=duration, theta0=theta0,
-                                     overturn_rule=overturn_rule, budget_s=budget_s)
