@@ -112,3 +112,19 @@ def test_mjwarp_keeps_standard_output_clean(capfd):
     system = paper_system(fixed_base=True)
     get_engine("mjwarp").simulate(system, None, settings=FULL, duration=0.05, theta0=0.3 * system.alpha)
     assert capfd.readouterr().out == ""
+
+
+def test_warps_no_driver_line_is_dropped_and_the_rest_of_its_stderr_kept():
+    """Warp's native library prints a CUDA warning with fprintf on a machine without an NVIDIA
+    driver, each time it starts; isorock drops that one line (its runs say they are on Warp's CPU)
+    and passes on everything else. Oracle: a child process writing to file descriptor 2 as a C
+    library does; no Warp needed."""
+    import subprocess
+    code = ("import os\nfrom isorock.mujoco_models.mjwarp import NO_DRIVER, _without_native_line\n"
+            "with _without_native_line(NO_DRIVER):\n"
+            "    os.write(2, NO_DRIVER + b'. GPU execution will not be available.\\n')\n"
+            "    os.write(2, b'Warp error: something else\\n')\n"
+            "os.write(2, b'after\\n')\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stderr == b"Warp error: something else\nafter\n"
