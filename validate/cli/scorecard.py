@@ -27,6 +27,7 @@ import time
 from dataclasses import dataclass
 
 from isorock.analytic.errors import InputError
+from isorock.validate.io.naming import markdown_cell
 
 DEFAULT_OUT = "docs/engines.md"
 #: s: what the whole command may take by default (CI's suite must stay under ~5 min on 2 cores:
@@ -647,14 +648,10 @@ COLUMNS = (("engine:preset", lambda r: r["label"]),
            ("per CPU s / the step floor, isolated / fixed", lambda r: floor_cell(r["speed"])))
 
 
-def _md(text: str) -> str:
-    return str(text).replace("|", "/").replace("\n", " ")
-
-
 def table_lines(data: dict) -> list[str]:
     lines = ["| " + " | ".join(name for name, _ in COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     for r in data["rows"]:
-        lines.append("| " + " | ".join(_md(f(r)) for _, f in COLUMNS) + " |")
+        lines.append("| " + " | ".join(markdown_cell(f(r)) for _, f in COLUMNS) + " |")
     return lines
 
 
@@ -804,7 +801,7 @@ def readme_table(data: dict) -> str:
         if _measured(r["atlas"]):
             acc = f"{data['cells']} cells, H {_axis(data['grid']['heights_m'])} m: " + acc
         acc += "; validate: " + validate_cell(r["validate"])
-        lines.append(f"| {_md(facts['engine_label'])} | {_md(reason)} | {_md(acc)} | {_md(speed_cell(r['speed']))} |")
+        lines.append(f"| {markdown_cell(facts['engine_label'])} | {markdown_cell(reason)} | {markdown_cell(acc)} | {markdown_cell(speed_cell(r['speed']))} |")
     lines += ["", f"From `{data['command']}` ({data['date']}, {data['wall_s']:.0f} s, load "
                   f"{', '.join(f'{v:g}' for v in data['load_before'] or [])}): every preset, the stress, "
                   "shake-table and step-floor columns and how each is measured are in "

@@ -57,6 +57,12 @@ def describe_system(system) -> str:
             f"μ {_g(system.mu)}")
 
 
+def markdown_cell(text) -> str:
+    """Text in one cell of a Markdown table (the report's, the scorecard's): its pipes escaped,
+    so that they do not split the row, and on one line."""
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
 def cell(value, spec: str = "{:.4g}", missing: str = "–") -> str:
     """A value in a table of text (the run comparison, the stress grid, a campaign's
     summary): a real number by `spec` (±inf as "inf"); None or NaN, a value that is not

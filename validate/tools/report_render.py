@@ -18,7 +18,7 @@ from pathlib import Path
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.io import figures
 from isorock.validate.core.engines import REFERENCE, describe_settings
-from isorock.validate.io.naming import describe_motion
+from isorock.validate.io.naming import describe_motion, markdown_cell
 from isorock.validate.io.output import write_folder_atomic, write_json
 from isorock.validate.io.provenance import provenance
 from isorock.validate.tools.paper import PAPER_FIGURE5, is_kobe, paper_blocks
@@ -506,10 +506,6 @@ def engine_settings(results: Results) -> dict:
 
 # --- rendering -----------------------------------------------------------------------------
 
-def _md_cell(x) -> str:
-    return str(x).replace("|", "\\|").replace("\n", " ")
-
-
 def render_markdown(blocks) -> str:
     out = []
     for b in blocks:
@@ -526,9 +522,9 @@ def render_markdown(blocks) -> str:
             out.append(f"![{b[2]}]({b[1]})\n\n*{b[2]}*\n")
         elif kind == "table":
             header, rows = b[1], b[2]
-            out.append("| " + " | ".join(map(_md_cell, header)) + " |")
+            out.append("| " + " | ".join(map(markdown_cell, header)) + " |")
             out.append("|" + "---|" * len(header))
-            out += ["| " + " | ".join(map(_md_cell, r)) + " |" for r in rows]
+            out += ["| " + " | ".join(map(markdown_cell, r)) + " |" for r in rows]
             out.append("")
         elif kind == "details":
             out.append(f"<details><summary>{b[1]}</summary>\n")
