@@ -152,12 +152,20 @@ class RunPlan:
     motion: object
     duration: float
     theta0: float
+    #: with two horizontal components: (the statue at rest, or the block as one, and the
+    #: azimuth in rad along which the first component shakes it), for the measures and the
+    #: planar runs beside (validate.core.biaxial); None otherwise
+    shaken: tuple | None = None
 
 
 def engine_asked(a) -> str:
     """--engine as given, or the default: the compiled kernel, which carries every isolator
-    the model has (docs/isolators.md)."""
-    return a.engine if a.engine is not None else "analytic"
+    the model has (docs/isolators.md); with two horizontal components, MuJoCo, the engine
+    that carries them."""
+    from isorock.validate.cli.options import transverse_asked
+    if a.engine is not None:
+        return a.engine
+    return "mujoco" if transverse_asked(a) else "analytic"
 
 
 def plan_runs(a, specs) -> RunPlan:
@@ -167,6 +175,7 @@ def plan_runs(a, specs) -> RunPlan:
     from isorock.validate.core.engines import settings_used
     loaded = load_engines(specs, a)
     system, motion = system_from_args(a), motion_from_args(a)
+    shaken = None if motion.transverse is None else shaken_body(a, system)  # its isolator checked first
     if a.duration is not None and not a.duration > 0:
         raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
     if not (abs(a.theta0_over_alpha) < 1):
@@ -181,8 +190,26 @@ def plan_runs(a, specs) -> RunPlan:
         motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold,
                                       settings=settings_used(settings, system),
                                       isolators=engine.capabilities.isolators,
-                                      two_edges=getattr(engine.capabilities, "two_edges", False))
-    return RunPlan(first_run_engines(loaded, system, motion, duration), system, motion, duration, theta0)
+                                      two_edges=getattr(engine.capabilities, "two_edges", False),
+                                      transverse=getattr(engine.capabilities, "transverse", False))
+    return RunPlan(first_run_engines(loaded, system, motion, duration), system, motion, duration, theta0, shaken)
+
+
+def shaken_body(a, system) -> tuple:
+    """(the body at rest, the azimuth in rad) of a run with two components: the statue's mesh
+    (statue_body's, along --azimuth or the direction it tips first), or the block H × B × D of
+    MuJoCo's scene along 0. Refuses, before any work, an isolator other than the linear one."""
+    from isorock.analytic.system import LINEAR
+    from isorock.validate.cli.options import statue_azimuth, statue_body
+    from isorock.validate.core.biaxial import box_body
+    if not system.fixed_base and system.isolator_kind != LINEAR:
+        raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
+                         "--pair) must be linear (the same k and c along x and y), or give --fixed-base")
+    if system.body is None:
+        from isorock.mujoco_models.scene import DEPTH_FRACTION
+        return box_body(system.height, system.width, DEPTH_FRACTION * system.width, system.mass), 0.0
+    standing = statue_body(a)[0]
+    return standing, statue_azimuth(a, standing)
 
 
 def first_run_engines(loaded, system, motion, duration):
@@ -255,6 +282,10 @@ def cmd_run(a) -> int:
             return budget_stopped("run", e.label, e)
         ref_label, ref = next(iter(runs.items()))
         comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
+        two = None
+        if plan.shaken is not None:  # two components: the 3-D measures, the planar runs beside (issue 36)
+            from isorock.validate.core.biaxial import two_components
+            two = two_components(runs, system, motion, *plan.shaken, duration)
         if several:
             from isorock.validate.io.naming import describe_motion
             report = {
@@ -268,6 +299,8 @@ def cmd_run(a) -> int:
             summary = ref.summary()
             report = dict(summary, system=system.describe(), motion=motion.describe(),
                           settings=settings_dict(used[ref_label], system, duration))
+        if two is not None:  # first: its verdict is the run's (the fields above are the planar projection on x)
+            report = dict(two_components=two[ref_label] if not several else two, **report)
         if json_out:
             from isorock.validate.io.provenance import provenance
             json_out.write_text(to_json(dict(report, provenance=provenance(record_paths=[a.motion]))) + "\n")
@@ -279,6 +312,10 @@ def cmd_run(a) -> int:
             plot_out.write(lambda tmp: plot_runs(runs, motion, tmp, format=plot_kind))
         outputs.commit()
     if not a.quiet and "-" not in (a.json, a.csv):
+        if two is not None:
+            from isorock.validate.core.biaxial import render
+            for label, one in two.items():
+                print(render(one, label))
         if several:
             print(comparison_table(runs, comparisons))
             for out in [*csv_outs.values(), *([plot_out] if plot_out else [])]:
