@@ -1,0 +1,207 @@
+"""Two horizontal ground-motion components in MuJoCo (issue 36; docs/statues.md, "Two horizontal
+components"): the scene of one component unchanged, the block along y against the exact planar
+model, the invariance of the physics under a turn of the pair and the statue together, and bad
+input in one line."""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+pytest.importorskip("mujoco")
+trimesh = pytest.importorskip("trimesh")
+
+from isorock.analytic import shape  # noqa: E402
+from isorock.analytic.motion import GroundMotion, load_motion  # noqa: E402
+from isorock.analytic.system import PlanarBody, System  # noqa: E402
+from isorock.analytic.trajectory import counted_sign_changes  # noqa: E402
+from isorock.mujoco_models import Settings  # noqa: E402
+from isorock.validate.cli.main import main  # noqa: E402
+from isorock.validate.core import biaxial  # noqa: E402
+from isorock.validate.core.engines import get_engine  # noqa: E402
+from isorock.validate.core.tolerances import tolerance  # noqa: E402
+
+MUJOCO, EXACT = get_engine("mujoco"), get_engine("analytic")
+
+
+@pytest.fixture(scope="module")
+def bust():
+    vertices, faces = shape.example_statue("bust")
+    return shape.standing(vertices, faces, mass=80.0)
+
+
+def _statue_system(standing, azimuth, isolated):
+    body = PlanarBody.from_resting(standing.along(azimuth))
+    if isolated:
+        system = System.isolated(**body.box, mass=standing.mass, base_mass=150.0, period=1.0, damping_ratio=0.2)
+    else:
+        system = System.fixed(**body.box, mass=standing.mass)
+    return replace(system, body=body)
+
+
+def _record(spec):
+    """A pulse as a record (samples at its dt): GroundMotion.rotated turns records."""
+    m = load_motion(spec)
+    return GroundMotion.from_array(m.acceleration, dt=m.dt, name=spec)
+
+
+def _leans(orientation):
+    """(lean towards +x, lean towards +y) of the body's z axis, rad, from quaternions (w, x, y, z):
+    written here from the rotation matrix's third column, apart from validate.core.biaxial."""
+    w, x, y, z = np.asarray(orientation).T
+    zx, zy, zz = 2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)
+    return np.arctan2(zx, zz), np.arctan2(zy, zz)
+
+
+# --- (a) a zero second component is today's run ------------------------------------------
+
+@pytest.mark.parametrize("isolated, spec", [(False, "sine:amp=0.6,freq=2,cycles=1"), (True, "sine:amp=0.9,freq=2.5,cycles=1")],
+                         ids=["fixed", "linear"])
+def test_a_zero_transverse_component_is_todays_one_component_run(bust, isolated, spec):
+    """The scene of two components (the base's y joint, the square plate, the free joint the bust
+    is on already) under a zero ÿg runs the bust as today's scene of one. On the fixed base, bit for
+    bit (nothing but the zero forces is added). On the linear isolator the base has a y degree of
+    freedom today's scene has not: the bust's hull (revolved, 96 sections) is symmetric about its
+    xz plane to roundoff, so the contact pushes the base along y by roundoff-sized forces (2e-11 m
+    of u_y), which moved θ, θ̇, u and u̇ by at most 1.6e-8 of each one's peak (θ̇ most, through the
+    stiff contact at the impacts; θ 1.2e-10), measured; the limit, 1e-6 of the peak, is far below
+    any physical difference (MuJoCo's θmax/α is judged to 0.02)."""
+    system = _statue_system(bust, shape.weakest_direction(bust)[0], isolated)
+    motion = load_motion(spec)
+    today = MUJOCO.simulate(system, motion, duration=3.0)
+    zero = MUJOCO.simulate(system, motion.with_transverse(motion.scaled(0.0)), duration=3.0)
+    assert today.t.size == zero.t.size and today.theta_max_over_alpha > 0.05  # it rocks
+    for name in ("theta", "theta_dot", "u", "u_dot"):
+        a, b = getattr(today, name), getattr(zero, name)
+        if isolated:
+            assert np.max(np.abs(a - b)) <= 1e-6 * np.max(np.abs(a)), name
+        else:
+            assert np.array_equal(a, b), name
+    assert np.max(np.abs(zero.extras["u_y"])) <= 1e-9  # the base does not move along y
+    assert "orientation" not in today.extras  # one component: the history as before
+    assert (zero.impact_count, zero.overturned, len(zero.uplift_times)) == (
+        today.impact_count, today.overturned, len(today.uplift_times))
+    if not isolated:  # every metric, bar the wall time
+        assert {**zero.summary(), "runtime_s": 0} == {**today.summary(), "runtime_s": 0}
+
+
+# --- (b) the block shaken along y alone is the exact planar model along y -----------------
+
+@pytest.mark.parametrize("system, spec", [
+    (System.fixed(height=2.0, width=0.7, mass=3800.0), "sine:amp=0.5,freq=1.5,cycles=1"),
+    # robust: ±1% PGA moves the exact θmax/α by ±0.01 (0.2075, 0.2181, 0.2282), 5 impacts each
+    (System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.0, damping_ratio=0.2),
+     "ricker:amp=1.0,freq=2"),
+], ids=["fixed", "linear"])
+def test_the_block_shaken_along_y_alone_rocks_as_the_exact_model_along_y(system, spec):
+    """The pair swapped: nothing along x, the pulse along y. The block's footprint is square
+    (scene.DEPTH_FRACTION), so along y it is the same H × B: its lean towards y against the exact
+    model's θ, by the tolerance table's block rows for MuJoCo."""
+    motion = load_motion(spec)
+    run = MUJOCO.simulate(system, GroundMotion.zero().with_transverse(motion), duration=6.0)
+    exact = EXACT.simulate(system, motion, duration=6.0)
+    lean_x, lean_y = _leans(run.extras["orientation"])
+    assert 0.1 < exact.theta_max_over_alpha < 1 and not exact.overturned  # it rocks, robustly standing
+    assert abs(np.max(np.abs(lean_y)) / system.alpha - exact.theta_max_over_alpha) <= tolerance("mujoco", "theta_max_diff").limit
+    counted = len(counted_sign_changes(lean_y, system.alpha, exact.impact_threshold))
+    assert abs(counted - exact.impact_count) <= tolerance("mujoco", "impacts_diff").limit
+    assert np.max(np.abs(lean_x)) <= tolerance("mujoco", "out_of_plane").limit  # nothing drives it along x
+    if not system.fixed_base:
+        u_y = np.max(np.abs(run.extras["u_y"]))
+        assert abs(u_y / exact.u_max - 1) <= tolerance("mujoco", "u_max_rel_error").limit
+        assert np.max(np.abs(run.u)) <= 1e-12  # the x joint stays put
+    # the report's own measure reads the same peak (the box's α along ±y is the block's α)
+    alpha, least = biaxial.alpha_table(biaxial.box_body(2.0, 0.7, 0.7, 3800.0), 0.0)
+    three = biaxial.measure_3d(run.t, run.extras["orientation"], alpha, least)
+    assert abs(three.tilt_max_over_alpha - exact.theta_max_over_alpha) <= tolerance("mujoco", "theta_max_diff").limit
+    assert three.direction_at_max_deg % 180 == pytest.approx(90, abs=1e-6) and three.wobble_deg < 1e-6
+
+
+# --- (c) turning the pair and the statue together changes nothing -------------------------
+
+@pytest.mark.parametrize("phi_deg", [30.0, 200.0])
+def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, phi_deg):
+    """The same ground acceleration in the statue's own frame, the world turned by φ: the total
+    tilt is a scalar of the statue's frame, so its history is the same. Tolerance 1e-3 of the
+    peak: the hull meets the axis-aligned plate in a frame turned by φ, so the contact's roundoff
+    differs (1e-12 on an exact quarter turn) and grows through the impacts; measured 1.2e-5 (30°)
+    and 7e-6 (200°) of the peak. A wrong turn (a sign, the components not mixed) moves it by order 1.
+    The steps and the contact are the same in both runs (Settings of the first system)."""
+    azimuth = shape.weakest_direction(bust)[0]
+    pair = _record("sine:amp=0.7,freq=2,cycles=1").with_transverse(_record("sine:amp=0.63,freq=1.6,cycles=1"))
+    first = _statue_system(bust, azimuth, False)
+    settings = Settings().for_system(first, 4.0)
+    phi = math.radians(phi_deg)
+    runs = [MUJOCO.simulate(s, m, duration=4.0, settings=settings)
+            for s, m in ((first, pair), (_statue_system(bust, azimuth + phi, False), pair.rotated(phi)))]
+    tilts = [biaxial.tilt_twist(r.extras["orientation"])[0] for r in runs]
+    assert tilts[0].size == tilts[1].size and np.max(tilts[0]) > 0.2 * bust.direction(1)["alpha"]  # it rocks
+    assert np.max(np.abs(tilts[0] - tilts[1])) <= 1e-3 * np.max(tilts[0])
+    # and the measures: each run's α read at its own azimuth
+    three = [biaxial.measure_3d(r.t, r.extras["orientation"], *biaxial.alpha_table(bust, az))
+             for r, az in zip(runs, (azimuth, azimuth + phi))]
+    assert three[1].tilt_max_over_alpha == pytest.approx(three[0].tilt_max_over_alpha, rel=1e-3)
+    assert (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360 == pytest.approx(
+        0, abs=0.5) or abs((three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360 - 360) < 0.5
+
+
+def test_a_pair_turned_is_the_same_vector():
+    """GroundMotion.rotated: the components of one vector in axes turned by φ (a turn by φ then
+    by −φ is the pair; its magnitude is kept at every sample)."""
+    pair = _record("sine:amp=0.7,freq=2,cycles=1").with_transverse(_record("ricker:amp=0.4,freq=3"))
+    turned = pair.rotated(0.7)
+    n = max(pair.n, pair.transverse.n)
+    x, y = (np.pad(m.acceleration, (0, n - m.n)) for m in (pair, pair.transverse))
+    assert np.allclose(np.hypot(turned.acceleration, turned.transverse.acceleration), np.hypot(x, y), atol=1e-12)
+    back = turned.rotated(-0.7)
+    assert np.allclose(back.acceleration, x, atol=1e-12) and np.allclose(back.transverse.acceleration, y, atol=1e-12)
+
+
+# --- the command: the report, and bad input in one line ------------------------------------
+
+def test_run_reports_the_3d_numbers_and_the_planar_runs_beside(tmp_path, capsys):
+    code = main(["run", "--statue-example", "bust", "--mass", "80", "--fixed-base",
+                 "--motion", "sine:amp=0.7,freq=2,cycles=1", "--motion-transverse", "sine:amp=0.63,freq=1.6,cycles=1",
+                 "--duration", "3", "--json", str(tmp_path / "r.json")])
+    out = capsys.readouterr().out
+    assert code == 0
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert next(iter(report)) == "two_components" and "theta_max_over_alpha" in report  # added, none renamed
+    two = report["two_components"]
+    assert out.splitlines()[0] == two["verdict"]
+    assert set(two["three_d"]) >= {"tilt_max_over_alpha", "overturned", "twist_max_deg", "wobble_deg"}
+    assert set(two["planar"]) == {"x", "y"} and "twist" in two["cannot_capture"]
+    assert report["motion"]["transverse"]["name"] == "sine:amp=0.63,freq=1.6,cycles=1"
+    # the planar runs are the exact model's along each direction (the statue's edges at 0° and 90° of it)
+    along_y = EXACT.simulate(_statue_system(shape.standing(*shape.example_statue("bust"), mass=80.0),
+                                            shape.weakest_direction(shape.standing(*shape.example_statue("bust"),
+                                                                                   mass=80.0))[0] + math.pi / 2, False),
+                             load_motion("sine:amp=0.63,freq=1.6,cycles=1"), duration=3.0)
+    assert two["planar"]["y"]["theta_max_over_alpha"] == pytest.approx(along_y.theta_max_over_alpha, rel=1e-12)
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--isolator", "friction-pendulum", "--radius", "1", "--friction-coefficient", "0.05", "--base-mass", "150",
+      "--motion-transverse", "sine:amp=0.5,freq=2"], "--isolator = 'friction-pendulum'"),
+    (["--fixed-base", "--pair", "fema-p695:FF99"], "--pair = 'fema-p695:FF99'"),
+    (["--fixed-base", "--pair", "peer:FF01"], "--pair = 'peer:FF01'"),
+    (["--fixed-base", "--pair", "fema-p695:FF01", "--motion", "sine:amp=0.5,freq=2"], "leave --motion"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "none"], "--motion-transverse = 'none'"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "missing.at2"],
+     "--motion-transverse = 'missing.at2'"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "pair.csv"], "units"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--transverse-units", "g"], "needs --motion-transverse"),
+    (["--fixed-base", "--engine", "analytic", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse",
+      "sine:amp=0.5,freq=2"], "one horizontal component only"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "sine:amp=0.5,freq=2",
+      "--vertical", "sine:amp=0.2,freq=2"], "--vertical"),
+])
+def test_bad_input_is_one_line_and_exit_2(args, says, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "pair.csv").write_text("0 0\n0.01 0.1\n0.02 0\n")  # no units: never guessed
+    code = main(["run", "--statue-example", "bust", "--mass", "80", *args])
+    err = capsys.readouterr().err
+    assert code == 2 and says in err and err.count("\n") == 1, err
