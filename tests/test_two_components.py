@@ -100,6 +100,8 @@ def test_the_block_shaken_along_y_alone_rocks_as_the_exact_model_along_y(system,
     """The pair swapped: nothing along x, the pulse along y. The block's footprint is square
     (scene.DEPTH_FRACTION), so along y it is the same H × B: its lean towards y against the exact
     model's θ, by the tolerance table's block rows for MuJoCo."""
+    from isorock.mujoco_models.scene import DEPTH_FRACTION
+    assert DEPTH_FRACTION == 1.0  # the square footprint this test and `run`'s box_body read
     motion = load_motion(spec)
     run = MUJOCO.simulate(system, GroundMotion.zero().with_transverse(motion), duration=6.0)
     exact = EXACT.simulate(system, motion, duration=6.0)

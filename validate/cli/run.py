@@ -205,9 +205,8 @@ def shaken_body(a, system) -> tuple:
     if not system.fixed_base and system.isolator_kind != LINEAR:
         raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
                          "--pair) must be linear (the same k and c along x and y), or give --fixed-base")
-    if system.body is None:
-        from isorock.mujoco_models.scene import DEPTH_FRACTION
-        return box_body(system.height, system.width, DEPTH_FRACTION * system.width, system.mass), 0.0
+    if system.body is None:  # the contact scenes' block stands on a square footprint (MuJoCo's DEPTH_FRACTION 1)
+        return box_body(system.height, system.width, system.width, system.mass), 0.0
     standing = statue_body(a)[0]
     return standing, statue_azimuth(a, standing)
 
