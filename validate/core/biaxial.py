@@ -77,8 +77,10 @@ class Measures3D:
     direction_at_max_deg: float  #: where it leaned then, degrees from the scene's x (the --azimuth)
     alpha_at_max: float         #: α of the edge it leaned towards then
     overturned: bool            #: lying (tilt within LYING_SLACK of π/2), or past α at the end
-    twist_max_deg: float        #: the largest |rotation about its vertical|
-    wobble_deg: float           #: how far the tilt's axis swings from its axis at the largest tilt (0–90°)
+    #: the largest |rotation about its vertical|, before it first passes α (while it rocks)
+    twist_max_deg: float
+    #: how far the tilt's axis swings from its axis at the largest tilt (0–90°), while it rocks
+    wobble_deg: float
     base_y_max: float           #: the base's largest |displacement| along y (m; 0 on a fixed base)
     rocked: bool                #: whether it tilted past WOBBLE_FLOOR · least α at all
 
@@ -93,18 +95,25 @@ def measure_3d(t: np.ndarray, orientation: np.ndarray, alpha, least_alpha: float
     k = int(np.argmax(ratio))
     final = float(ratio[-1])
     lying = bool(np.max(tilt) >= LYING - LYING_SLACK)
-    significant = tilt > WOBBLE_FLOOR * least_alpha
+    # twist and wobble while it stands or rocks: up to the first time it passes α (after that
+    # it falls, or tumbles back, and turning as it lands is not a rocking statue's wobble)
+    past = np.flatnonzero(ratio > 1.0)
+    rocking = slice(0, past[0] if past.size else ratio.size)
+    significant = np.zeros(ratio.size, dtype=bool)
+    significant[rocking] = tilt[rocking] > WOBBLE_FLOOR * least_alpha
     if significant.any():
         # the tilt's axis (its direction modulo 180°: rocking back across the pivot is no wobble)
-        # against the axis at the largest tilt, folded onto 0–90°
-        off = np.mod(direction[significant] - direction[k] + 0.5 * math.pi, math.pi) - 0.5 * math.pi
+        # against the axis at the largest tilt while rocking, folded onto 0–90°
+        j = int(np.argmax(np.where(significant, ratio, -np.inf)))
+        off = np.mod(direction[significant] - direction[j] + 0.5 * math.pi, math.pi) - 0.5 * math.pi
         wobble = float(np.degrees(np.max(np.abs(off))))
     else:
         wobble = 0.0
+    twist_max = float(np.degrees(np.max(np.abs(twist[rocking])))) if twist[rocking].size else 0.0
     return Measures3D(tilt_max=float(np.max(tilt)), tilt_max_over_alpha=float(ratio[k]),
                       direction_at_max_deg=float(np.degrees(direction[k]) % 360.0),
                       alpha_at_max=float(alpha(direction[k])), overturned=lying or final > 1.0,
-                      twist_max_deg=float(np.degrees(np.max(np.abs(twist)))), wobble_deg=wobble,
+                      twist_max_deg=twist_max, wobble_deg=wobble,
                       base_y_max=0.0 if u_y is None else float(np.max(np.abs(u_y))),
                       rocked=bool(significant.any()))
 
@@ -146,27 +155,33 @@ def compare_3d(three: Measures3D, planar: dict) -> dict:
     planar runs (`planar`: planar_numbers of the run along x and along y)."""
     px, py = planar["x"], planar["y"]
     worst = max(px["theta_max_over_alpha"], py["theta_max_over_alpha"])
+    planar_over = bool(px["overturned"] or py["overturned"])
     verdict = (f"Overturned (two components, 3-D): its total tilt reached {three.tilt_max:.3g} rad"
                if three.overturned else
                f"Stands (two components, 3-D): total tilt at most {three.tilt_max_over_alpha:.3g} α "
                f"(leaning towards {three.direction_at_max_deg:.0f}° from the first component)")
-    planar_says = ("overturns" if px["overturned"] or py["overturned"] else "stands")
     parts = []
-    if three.overturned != (px["overturned"] or py["overturned"]):
-        parts.append(f"the 3-D run {'overturns' if three.overturned else 'stands'} where the planar runs say it "
-                     f"{planar_says}")
-    if worst > 0:
+    if three.overturned != planar_over:
+        which = " and ".join(k for k, p in (("x", px), ("y", py)) if p["overturned"])
+        parts.append(f"the 3-D run {'overturns' if three.overturned else 'stands'} where "
+                     + (f"the planar run along {which} overturns" if planar_over else "both planar runs stand"))
+    elif three.overturned:
+        parts.append("all three overturn (a fallen statue's tilt/α is no measure of how near it came)")
+    elif worst == 0 and three.rocked:
+        parts.append(f"its peak tilt/α is {three.tilt_max_over_alpha:.3g} where neither planar run lifts")
+    elif worst > 0:
         rel = (three.tilt_max_over_alpha - worst) / worst
         parts.append(f"its peak tilt/α is {three.tilt_max_over_alpha:.3g} against the larger planar "
                      f"{worst:.3g} ({100 * rel:+.1f}%)")
     if three.twist_max_deg > 1.0 or three.wobble_deg > 10.0:
-        parts.append(f"it twisted {three.twist_max_deg:.3g}° about its vertical and its tilt's direction swung "
-                     f"{three.wobble_deg:.3g}°, which neither planar run has")
+        parts.append(f"while it rocked it twisted {three.twist_max_deg:.3g}° about its vertical and its tilt's axis "
+                     f"swung {three.wobble_deg:.3g}°, which neither planar run has")
     return {"verdict": verdict, "three_d": three.as_dict(), "planar": {"x": px, "y": py},
             "cannot_capture": CANNOT_CAPTURE,
             "where_it_parts": "Against both planar runs: " + "; ".join(parts) + "." if parts else
-                              "Neither the 3-D run nor the planar runs rocked.",
-            "planar_overturned": bool(px["overturned"] or py["overturned"])}
+                              "Neither the 3-D run nor the planar runs rocked (the 3-D tilt stayed below "
+                              f"{WOBBLE_FLOOR:g} of its least α).",
+            "planar_overturned": planar_over}
 
 
 def two_components(runs: dict, system, motion, body: shape.RestingBody, azimuth: float, duration: float) -> dict:
