@@ -208,3 +208,39 @@ def test_bad_input_is_one_line_and_exit_2(args, says, tmp_path, capsys, monkeypa
     code = main(["run", "--statue-example", "bust", "--mass", "80", *args])
     err = capsys.readouterr().err
     assert code == 2 and says in err and err.count("\n") == 1, err
+
+
+# --- the measures, against rotations built apart (scipy) -----------------------------------
+
+def test_tilt_direction_and_twist_of_a_known_rotation():
+    """A twist γ about the body's vertical, then a swing by τ about the horizontal axis at ψ + 90°
+    (which leans the top towards ψ): tilt τ, direction ψ, twist γ (scipy's rotations)."""
+    from scipy.spatial.transform import Rotation
+    rng = np.random.default_rng(36)
+    tau, psi, gamma = rng.uniform(0.01, 1.4, 50), rng.uniform(-math.pi, math.pi, 50), rng.uniform(-3, 3, 50)
+    axis = np.stack([np.cos(psi + math.pi / 2), np.sin(psi + math.pi / 2), np.zeros(50)], axis=1)
+    rot = Rotation.from_rotvec(axis * tau[:, None]) * Rotation.from_euler("z", gamma[:, None])
+    x, y, z, w = rot.as_quat().T  # scipy: scalar last
+    for k in range(50):  # one at a time: the twist is unwrapped along a history
+        tilt, direction, twist = biaxial.tilt_twist(np.array([[w[k], x[k], y[k], z[k]]]))
+        assert tilt[0] == pytest.approx(tau[k], abs=1e-12)
+        assert math.remainder(direction[0] - psi[k], 2 * math.pi) == pytest.approx(0, abs=1e-9)
+        assert math.remainder(twist[0] - gamma[k], 2 * math.pi) == pytest.approx(0, abs=1e-9)
+
+
+def test_wobble_is_the_swing_of_the_tilt_axis_and_rocking_across_the_pivot_is_none():
+    """A tilt of 0.2 rad whose direction sweeps 0 → 60°: wobble 60°. Planar rocking (the lean
+    towards x, then back through zero to −x): wobble 0, though the direction flips by 180°."""
+    from scipy.spatial.transform import Rotation
+    t = np.linspace(0, 1, 200)
+    alpha = lambda psi: np.full(np.shape(psi), 0.4)  # noqa: E731
+    psi = np.radians(60) * t
+    sweep = Rotation.from_rotvec(np.stack([np.cos(psi + math.pi / 2), np.sin(psi + math.pi / 2), 0 * t], 1) * 0.2)
+    x, y, z, w = sweep.as_quat().T
+    m = biaxial.measure_3d(t, np.stack([w, x, y, z], 1), alpha, 0.4)
+    assert m.wobble_deg == pytest.approx(60, abs=1e-6) and m.tilt_max_over_alpha == pytest.approx(0.5)
+    rock = Rotation.from_rotvec(np.stack([0 * t, 0.3 * np.sin(2 * math.pi * t), 0 * t], 1))
+    x, y, z, w = rock.as_quat().T
+    m = biaxial.measure_3d(t, np.stack([w, x, y, z], 1), alpha, 0.4)
+    assert m.wobble_deg < 1e-9 and m.twist_max_deg < 1e-9 and not m.overturned
+    assert m.tilt_max_over_alpha == pytest.approx(0.75, rel=1e-4)
