@@ -76,9 +76,12 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     if settings.phased and stepped_throughout(system, motion) is not None:  # why: there
         settings = replace(settings, phased=False)
     lay = Layout(model, system, settings.joint, transverse=motion.transverse is not None)
-    # a model compiled for one component has no y joint for the base: its ÿg would be lost, unsaid
-    require(not lay.transverse or system.fixed_base or lay.base_yv is not None, "model", "this scene",
-            "built with build_model(..., transverse=True) for a motion of two horizontal components")
+    # a scene of one component (no y joint for the base, or the block on planar joints) or the
+    # event-resolved scheme (its forces are ẍg's alone) would lose ÿg, unsaid
+    require(not lay.transverse or (lay.free and settings.impact_timestep is None
+                                   and (system.fixed_base or lay.base_yv is not None)), "model", "this scene",
+            "built with build_model(..., transverse=True), on the free joint, stepped at one timestep, for a motion "
+            "of two horizontal components")
     dt = model.opt.timestep
     nstep = int(math.floor(duration / dt + 1e-9))
     if settings.impact_timestep is not None:
