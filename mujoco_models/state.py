@@ -206,8 +206,12 @@ def stop_in(lay: Layout, system: System, chunk: np.ndarray, t: np.ndarray, motio
     chunk's `Layout.histories`, when the caller has them already."""
     finite = np.all(np.isfinite(chunk), axis=1)
     h = hist if hist is not None and finite.all() else lay.histories(system, np.where(finite[:, None], chunk, 0.0))
+    # two components: θ is the tilt's projection on the xz plane, and past α of the x edge a
+    # statue leaning on a diagonal may still stand (the corner's α is larger): the 'falling' rule
+    # (motion_end) is planar, so a 3-D run is never stopped by it; 'lying' holds (the total tilt
+    # is at least the projection's)
     return kinematics.first_stop(t, h["theta"], h["theta_dot"], finite, system=system,
-                                 motion_end=motion.end_time)
+                                 motion_end=math.inf if lay.transverse else motion.end_time)
 
 
 def raw_history(lay, system, motion, states, dt, runtime, status, message, stop_reason, t=None) -> RawHistory:
