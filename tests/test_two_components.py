@@ -198,7 +198,7 @@ def test_run_reports_the_3d_numbers_and_the_planar_runs_beside(tmp_path, capsys)
     (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "pair.csv"], "units"),
     (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--transverse-units", "g"], "needs --motion-transverse"),
     (["--fixed-base", "--engine", "analytic", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse",
-      "sine:amp=0.5,freq=2"], "one horizontal component only"),
+      "sine:amp=0.5,freq=2"], "--engine = 'analytic': runs one horizontal component only"),
     (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "sine:amp=0.5,freq=2",
       "--vertical", "sine:amp=0.2,freq=2"], "--vertical"),
 ])

@@ -184,7 +184,10 @@ def plan_runs(a, specs) -> RunPlan:
     theta0 = a.theta0_over_alpha * system.edge_alpha(1 if a.theta0_over_alpha >= 0 else -1)
     # the work bounds (duration, isolator, every engine's steps) before any work
     duration = a.duration
-    for _, engine, settings in loaded:
+    for label, engine, settings in loaded:
+        if motion.transverse is not None and not getattr(engine.capabilities, "transverse", False):
+            raise InputError(f"--engine = {label!r}: runs one horizontal component only; with two (--motion-transverse, "
+                             "--pair) the engine is mujoco")
         engine.check_isolator(system)
         # the steps the run will take (an engine whose settings follow the system derives them)
         motion, duration = run_inputs(system, motion, a.duration, theta0, a.impact_threshold,
