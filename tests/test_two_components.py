@@ -244,3 +244,27 @@ def test_wobble_is_the_swing_of_the_tilt_axis_and_rocking_across_the_pivot_is_no
     m = biaxial.measure_3d(t, np.stack([w, x, y, z], 1), alpha, 0.4)
     assert m.wobble_deg < 1e-9 and m.twist_max_deg < 1e-9 and not m.overturned
     assert m.tilt_max_over_alpha == pytest.approx(0.75, rel=1e-4)
+
+
+def test_the_report_says_where_the_3d_run_parts_from_the_planar_runs():
+    """Overturning first; a peak against the larger planar one only where either rocks (two traces'
+    ratio is no measure); twist and wobble when more than a trace."""
+    def three(**kw):
+        base = dict(tilt_max=0.1, tilt_max_over_alpha=0.3, direction_at_max_deg=10.0, alpha_at_max=0.4,
+                    overturned=False, twist_max_deg=0.0, wobble_deg=0.0, base_y_max=0.0, rocked=True)
+        return biaxial.Measures3D(**{**base, **kw})
+
+    def planar(x, y, over=(False, False)):
+        return {k: {"theta_max_over_alpha": v, "overturned": o, "alpha": 0.4, "status": "completed"}
+                for k, v, o in (("x", x, over[0]), ("y", y, over[1]))}
+    r = biaxial.compare_3d(three(overturned=True, tilt_max=1.56), planar(0.9, 1.05))
+    assert r["verdict"].startswith("Overturned") and "overturns where both planar runs stand" in r["where_it_parts"]
+    r = biaxial.compare_3d(three(), planar(0.2, 4.6, (False, True)))
+    assert r["verdict"].startswith("Stands") and "the planar run along y overturns" in r["where_it_parts"]
+    r = biaxial.compare_3d(three(tilt_max_over_alpha=0.33), planar(0.3, 0.1))
+    assert "0.33 against the larger planar 0.3 (+10.0%)" in r["where_it_parts"] and "turned" not in r["where_it_parts"]
+    r = biaxial.compare_3d(three(tilt_max_over_alpha=6e-6, rocked=False), planar(0.0, 1e-8))
+    assert "none of the three rocks" in r["where_it_parts"] and "%" not in r["where_it_parts"]
+    r = biaxial.compare_3d(three(twist_max_deg=12.0, wobble_deg=45.0), planar(0.3, 0.1))
+    assert "turned 12°" in r["where_it_parts"] and "swung 45°" in r["where_it_parts"]
+    assert all(w in r["cannot_capture"] for w in ("twist", "wobble", "coupling"))

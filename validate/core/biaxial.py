@@ -171,9 +171,14 @@ def compare_3d(three: Measures3D, planar: dict) -> dict:
                      + (f"the planar run along {which} overturns" if planar_over else "both planar runs stand"))
     elif three.overturned:
         parts.append("all three overturn (a fallen statue's tilt/α is no measure of how near it came)")
-    elif worst == 0 and three.rocked:
-        parts.append(f"its peak tilt/α is {three.tilt_max_over_alpha:.3g} where neither planar run lifts")
-    elif worst > 0:
+    elif max(three.tilt_max_over_alpha, worst) < WOBBLE_FLOOR:
+        # a relative difference of two traces means nothing: both are the contact's micro-motion
+        parts.append(f"none of the three rocks past {WOBBLE_FLOOR:g} α (3-D {three.tilt_max_over_alpha:.2g}, planar "
+                     f"{worst:.2g})")
+    elif worst < WOBBLE_FLOOR:
+        parts.append(f"its peak tilt/α is {three.tilt_max_over_alpha:.3g} where neither planar run passes "
+                     f"{WOBBLE_FLOOR:g} α")
+    else:
         rel = (three.tilt_max_over_alpha - worst) / worst
         parts.append(f"its peak tilt/α is {three.tilt_max_over_alpha:.3g} against the larger planar "
                      f"{worst:.3g} ({100 * rel:+.1f}%)")
@@ -186,9 +191,7 @@ def compare_3d(three: Measures3D, planar: dict) -> dict:
                      "not about one edge), which neither planar run has")
     return {"verdict": verdict, "three_d": three.as_dict(), "planar": {"x": px, "y": py},
             "cannot_capture": CANNOT_CAPTURE,
-            "where_it_parts": "Against both planar runs: " + "; ".join(parts) + "." if parts else
-                              "Neither the 3-D run nor the planar runs rocked (the 3-D tilt stayed below "
-                              f"{WOBBLE_FLOOR:g} of its least α).",
+            "where_it_parts": "Against both planar runs: " + "; ".join(parts) + ".",
             "planar_overturned": planar_over}
 
 
