@@ -68,7 +68,7 @@ def box_body(height: float, width: float, depth: float, mass: float) -> shape.Re
     statue's): what MuJoCo's scene builds for it (scene.DEPTH_FRACTION)."""
     corners = np.array([(sx * width / 2, sy * depth / 2, z) for sx in (-1, 1) for sy in (-1, 1)
                         for z in (0.0, height)])
-    vertices, faces = shape._hull_mesh(corners)
+    vertices, faces = shape.hull_mesh(corners)
     return shape.standing(vertices, faces, mass=mass, name="the block")
 
 
