@@ -72,6 +72,11 @@ class Capabilities:
     #: model of a real shape): the analytic engines; a contact engine that builds the box H × B
     #: is refused such a System in one line (check_body), never runs the box in its place
     two_edges: bool = False
+    #: it carries a second horizontal ground-motion component (GroundMotion.transverse: a record
+    #: pair, issue 36): MuJoCo's scene, whose body may leave the plane; a planar model, or a
+    #: contact engine on planar joints, is refused such a motion in one line (check_transverse),
+    #: never runs the first component alone in its place
+    transverse: bool = False
 
 
 @dataclass(frozen=True)
@@ -171,7 +176,8 @@ FREE_DURATION = 10.0
 def run_inputs(system: "System", motion: "GroundMotion | None", duration: float | None, theta0: float,
                impact_threshold: float, *, theta_dot0: float = 0.0, u0: float = 0.0,
                u_dot0: float = 0.0, settings=None, isolators: tuple[str, ...] = ("linear",),
-               kinetic_friction: bool = True, two_edges: bool = False) -> tuple[GroundMotion, float]:
+               kinetic_friction: bool = True, two_edges: bool = False,
+               transverse: bool = False) -> tuple[GroundMotion, float]:
     """What every engine's `simulate` takes, checked in one place so that all engines
     accept and refuse the same inputs with the same messages: (motion, duration) after the
     shared checks: `none` motion is zero ground
@@ -183,7 +189,9 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     that no engine runs a friction pendulum or a bilinear bearing as a linear spring;
     `kinetic_friction` (Capabilities.kinetic_friction) False: a statue whose kinetic friction
     is below its static one is refused too (check_friction); `two_edges`
-    (Capabilities.two_edges) False: a statue of two different edges is refused (check_body)."""
+    (Capabilities.two_edges) False: a statue of two different edges is refused (check_body);
+    `transverse` (Capabilities.transverse) False: a motion of two horizontal components is
+    refused (check_transverse)."""
     from .errors import InputError, real_number, require, require_positive_finite
     from .limits import check_acceleration, check_duration, check_isolator, check_settings
     from .motion import GroundMotion
@@ -201,6 +209,7 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
     if motion.vertical is not None:  # the vertical component is bounded as the horizontal is
         check_acceleration("vertical", motion.vertical.pga_g, f" ({motion.vertical.name or 'its peak'})")
+    check_transverse(system, motion, transverse)
     given = duration is not None
     if not given:
         duration = FREE_DURATION if motion.is_zero else motion.last_time + TAIL_AFTER_MOTION
@@ -232,6 +241,25 @@ def check_isolator_kind(system: "System", isolators: tuple[str, ...], engine: st
     if kind not in isolators:
         raise InputError(f"isolator = {kind}: {engine} carries the {', '.join(isolators)} isolator only, not a "
                          f"{kind} one (engine 'analytic-reference' carries it; docs/isolators.md)")
+
+
+def check_transverse(system: "System", motion: "GroundMotion", transverse: bool, engine: str = "this engine") -> None:
+    """One line refusing a second horizontal component (GroundMotion.transverse) for an engine
+    that does not carry it, and for an isolator whose two directions it does not know: the
+    isolator is isotropic only as the linear one is (the same k and c along x and y); a
+    friction pendulum's or a bearing's coupled 2-D friction is not built (issue 36)."""
+    from .errors import InputError
+    from .limits import check_acceleration
+    from .system import LINEAR
+    if motion.transverse is None:
+        return
+    if not transverse:
+        raise InputError(f"transverse = {motion.transverse.name or 'a second component'}: {engine} runs one "
+                         "horizontal component only (engine 'mujoco' carries two)")
+    if not system.fixed_base and system.isolator_kind != LINEAR:
+        raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be linear "
+                         "(isotropic: the same k and c along x and y) or a fixed base")
+    check_acceleration("transverse", motion.transverse.pga_g, f" ({motion.transverse.name or 'its peak'})")
 
 
 def check_body(system: "System", two_edges: bool, engine: str = "this engine") -> None:

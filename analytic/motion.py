@@ -106,6 +106,10 @@ class GroundMotion:
     #: the vertical component üv(t) (m/s², positive up) as a motion of its own, or None: a
     #: paired record or a pulse; the base carries it rigidly (docs/sliding.md, "Vertical")
     vertical: "GroundMotion | None" = None
+    #: the second horizontal component ÿg(t) (m/s², along the ground's +y, 90° from this one's
+    #: +x) as a motion of its own, or None: a record pair's other component (issue 36). Only an
+    #: engine whose Capabilities.transverse is True carries it; the others refuse it (run_inputs)
+    transverse: "GroundMotion | None" = None
 
     def __post_init__(self):
         require_positive_finite("dt", self.dt)
@@ -128,6 +132,10 @@ class GroundMotion:
         if self.vertical is not None:
             require(isinstance(self.vertical, GroundMotion) and self.vertical.vertical is None, "vertical",
                     self.vertical, "a GroundMotion of one component (the vertical üv, m/s², up positive)")
+        if self.transverse is not None:
+            t = self.transverse
+            require(isinstance(t, GroundMotion) and t.vertical is None and t.transverse is None, "transverse",
+                    t, "a GroundMotion of one component (the second horizontal ÿg, m/s², along +y)")
 
     # --- construction -------------------------------------------------------------
     @classmethod
@@ -174,17 +182,29 @@ class GroundMotion:
     def is_zero(self) -> bool:
         """No horizontal and no vertical motion."""
         return (self.pulse is None and not np.any(self.acceleration)
-                and (self.vertical is None or self.vertical.is_zero))
+                and (self.vertical is None or self.vertical.is_zero)
+                and (self.transverse is None or self.transverse.is_zero))
 
     @property
     def last_time(self) -> float:
         """When the last component ends (s): the horizontal's end_time, or the vertical's if later."""
-        return self.end_time if self.vertical is None else max(self.end_time, self.vertical.end_time)
+        return max([self.end_time] + [c.end_time for c in (self.vertical, self.transverse) if c is not None])
 
     def with_vertical(self, vertical: "GroundMotion | None") -> "GroundMotion":
         """This horizontal motion paired with a vertical one (None: without)."""
         return GroundMotion(dt=self.dt, acceleration=self.acceleration, name=self.name, pulse=self.pulse,
-                            scale=self.scale, _pulse_shift=self._pulse_shift, units=self.units, vertical=vertical)
+                            scale=self.scale, _pulse_shift=self._pulse_shift, units=self.units, vertical=vertical,
+                            transverse=self.transverse)
+
+    def with_transverse(self, transverse: "GroundMotion | None") -> "GroundMotion":
+        """This motion with a second horizontal component along +y (None: without)."""
+        return GroundMotion(dt=self.dt, acceleration=self.acceleration, name=self.name, pulse=self.pulse,
+                            scale=self.scale, _pulse_shift=self._pulse_shift, units=self.units,
+                            vertical=self.vertical, transverse=transverse)
+
+    def transverse_at(self, t):
+        """ÿg at time(s) t, m/s² (zeros without a second horizontal component)."""
+        return np.zeros(np.shape(t)) if self.transverse is None else np.asarray(self.transverse(t), dtype=float)
 
     def vertical_at(self, t: float) -> float:
         """Scalar üv(t), m/s² (0 without a vertical component)."""
@@ -225,8 +245,9 @@ class GroundMotion:
             pts.append(self.end_time)
         else:
             pts = [0.0]
-        if self.vertical is not None:  # the vertical component's kinks too
-            pts.extend(self.vertical.breakpoints(t_end))
+        for other in (self.vertical, self.transverse):  # the other components' kinks too
+            if other is not None:
+                pts.extend(other.breakpoints(t_end))
         return np.unique(np.clip(np.array(pts), 0.0, t_end))
 
     @property
@@ -253,15 +274,17 @@ class GroundMotion:
 
     # --- transformations ----------------------------------------------------------
     def scaled(self, factor: float) -> "GroundMotion":
-        """Both components scaled by `factor` (a record scaled to a PGA keeps its V/H ratio)."""
+        """Every component scaled by `factor` (a record scaled to a PGA keeps its V/H ratio, and a
+        pair the ratio of its two horizontal components)."""
         f = _finite("scale", factor)
         vertical = None if self.vertical is None else self.vertical.scaled(f)
+        transverse = None if self.transverse is None else self.transverse.scaled(f)
         if self.pulse is not None:
             return GroundMotion(dt=self.dt, acceleration=self.acceleration * f, name=self.name,
                                 pulse=self.pulse, scale=self.scale * f, _pulse_shift=self._pulse_shift,
-                                units=self.units, vertical=vertical)
+                                units=self.units, vertical=vertical, transverse=transverse)
         return GroundMotion(dt=self.dt, acceleration=self.acceleration * f, name=self.name, units=self.units,
-                            vertical=vertical)
+                            vertical=vertical, transverse=transverse)
 
     def scaled_to_pga(self, pga_g: float) -> "GroundMotion":
         target = require_positive_finite("pga", pga_g)
@@ -279,6 +302,9 @@ class GroundMotion:
         start = require_nonnegative_finite("start", start)
         end = self.end_time if end is None else require_positive_finite("end", end)
         require(end > start, "end", end, f"greater than start = {start}")
+        if self.transverse is not None:  # the same window of both horizontal components
+            transverse = self.transverse.trimmed(start, end) if self.transverse.end_time > start else None
+            return self.with_transverse(None).trimmed(start, end).with_transverse(transverse)
         if self.vertical is not None:  # the same window of both components
             vertical = self.vertical.trimmed(start, end) if self.vertical.end_time > start else None
             return self.with_vertical(None).trimmed(start, end).with_vertical(vertical)
@@ -292,6 +318,23 @@ class GroundMotion:
         require(i1 >= i0, "end", end, "at least one sample after start")
         return GroundMotion(dt=self.dt, acceleration=self.acceleration[i0:i1 + 1], name=self.name, units=self.units)
 
+    def rotated(self, angle: float) -> "GroundMotion":
+        """A record pair (this component along x, `transverse` along y) as seen in axes turned
+        by `angle` (rad, from x towards y): the same ground acceleration vector, its components
+        cos·ẍ + sin·ÿ and −sin·ẍ + cos·ÿ. Both components must be records sampled at one dt
+        (a pair is); the shorter is zero past its end, as a motion is."""
+        require(self.transverse is not None, "motion", self.name, "a pair (with a transverse component) to rotate")
+        a, b = self, self.transverse
+        require(a.pulse is None and b.pulse is None and a.dt == b.dt and a.vertical is None, "motion", self.name,
+                "a pair of records sampled at one dt, without a vertical component, to rotate")
+        n = max(a.n, b.n)
+        x, y = (np.pad(m.acceleration, (0, n - m.n)) for m in (a, b))
+        c, s = math.cos(_finite("angle", angle)), math.sin(angle)
+        turned = f" turned {math.degrees(angle):g}°"
+        return GroundMotion(dt=a.dt, acceleration=c * x + s * y, name=a.name + turned, units=a.units,
+                            transverse=GroundMotion(dt=a.dt, acceleration=-s * x + c * y, name=b.name + turned,
+                                                    units=b.units))
+
     def _clip(self, length):
         # a trimmed pulse keeps its closed form; samples are refreshed for engines
         t = np.arange(int(math.floor(length / self.dt + 1e-9)) + 1) * self.dt
@@ -303,6 +346,8 @@ class GroundMotion:
                "end_time": self.end_time, "pga_g": self.pga_g, "units_read": self.units}
         if self.vertical is not None:  # only then: a horizontal motion's description is as before
             out["vertical"] = self.vertical.describe()
+        if self.transverse is not None:  # likewise: a one-component motion's description is as before
+            out["transverse"] = self.transverse.describe()
         return out
 
 

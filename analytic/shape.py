@@ -359,7 +359,7 @@ def _revolved(profile, sections: int = 96):
     return np.asarray(mesh.vertices), np.asarray(mesh.faces)
 
 
-def _hull_mesh(points):
+def hull_mesh(points):
     """(vertices, faces) of the convex hull of `points`, wound outward (trimesh.convex)."""
     trimesh = import_extra("trimesh", "statue", "making an example statue")
     mesh = trimesh.convex.convex_hull(np.asarray(points, float))
@@ -384,7 +384,7 @@ def example_statue(name: str) -> tuple[np.ndarray, np.ndarray]:
     "amphora" (a revolved jar 0.6 m tall on a narrow foot), "obelisk" (a tapered square shaft
     2 m tall with a pyramidion)."""
     if name == "bust":
-        plinth = _hull_mesh([[x, y, z] for x in (-0.12, 0.12) for y in (-0.12, 0.12) for z in (0.0, 0.15)])
+        plinth = hull_mesh([[x, y, z] for x in (-0.12, 0.12) for y in (-0.12, 0.12) for z in (0.0, 0.15)])
         profile = [(0.0, 0.15), (0.10, 0.15), (0.17, 0.20), (0.18, 0.27), (0.07, 0.34), (0.05, 0.38), (0.08, 0.42),
                    (0.09, 0.50), (0.07, 0.57), (0.0, 0.60)]
         head_v, head_f = _revolved(profile)
@@ -393,7 +393,7 @@ def example_statue(name: str) -> tuple[np.ndarray, np.ndarray]:
         return _revolved([(0.0, 0.0), (0.05, 0.0), (0.05, 0.02), (0.03, 0.06), (0.16, 0.25), (0.17, 0.33), (0.10, 0.48),
                           (0.06, 0.52), (0.08, 0.60), (0.0, 0.60)])
     if name == "obelisk":
-        return _hull_mesh([[x, y, 0.0] for x in (-0.2, 0.2) for y in (-0.2, 0.2)]
+        return hull_mesh([[x, y, 0.0] for x in (-0.2, 0.2) for y in (-0.2, 0.2)]
                           + [[x, y, 1.8] for x in (-0.13, 0.13) for y in (-0.13, 0.13)] + [[0.0, 0.0, 2.0]])
     raise InputError(f"example = {name!r}: must be one of {', '.join(EXAMPLES)}")
 

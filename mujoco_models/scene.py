@@ -42,9 +42,17 @@ def _fmt(*values) -> str:
     return " ".join(repr(float(v)) for v in values)
 
 
-def scene_text(system: System, settings: Settings | None = None) -> str:
-    """The MJCF of this system with these settings (what `simulate` compiles)."""
+def scene_text(system: System, settings: Settings | None = None, *, transverse: bool = False) -> str:
+    """The MJCF of this system with these settings (what `simulate` compiles). `transverse`:
+    the scene of two horizontal components (GroundMotion.transverse): the base on a second
+    slide joint along y with the same stiffness and damping (the linear isolator is isotropic),
+    the body on the free joint; without it the scene is the one-component scene, unchanged."""
     settings = settings or Settings()
+    if transverse:
+        require(settings.joint == "free", "joint", settings.joint,
+                "free with two horizontal components (the body must be free to leave the plane)")
+        require(system.fixed_base or system.isolator_kind == LINEAR, "isolator", system.isolator_kind,
+                "linear or a fixed base with two horizontal components")
     # keep the template's comments: they explain the scene to whoever opens the file
     parser = ET.XMLParser(target=ET.TreeBuilder(insert_comments=True))
     root = ET.parse(TEMPLATE, parser=parser).getroot()
@@ -73,6 +81,10 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     elif system.isolator_kind == LINEAR:
         slide.set("stiffness", repr(system.stiffness))
         slide.set("damping", repr(system.damping))
+        if transverse:  # the isotropic isolator's y: the same spring and dashpot, after x in qpos
+            named["base"].insert(list(named["base"]).index(slide) + 1, ET.Element(
+                "joint", name="base_slide_y", type="slide", axis="0 1 0", stiffness=repr(system.stiffness),
+                damping=repr(system.damping)))
     else:
         _isolator_element(root, named, system, settings)
 
@@ -85,6 +97,9 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
                                                     m * (b**2 + d**2) / 3))
     if system.body is not None:
         _statue(root, named, system.body, settings)
+    if transverse:  # a body may fall along y as along x: the plate as wide as it is long
+        sx, _, sz = (float(v) for v in named["base_geom"].get("size").split())
+        named["base_geom"].set("size", _fmt(sx, sx, sz))
     if settings.joint == "free":
         for name in ("block_x", "block_z", "block_theta"):
             block.remove(named[name])
@@ -257,7 +272,7 @@ def check_representable(system: System) -> None:
                 f"more than MuJoCo's mjMINVAL = {least:g} kg")
 
 
-def build_model(system: System, settings: Settings | None = None) -> mujoco.MjModel:
-    return mujoco.MjModel.from_xml_string(scene_text(system, settings or Settings()))
+def build_model(system: System, settings: Settings | None = None, *, transverse: bool = False) -> mujoco.MjModel:
+    return mujoco.MjModel.from_xml_string(scene_text(system, settings or Settings(), transverse=transverse))
 
 

@@ -24,8 +24,13 @@ ENGINE = "mujoco"
 class Layout:
     """Where the scene's quantities sit in qpos / qvel and in rollout's state rows."""
 
-    def __init__(self, model: mujoco.MjModel, system: System, joint: str):
+    def __init__(self, model: mujoco.MjModel, system: System, joint: str, transverse: bool = False):
         self.nq, self.nv = model.nq, model.nv
+        # two horizontal components (scene_text(transverse=True)): the body's y dof and the base's y joint
+        self.transverse = transverse
+        y_joint = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "base_slide_y")
+        self.base_yv = None if y_joint < 0 else model.jnt_dofadr[y_joint]
+        self.base_yq = None if y_joint < 0 else model.jnt_qposadr[y_joint]
         self.nstate = mujoco.mj_stateSize(model, mujoco.mjtState.mjSTATE_FULLPHYSICS)
         self.free = joint == "free"
         self.base_v = None if system.fixed_base else model.jnt_dofadr[model.joint("base_slide").id]
@@ -59,12 +64,19 @@ class Layout:
         state[1:1 + self.nq] = qpos
         return state
 
-    def forces(self, system: System, xg: np.ndarray, zg: np.ndarray | None = None) -> np.ndarray:
+    def forces(self, system: System, xg: np.ndarray, zg: np.ndarray | None = None,
+               yg: np.ndarray | None = None) -> np.ndarray:
         """qfrc_applied rows for the ground accelerations ẍg (one per step) and, with a vertical
         motion, üv (`zg`): the block alone feels −m·üv, on its z dof (the base is carried
-        rigidly up and down with the ground, so its reaction goes to the ground)."""
+        rigidly up and down with the ground, so its reaction goes to the ground). With a second
+        horizontal component ÿg (`yg`), the same as ẍg along y: −m·ÿg on the body's y dof (the
+        free joint's second linear dof, world frame) and −m_b·ÿg on the base's y joint."""
         f = np.zeros((xg.size, self.nv))
         f[:, self.x_v] = -system.mass * xg
+        if yg is not None:
+            f[:, self.x_v + 1] = -system.mass * yg
+            if self.base_yv is not None:
+                f[:, self.base_yv] = -system.base_mass * yg
         if zg is not None:
             f[:, self.z_v] = -system.mass * zg
         if self.base_v is not None:
@@ -92,6 +104,10 @@ class Layout:
             out["theta_dot"] = qvel[:, self.bv + 4].copy()  # angular velocity about the body y axis
             out["x"], out["z"] = qpos[:, self.bq].copy(), qpos[:, self.bq + 2].copy()
             out["out_of_plane"] = np.maximum.reduce([np.abs(qpos[:, self.bq + 1]), np.abs(roll), np.abs(yaw)])
+            if self.transverse:  # the 3-D history the two-component measures read (validate.core.biaxial)
+                out["orientation"] = qpos[:, self.bq + 3:self.bq + 7].copy()
+                out["y"] = qpos[:, self.bq + 1].copy()
+                out["u_y"] = (np.zeros(n) if self.base_yq is None else qpos[:, self.base_yq].copy())
         else:
             out["theta"] = qpos[:, self.thq].copy()
             out["theta_dot"] = qvel[:, self.thv].copy()
@@ -190,8 +206,12 @@ def stop_in(lay: Layout, system: System, chunk: np.ndarray, t: np.ndarray, motio
     chunk's `Layout.histories`, when the caller has them already."""
     finite = np.all(np.isfinite(chunk), axis=1)
     h = hist if hist is not None and finite.all() else lay.histories(system, np.where(finite[:, None], chunk, 0.0))
+    # two components: θ is the tilt's projection on the xz plane, and past α of the x edge a
+    # statue leaning on a diagonal may still stand (the corner's α is larger): the 'falling' rule
+    # (motion_end) is planar, so a 3-D run is never stopped by it; 'lying' holds (the total tilt
+    # is at least the projection's)
     return kinematics.first_stop(t, h["theta"], h["theta_dot"], finite, system=system,
-                                 motion_end=motion.end_time)
+                                 motion_end=math.inf if lay.transverse else motion.end_time)
 
 
 def raw_history(lay, system, motion, states, dt, runtime, status, message, stop_reason, t=None) -> RawHistory:
@@ -207,6 +227,11 @@ def raw_history(lay, system, motion, states, dt, runtime, status, message, stop_
     slide, slide_dot = kinematics.slide_history(
         system, motion, x_centroid=hist["x"], x_centroid_dot=hist["x_dot"], theta=hist["theta"],
         theta_dot=hist["theta_dot"], u=hist["u"], u_dot=hist["u_dot"])
+    if lay.transverse:  # histories, not scalars: read by the two-component measures only
+        # the pivot's slip is the planar one's (the corner on x, θ about y): a statue leaning
+        # along y or a diagonal would read as sliding; its 3-D slip is not measured yet
+        extras.pop("pivot_slip_max", None)
+        extras.update(orientation=hist["orientation"], y_centroid=hist["y"], u_y=hist["u_y"])
     return RawHistory(engine=ENGINE, system=system, t=t, u=hist["u"], u_dot=hist["u_dot"], theta=hist["theta"],
                       theta_dot=hist["theta_dot"], status=status, message=message, runtime_s=runtime,
                       extras=extras, stop_reason=stop_reason, slide=slide, slide_dot=slide_dot)

@@ -58,7 +58,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: optional callable(t, duration), called between rollout chunks about
     once a second."""
     motion, duration, settings = _inputs(settings or Settings(), system, motion, duration, theta0)
-    model = _scene(system, settings)
+    model = _scene(system, settings, motion.transverse is not None)
     return run_model(model, system, motion, settings=settings, duration=duration, theta0=theta0,
                      progress=progress)
 
@@ -75,7 +75,13 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     start = time.perf_counter()
     if settings.phased and stepped_throughout(system, motion) is not None:  # why: there
         settings = replace(settings, phased=False)
-    lay = Layout(model, system, settings.joint)
+    lay = Layout(model, system, settings.joint, transverse=motion.transverse is not None)
+    # a scene of one component (no y joint for the base, or the block on planar joints) or the
+    # event-resolved scheme (its forces are ẍg's alone) would lose ÿg, unsaid
+    require(not lay.transverse or (lay.free and settings.impact_timestep is None
+                                   and (system.fixed_base or lay.base_yv is not None)), "model", "this scene",
+            "built with build_model(..., transverse=True), on the free joint, stepped at one timestep, for a motion "
+            "of two horizontal components")
     dt = model.opt.timestep
     nstep = int(math.floor(duration / dt + 1e-9))
     if settings.impact_timestep is not None:
@@ -86,6 +92,7 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     chunk_steps = chunk_steps or CHUNK_STEPS
     data = fresh_data(model)
     xg, zg = StepRecord(motion, dt, nstep), vertical_record(motion, dt, nstep)
+    yg = None if motion.transverse is None else StepRecord(motion.transverse, dt, nstep)
     state0 = lay.initial_state(model, system, theta0)
     warm = np.zeros(lay.nv)
     rows = [state0[None, :]]
@@ -98,7 +105,7 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     else:
         rows, status, message, stop_reason, _, _ = _roll(model, data, lay, system, motion, xg, state0, warm,
                                                          rows, nstep, chunk_steps, dt, throttle, warnings,
-                                                         flight=flight, zg=zg)
+                                                         flight=flight, zg=zg, yg=yg)
     runtime = time.perf_counter() - start
     states = np.concatenate(rows)
     raw = raw_history(lay, system, motion, states, dt, runtime, status, message, stop_reason, t=states[:, 0])
@@ -130,11 +137,11 @@ def step_cost(system: System, settings: Settings | None = None, *, steps: int = 
 
 
 @functools.lru_cache(maxsize=64)
-def _scene(system: System, settings: Settings) -> mujoco.MjModel:
+def _scene(system: System, settings: Settings, transverse: bool = False) -> mujoco.MjModel:
     """The compiled scene of a (system, settings), kept for the runs that follow (compiling
     costs ~9 ms, a tenth of a 40 s record's run): private to this module, which never
     changes a model it steps (the coarse step is stepped on a copy, phases.Flight)."""
-    return build_model(system, settings)
+    return build_model(system, settings, transverse=transverse)
 
 
 def _inputs(given: Settings, system: System, motion, duration, theta0):
@@ -143,8 +150,14 @@ def _inputs(given: Settings, system: System, motion, duration, theta0):
     step a whole divisor of it, so the run ends on it)."""
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
                                   settings=given.for_system(system), isolators=CONTACT_ISOLATORS,
-                                  kinetic_friction=False, two_edges=True)
+                                  kinetic_friction=False, two_edges=True, transverse=True)
     check_contact_isolator(system, "mujoco")
+    if motion.transverse is not None:
+        # two components: the body on the free joint (the block's planar joints cannot leave
+        # the plane), stepped throughout (the rest phase and the coarse steps are planar)
+        require(given.impact_timestep is None, "impact_timestep", given.impact_timestep,
+                "None with two horizontal components (event-resolved stepping is planar)")
+        given = replace(given, joint="free", phased=False)
     derived = given.for_system(system, duration)
     if system.isolator_kind != LINEAR:
         require(derived.impact_timestep is None, "impact_timestep", derived.impact_timestep,
@@ -171,7 +184,7 @@ def simulate_many(runs, *, settings: Settings | None = None, threads: int = 1, b
     def prepare(run):
         system, motion, duration, theta0 = run
         motion, duration, derived = _inputs(settings, system, motion, duration, theta0)  # per system
-        return _scene(system, derived), derived, system, motion, duration, theta0
+        return _scene(system, derived, motion.transverse is not None), derived, system, motion, duration, theta0
 
     prepared = []
     for run in runs:
@@ -228,7 +241,7 @@ def _phased(model, data, lay, system, motion, settings, xg, state0, rows, nstep,
 
 
 def _roll(model, data, lay, system, motion, xg, state0, warm, rows, nstep, chunk_steps, dt, throttle, warnings,
-          start=0, until=None, flight=None, zg=None):
+          start=0, until=None, flight=None, zg=None, yg=None):
     """Contact-scene rollout from step `start` to `nstep`, or, with `until(chunk, steps)`, to
     the row it names (the phased run's rest); with `flight` (phases.Flight), coarse steps
     away from impacts; `zg`: üv at each step's middle (state.vertical_record), or None. Each row's column 0 is its time, step index × dt (MuJoCo's own
@@ -245,11 +258,13 @@ def _roll(model, data, lay, system, motion, xg, state0, warm, rows, nstep, chunk
         if multiple == 1:
             # ẍg at each step's middle (xg), as forces on the block's and the base's x dofs
             step_model, step_data = model, data
-            f = lay.forces(system, xg[done:done + n], None if zg is None else zg[done:done + n])
+            f = lay.forces(system, xg[done:done + n], None if zg is None else zg[done:done + n],
+                           None if yg is None else yg[done:done + n])
         else:
             step_model, step_data = flight.model, flight.data
             mids = (done + multiple * (np.arange(n) + 0.5)) * dt
-            f = lay.forces(system, np.asarray(motion(mids), dtype=float), vertical_at(motion, mids))
+            f = lay.forces(system, np.asarray(motion(mids), dtype=float), vertical_at(motion, mids),
+                           None if motion.transverse is None else motion.transverse_at(mids))
         state, _ = rollout.rollout(step_model, step_data, state0, f[None],
                                    control_spec=mujoco.mjtState.mjSTATE_QFRC_APPLIED,
                                    initial_warmstart=warm)

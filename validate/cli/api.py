@@ -121,7 +121,7 @@ def run(**options):
                              "(its to_dataframe(), to_csv(), summary())")
     a = _parse("run", options)
     try:
-        plan = plan_runs(a, parse_engines(engine_asked(a)))
+        plan, _ = plan_runs(a, parse_engines(engine_asked(a)))
     except InputError as e:
         raise InputError(_keywords(str(e))) from None
     from isorock.validate.cli.options import run_budget

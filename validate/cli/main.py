@@ -31,8 +31,8 @@ from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
 from isorock.validate.cli.options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,
-                                          add_motion_options, add_statue_options, add_system_options, engine_settings_from_args, number,
-                                          system_from_args)
+                                          add_motion_options, add_statue_options, add_system_options,
+                                          add_transverse_options, engine_settings_from_args, number, system_from_args)
 
 #: Subcommands that live in their own modules (each has add_parser(subparsers)), with
 #: their one-line help. Only the module of the command being run is imported, so a
@@ -114,6 +114,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     add_statue_options(p)
     add_isolator_options(p)
     add_motion_options(p)
+    add_transverse_options(p)
     p.add_argument("--duration", type=number,
                    help="end time from t = 0, s (default: motion end + 5 s, or 10 s without motion)")
     p.add_argument("--theta0-over-alpha", "--theta0", dest="theta0_over_alpha", type=number, default=0.0,

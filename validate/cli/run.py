@@ -143,8 +143,12 @@ def _progress(quiet):
 
 def engine_asked(a) -> str:
     """--engine as given, or the default: the compiled kernel, which carries every isolator
-    the model has (docs/isolators.md)."""
-    return a.engine if a.engine is not None else "analytic"
+    the model has (docs/isolators.md); with two horizontal components, MuJoCo, the engine
+    that carries them."""
+    from isorock.validate.cli.options import transverse_asked
+    if a.engine is not None:
+        return a.engine
+    return "mujoco" if transverse_asked(a) else "analytic"
 
 
 def plan_runs(a, specs):
@@ -154,12 +158,36 @@ def plan_runs(a, specs):
     from isorock.validate.core.plan import EngineRun, make_plan
     runs = [EngineRun(label, engine, settings) for label, engine, settings in load_engines(specs, a)]
     system, motion = system_from_args(a), motion_from_args(a)
+    # two components: the body shaken and its direction for the 3-D measures, its isolator checked
+    # first; an engine that runs one component named as the option names it
+    shaken = None if motion.transverse is None else shaken_body(a, system)
+    for r in runs:
+        if motion.transverse is not None and not getattr(r.engine.capabilities, "transverse", False):
+            raise InputError(f"--engine = {r.label!r}: runs one horizontal component only; with two "
+                             "(--motion-transverse, --pair) the engine is mujoco")
     if not (abs(a.theta0_over_alpha) < 1):
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     # a fraction of the α of the edge it tilts onto (a statue's two edges differ)
     theta0 = a.theta0_over_alpha * system.edge_alpha(1 if a.theta0_over_alpha >= 0 else -1)
-    return make_plan(system, motion, runs, duration=a.duration, theta0=theta0, impact_threshold=a.impact_threshold,
+    plan = make_plan(system, motion, runs, duration=a.duration, theta0=theta0, impact_threshold=a.impact_threshold,
                      overturn_rule=a.overturn, first_run=True)
+    return plan, shaken
+
+
+def shaken_body(a, system) -> tuple:
+    """(the body at rest, the azimuth in rad) of a run with two components: the statue's mesh
+    (statue_body's, along --azimuth or the direction it tips first), or the block H × B × D of
+    MuJoCo's scene along 0. Refuses, before any work, an isolator other than the linear one."""
+    from isorock.analytic.system import LINEAR
+    from isorock.validate.cli.options import statue_azimuth, statue_body
+    from isorock.validate.core.biaxial import box_body
+    if not system.fixed_base and system.isolator_kind != LINEAR:
+        raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
+                         "--pair) must be linear (the same k and c along x and y), or give --fixed-base")
+    if system.body is None:  # the contact scenes' block stands on a square footprint (MuJoCo's DEPTH_FRACTION 1)
+        return box_body(system.height, system.width, system.width, system.mass), 0.0
+    standing = statue_body(a)[0]
+    return standing, statue_azimuth(a, standing)
 
 
 def simulate_plan(plan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:
@@ -189,7 +217,7 @@ def cmd_run(a) -> int:
                 csv_outs[label] = outputs.file("csv", _file_suffix(a.csv, label) if several else a.csv)
         plot_out = outputs.file("plot", a.plot) if a.plot is not None else None
         plot_kind = plot_format(a.plot) if a.plot is not None else None
-        plan = plan_runs(a, specs)
+        plan, shaken = plan_runs(a, specs)
         system, motion, duration = plan.system, plan.motion, plan.duration
         if a.csv_dt is not None:
             if not (a.csv_dt > 0 and a.csv_dt < float("inf")):
@@ -204,6 +232,10 @@ def cmd_run(a) -> int:
             return budget_stopped("run", e.label, e)
         ref_label, ref = next(iter(runs.items()))
         comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
+        two = None
+        if shaken is not None:  # two components: the 3-D measures, the planar runs beside (issue 36)
+            from isorock.validate.core.biaxial import two_components
+            two = two_components(runs, system, motion, *shaken, duration)
         if several:
             from isorock.validate.io.naming import describe_motion
             report = {
@@ -217,6 +249,8 @@ def cmd_run(a) -> int:
             summary = ref.summary()
             report = dict(summary, system=system.describe(), motion=motion.describe(),
                           settings=settings_dict(used[ref_label], system, duration))
+        if two is not None:  # first: its verdict is the run's (the fields above are the planar projection on x)
+            report = dict(two_components=two[ref_label] if not several else two, **report)
         if json_out:
             from isorock.validate.io.provenance import provenance
             json_out.write_text(to_json(dict(report, provenance=provenance(record_paths=[a.motion]))) + "\n")
@@ -228,6 +262,10 @@ def cmd_run(a) -> int:
             plot_out.write(lambda tmp: plot_runs(runs, motion, tmp, format=plot_kind))
         outputs.commit()
     if not a.quiet and "-" not in (a.json, a.csv):
+        if two is not None:
+            from isorock.validate.core.biaxial import render
+            for label, one in two.items():
+                print(render(one, label))
         if several:
             print(comparison_table(runs, comparisons))
             for out in [*csv_outs.values(), *([plot_out] if plot_out else [])]:

@@ -1,0 +1,280 @@
+"""Two horizontal ground-motion components in MuJoCo (issue 36; docs/statues.md, "Two horizontal
+components"): the scene of one component unchanged, the block along y against the exact planar
+model, the invariance of the physics under a turn of the pair and the statue together, and bad
+input in one line."""
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+pytest.importorskip("mujoco")
+trimesh = pytest.importorskip("trimesh")
+
+from isorock.analytic import shape  # noqa: E402
+from isorock.analytic.motion import GroundMotion, load_motion  # noqa: E402
+from isorock.analytic.system import PlanarBody, System  # noqa: E402
+from isorock.analytic.trajectory import counted_sign_changes  # noqa: E402
+from isorock.mujoco_models import Settings  # noqa: E402
+from isorock.validate.cli.main import main  # noqa: E402
+from isorock.validate.core import biaxial  # noqa: E402
+from isorock.validate.core.engines import get_engine  # noqa: E402
+from isorock.validate.core.tolerances import tolerance  # noqa: E402
+
+MUJOCO, EXACT = get_engine("mujoco"), get_engine("analytic")
+
+
+@pytest.fixture(scope="module")
+def bust():
+    vertices, faces = shape.example_statue("bust")
+    return shape.standing(vertices, faces, mass=80.0)
+
+
+def _statue_system(standing, azimuth, isolated):
+    body = PlanarBody.from_resting(standing.along(azimuth))
+    if isolated:
+        system = System.isolated(**body.box, mass=standing.mass, base_mass=150.0, period=1.0, damping_ratio=0.2)
+    else:
+        system = System.fixed(**body.box, mass=standing.mass)
+    return replace(system, body=body)
+
+
+def _record(spec):
+    """A pulse as a record (samples at its dt): GroundMotion.rotated turns records."""
+    m = load_motion(spec)
+    return GroundMotion.from_array(m.acceleration, dt=m.dt, name=spec)
+
+
+def _leans(orientation):
+    """(lean towards +x, lean towards +y) of the body's z axis, rad, from quaternions (w, x, y, z):
+    written here from the rotation matrix's third column, apart from validate.core.biaxial."""
+    w, x, y, z = np.asarray(orientation).T
+    zx, zy, zz = 2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)
+    return np.arctan2(zx, zz), np.arctan2(zy, zz)
+
+
+# --- (a) a zero second component is today's run ------------------------------------------
+
+@pytest.mark.parametrize("isolated, spec", [(False, "sine:amp=0.6,freq=2,cycles=1"), (True, "sine:amp=0.9,freq=2.5,cycles=1")],
+                         ids=["fixed", "linear"])
+def test_a_zero_transverse_component_is_todays_one_component_run(bust, isolated, spec):
+    """The scene of two components (the base's y joint, the square plate, the free joint the bust
+    is on already) under a zero ÿg runs the bust as today's scene of one. On the fixed base, bit for
+    bit (nothing but the zero forces is added). On the linear isolator the base has a y degree of
+    freedom today's scene has not: the bust's hull (revolved, 96 sections) is symmetric about its
+    xz plane to roundoff, so the contact pushes the base along y by roundoff-sized forces (2e-11 m
+    of u_y), which moved θ, θ̇, u and u̇ by at most 1.6e-8 of each one's peak (θ̇ most, through the
+    stiff contact at the impacts; θ 1.2e-10), measured; the limit, 1e-6 of the peak, is far below
+    any physical difference (MuJoCo's θmax/α is judged to 0.02)."""
+    system = _statue_system(bust, shape.weakest_direction(bust)[0], isolated)
+    motion = load_motion(spec)
+    today = MUJOCO.simulate(system, motion, duration=3.0)
+    zero = MUJOCO.simulate(system, motion.with_transverse(motion.scaled(0.0)), duration=3.0)
+    assert today.t.size == zero.t.size and today.theta_max_over_alpha > 0.05  # it rocks
+    for name in ("theta", "theta_dot", "u", "u_dot"):
+        a, b = getattr(today, name), getattr(zero, name)
+        if isolated:
+            assert np.max(np.abs(a - b)) <= 1e-6 * np.max(np.abs(a)), name
+        else:
+            assert np.array_equal(a, b), name
+    assert np.max(np.abs(zero.extras["u_y"])) <= 1e-9  # the base does not move along y
+    assert "orientation" not in today.extras  # one component: the history as before
+    assert (zero.impact_count, zero.overturned, len(zero.uplift_times)) == (
+        today.impact_count, today.overturned, len(today.uplift_times))
+    if not isolated:  # every metric, bar the wall time and the planar pivot's slip (not a 3-D measure)
+        before = {k: v for k, v in today.summary().items() if k not in ("runtime_s", "pivot_slip_max")}
+        assert {k: v for k, v in zero.summary().items() if k != "runtime_s"} == before
+
+
+# --- (b) the block shaken along y alone is the exact planar model along y -----------------
+
+@pytest.mark.parametrize("system, spec", [
+    (System.fixed(height=2.0, width=0.7, mass=3800.0), "sine:amp=0.5,freq=1.5,cycles=1"),
+    # robust: ±1% PGA moves the exact θmax/α by ±0.01 (0.2075, 0.2181, 0.2282), 5 impacts each
+    (System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.0, damping_ratio=0.2),
+     "ricker:amp=1.0,freq=2"),
+], ids=["fixed", "linear"])
+def test_the_block_shaken_along_y_alone_rocks_as_the_exact_model_along_y(system, spec):
+    """The pair swapped: nothing along x, the pulse along y. The block's footprint is square
+    (scene.DEPTH_FRACTION), so along y it is the same H × B: its lean towards y against the exact
+    model's θ, by the tolerance table's block rows for MuJoCo."""
+    from isorock.mujoco_models.scene import DEPTH_FRACTION
+    assert DEPTH_FRACTION == 1.0  # the square footprint this test and `run`'s box_body read
+    motion = load_motion(spec)
+    run = MUJOCO.simulate(system, GroundMotion.zero().with_transverse(motion), duration=6.0)
+    exact = EXACT.simulate(system, motion, duration=6.0)
+    lean_x, lean_y = _leans(run.extras["orientation"])
+    assert 0.1 < exact.theta_max_over_alpha < 1 and not exact.overturned  # it rocks, robustly standing
+    assert abs(np.max(np.abs(lean_y)) / system.alpha - exact.theta_max_over_alpha) <= tolerance("mujoco", "theta_max_diff").limit
+    counted = len(counted_sign_changes(lean_y, system.alpha, exact.impact_threshold))
+    assert abs(counted - exact.impact_count) <= tolerance("mujoco", "impacts_diff").limit
+    assert np.max(np.abs(lean_x)) <= tolerance("mujoco", "out_of_plane").limit  # nothing drives it along x
+    if not system.fixed_base:
+        u_y = np.max(np.abs(run.extras["u_y"]))
+        assert abs(u_y / exact.u_max - 1) <= tolerance("mujoco", "u_max_rel_error").limit
+        assert np.max(np.abs(run.u)) <= 1e-12  # the x joint stays put
+    # the report's own measure reads the same peak (the box's α along ±y is the block's α)
+    alpha, least = biaxial.alpha_table(biaxial.box_body(2.0, 0.7, 0.7, 3800.0), 0.0)
+    three = biaxial.measure_3d(run.t, run.extras["orientation"], alpha, least)
+    assert abs(three.tilt_max_over_alpha - exact.theta_max_over_alpha) <= tolerance("mujoco", "theta_max_diff").limit
+    assert three.direction_at_max_deg % 180 == pytest.approx(90, abs=1e-6) and three.wobble_deg < 1e-6
+
+
+# --- (c) turning the pair and the statue together changes nothing -------------------------
+
+@pytest.mark.parametrize("isolated, phi_deg", [(False, 30.0), (False, 200.0), (True, 30.0)],
+                         ids=["fixed-30", "fixed-200", "linear-30"])
+def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, isolated, phi_deg):
+    """The same ground acceleration in the statue's own frame, the world turned by φ: the total
+    tilt is a scalar of the statue's frame, so its history is the same, and on the isotropic
+    isolator so is the base's travel √(u² + u_y²). Tolerance 1e-3 of the peak: the hull meets the
+    axis-aligned plate in a frame turned by φ, so the contact's roundoff differs (1e-12 on an exact
+    quarter turn) and grows through the impacts; measured 1.2e-5 (fixed, 30°), 7e-6 (fixed, 200°)
+    and 1.8e-6 (linear, 30°) of the peak. A wrong turn (a sign, the components not mixed) or an
+    isolator stiffer one way moves them by order 1. The steps and the contact are the same in both
+    runs (Settings of the first system)."""
+    azimuth = shape.weakest_direction(bust)[0]
+    if isolated:
+        pair = _record("sine:amp=0.9,freq=2.5,cycles=1").with_transverse(_record("sine:amp=0.8,freq=2.2,cycles=1"))
+    else:
+        pair = _record("sine:amp=0.7,freq=2,cycles=1").with_transverse(_record("sine:amp=0.63,freq=1.6,cycles=1"))
+    first = _statue_system(bust, azimuth, isolated)
+    settings = Settings().for_system(first, 4.0)
+    phi = math.radians(phi_deg)
+    runs = [MUJOCO.simulate(s, m, duration=4.0, settings=settings)
+            for s, m in ((first, pair), (_statue_system(bust, azimuth + phi, isolated), pair.rotated(phi)))]
+    if isolated:
+        travel = [np.hypot(r.u, r.extras["u_y"]) for r in runs]
+        assert np.max(np.abs(runs[0].extras["u_y"])) > 0.05  # the base moves along y too
+        assert np.max(np.abs(travel[0] - travel[1])) <= 1e-3 * np.max(travel[0])
+    tilts = [biaxial.tilt_twist(r.extras["orientation"])[0] for r in runs]
+    assert tilts[0].size == tilts[1].size and np.max(tilts[0]) > 0.15 * bust.direction(1)["alpha"]  # it rocks
+    assert np.max(np.abs(tilts[0] - tilts[1])) <= 1e-3 * np.max(tilts[0])
+    # and the measures: each run's α read at its own azimuth
+    three = [biaxial.measure_3d(r.t, r.extras["orientation"], *biaxial.alpha_table(bust, az))
+             for r, az in zip(runs, (azimuth, azimuth + phi))]
+    assert three[1].tilt_max_over_alpha == pytest.approx(three[0].tilt_max_over_alpha, rel=1e-3)
+    assert (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360 == pytest.approx(
+        0, abs=0.5) or abs((three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360 - 360) < 0.5
+
+
+def test_a_pair_turned_is_the_same_vector():
+    """GroundMotion.rotated: the components of one vector in axes turned by φ (a turn by φ then
+    by −φ is the pair; its magnitude is kept at every sample)."""
+    pair = _record("sine:amp=0.7,freq=2,cycles=1").with_transverse(_record("ricker:amp=0.4,freq=3"))
+    turned = pair.rotated(0.7)
+    n = max(pair.n, pair.transverse.n)
+    x, y = (np.pad(m.acceleration, (0, n - m.n)) for m in (pair, pair.transverse))
+    assert np.allclose(np.hypot(turned.acceleration, turned.transverse.acceleration), np.hypot(x, y), atol=1e-12)
+    back = turned.rotated(-0.7)
+    assert np.allclose(back.acceleration, x, atol=1e-12) and np.allclose(back.transverse.acceleration, y, atol=1e-12)
+
+
+# --- the command: the report, and bad input in one line ------------------------------------
+
+def test_run_reports_the_3d_numbers_and_the_planar_runs_beside(tmp_path, capsys):
+    code = main(["run", "--statue-example", "bust", "--mass", "80", "--fixed-base",
+                 "--motion", "sine:amp=0.7,freq=2,cycles=1", "--motion-transverse", "sine:amp=0.63,freq=1.6,cycles=1",
+                 "--duration", "3", "--json", str(tmp_path / "r.json")])
+    out = capsys.readouterr().out
+    assert code == 0
+    report = json.loads((tmp_path / "r.json").read_text())
+    assert next(iter(report)) == "two_components" and "theta_max_over_alpha" in report  # added, none renamed
+    two = report["two_components"]
+    assert out.splitlines()[0] == two["verdict"]
+    assert set(two["three_d"]) >= {"tilt_max_over_alpha", "overturned", "twist_max_deg", "wobble_deg"}
+    assert set(two["planar"]) == {"x", "y"} and "twist" in two["cannot_capture"]
+    assert report["motion"]["transverse"]["name"] == "sine:amp=0.63,freq=1.6,cycles=1"
+    # the planar runs are the exact model's along each direction (the statue's edges at 0° and 90° of it)
+    along_y = EXACT.simulate(_statue_system(shape.standing(*shape.example_statue("bust"), mass=80.0),
+                                            shape.weakest_direction(shape.standing(*shape.example_statue("bust"),
+                                                                                   mass=80.0))[0] + math.pi / 2, False),
+                             load_motion("sine:amp=0.63,freq=1.6,cycles=1"), duration=3.0)
+    assert two["planar"]["y"]["theta_max_over_alpha"] == pytest.approx(along_y.theta_max_over_alpha, rel=1e-12)
+
+
+@pytest.mark.parametrize("args, says", [
+    (["--isolator", "friction-pendulum", "--radius", "1", "--friction-coefficient", "0.05", "--base-mass", "150",
+      "--motion-transverse", "sine:amp=0.5,freq=2"], "--isolator = 'friction-pendulum'"),
+    (["--fixed-base", "--pair", "fema-p695:FF99"], "--pair = 'fema-p695:FF99'"),
+    (["--fixed-base", "--pair", "peer:FF01"], "--pair = 'peer:FF01'"),
+    (["--fixed-base", "--pair", "fema-p695:FF01", "--motion", "sine:amp=0.5,freq=2"], "leave --motion"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "none"], "--motion-transverse = 'none'"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "missing.at2"],
+     "--motion-transverse = 'missing.at2'"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "pair.csv"], "units"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--transverse-units", "g"], "needs --motion-transverse"),
+    (["--fixed-base", "--engine", "analytic", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse",
+      "sine:amp=0.5,freq=2"], "--engine = 'analytic': runs one horizontal component only"),
+    (["--fixed-base", "--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "sine:amp=0.5,freq=2",
+      "--vertical", "sine:amp=0.2,freq=2"], "--vertical"),
+])
+def test_bad_input_is_one_line_and_exit_2(args, says, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "pair.csv").write_text("0 0\n0.01 0.1\n0.02 0\n")  # no units: never guessed
+    code = main(["run", "--statue-example", "bust", "--mass", "80", *args])
+    err = capsys.readouterr().err
+    assert code == 2 and says in err and err.count("\n") == 1, err
+
+
+# --- the measures, against rotations built apart (scipy) -----------------------------------
+
+def test_tilt_direction_and_twist_of_a_known_rotation():
+    """A twist γ about the body's vertical, then a swing by τ about the horizontal axis at ψ + 90°
+    (which leans the top towards ψ): tilt τ, direction ψ, twist γ (scipy's rotations)."""
+    from scipy.spatial.transform import Rotation
+    rng = np.random.default_rng(36)
+    tau, psi, gamma = rng.uniform(0.01, 1.4, 50), rng.uniform(-math.pi, math.pi, 50), rng.uniform(-3, 3, 50)
+    axis = np.stack([np.cos(psi + math.pi / 2), np.sin(psi + math.pi / 2), np.zeros(50)], axis=1)
+    rot = Rotation.from_rotvec(axis * tau[:, None]) * Rotation.from_euler("z", gamma[:, None])
+    x, y, z, w = rot.as_quat().T  # scipy: scalar last
+    for k in range(50):  # one at a time: the twist is unwrapped along a history
+        tilt, direction, twist = biaxial.tilt_twist(np.array([[w[k], x[k], y[k], z[k]]]))
+        assert tilt[0] == pytest.approx(tau[k], abs=1e-12)
+        assert math.remainder(direction[0] - psi[k], 2 * math.pi) == pytest.approx(0, abs=1e-9)
+        assert math.remainder(twist[0] - gamma[k], 2 * math.pi) == pytest.approx(0, abs=1e-9)
+
+
+def test_wobble_is_the_swing_of_the_tilt_axis_and_rocking_across_the_pivot_is_none():
+    """A tilt of 0.2 rad whose direction sweeps 0 → 60°: wobble 60°. Planar rocking (the lean
+    towards x, then back through zero to −x): wobble 0, though the direction flips by 180°."""
+    from scipy.spatial.transform import Rotation
+    t = np.linspace(0, 1, 200)
+    alpha = lambda psi: np.full(np.shape(psi), 0.4)  # noqa: E731
+    psi = np.radians(60) * t
+    sweep = Rotation.from_rotvec(np.stack([np.cos(psi + math.pi / 2), np.sin(psi + math.pi / 2), 0 * t], 1) * 0.2)
+    x, y, z, w = sweep.as_quat().T
+    m = biaxial.measure_3d(t, np.stack([w, x, y, z], 1), alpha, 0.4)
+    assert m.wobble_deg == pytest.approx(60, abs=1e-6) and m.tilt_max_over_alpha == pytest.approx(0.5)
+    rock = Rotation.from_rotvec(np.stack([0 * t, 0.3 * np.sin(2 * math.pi * t), 0 * t], 1))
+    x, y, z, w = rock.as_quat().T
+    m = biaxial.measure_3d(t, np.stack([w, x, y, z], 1), alpha, 0.4)
+    assert m.wobble_deg < 1e-9 and m.twist_max_deg < 1e-9 and not m.overturned
+    assert m.tilt_max_over_alpha == pytest.approx(0.75, rel=1e-4)
+
+
+def test_the_report_says_where_the_3d_run_parts_from_the_planar_runs():
+    """Overturning first; a peak against the larger planar one only where either rocks (two traces'
+    ratio is no measure); twist and wobble when more than a trace."""
+    def three(**kw):
+        base = dict(tilt_max=0.1, tilt_max_over_alpha=0.3, direction_at_max_deg=10.0, alpha_at_max=0.4,
+                    overturned=False, twist_max_deg=0.0, wobble_deg=0.0, base_y_max=0.0, rocked=True)
+        return biaxial.Measures3D(**{**base, **kw})
+
+    def planar(x, y, over=(False, False)):
+        return {k: {"theta_max_over_alpha": v, "overturned": o, "alpha": 0.4, "status": "completed"}
+                for k, v, o in (("x", x, over[0]), ("y", y, over[1]))}
+    r = biaxial.compare_3d(three(overturned=True, tilt_max=1.56), planar(0.9, 1.05))
+    assert r["verdict"].startswith("Overturned") and "overturns where both planar runs stand" in r["where_it_parts"]
+    r = biaxial.compare_3d(three(), planar(0.2, 4.6, (False, True)))
+    assert r["verdict"].startswith("Stands") and "the planar run along y overturns" in r["where_it_parts"]
+    r = biaxial.compare_3d(three(tilt_max_over_alpha=0.33), planar(0.3, 0.1))
+    assert "0.33 against the larger planar 0.3 (+10.0%)" in r["where_it_parts"] and "turned" not in r["where_it_parts"]
+    r = biaxial.compare_3d(three(tilt_max_over_alpha=6e-6, rocked=False), planar(0.0, 1e-8))
+    assert "none of the three rocks" in r["where_it_parts"] and "%" not in r["where_it_parts"]
+    r = biaxial.compare_3d(three(twist_max_deg=12.0, wobble_deg=45.0), planar(0.3, 0.1))
+    assert "turned 12°" in r["where_it_parts"] and "swung 45°" in r["where_it_parts"]
+    assert all(w in r["cannot_capture"] for w in ("twist", "wobble", "coupling"))
