@@ -332,14 +332,12 @@ def sphere_geometry_first_impact_time(system: System, theta0: float, radius: flo
 # --- the scene -----------------------------------------------------------------------
 
 _SDF = """<?xml version="1.0"?>
-<!-- isorock: block on {base_kind} base for Drake (pydrake Parser, SDFormat with drake: extensions).
+<!-- isorock: {what} on {base_kind} base for Drake (pydrake Parser, SDFormat with drake: extensions).
      Written by isorock.drake_models.scene for H = {H:g} m, B = {B:g} m, m = {m:g} kg, m_b = {mb:g} kg.
      Plant settings that SDFormat cannot hold (simulate() applies them):
        {plant}
-     Ground motion: apply -m*xg''(t) to the block's planar x and -m_b*xg''(t) to the isolator joint
-     (MultibodyPlant applied generalized force). The planar joint's coordinates are
-     (x, y, theta) = (centroid world x, minus centroid world z, rotation about world +y):
-     tilt the block by theta0 about its corner sphere to start free rocking.
+     Ground motion: apply -m*xg''(t) to the {body_x} and -m_b*xg''(t) to the isolator joint
+     (MultibodyPlant applied generalized force). {coords}
      Settings: {settings} -->
 <sdf version="1.9" xmlns:drake="http://drake.mit.edu">
   <model name="isorock">
@@ -366,6 +364,10 @@ _SDF = """<?xml version="1.0"?>
   </model>
 </sdf>
 """
+#: the header's account of the block's coordinates (planar joint)
+_PLANAR_COORDS = """The planar joint's coordinates are
+     (x, y, theta) = (centroid world x, minus centroid world z, rotation about world +y):
+     tilt the block by theta0 about its corner sphere to start free rocking."""
 _BLOCK = """    <!-- the link frame is the ground's orientation at the centroid: link x = world x,
          link y = world -z (up is -y), link z = world y (the rocking axis) -->
     <link name="block">
@@ -473,7 +475,10 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
         plant=_plant_description(settings), settings=listed,
         plate_z=-t / 2, W=w, T=t, bixx=mb * (w * w + t * t) / 12, biyy=mb * (w * w + t * t) / 12,
         bizz=mb * w * w / 6, plate_props=_props(settings, mu, hydro="rigid" if hydro else None),
-        base_joint=base_joint, body=body)
+        base_joint=base_joint, body=body,
+        what="a statue's own shape (its hull's vertices)" if statue_shape else "block",
+        body_x="statue's free-body world x (the centre of mass)" if statue_shape else "block's planar x",
+        coords=statue.COORDS if statue_shape else _PLANAR_COORDS)
 
 
 class _Built:

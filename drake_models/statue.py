@@ -39,6 +39,10 @@ from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, co
 
 #: the OBJ the "convex" hull's SDF names, written beside it by `simulate`
 HULL_FILE = "statue_hull.obj"
+#: the SDF header's account of the statue's coordinates (scene._SDF)
+COORDS = """The statue (link "block") has no joint: Drake's quaternion floating
+     joint, its position the centre of mass's; H and B above are the box of its two edges.
+     Tilt it by theta0 about world +y about the edge it rests on to start free rocking."""
 
 
 def has_solid(system: System) -> bool:
