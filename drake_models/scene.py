@@ -57,8 +57,10 @@ closed forms, against which the engine's convergence is judged.
 from __future__ import annotations
 
 import math
+import tempfile
 import time
 from dataclasses import dataclass, fields, replace
+from pathlib import Path
 
 import numpy as np
 from scipy.integrate import quad
@@ -76,12 +78,16 @@ from isorock.analytic.status import Status
 from isorock.analytic.system import System, paper_system
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
+from . import statue
+
 ENGINE = "drake"
 SCENE_FORMAT = ("SDFormat", ".sdf")
 
 INTEGRATORS = ("radau3", "radau1", "implicit_euler", "runge_kutta3")
 CONTACTS = ("point", "hydroelastic")
 DISCRETE_SOLVERS = ("sap", "tamsi", "lagged")
+#: a statue's own shape (System.body.solid): spheres on its hull's vertices, or Drake's Convex (drake_models.statue)
+HULLS = ("vertices", "convex")
 
 #: Radius (m) of the corner spheres, inscribed in the block's bottom corners (centre r
 #: inside both faces): small against b (0.06% of 0.35 m), large enough that the sphere
@@ -110,6 +116,9 @@ FORCE_KNOT = 5e-4
 #: plant keeps Drake's default, as before.
 STICTION_SHARE = 3e-4
 _PAPER = paper_system()
+#: Whether Drake carries a statue of two edges (its own shape, drake_models.statue): what
+#: Capabilities.two_edges says, judged in docs/statues.md
+TWO_EDGES = True
 
 
 @dataclass(frozen=True)
@@ -135,6 +144,9 @@ class Settings:
     stiction_tolerance: the continuous plant's stiction tolerance (m/s: below it a stuck contact
         creeps, Stribeck's regularisation) for a statue with friction (System.friction); without
         friction the plant keeps Drake's default, as always (STICTION_SHARE).
+    hull: a statue's own shape only (System.body.solid; drake_models.statue): "vertices", a
+        sphere of corner_radius on each vertex of its hull, or "convex", the hull as Drake's
+        Convex in point contact (one point per pair: for comparison only).
     follow_system: True: `for_system` puts every contact quantity in the block's own
         units (the values above are those measured on the paper's block); an explicit
         contact setting given to `settings_for` (every command's path) sets it False.
@@ -154,6 +166,7 @@ class Settings:
     sample_interval: float = 1e-3
     #: m/s on the paper's block (∝ R·p with follow_system): STICTION_SHARE·R·p
     stiction_tolerance: float = STICTION_SHARE * _PAPER.R * _PAPER.p
+    hull: str = "vertices"
     follow_system: bool = True
 
     def for_system(self, system: System, duration: float | None = None) -> "Settings":
@@ -190,6 +203,7 @@ class Settings:
         require(self.discrete_solver in DISCRETE_SOLVERS, "discrete_solver", self.discrete_solver,
                 f"one of {', '.join(DISCRETE_SOLVERS)}")
         require(self.contact in CONTACTS, "contact", self.contact, f"one of {', '.join(CONTACTS)}")
+        require(self.hull in HULLS, "hull", self.hull, f"one of {', '.join(HULLS)}")
         acc = require_positive_finite("accuracy", self.accuracy)
         require(acc < 1, "accuracy", self.accuracy, "below 1 (a relative accuracy)")
         for name in ("stiffness", "dissipation", "relaxation_time", "hydroelastic_modulus", "friction",
@@ -318,14 +332,12 @@ def sphere_geometry_first_impact_time(system: System, theta0: float, radius: flo
 # --- the scene -----------------------------------------------------------------------
 
 _SDF = """<?xml version="1.0"?>
-<!-- isorock: block on {base_kind} base for Drake (pydrake Parser, SDFormat with drake: extensions).
+<!-- isorock: {what} on {base_kind} base for Drake (pydrake Parser, SDFormat with drake: extensions).
      Written by isorock.drake_models.scene for H = {H:g} m, B = {B:g} m, m = {m:g} kg, m_b = {mb:g} kg.
      Plant settings that SDFormat cannot hold (simulate() applies them):
        {plant}
-     Ground motion: apply -m*xg''(t) to the block's planar x and -m_b*xg''(t) to the isolator joint
-     (MultibodyPlant applied generalized force). The planar joint's coordinates are
-     (x, y, theta) = (centroid world x, minus centroid world z, rotation about world +y):
-     tilt the block by theta0 about its corner sphere to start free rocking.
+     Ground motion: apply -m*xg''(t) to the {body_x} and -m_b*xg''(t) to the isolator joint
+     (MultibodyPlant applied generalized force). {coords}
      Settings: {settings} -->
 <sdf version="1.9" xmlns:drake="http://drake.mit.edu">
   <model name="isorock">
@@ -348,7 +360,15 @@ _SDF = """<?xml version="1.0"?>
       <visual name="plate"><geometry><box><size>{W} {W} {T}</size></box></geometry></visual>
     </link>
 {base_joint}
-    <!-- the link frame is the ground's orientation at the centroid: link x = world x,
+{body}
+  </model>
+</sdf>
+"""
+#: the header's account of the block's coordinates (planar joint)
+_PLANAR_COORDS = """The planar joint's coordinates are
+     (x, y, theta) = (centroid world x, minus centroid world z, rotation about world +y):
+     tilt the block by theta0 about its corner sphere to start free rocking."""
+_BLOCK = """    <!-- the link frame is the ground's orientation at the centroid: link x = world x,
          link y = world -z (up is -y), link z = world y (the rocking axis) -->
     <link name="block">
       <pose>0 0 {h} {rot} 0 0</pose>
@@ -362,10 +382,7 @@ _SDF = """<?xml version="1.0"?>
       <drake:parent>ground</drake:parent>
       <drake:child>block</drake:child>
       <drake:damping>0 0 0</drake:damping>
-    </drake:joint>
-  </model>
-</sdf>
-"""
+    </drake:joint>"""
 _ISOLATOR = """    <joint name="isolator" type="prismatic">
       <parent>world</parent><child>base</child>
       <axis><xyz>1 0 0</xyz>
@@ -434,13 +451,23 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     t = PLATE_THICKNESS
     hydro = settings.contact == "hydroelastic"
     mu = frictions(system, settings)
-    if hydro:
+    statue_shape = statue.has_solid(system)
+    if statue_shape:  # its own shape in the block's place, on a free body (drake_models.statue)
+        require(not hydro, "contact", settings.contact, "point for a statue's own shape (its hull's vertices)")
+        w = 2 * statue.plate_half_width(system)
+        collisions = ""
+    elif hydro:
         collisions = _BOX.format(B=2 * b, H=2 * h, D=2 * d, props=_props(settings, mu, hydro="compliant"))
     else:  # the two bottom corners of the rocking plane, in link coordinates (up is −y)
         collisions = "\n".join(_SPHERE.format(name=name, x=sx * (b - r), y=h - r, r=r, props=_props(settings, mu))
                                for name, sx in (("corner_pos", 1.0), ("corner_neg", -1.0)))
     base_joint = _WELD if system.fixed_base else _ISOLATOR.format(k=system.stiffness, c=system.damping)
     listed = ", ".join(f"{f.name} = {getattr(settings, f.name)!r}" for f in fields(settings))
+    # link axes: x = world x, y = world −z, z = world y (the rocking axis)
+    body = statue.link(system, settings, _props(settings, mu)) if statue_shape else _BLOCK.format(
+        h=h, rot=repr(-math.pi / 2), m=m, B=system.width, H=system.height, D=2 * d,
+        ixx=m * (h * h + d * d) / 3, iyy=m * (b * b + d * d) / 3, izz=m * (b * b + h * h) / 3,
+        block_collisions=collisions)
     return _SDF.format(
         base_kind="a fixed" if system.fixed_base else
         f"an isolated (k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N s/m)",
@@ -448,10 +475,10 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
         plant=_plant_description(settings), settings=listed,
         plate_z=-t / 2, W=w, T=t, bixx=mb * (w * w + t * t) / 12, biyy=mb * (w * w + t * t) / 12,
         bizz=mb * w * w / 6, plate_props=_props(settings, mu, hydro="rigid" if hydro else None),
-        base_joint=base_joint,
-        # link axes: x = world x, y = world −z, z = world y (the rocking axis)
-        ixx=m * (h * h + d * d) / 3, iyy=m * (b * b + d * d) / 3, izz=m * (b * b + h * h) / 3,
-        block_collisions=collisions)
+        base_joint=base_joint, body=body,
+        what="a statue's own shape (its hull's vertices)" if statue_shape else "block",
+        body_x="statue's free-body world x (the centre of mass)" if statue_shape else "block's planar x",
+        coords=statue.COORDS if statue_shape else _PLANAR_COORDS)
 
 
 class _Built:
@@ -467,16 +494,28 @@ class _Built:
                 "lagged": pd.DiscreteContactApproximation.kLagged}[settings.discrete_solver])
         plant.set_contact_model(pd.ContactModel.kHydroelastic if settings.contact == "hydroelastic"
                                 else pd.ContactModel.kPoint)
-        pd.Parser(plant).AddModelsFromString(scene_text(system, settings), "sdf")
+        text = scene_text(system, settings)
+        if statue.has_solid(system) and settings.hull == "convex":
+            # the hull's OBJ beside the SDF, which names it by a relative path
+            with tempfile.TemporaryDirectory(prefix="isorock-drake-") as folder:
+                Path(folder, statue.HULL_FILE).write_text(statue.hull_obj(system))
+                Path(folder, "scene.sdf").write_text(text)
+                pd.Parser(plant).AddModels(str(Path(folder, "scene.sdf")))
+        else:
+            pd.Parser(plant).AddModelsFromString(text, "sdf")
         plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -system.gravity])
         if system.friction is not None and settings.continuous:
             plant.set_stiction_tolerance(settings.stiction_tolerance)
         plant.Finalize()
         self.plant = plant
         self.nq, self.nv = plant.num_positions(), plant.num_velocities()
-        rocking = plant.GetJointByName("rocking")
-        self.xq, self.yq, self.thq = (rocking.position_start() + i for i in range(3))
-        self.xv, self.yv, self.thv = (rocking.velocity_start() + i for i in range(3))
+        self.statue = statue.Indices(plant) if statue.has_solid(system) else None
+        if self.statue is None:
+            rocking = plant.GetJointByName("rocking")
+            self.xq, self.yq, self.thq = (rocking.position_start() + i for i in range(3))
+            self.xv, self.yv, self.thv = (rocking.velocity_start() + i for i in range(3))
+        else:
+            self.xv = self.statue.xv
         if system.fixed_base:
             self.uq = self.uv = None
         else:
@@ -492,12 +531,22 @@ class _Built:
             forces[self.uv] = -system.base_mass * xg
         if motion.vertical is not None:
             # −m·üv on the block's world z, and the planar joint's y is −z: +m·üv on y (the base
-            # rides the ground vertically, welded or on its x joint)
-            forces[self.yv] = system.mass * np.asarray(motion.vertical(knots), dtype=float)
+            # rides the ground vertically, welded or on its x joint); a free body's z is the world's
+            vertical = system.mass * np.asarray(motion.vertical(knots), dtype=float)
+            if self.statue is None:
+                forces[self.yv] = vertical
+            else:
+                forces[self.statue.zv] = -vertical
         source = builder.AddSystem(pd.TrajectorySource(pd.PiecewisePolynomial.FirstOrderHold(knots, forces)))
         builder.Connect(source.get_output_port(), plant.get_applied_generalized_force_input_port())
         self.logger = pd.LogVectorOutput(plant.get_state_output_port(), builder, settings.sample_interval)
         self.diagram = builder.Build()
+
+    def tilt(self, data) -> tuple[np.ndarray, np.ndarray]:
+        """(θ, θ̇) of logged state columns."""
+        if self.statue is not None:
+            return statue.tilt(self.statue, self.nq, data)
+        return data[self.thq], data[self.nq + self.thv]
 
 
 def _force_knots(motion: GroundMotion, duration: float) -> np.ndarray:
@@ -539,7 +588,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: optional callable(t, duration), called between AdvanceTo chunks about once
     a second."""
     settings = (settings or Settings()).for_system(system)
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
+                                  two_edges=TWO_EDGES)
     check_system(system, settings)
     start = time.perf_counter()
     built = _Built(system, motion, settings, duration)
@@ -551,7 +601,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                                                    publish_every_time_step=False), simulator)
     context = simulator.get_mutable_context()
     plant_context = built.plant.GetMyMutableContextFromRoot(context)
-    built.plant.SetPositions(plant_context, _initial_positions(built, system, settings, theta0))
+    built.plant.SetPositions(plant_context, _initial_positions(built, system, settings, theta0) if built.statue is None
+                             else statue.initial_positions(built.plant, built.statue, built.nq, system, settings, theta0))
     built.plant.SetVelocities(plant_context, np.zeros(built.nv))
 
     status, message, stop_reason = Status.COMPLETED, "reached the end time", None
@@ -583,7 +634,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
             raise heard[0]
         log = built.logger.FindLog(context)
         new, new_t = log.data()[:, checked:], log.sample_times()[checked:]
-        k, reason = kinematics.first_stop(new_t, new[built.thq], new[built.nq + built.thv],
+        k, reason = kinematics.first_stop(new_t, *built.tilt(new),
                                           np.all(np.isfinite(new), axis=0), system=system,
                                           motion_end=motion.end_time)
         if reason == "non-finite":
@@ -609,6 +660,7 @@ def check_system(system: System, settings: Settings) -> None:
     The continuous plant's regularised Stribeck friction carries both (measured:
     docs/sliding_engines.md)."""
     settings = settings.for_system(system)
+    statue.check(system)
     _check_radius(system, settings.corner_radius)
     check_friction(system, settings.continuous, "Drake's discrete plant (timestep > 0)")
 
@@ -619,6 +671,9 @@ def _raw_history(built: _Built, system, motion, settings, times, data, runtime, 
     finite sample, with the extras of this geometry, and the slide where the run needs it
     (kinematics.slide_history: the box's sharp corners, as for every engine; the corner
     sphere's rolling, r·θ, stays below 2e-4·b, as the spheres are ∝ R)."""
+    if built.statue is not None:
+        return statue.raw_history(built, system, motion, settings, times, data, runtime, status, message,
+                                  stop_reason, ENGINE)
     times = np.asarray(times, dtype=float)
     data = np.asarray(data, dtype=float)
     finite = np.all(np.isfinite(data), axis=0)

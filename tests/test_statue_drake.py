@@ -1,0 +1,111 @@
+"""A statue's own shape in Drake (issue 36; docs/statues.md, "Drake on the statue's hull"): the hull's
+vertices as point-contact spheres on a free body, on the fixed base and the linear isolator, against
+the exact model of the statue's two edges, judged by the rows MuJoCo's statues are judged by; free
+rocking against each edge's closed forms; and the one-line refusals (the friction pendulum, a
+PlanarBody without its shape)."""
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+pd = pytest.importorskip("pydrake.all", reason="pydrake is not installed (the drake extra)")
+
+from isorock.analytic.errors import InputError  # noqa: E402
+from isorock.analytic.system import PlanarBody, System  # noqa: E402
+from isorock.drake_models import ENGINE  # noqa: E402
+from isorock.drake_models.scene import Settings, scene_text  # noqa: E402
+from isorock.validate.core.compare import exact_first_impact_time  # noqa: E402
+from isorock.validate.core.engines import get_engine  # noqa: E402
+from isorock.validate.core.measure import beta_errors  # noqa: E402
+from isorock.validate.core.tolerances import tolerance  # noqa: E402
+from isorock.validate.tools import statue_check as sc  # noqa: E402
+
+
+def test_drake_says_it_carries_a_statue():
+    assert ENGINE.capabilities.two_edges
+
+
+def test_the_statue_is_a_free_body_with_its_inertia_and_a_sphere_on_each_hull_vertex():
+    _, system = sc.example("bust", 1.0, "linear")
+    settings = Settings().for_system(system)
+    builder = pd.DiagramBuilder()
+    plant, graph = pd.AddMultibodyPlantSceneGraph(builder, 0.0)
+    pd.Parser(plant).AddModelsFromString(scene_text(system, settings), "sdf")
+    plant.Finalize()
+    body = plant.GetBodyByName("block")
+    assert body.is_floating_base_body()  # no planar joint: it may rock, wobble and twist in 3-D
+    assert plant.num_positions() == 7 + 1 and plant.num_velocities() == 6 + 1  # the free body and the isolator
+    inertia = body.default_spatial_inertia()
+    assert inertia.get_mass() == pytest.approx(system.mass, rel=1e-12)
+    tensor = inertia.CalcRotationalInertia().CopyToFullMatrix3()
+    assert tensor == pytest.approx(np.array(system.body.solid.inertia), rel=1e-12, abs=1e-12 * np.max(tensor))
+    inspector = graph.model_inspector()
+    spheres = [g for g in inspector.GetGeometries(plant.GetBodyFrameIdOrThrow(body.index()), pd.Role.kProximity)]
+    assert len(spheres) == len(system.body.solid.vertices)
+    # at rest each sphere's bottom is its vertex: the lowest ones on the plate's top face (z = 0)
+    lowest = min(inspector.GetPoseInFrame(g).translation()[2] - inspector.GetShape(g).radius() for g in spheres)
+    assert lowest + system.h == pytest.approx(0.0, abs=1e-12)
+
+
+#: the two-edge bust on a fixed base (β 0.64 and 0.73, alternating) and the obelisk on the linear
+#: isolator: robust references at θmax/α 0.05 (docs/scripts/statue_engines.py)
+CASES = [("bust", 3.0, "fixed"), ("obelisk", 3.0, "linear")]
+
+
+@pytest.mark.parametrize("name,scale,base", CASES)
+def test_drake_hull_rocks_as_the_exact_model_of_its_two_edges(name, scale, base):
+    _, system = sc.example(name, scale, base)
+    motion = sc.pulse(system, sc.amplitude_for(system, 0.05))
+    steady, spread = sc.robust(system, motion)
+    assert steady, f"the reference is no longer robust (spread {spread:.3f}): pick another case"
+    r = sc.compare(system, motion, "drake")
+    assert r["status"] == "completed"
+    # the rows MuJoCo's statues are judged by (tests/test_statue_engines.py)
+    assert r["theta_max_diff"] <= tolerance("mujoco", "theta_max_diff").limit, r
+    assert abs(r["impacts"] - r["exact_impacts"]) <= tolerance("mujoco", "impacts_diff").limit, r
+    assert r["impacts"] >= 1 and r["beta_rel_error"] <= tolerance("mujoco", "beta_rel_error").limit, r
+    assert r["overturned"] == (False, False)
+    assert r["history_error"] < 0.01, r
+    assert r["out_of_plane"] < 1e-6, r  # a statue symmetric across the shaking plane stays in it
+
+
+def test_free_rocking_on_each_edge_meets_its_closed_forms():
+    """From rest at 0.4·α₊ about the bust's forward edge: the first impact at model.md's t₁ of that
+    edge (quadrature, independent of any integrator), then impacts alternating edges, each with its
+    own edge's β (measure.impact_closed_forms)."""
+    _, system = sc.example("bust", 1.0, "fixed")
+    theta0 = 0.4 * system.edge_alpha(1)
+    tr = get_engine("drake").simulate(system, None, duration=1.2, theta0=theta0)
+    assert tr.status == "completed"
+    t1 = exact_first_impact_time(system, theta0)
+    assert tr.counted_impacts[0].t == pytest.approx(t1, rel=tolerance("drake", "first_impact_time_rel_error").limit)
+    errors = beta_errors(tr)
+    assert len(errors) >= 2 and max(abs(e) for e in errors) <= tolerance("drake", "beta_rel_error").limit, errors
+    assert {1 if i.theta_dot_pre > 0 else -1 for i in tr.counted_impacts[:2]} == {1, -1}
+
+
+def test_drake_refuses_the_friction_pendulum_and_a_body_without_its_shape_in_one_line():
+    _, system = sc.example("bust", 1.0, "friction-pendulum")
+    with pytest.raises(InputError) as exc:
+        get_engine("drake").simulate(system, sc.pulse(system, 2.0))
+    assert "friction" in str(exc.value) and len(str(exc.value).splitlines()) == 1
+    body = PlanarBody(centre_height=1.0, lever_forward=0.25, lever_backward=0.45, inertia=800 * (0.35**2 + 1.0) / 3)
+    with pytest.raises(InputError, match="body: Drake carries a statue's own shape") as exc:
+        get_engine("drake").simulate(System.of_body(body, mass=800.0), None, duration=1.0, theta0=0.1)
+    assert len(str(exc.value).splitlines()) == 1
+
+
+def test_run_a_statue_on_drake_from_the_command_line(tmp_path):
+    """`isorock run --engine drake --statue-example …`: the pendulum refused in one line (exit 2); on a
+    fixed base it runs."""
+    base = [sys.executable, "-m", "isorock.validate.cli", "run", "--engine", "drake", "--statue-example", "bust",
+            "--mass", "80"]
+    r = subprocess.run(base + ["--isolator", "friction-pendulum", "--motion", "sine:amp=0.5,freq=2,cycles=1"],
+                       capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    r = subprocess.run(base + ["--fixed-base", "--motion", "sine:amp=0.5,freq=2,cycles=1", "--duration", "1.0"],
+                       capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    assert r.returncode == 0, r.stderr
