@@ -576,11 +576,16 @@ class System:
     @property
     def rocking_rate(self) -> float:
         """p_eff (rad/s): the block's small-angle rocking rate with its base's recoil. A free
-        base takes m·h²·μ/(1+μ) of the block's inertia about its pivot, (4/3)·m·R², so
-        p_eff = p/√(1 − ¾·cos²α·μ/(1+μ)); p on a fixed base. Contact engines scale their
+        base takes m·h²·μ/(1+μ) of the block's inertia about its pivot, I_O = (4/3)·m·R², so
+        p_eff = p/√(1 − ¾·cos²α·μ/(1+μ)); p on a fixed base; a statue's, of its weaker edge's
+        own I_O = I_c + m·R²: p_eff = p/√(1 − m·h²/I_O·μ/(1+μ)). Contact engines scale their
         steps with it (docs/mujoco.md, "A rule that follows the system")."""
         share = 0.0 if self.fixed_base else self.mu / (1 + self.mu)
-        return self.p / math.sqrt(1 - 0.75 * math.cos(self.alpha) ** 2 * share)
+        if self.body is None:  # the block: m·h²/I_O = ¾·cos²α, its closed form (kept digit for digit)
+            return self.p / math.sqrt(1 - 0.75 * math.cos(self.alpha) ** 2 * share)
+        # a statue: its own inertia about its weaker edge, I_O = I_c + m·R², not the block's 4/3·m·R²
+        # (a bust's I_c is smaller: its base's recoil takes a larger share, it rocks faster)
+        return self.p / math.sqrt(1 - self.mass * self.h ** 2 / (self.inertia + self.mass * self.R ** 2) * share)
 
     @property
     def isolator_kind(self) -> str:

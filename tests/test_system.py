@@ -70,3 +70,30 @@ def test_the_same_block_on_the_other_base():
     M = iso.mass + iso.base_mass
     assert 2 * math.pi * math.sqrt(M / back.stiffness) == pytest.approx(2.0, rel=1e-14)
     assert back.damping / (2 * M * 2 * math.pi / 2.0) == pytest.approx(0.1, rel=1e-14)
+
+
+def test_the_rocking_rate_is_the_exact_models_own_with_its_base_recoil():
+    """System.rocking_rate (p_eff: what the contact engines scale their step and contact with) is
+    √(θ̈/θ-slope) of the exact model's own equations: at θ → 0 on its weaker edge, with no ground
+    motion and no spring, the free base's θ̈ over the fixed base's is (p_eff/p)² (the base's
+    recoil lightens the inertia about the pivot). Oracle: analytic.physics's 2-DOF equations, which
+    the rate's formula does not use; for the block, the ¾cos²α closed form, and for a statue its own
+    I_O = I_c + m·R² (a bust's I_c is not the block's m·R²/3)."""
+    from dataclasses import replace
+
+    from isorock.analytic import physics, shape
+    from isorock.analytic.system import PlanarBody
+    bust = PlanarBody.from_resting(shape.load_statue(example="bust", mass=80.0).along(0.0))
+    for mu in (0.2, 1.0, 5.0):
+        block = System.isolated(height=1.2, width=0.3, mass=250.0, base_mass=250.0 / mu, period=1e6,
+                                damping_ratio=0.0)
+        statue = replace(System.isolated(**bust.box, mass=80.0, base_mass=80.0 / mu, period=1e6, damping_ratio=0.0),
+                         body=bust)
+        for system in (block, statue):
+            side = 1 if system.body is None else system.body.weaker_side
+            free = physics.system_params(system, 0.0)
+            fixed = physics.system_params(system.on_fixed_base(), 0.0)
+            free[physics.K] = 0.0  # no spring: the base only recoils
+            _, free_acc, _ = physics.rocking_accelerations(free, side, 1e-9 * side, 0.0, 0.0, 0.0, 0.0)
+            _, fixed_acc, _ = physics.rocking_accelerations(fixed, side, 1e-9 * side, 0.0, 0.0, 0.0, 0.0)
+            assert (system.rocking_rate / system.p) ** 2 == pytest.approx(free_acc / fixed_acc, rel=1e-9), (mu, system.body)

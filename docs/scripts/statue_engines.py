@@ -33,6 +33,8 @@ def main() -> int:
     p.add_argument("--sizes", default="0.5,1,3")
     p.add_argument("--bases", default=",".join(sc.BASES))
     p.add_argument("--target", type=float, default=0.05)
+    p.add_argument("--base-mass-ratio", type=float, default=1.0,
+                   help="the base's mass over the statue's (default 1; below 1: a light plinth)")
     a = p.parse_args()
     start = time.perf_counter()
     print(f"load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
@@ -42,7 +44,7 @@ def main() -> int:
     for name in a.statues.split(","):
         for size in (float(x) for x in a.sizes.split(",")):
             for base in a.bases.split(","):
-                _, system = sc.example(name, size, base)
+                _, system = sc.example(name, size, base, base_mass_ratio=a.base_mass_ratio)
                 k = sc.amplitude_for(system, a.target)
                 motion = sc.pulse(system, k)
                 steady, spread = sc.robust(system, motion)
