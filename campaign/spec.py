@@ -238,6 +238,8 @@ def _statue(t, source: Path) -> dict:
     from isorock.analytic import shape
     table = t["statue"]
     mesh = table.get("mesh")
+    if mesh is not None and not str(mesh).strip():  # "" would be the campaign's own folder
+        raise _where("systems.statue.mesh", mesh, "a mesh file's path (relative to the campaign file)")
     if mesh is not None:
         mesh = Path(mesh) if Path(mesh).is_absolute() else Path(source).parent / mesh
     density = table.get("density")

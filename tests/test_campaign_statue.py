@@ -111,8 +111,9 @@ def test_a_changed_mesh_is_new_work_and_the_block_keeps_its_ids(tmp_path):
     ('statue = { example = "bust", unit = "mm" }\n', "systems.statue.unit = 'mm': an example statue is made in metres"),
     ('statue = { example = "bust", shape = "x" }\n', "systems.statue.shape: unknown key"),
     ('statue = { example = "bust" }\nfriction = 0.5\n', "friction: the sliding model takes the block"),
+    ('statue = { mesh = "", unit = "mm" }\n', "systems.statue.mesh = '': must be a mesh file's path"),
 ], ids=["height", "azimuth-alone", "azimuth-range", "density-and-mass", "unit-missing", "no-file", "unit-of-example",
-        "unknown-key", "friction"])
+        "unknown-key", "friction", "empty-path"])
 def test_a_bad_statue_table_is_one_line(tmp_path, systems, says):
     (tmp_path / "c.toml").write_text("[systems]\n" + systems + PULSES)
     with pytest.raises(InputError) as e:
