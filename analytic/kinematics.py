@@ -128,7 +128,7 @@ def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_
     on its side, and "the pivot" means nothing), lift_off_max_after_impact (m, after the first
     counted impact: a hop shows here), penetration_max (m) and, where the block can
     leave its plane, out_of_plane_max (largest of |y| in m and the roll and yaw tilts in
-    rad; both small). `counted_from`: index of the first counted impact, or None."""
+    rad, while |θ| ≤ α as the slip). `counted_from`: index of the first counted impact, or None."""
     theta = np.asarray(theta, dtype=float)
     upright = np.abs(theta) <= _per_side(np.where(theta >= 0, 1.0, -1.0), system.edge_alpha)
     slip = pivot_slip(system, x_centroid, theta, u)[upright]
@@ -139,8 +139,9 @@ def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_
         "lift_off_max_after_impact": float(np.max(after)) if after.size else 0.0,
         "penetration_max": float(max(0.0, -np.min(low))) if low.size else 0.0,
     }
-    if out_of_plane is not None:
-        out["out_of_plane_max"] = float(np.max(out_of_plane)) if np.size(out_of_plane) else 0.0
+    if out_of_plane is not None:  # while it rocks, as the slip: a fallen body lies anyhow
+        rocking = np.asarray(out_of_plane)[upright]
+        out["out_of_plane_max"] = float(np.max(rocking)) if rocking.size else 0.0
     return out
 
 

@@ -327,6 +327,11 @@ def _nan(v):
     return np.isnan(v) if v.dtype.kind == "f" else np.zeros(v.shape, bool)
 
 
+def _ended(cols) -> np.ndarray:
+    """Rows whose run ended as the model's can: it completed or overturned."""
+    return np.isin(cols["status"], ["completed", "overturned"])
+
+
 def agreement(cols, x: str, y: str) -> list[dict]:
     """Per contact (engine, setting): for each (x, y) cell, the fraction of cases whose
     verdict differs from the analytic one, and of those both survive, the fraction
@@ -345,6 +350,13 @@ def agreement(cols, x: str, y: str) -> list[dict]:
         keep = np.array([k in by_case for k in c["case"].tolist()], dtype=bool)
         c = _select(c, keep)
         r = _select(ref, np.array([by_case[k] for k in c["case"].tolist()], dtype=int))
+        # only runs that both ended as the model can end are compared: a contact run that slid (the
+        # model assumes no slip), left the model (a statue that rolled off its plane), or failed is
+        # counted apart by its status, never as agreement or disagreement
+        judged = _ended(c) & _ended(r)
+        apart = {str(k): int(v) for k, v in zip(*np.unique(c["status"][~_ended(c)], return_counts=True))}
+        cases = int(c["case"].size)
+        c, r = _select(c, judged), _select(r, judged)
         tol = theta_tolerance(pair[0])
         verdict = c["overturned"] != r["overturned"]
         both_survive = ~c["overturned"] & ~r["overturned"]
@@ -371,7 +383,9 @@ def agreement(cols, x: str, y: str) -> list[dict]:
             out.append({"engine": pair[0], "setting": pair[1], "x": x, "y": y, "xs": xs, "ys": ys,
                         "overturn_verdict": overturn, "theta_verdict": d_theta,
                         "verdict": np.where(n > 0, nv / n, np.nan), "theta": np.where(ns > 0, nt / ns, np.nan),
-                        "tolerance": tol, "cases": int(c["case"].size), "verdict_differs": int(verdict.sum()),
+                        "tolerance": tol, "cases": cases, "judged": int(c["case"].size),
+                        "not judged": ", ".join(f"{n} {k}" for k, n in sorted(apart.items())) or "none",
+                        "verdict_differs": int(verdict.sum()),
                         "both_survive": int(both_survive.sum()), "theta_departs": int(theta.sum())})
     return out
 
@@ -497,7 +511,8 @@ def write_products(table, out: Path, spec=None) -> list[Path]:
             lines += ["## Agreement with the analytic model", "", "![agreement](agreement.png)", "",
                       "θmax/α tolerance: the tolerance table's `theta_max_diff` for the engine "
                       f"(else {DEFAULT_THETA_TOLERANCE}).", ""]
-            lines += _md_table([{**{k: m[k] for k in ("engine", "setting", "cases", "verdict_differs",
+            lines += _md_table([{**{k: m[k] for k in ("engine", "setting", "cases", "judged", "not judged",
+                                                      "verdict_differs",
                                                       "both_survive", "theta_departs", "tolerance")},
                                  "overturning differs (share)": m["overturn_verdict"].cell(),
                                  "Δ median θmax/α": m["theta_verdict"].cell()}
@@ -506,6 +521,7 @@ def write_products(table, out: Path, spec=None) -> list[Path]:
                       f"{_judging()['confidence']:.0%} confidence: the share of cases whose overturning differs "
                       "by its exact interval against the tolerance table's verdict_disagreement_rate, the median "
                       "θmax/α difference where both survive by its bootstrap interval against the engine's "
-                      "ensemble_theta_max_diff.", ""]
+                      "ensemble_theta_max_diff; only the cases both engines ended as the model can (completed or "
+                      "overturned) are judged, the others counted apart by their status.", ""]
     write_text(out / "summary.md", "\n".join(lines) + "\n")
     return [out / "summary.md", *made]

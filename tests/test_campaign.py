@@ -440,6 +440,7 @@ def _suite_columns(capacities: dict, levels, *, theta_shift: dict | None = None)
                                  height=2.0, width=0.7, mass_ratio=math.nan, period=math.nan,
                                  damping_ratio=math.nan, motion=f"record{j}", intensity=float(x),
                                  amplitude_ratio=float(k), frequency_ratio=float(j), overturned=bool(x >= c),
+                                 status="overturned" if x >= c else "completed",
                                  theta_max_over_alpha=min(x / c, 0.99) + (theta_shift or {}).get(engine, 0.0)))
     return {key: np.array([r[key] for r in rows]) for key in rows[0]}
 
@@ -523,3 +524,24 @@ def test_the_statues_friction_is_an_axis_and_each_row_is_its_direct_run(tmp_path
         assert case.system.friction == row.friction
         assert row.slide_max == pytest.approx(direct["slide_max"], rel=1e-12, abs=1e-15)
     assert table[table["friction"] == 0.2]["slide_max"].max() > 0.01  # μ_s 0.2 < tanα 0.33: it slides
+
+
+def test_the_agreement_map_judges_only_runs_that_ended_as_the_model_can():
+    """A contact run that slid, left the model (a statue rolled off its plane) or failed is
+    counted apart by its status, never as agreement or disagreement. Oracle: the same table with
+    MuJoCo's disagreeing rows marked 'outside-model' judges the rest, which agree."""
+    from isorock.campaign.products import agreement
+    rng = np.random.default_rng(7)
+    cap = 0.7 * np.exp(0.3 * rng.standard_normal(12))
+    levels = np.geomspace(0.2, 2.0, 30)
+    cols = _suite_columns({"analytic": cap, "mujoco": cap / 1.45}, levels)
+    mujoco, analytic = cols["engine"] == "mujoco", cols["engine"] == "analytic"
+    before = agreement(cols, "intensity", "frequency_ratio")[0]
+    assert before["verdict_differs"] > 0 and before["judged"] == before["cases"] and before["not judged"] == "none"
+    ref_over = dict(zip(cols["case"][analytic].tolist(), cols["overturned"][analytic].tolist()))
+    differs = mujoco & np.array([o != ref_over[c] for c, o in zip(cols["case"].tolist(), cols["overturned"].tolist())])
+    cols["status"] = np.where(differs, "outside-model", cols["status"])
+    after = agreement(cols, "intensity", "frequency_ratio")[0]
+    assert after["verdict_differs"] == 0 and after["cases"] == before["cases"]
+    assert after["judged"] == before["cases"] - int(differs.sum())
+    assert after["not judged"] == f"{int(differs.sum())} outside-model"

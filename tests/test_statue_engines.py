@@ -203,3 +203,31 @@ def test_a_statues_report_names_the_statue(tmp_path):
     assert "the statue never lifted on the fixed base" in text and "the same statue on a fixed base" in text
     assert "the block never lifted" not in text and "no engine lifted the block" not in text
     assert "the statue never lifted" in r.stdout.strip().splitlines()[-1]
+
+
+def test_a_statue_that_leaves_its_plane_is_outside_the_model_not_slid():
+    """The bust shaken along its square plinth's diagonal rocks on a corner and rolls off the
+    plane the model of two edges rocks in (roll and yaw of its hull, a free body, measured while
+    it rocks): its run says so ('outside-model', not judged), where the planar pivot slip read
+    the roll as a slide. Shaken across an edge (0°: its plane of symmetry) it stays in its plane
+    (oracle: the mirror symmetry; MuJoCo's out-of-plane motion there is roundoff)."""
+    import math
+    from dataclasses import replace
+
+    from isorock.analytic import shape
+    from isorock.analytic.motion import GroundMotion
+    from isorock.analytic.system import PlanarBody, System
+    from isorock.validate.core.cases import pulse_for
+    from isorock.validate.core.measure import PLANE_LEFT
+    from isorock.validate.core.plan import simulate
+    resting = shape.load_statue(example="bust", mass=80.0)
+    out = {}
+    for azimuth in (0.0, 45.0):
+        body = PlanarBody.from_resting(resting.along(math.radians(azimuth)))
+        system = replace(System.fixed(**body.box, mass=80.0), body=body)
+        motion = GroundMotion.from_pulse(pulse_for(system, "sine", 1.0, 2.0, 1.0))
+        out[azimuth] = simulate(system, motion, engine="mujoco")
+    assert out[0.0].extras["out_of_plane_max"] < 1e-6 and str(out[0.0].status) != "outside-model"
+    diagonal = out[45.0]
+    assert diagonal.extras["out_of_plane_max"] > PLANE_LEFT
+    assert str(diagonal.status) == "outside-model" and "left its plane" in diagonal.message

@@ -60,6 +60,14 @@ REST_FRACTION = 1e-3
 #: under the report's pulses; a squat λ 0.89 block with friction 1 slides 0.6–0.7·b): a run of
 #: a statue without friction then breaks the analytic model's no-sliding assumption and says
 #: so in its status.
+#: A statue's hull (a free body) that rolls, turns or drifts sideways while it rocks (before it
+#: passes α) by more than this (rad of roll or yaw, or m across its plane) has left the plane the
+#: model of its two edges rocks in: rocking on a corner of its footprint (shaken along a diagonal),
+#: or turned by a centre of mass off the shaking plane. Its run is then outside the model, said in
+#: its status, not judged, and its planar pivot slip no measure (it read such a roll as a slide).
+#: Statues shaken across an edge stay within 4e-9 (docs/statues.md); the bust along its plinth's
+#: diagonal rolls 0.17–1.5 rad.
+PLANE_LEFT = 0.01
 
 
 def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = DEFAULT_IMPACT_THRESHOLD,
@@ -83,6 +91,13 @@ def measure(raw: RawHistory, motion: GroundMotion, *, impact_threshold: float = 
     status, message = raw.status, raw.message
     if overturned and status == Status.COMPLETED:
         status, message = Status.OVERTURNED, verdict.message
+    plane = raw.extras.get("out_of_plane_max")
+    if (system.body is not None and motion.transverse is None and plane is not None and plane > PLANE_LEFT
+            and not status.is_failure):
+        status = Status.OUTSIDE_MODEL
+        message = (f"the statue left its plane while it rocked (roll, yaw or sideways drift up to {plane:.3g}, more "
+                   f"than {PLANE_LEFT:g}): it rocked on a corner or turned, which the planar model of its two edges "
+                   "does not describe" + (f"; it also {message}" if overturned else ""))
     slip = raw.extras.get("pivot_slip_max")
     # with friction set, sliding is the model's too: compared (Trajectory.slide), not flagged
     if (system.friction is None and slip is not None and slip > SLIDING_FRACTION * system.b
