@@ -37,17 +37,19 @@ def test_the_statue_is_a_free_body_with_its_inertia_and_a_sphere_on_each_hull_ve
         # the principal moments in the inertial frame, turned back: the Solid's full tensor
         moments, axes = np.array(info[2]), statue.hull_contact.principal_axes(system)[1]
         assert axes @ np.diag(moments) @ axes.T == pytest.approx(np.array(system.body.solid.inertia), abs=1e-9)
-        shapes = client.getCollisionShapeData(scene.block, -1)
-        assert len(shapes) == len(system.body.solid.vertices)
         # at rest the statue's own frame is the world's and its centre of mass h above the plate's top
         pos, orn = scene.pose()
         assert np.allclose(pos, [0.0, 0.0, system.h], atol=1e-12)
         assert abs(abs(orn[3]) - 1.0) < 1e-12
-        # each sphere's bottom on its vertex: the lowest at the plate's top face (z = 0)
-        r = statue.radius(system)
-        assert all(s[3][0] == pytest.approx(r) for s in shapes)
-        centres = statue.hull_contact.vertex_sphere_centres(system, r)
-        assert float(np.min(centres[:, 2])) - r + system.h == pytest.approx(0.0, abs=1e-12)
+        # a sphere on each hull vertex, its bottom on the vertex: those of the plinth's face touch the
+        # plate's top (z = 0) at rest, at no depth (Bullet reports those at a distance ≤ 0: of the
+        # bust's 4 face vertices, 2 sit at −1e-17 and 2 at +1e-17 m, measured)
+        v = np.asarray(system.body.solid.vertices)
+        on_face = int(np.sum(v[:, 2] - np.min(v[:, 2]) < 1e-12))
+        client.performCollisionDetection()
+        points = client.getContactPoints(scene.block)
+        assert 2 <= len(points) <= on_face
+        assert max(abs(pt[8]) for pt in points) < 1e-9 * system.h
     finally:
         client.disconnect()
 
