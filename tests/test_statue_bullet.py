@@ -100,8 +100,8 @@ def test_bullet_refuses_a_body_without_its_shape_in_one_line():
 
 
 def test_run_a_statue_on_bullet_from_the_command_line(tmp_path):
-    """`isorock run --engine bullet --statue-example …` on a fixed base runs; a body without its shape
-    is refused in one line (exit 2)."""
+    """`isorock run --engine bullet --statue-example …` on a fixed base runs (it was refused in one line
+    before PyBullet carried a statue)."""
     base = [sys.executable, "-m", "isorock.validate.cli", "run", "--engine", "bullet", "--statue-example", "bust",
             "--mass", "80", "--fixed-base", "--motion", "sine:amp=0.5,freq=2,cycles=1", "--duration", "1.0"]
     r = subprocess.run(base, capture_output=True, text=True, cwd=tmp_path, timeout=120)
