@@ -57,10 +57,11 @@ with _c_output_silenced(fds=(1, 2)):
     import pybullet as p
     from pybullet_utils.bullet_client import BulletClient
 
-from isorock.analytic import kinematics
+from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.system import LINEAR, System
 
+from . import statue
 from .settings import Settings
 
 SCENE_FORMAT = ("SDF", ".sdf")
@@ -78,11 +79,26 @@ class Scene:
     block: int
     base: int
     plate_link: int  # -1 on a fixed base (the static body), 0 on an isolated base
+    #: a statue's own shape (statue.py): its inertial frame's orientation in its own frame, which
+    #: Bullet's poses are of (statue.link_orientation turns them back); None for the block
+    frame: tuple | None = None
+
+    def pose(self):
+        """(position, orientation) of the block's or statue's own frame (x, y, z, w)."""
+        pos, orn = self.client.getBasePositionAndOrientation(self.block)
+        return pos, (orn if self.frame is None else statue.link_orientation(orn, self.frame))
+
+    def reset_pose(self, pos, orn) -> None:
+        """Put the block or statue at `pos` with its own frame's orientation `orn`."""
+        self.client.resetBasePositionAndOrientation(
+            self.block, pos, orn if self.frame is None else statue.inertial_orientation(orn, self.frame))
 
 
 def _plate_half_extents(system: System):
     # wide enough that even an overturned block lands on it, and a statue that may slide walks on it
-    half = system.b + system.height + kinematics.slide_room(system)
+    # (a statue's own shape: past its hull in x and y, hull_contact.plate_half_width)
+    half = (hull_contact.plate_half_width(system) if statue.has_solid(system) else
+            system.b + system.height + kinematics.slide_room(system))
     return [half, half, 0.5 * PLATE_THICKNESS]
 
 
@@ -121,19 +137,23 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
         plate_link = 0
         # the joint's default velocity motor would hold the base still
         c.setJointMotorControl2(base, 0, p.VELOCITY_CONTROL, targetVelocity=0.0, force=0.0)
-    box = c.createCollisionShape(p.GEOM_BOX, halfExtents=[system.b, system.b, system.h])
-    x, z = kinematics.tilted_centroid(system, theta0)
-    pos, orn = [x, 0.0, z], p.getQuaternionFromEuler([0.0, theta0, 0.0])
-    # a plain rigid body (maximal coordinates), not a one-link Featherstone multibody: the
-    # same β to 0.01 points, ~10% less time per sub-step
-    block = c.createMultiBody(baseMass=system.mass, baseCollisionShapeIndex=box, basePosition=pos,
-                              baseOrientation=orn, useMaximalCoordinates=True)
+    frame = None
+    if statue.has_solid(system):  # its own shape in the block's place (statue.py)
+        block, frame = statue.build(c, p, system, theta0)
+    else:
+        box = c.createCollisionShape(p.GEOM_BOX, halfExtents=[system.b, system.b, system.h])
+        x, z = kinematics.tilted_centroid(system, theta0)
+        pos, orn = [x, 0.0, z], p.getQuaternionFromEuler([0.0, theta0, 0.0])
+        # a plain rigid body (maximal coordinates), not a one-link Featherstone multibody: the
+        # same β to 0.01 points, ~10% less time per sub-step
+        block = c.createMultiBody(baseMass=system.mass, baseCollisionShapeIndex=box, basePosition=pos,
+                                  baseOrientation=orn, useMaximalCoordinates=True)
     for (body, link), mu in zip(((block, -1), (base, plate_link)), lateral_frictions(system, settings)):
         c.changeDynamics(body, link, lateralFriction=mu, restitution=settings.restitution,
                          linearDamping=settings.linear_damping, angularDamping=settings.angular_damping,
                          activationState=p.ACTIVATION_STATE_DISABLE_SLEEPING,
                          contactProcessingThreshold=settings.contact_processing_threshold)
-    return Scene(client=c, block=block, base=base, plate_link=plate_link)
+    return Scene(client=c, block=block, base=base, plate_link=plate_link, frame=frame)
 
 
 def connect() -> BulletClient:

@@ -29,11 +29,15 @@ from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
+from . import statue
 from .scene import build, connect, p, run_client
 from .rest import Rest
 from .settings import Settings
 
 ENGINE = "bullet"
+#: Whether PyBullet carries a statue of two edges (its own shape, statue.py): what
+#: Capabilities.two_edges says, judged in docs/statues.md ("PyBullet on the statue's hull")
+TWO_EDGES = True
 #: |θ| below this fraction of α counts as "down": no sign change of θ there is an impact
 #: to keep out of the base-acceleration estimate.
 REST_FRACTION = 1e-3
@@ -46,7 +50,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: callable(t, duration), called about once a second."""
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  isolators=CONTACT_ISOLATORS, kinetic_friction=False)
+                                  isolators=CONTACT_ISOLATORS, kinetic_friction=False, two_edges=TWO_EDGES)
+    statue.check(system)
     check_contact_isolator(system, ENGINE)
     settings.check_isolator(system)
     linear = system.isolator_kind == LINEAR  # a fixed base too
@@ -84,7 +89,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         c, block, base = client, scene.block, scene.base
         set_gravity, step = c.setGravity, c.stepSimulation
         joint_state, motor = c.getJointState, c.setJointMotorControl2
-        pose, velocity = c.getBasePositionAndOrientation, c.getBaseVelocity
+        pose, velocity = (lambda _body: scene.pose()), c.getBaseVelocity  # the statue's own frame
         torque = p.TORQUE_CONTROL
         rows = []  # (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y, ẋ)
         slider = []  # a bearing's slider position u_p at each row
@@ -144,7 +149,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                         udd = (ud - ud_prev) / dt
                         c.resetJointState(base, 0, u, ud)
                     # Bullet's bodies where the rest phase left them: the block on the base, moving with it
-                    c.resetBasePositionAndOrientation(block, [u + offset, pos[1], pos[2]], orn)
+                    scene.reset_pose([u + offset, pos[1], pos[2]], orn)
                     c.resetBaseVelocity(block, [ud, 0.0, 0.0], [0.0, 0.0, 0.0])
                     resumed = True
                     continue

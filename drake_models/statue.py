@@ -32,7 +32,7 @@ import math
 
 import numpy as np
 
-from isorock.analytic import kinematics
+from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
@@ -45,9 +45,8 @@ COORDS = """The statue (link "block") has no joint: Drake's quaternion floating
      Tilt it by theta0 about world +y about the edge it rests on to start free rocking."""
 
 
-def has_solid(system: System) -> bool:
-    """True where the system is a statue of its own shape (System.body.solid)."""
-    return getattr(system.body, "solid", None) is not None
+#: the hull's engine-neutral geometry (analytic.hull_contact), shared with PyBullet's scene
+has_solid = hull_contact.has_solid
 
 
 def check(system: System) -> None:
@@ -62,8 +61,7 @@ def check(system: System) -> None:
 def contact_points(system: System, radius: float) -> np.ndarray:
     """Centres (body frame, about the centre of mass) of the spheres on the hull's vertices: r
     above each vertex, so that at rest the bottom of each sphere is the vertex."""
-    v = np.asarray(system.body.solid.vertices, dtype=float)
-    return v + np.array([0.0, 0.0, radius])
+    return hull_contact.vertex_sphere_centres(system, radius)
 
 
 def hull_obj(system: System) -> str:
@@ -102,8 +100,7 @@ def link(system: System, settings, props: str) -> str:
 
 def plate_half_width(system: System) -> float:
     """The plate reaches past the hull across the shaking direction too (as MuJoCo's)."""
-    v = np.asarray(system.body.solid.vertices, dtype=float)
-    return float(np.max(np.abs(v[:, :2]))) + system.height + kinematics.slide_room(system)
+    return hull_contact.plate_half_width(system)
 
 
 class Indices:
@@ -133,8 +130,8 @@ def initial_positions(plant, ix: Indices, nq: int, system: System, settings, the
     r(1 − cos θ0) so that the pivot's sphere, turned with the body, still just touches the plate."""
     q = np.zeros(nq)
     q[ix.quat] = (math.cos(theta0 / 2), 0.0, math.sin(theta0 / 2), 0.0)
-    x, z = kinematics.tilted_centroid(system, theta0)
-    q[ix.xq], q[ix.yq], q[ix.zq] = x, 0.0, z + settings.corner_radius * (1 - math.cos(theta0))
+    x, z = hull_contact.tilted_start(system, theta0, settings.corner_radius)
+    q[ix.xq], q[ix.yq], q[ix.zq] = x, 0.0, z
     return q
 
 
