@@ -28,13 +28,14 @@ from pathlib import Path
 import numpy as np
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.system import MAX_STATUE_FRICTION
 
 from . import data, processing, study
 
 #: the friction coefficients run (module doc: the data's simulation's 0.3–0.5 and 0.8)
 FRICTIONS = (0.3, 0.5, 0.8)
-#: the model's range of statue–base friction (System's own check is the final word)
-MAX_FRICTION = 2.0
+#: the model's own range of statue–base friction (System's check), so a value it takes is taken here
+MAX_FRICTION = MAX_STATUE_FRICTION
 
 
 def period_classes(outcomes, testlist) -> tuple[dict, float]:

@@ -68,7 +68,7 @@ def test_counts_by_hand():
 
 def test_bad_friction_exits_2_with_one_line():
     script = ROOT / "docs" / "scripts" / "experiments_misses.py"
-    for bad in ("-0.1", "nan", "0.3,abc", "5"):
+    for bad in ("-0.1", "nan", "0.3,abc", "11"):
         p = subprocess.run([sys.executable, str(script), "--friction", bad, "--data", str(ROOT)],
                            capture_output=True, text=True, timeout=120)
         assert p.returncode == 2, (bad, p.stderr)
