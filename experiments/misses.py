@@ -198,7 +198,7 @@ def table_lines(result) -> list[str]:
                     fixed = [f"{mu:g}" for mu in result["frictions"]
                              if r[f"slide_mu{mu:g}"] != "" and r[f"slide_mu{mu:g}"] == r["measured"]]
                     cells.append(f"{r['test']}" + (f" (sliding right at μ {','.join(fixed)})" if fixed else ""))
-                lines += ["", f"{spec}, {cls}-period, rigid {what}es ({len(wrong)}): " + ", ".join(cells)]
+                lines += ["", f"{spec}, {cls}-period, rigid {what}{'es' if what == 'miss' else 's'} ({len(wrong)}): " + ", ".join(cells)]
     b = result["beyond_x"]
     lines += ["", f"Data beyond the table's x acceleration: {b['file']} has {b['columns']} columns, "
                   f"header {b['header']!r}"]
