@@ -26,6 +26,8 @@ from isorock.analytic.errors import InputError, import_extra
 from isorock.analytic.status import Status
 from isorock.analytic.trajectory import RawHistory
 
+from . import statue
+
 #: the block's depth (m) over its width: out of the rocking plane, only its stability matters
 DEPTH_RATIO = 1.0
 #: the base plate's size against the block's width, and its thickness (m)
@@ -73,9 +75,12 @@ def _pose(tilt: float, b: float, h: float, z0: float):
 def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, progress=None) -> RawHistory:
     dart = import_extra("dartpy", "dart", "the engine 'dart'")
     settings = settings or Settings()
-    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings)
+    motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
+                                  two_edges=True)  # a statue without its shape: statue.check, below
     if system.friction is not None or motion.vertical is not None:  # said again for a direct caller
         raise InputError("system: engine 'dart' carries a statue that cannot slip, on level ground")
+    statue.check(system)
+    hull = statue.has_solid(system)
     h, b = system.h, system.b
     dt = float(settings.timestep)
     world = dart.simulation.World()
@@ -94,27 +99,35 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     below = dart.math.Isometry3()
     below.set_translation([0.0, 0.0, -0.5 * PLATE_THICKNESS])
     joint.setTransformFromParentBodyNode(below)  # the plate's top at z = 0
-    _box(plate, (PLATE_WIDTH_RATIO * system.width, DEPTH_RATIO * system.width * 2, PLATE_THICKNESS))
+    # a statue's plate is square, past its hull and where it lands overturned (hull_contact)
+    side = statue.plate_size(system) if hull else None
+    _box(plate, (side, side, PLATE_THICKNESS) if hull else
+         (PLATE_WIDTH_RATIO * system.width, DEPTH_RATIO * system.width * 2, PLATE_THICKNESS))
     world.addSkeleton(base)
 
     block = dart.dynamics.Skeleton("block")
     free, body = block.createFreeJointAndBodyNodePair()
-    depth = DEPTH_RATIO * system.width
-    _box(body, (system.width, depth, system.height), friction=settings.friction)
-    m = float(system.mass)
-    body.setMass(m)
-    body.setMomentOfInertia(m * (depth**2 + system.height**2) / 12, system.inertia,
-                            m * (system.width**2 + depth**2) / 12, 0.0, 0.0, 0.0)
-    R, centre = _pose(float(theta0), b, h, 0.0)
-    pose = dart.math.Isometry3()
-    pose.set_rotation(R)
-    pose.set_translation(centre)
-    free.setPositions(dart.dynamics.FreeJoint.convertToPositions(pose))
+    if hull:  # its own shape in the block's place (statue.py)
+        statue.build(dart, body, free, system, float(theta0), settings.friction)
+    else:
+        depth = DEPTH_RATIO * system.width
+        _box(body, (system.width, depth, system.height), friction=settings.friction)
+        m = float(system.mass)
+        body.setMass(m)
+        body.setMomentOfInertia(m * (depth**2 + system.height**2) / 12, system.inertia,
+                                m * (system.width**2 + depth**2) / 12, 0.0, 0.0, 0.0)
+        R, centre = _pose(float(theta0), b, h, 0.0)
+        pose = dart.math.Isometry3()
+        pose.set_rotation(R)
+        pose.set_translation(centre)
+        free.setPositions(dart.dynamics.FreeJoint.convertToPositions(pose))
     world.addSkeleton(block)
 
     every = max(1, int(round(SAMPLE_DT / dt)))
     n = int(math.ceil(duration / dt))
     rows = np.empty((n // every + 2, 5))
+    # a statue's wobble out of the plane and its centre of mass, for the contact engines' extras
+    more = np.empty((rows.shape[0], 5)) if hull else None
     k = 0
     status, message, start = Status.COMPLETED, "reached the end time", time.perf_counter()
 
@@ -126,6 +139,8 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
         return t, u, ud, theta, float(omega[1])
 
     rows[k] = row(0.0)
+    if hull:
+        more[k] = statue.row(body)
     k += 1
     for i in range(1, n + 1):
         t = i * dt
@@ -133,6 +148,8 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
         world.step()
         if i % every == 0 or i == n:
             rows[k] = row(min(t, duration))
+            if hull:
+                more[k] = statue.row(body)
             if not np.all(np.isfinite(rows[k])):
                 status, message = Status.FAILED, f"non-finite state at t = {t:.4g} s"
                 break
@@ -142,8 +159,10 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
         if progress is not None and i % 20000 == 0:
             progress(t, duration)
     rows = rows[:k]
+    extras = statue.extras(system, rows[:, 3], rows[:, 1], more[:k]) if hull else {}
     return RawHistory(engine="dart", system=system, t=rows[:, 0], u=rows[:, 1], u_dot=rows[:, 2], theta=rows[:, 3],
-                      theta_dot=rows[:, 4], status=status, message=message, runtime_s=time.perf_counter() - start)
+                      theta_dot=rows[:, 4], status=status, message=message, runtime_s=time.perf_counter() - start,
+                      extras=extras)
 
 
 def ladder(quick: bool):
@@ -155,7 +174,8 @@ def ladder(quick: bool):
 ENGINE = EngineSpec(
     name="dart", label="DART", settings_type=Settings, simulate=simulate, ladder=ladder,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False, campaigns=False,
-                              isolators=("linear",), kinetic_friction=False, statue_friction=False, vertical=False),
+                              isolators=("linear",), kinetic_friction=False, statue_friction=False, vertical=False,
+                              two_edges=True),
     presets={"default": Preset("a 0.1 ms step, restitution 0, friction 1 (docs/dart.md)", Settings),
              "coarse": Preset("a 1 ms step: what DART's step costs in β (docs/dart.md)",
                               lambda: Settings(timestep=1e-3))})
