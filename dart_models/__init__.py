@@ -10,8 +10,8 @@ enters as the uniform inertial field of the base's translating frame: the gravit
 does the same), so u is the base's joint position relative to the ground.
 
 What it carries: the linear isolator, a statue that cannot slip on its base (its friction is
-DART's high default, Settings.friction), horizontal ground motion (Capabilities below: anything
-else is refused in one line). Measured in docs/dart.md; its limits in validate/core/tolerances.py.
+DART's high default, Settings.friction), horizontal ground motion, a statue's own shape in the
+block's place (statue.py; Capabilities below: anything else is refused in one line). Measured in docs/dart.md; its limits in validate/core/tolerances.py.
 """
 from __future__ import annotations
 
@@ -34,6 +34,9 @@ DEPTH_RATIO = 1.0
 PLATE_WIDTH_RATIO, PLATE_THICKNESS = 6.0, 0.1
 #: a row of the history every this many seconds (at most), as the other contact engines store
 SAMPLE_DT = 1e-3
+#: a statue's own shape (statue.py) is carried: Capabilities.two_edges says so, judged in
+#: docs/statues.md ("DART on the statue's hull": the bust and the obelisk within MuJoCo's statue rows)
+TWO_EDGES = True
 
 
 @dataclass(frozen=True)
@@ -76,7 +79,7 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     dart = import_extra("dartpy", "dart", "the engine 'dart'")
     settings = settings or Settings()
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  two_edges=True)  # a statue without its shape: statue.check, below
+                                  two_edges=TWO_EDGES)  # a statue without its shape: statue.check, below
     if system.friction is not None or motion.vertical is not None:  # said again for a direct caller
         raise InputError("system: engine 'dart' carries a statue that cannot slip, on level ground")
     statue.check(system)
@@ -175,7 +178,7 @@ ENGINE = EngineSpec(
     name="dart", label="DART", settings_type=Settings, simulate=simulate, ladder=ladder,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False, campaigns=False,
                               isolators=("linear",), kinetic_friction=False, statue_friction=False, vertical=False,
-                              two_edges=True),
+                              two_edges=TWO_EDGES),
     presets={"default": Preset("a 0.1 ms step, restitution 0, friction 1 (docs/dart.md)", Settings),
              "coarse": Preset("a 1 ms step: what DART's step costs in β (docs/dart.md)",
                               lambda: Settings(timestep=1e-3))})
