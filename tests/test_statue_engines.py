@@ -130,17 +130,16 @@ def _isorock(*args, cwd):
 
 
 def test_validate_a_statue_skips_the_engine_that_cannot_carry_it(tmp_path):
-    # DART builds the box H × B only (PyBullet carries a statue since docs/statues.md, "PyBullet on
-    # the statue's hull")
-    pytest.importorskip("dartpy", reason="dartpy is not installed (the dart extra)")
+    # MJX builds the box H × B only (PyBullet and DART carry a statue since docs/statues.md, "PyBullet
+    # on the statue's hull" and "DART on the statue's hull"); the refusal needs no jax
     out = tmp_path / "report"
     r = _isorock("validate", "--statue-example", "bust", "--mass", "80", "--base-mass", "150", "--period", "2",
-                 "--damping-ratio", "0.15", "--quick", "--engines", "analytic", "dart", "--out", str(out),
+                 "--damping-ratio", "0.15", "--quick", "--engines", "analytic", "mjx", "--out", str(out),
                  "--quiet", cwd=tmp_path)
     assert r.returncode in (0, 1), r.stderr
     text = (out / "report.md").read_text()
-    assert "| dart | SKIPPED | cannot carry this system: body:" in text
-    assert "Engines skipped: dart" in r.stdout.strip().splitlines()[-1]
+    assert "| mjx | SKIPPED | cannot carry this system: body:" in text
+    assert "Engines skipped: mjx" in r.stdout.strip().splitlines()[-1]
 
 
 def test_a_config_files_statue_table(tmp_path):
