@@ -194,7 +194,7 @@ def records_folder(tmp_path_factory):
     (["--statue-example", "bust", "--mass", "80", "--height", "1"], "--height"),
     (["--statue-example", "bust", "--mass", "80", "--friction", "0.5"], "--friction"),
     (["--statue-example", "bust"], "--mass"),
-    (["--statue-example", "bust", "--mass", "80", "--check", "bullet"], "two different edges"),
+    (["--statue-example", "bust", "--mass", "80", "--check", "mjx"], "two different edges"),
 ])
 def test_bad_input_is_one_line_exit_2_and_writes_nothing(args, field, tmp_path, capsys, records_folder):
     out = tmp_path / "out"

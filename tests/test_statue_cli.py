@@ -123,7 +123,7 @@ def test_run_help_names_every_example_and_unit(capsys):
     (["--statue-example", "bust"], "one of the two"),  # neither (the block's default mass is not the statue's)
     (["--statue", "bust.stl", "--mass", "80"], "--unit"),
     (["--unit", "mm"], "describes a statue's mesh"),
-    (["--statue-example", "bust", "--mass", "80", "--engine", "bullet"], "two different edges"),
+    (["--statue-example", "bust", "--mass", "80", "--engine", "mjx"], "two different edges"),
     (["--statue-example", "bust", "--mass", "80", "--statue-friction", "0.5"], "--statue-friction"),
 ], ids=["height", "unknown-example", "unknown-unit", "mass-and-density", "no-mass", "no-unit", "unit-alone", "contact-engine", "friction"])
 def test_run_with_a_statue_refuses_in_one_line(args, says, capsys, tmp_path, monkeypatch):
