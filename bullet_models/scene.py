@@ -57,6 +57,7 @@ with _c_output_silenced(fds=(1, 2)):
     import pybullet as p
     from pybullet_utils.bullet_client import BulletClient
 
+from isorock.analytic.errors import InputError
 from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.system import LINEAR, System
@@ -259,6 +260,9 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     """The scene as an SDF world (block upright at rest), loadable with `p.loadSDF`.
     SDF rather than URDF because a URDF holds one tree and the block is a second, free
     body. The numerical settings do not live in SDF; the header comment lists them."""
+    if system.body is not None:  # the file below holds the block: a statue's would be a different body, unsaid
+        raise InputError("body: PyBullet's model file holds the block H × B; a statue's hull (its vertices' "
+                         "spheres on a free body, bullet_models/statue.py) is built in memory only")
     settings = settings or Settings()
     w = 2 * _plate_half_extents(system)[0]
     plate_mass = 0.0 if system.fixed_base else system.base_mass

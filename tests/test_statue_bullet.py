@@ -106,3 +106,15 @@ def test_run_a_statue_on_bullet_from_the_command_line(tmp_path):
             "--mass", "80", "--fixed-base", "--motion", "sine:amp=0.5,freq=2,cycles=1", "--duration", "1.0"]
     r = subprocess.run(base, capture_output=True, text=True, cwd=tmp_path, timeout=120)
     assert r.returncode == 0, r.stderr
+
+
+def test_pybullets_model_file_refuses_a_statue_rather_than_write_the_block():
+    """PyBullet's SDF holds the block; asked for a statue's it says so in one line instead of
+    writing a file of another body."""
+    from isorock.analytic.errors import InputError
+    from isorock.validate.core.engines import get_engine
+    from isorock.validate.tools import statue_check as sc
+    _, system = sc.example("bust", 1.0, "fixed")
+    with pytest.raises(InputError, match="model file holds the block") as e:
+        get_engine("bullet").scene_text(system)
+    assert "\n" not in str(e.value)
