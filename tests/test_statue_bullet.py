@@ -16,11 +16,9 @@ from isorock.analytic.system import PlanarBody, System
 from isorock.bullet_models import ENGINE, Settings
 from isorock.bullet_models import statue
 from isorock.bullet_models.scene import build, connect
-from isorock.validate.core.compare import exact_first_impact_time
 from isorock.validate.core.engines import get_engine
-from isorock.validate.core.measure import beta_errors
-from isorock.validate.core.tolerances import tolerance
 from isorock.validate.tools import statue_check as sc
+from statue_judging import judge_free_rocking, judge_hull
 
 
 def test_bullet_says_it_carries_a_statue():
@@ -62,34 +60,13 @@ CASES = [("bust", 1.0, "fixed"), ("bust", 1.0, "friction-pendulum"), ("obelisk",
 
 @pytest.mark.parametrize("name,scale,base", CASES)
 def test_bullet_hull_rocks_as_the_exact_model_of_its_two_edges(name, scale, base):
-    _, system = sc.example(name, scale, base)
-    motion = sc.pulse(system, sc.amplitude_for(system, 0.05))
-    steady, spread = sc.robust(system, motion)
-    assert steady, f"the reference is no longer robust (spread {spread:.3f}): pick another case"
-    r = sc.compare(system, motion, "bullet")
-    assert r["status"] == "completed"
-    # the rows MuJoCo's statues are judged by (tests/test_statue_engines.py)
-    assert r["theta_max_diff"] <= tolerance("mujoco", "theta_max_diff").limit, r
-    assert abs(r["impacts"] - r["exact_impacts"]) <= tolerance("mujoco", "impacts_diff").limit, r
-    assert r["impacts"] >= 1 and r["beta_rel_error"] <= tolerance("mujoco", "beta_rel_error").limit, r
-    assert r["overturned"] == (False, False)
-    assert r["history_error"] < 0.01, r
+    judge_hull("bullet", name, scale, base)
 
 
 @pytest.mark.parametrize("side", [1, -1])
 def test_free_rocking_on_each_edge_meets_its_closed_forms(side):
-    """From rest at 0.4·α of each of the bust's two edges: the first impact at model.md's t₁ of that
-    edge (quadrature, independent of any integrator), then impacts alternating edges, each with its
-    own edge's β (measure.impact_closed_forms), by PyBullet's block rows."""
-    _, system = sc.example("bust", 1.0, "fixed")
-    theta0 = side * 0.4 * system.edge_alpha(side)
-    tr = get_engine("bullet").simulate(system, None, duration=1.2, theta0=theta0)
-    assert tr.status == "completed"
-    t1 = exact_first_impact_time(system, theta0)
-    assert tr.counted_impacts[0].t == pytest.approx(t1, rel=tolerance("bullet", "first_impact_time_rel_error").limit)
-    errors = beta_errors(tr)
-    assert len(errors) >= 4 and max(abs(e) for e in errors) <= tolerance("bullet", "beta_rel_error").limit, errors
-    assert {1 if i.theta_dot_pre > 0 else -1 for i in tr.counted_impacts[:2]} == {1, -1}
+    """Free rocking from 0.4·α of each of the bust's edges, by PyBullet's block rows."""
+    judge_free_rocking("bullet", side)
 
 
 def test_bullet_refuses_a_body_without_its_shape_in_one_line():

@@ -15,11 +15,9 @@ from isorock.analytic.errors import InputError  # noqa: E402
 from isorock.analytic.system import PlanarBody, System  # noqa: E402
 from isorock.dart_models import ENGINE  # noqa: E402
 from isorock.dart_models import statue  # noqa: E402
-from isorock.validate.core.compare import exact_first_impact_time  # noqa: E402
 from isorock.validate.core.engines import get_engine  # noqa: E402
-from isorock.validate.core.measure import beta_errors  # noqa: E402
-from isorock.validate.core.tolerances import tolerance  # noqa: E402
 from isorock.validate.tools import statue_check as sc  # noqa: E402
+from statue_judging import judge_free_rocking, judge_hull  # noqa: E402
 
 
 def test_dart_says_it_carries_a_statue():
@@ -54,34 +52,14 @@ CASES = [("bust", 1.0, "fixed"), ("obelisk", 3.0, "linear")]
 
 @pytest.mark.parametrize("name,scale,base", CASES)
 def test_dart_hull_rocks_as_the_exact_model_of_its_two_edges(name, scale, base):
-    _, system = sc.example(name, scale, base)
-    motion = sc.pulse(system, sc.amplitude_for(system, 0.05))
-    steady, spread = sc.robust(system, motion)
-    assert steady, f"the reference is no longer robust (spread {spread:.3f}): pick another case"
-    r = sc.compare(system, motion, "dart")
-    assert r["status"] == "completed"
-    # the rows MuJoCo's statues are judged by (tests/test_statue_engines.py)
-    assert r["theta_max_diff"] <= tolerance("mujoco", "theta_max_diff").limit, r
-    assert abs(r["impacts"] - r["exact_impacts"]) <= tolerance("mujoco", "impacts_diff").limit, r
-    assert r["impacts"] >= 1 and r["beta_rel_error"] <= tolerance("mujoco", "beta_rel_error").limit, r
-    assert r["overturned"] == (False, False)
+    r = judge_hull("dart", name, scale, base)
     assert r["out_of_plane"] < 1e-9, r  # it stays in its plane, as MuJoCo's and Drake's hulls
 
 
 @pytest.mark.parametrize("side", [1, -1])
 def test_free_rocking_on_each_edge_meets_its_closed_forms(side):
-    """From rest at 0.4·α of each of the bust's two edges: the first impact at model.md's t₁ of that
-    edge (quadrature, independent of any integrator), then impacts alternating edges, each with its
-    own edge's β (measure.impact_closed_forms), by DART's block rows."""
-    _, system = sc.example("bust", 1.0, "fixed")
-    theta0 = side * 0.4 * system.edge_alpha(side)
-    tr = get_engine("dart").simulate(system, None, duration=1.2, theta0=theta0)
-    assert tr.status == "completed"
-    t1 = exact_first_impact_time(system, theta0)
-    assert tr.counted_impacts[0].t == pytest.approx(t1, rel=tolerance("dart", "first_impact_time_rel_error").limit)
-    errors = beta_errors(tr)
-    assert len(errors) >= 4 and max(abs(e) for e in errors) <= tolerance("dart", "beta_rel_error").limit, errors
-    assert {1 if i.theta_dot_pre > 0 else -1 for i in tr.counted_impacts[:2]} == {1, -1}
+    """Free rocking from 0.4·α of each of the bust's edges, by DART's block rows."""
+    judge_free_rocking("dart", side)
 
 
 def test_dart_refuses_what_it_does_not_carry_in_one_line():

@@ -21,6 +21,7 @@ from isorock.validate.core.engines import get_engine
 from isorock.validate.core.measure import beta_errors, impact_closed_forms
 from isorock.validate.core.tolerances import tolerance
 from isorock.validate.tools import statue_check as sc
+from statue_judging import judge_hull
 from isorock.validate.tools.report_run import effective_beta
 
 #: robust cases (the exact model's θmax/α moves < 0.05 under ±1% of the pulse) of the two statues
@@ -36,16 +37,7 @@ def _case(name, scale, base, target=0.05):
 
 @pytest.mark.parametrize("name,scale,base", CASES)
 def test_mujoco_hull_rocks_as_the_exact_model_of_its_two_edges(name, scale, base):
-    system, motion = _case(name, scale, base)
-    steady, spread = sc.robust(system, motion)
-    assert steady, f"the reference is no longer robust (spread {spread:.3f}): pick another case"
-    r = sc.compare(system, motion, "mujoco")
-    assert r["status"] == "completed"
-    assert r["theta_max_diff"] <= tolerance("mujoco", "theta_max_diff").limit, r
-    assert abs(r["impacts"] - r["exact_impacts"]) <= tolerance("mujoco", "impacts_diff").limit, r
-    assert r["impacts"] >= 1 and r["beta_rel_error"] <= tolerance("mujoco", "beta_rel_error").limit, r
-    assert r["overturned"] == (False, False)
-    assert r["history_error"] < 0.01, r  # |Δθ|/α over the whole run, beside the peak
+    judge_hull("mujoco", name, scale, base)
 
 
 def test_the_statue_is_its_hull_on_a_free_joint_and_the_plate_reaches_past_it():
