@@ -255,7 +255,7 @@ def check_transverse(system: "System", motion: "GroundMotion", transverse: bool,
         return
     if not transverse:
         raise InputError(f"transverse = {motion.transverse.name or 'a second component'}: {engine} runs one "
-                         "horizontal component only (engine 'mujoco' carries two)")
+                         "horizontal component only (engines 'mujoco' and 'bullet' carry two)")
     if not system.fixed_base and system.isolator_kind != LINEAR:
         raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be linear "
                          "(isotropic: the same k and c along x and y) or a fixed base")
