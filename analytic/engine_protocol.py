@@ -73,7 +73,7 @@ class Capabilities:
     #: is refused such a System in one line (check_body), never runs the box in its place
     two_edges: bool = False
     #: it carries a second horizontal ground-motion component (GroundMotion.transverse: a record
-    #: pair, issue 36): MuJoCo's scene, whose body may leave the plane; a planar model, or a
+    #: pair, issue 36): MuJoCo's and PyBullet's scenes, whose body may leave the plane; a planar model, or a
     #: contact engine on planar joints, is refused such a motion in one line (check_transverse),
     #: never runs the first component alone in its place
     transverse: bool = False

@@ -5,6 +5,9 @@ a time, and the states as a RawHistory (measured outside the engine, by the regi
   ground (model.md), held over a control step and so taken at its middle, as MuJoCo
   takes its forces (at its start it would lag by half a step); a vertical üv makes its z
   −(g + üv), the base riding the ground vertically (it moves on its x joint alone);
+- a second horizontal component ÿg (GroundMotion.transverse) is gravity's y, −ÿg, the same way;
+  on the linear isolator the plate's y joint (scene.build(transverse=True)) takes the isolator
+  force by the x joint's rule; a pair is stepped throughout (the rest phase is planar);
 - the isolator force is held by Bullet over the sub-steps, so it is evaluated at the
   sub-steps' mean time: −(k(u + l u̇) + c(u̇ + l ü)), l = (n − 1)/(2n)·dt, with ü the base
   acceleration of the last step (kept from the step before when θ changed sign over it:
