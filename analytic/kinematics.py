@@ -145,6 +145,19 @@ def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_
     return out
 
 
+
+def pair_extras(extras: dict, *, orientation, y_centroid, u_y) -> dict:
+    """A contact engine's extras of a run of two horizontal components (GroundMotion.transverse),
+    one vocabulary for every engine that carries them: the histories (not scalars) the
+    two-component measures read (validate.core.biaxial): `orientation` (the body's own frame,
+    quaternions w x y z per row), `y_centroid` (m), `u_y` (the base along y, m; zeros on a fixed
+    base). The planar pivot's slip is dropped: it reads the corner on x and θ about y, so a
+    statue leaning along y or a diagonal would read as sliding (its 3-D slip is not measured yet)."""
+    extras.pop("pivot_slip_max", None)
+    extras.update(orientation=np.asarray(orientation, dtype=float), y_centroid=np.asarray(y_centroid, dtype=float),
+                  u_y=np.asarray(u_y, dtype=float))
+    return extras
+
 # --- when a run stops -------------------------------------------------------------------
 
 #: |θ| at which the block lies on its side: the rocking equations end there (model.md).

@@ -10,7 +10,7 @@ from isorock.analytic.isolator_parts import CONTACT_ISOLATORS
 
 from .scene import SCENE_FORMAT, build, connect, scene_text
 from .settings import Settings, settings_for, settings_for_timestep
-from .stepping import TWO_EDGES, simulate, step_cost
+from .stepping import TRANSVERSE, TWO_EDGES, simulate, step_cost
 
 
 def ladder(quick: bool):
@@ -41,7 +41,7 @@ ENGINE = EngineSpec(
     name="bullet", label="PyBullet", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
                               isolators=CONTACT_ISOLATORS, kinetic_friction=False,
-                              two_edges=TWO_EDGES),
+                              two_edges=TWO_EDGES, transverse=TRANSVERSE),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, simulate_body=_simulate_body,
     presets={
         "default": Preset("the measured default, its step following the block (docs/bullet.md, \"Settings that follow "

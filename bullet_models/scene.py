@@ -79,7 +79,7 @@ class Scene:
     client: BulletClient
     block: int
     base: int
-    plate_link: int  # -1 on a fixed base (the static body), 0 on an isolated base
+    plate_link: int  # -1 on a fixed base (the static body), 0 on an isolated base (1 with two components)
     #: a statue's own shape (statue.py): its inertial frame's orientation in its own frame, which
     #: Bullet's poses are of (statue.link_orientation turns them back); None for the block
     frame: tuple | None = None
@@ -116,8 +116,14 @@ def lateral_frictions(system: System, settings: Settings) -> tuple[float, float]
 
 
 
-def build(client: BulletClient, system: System, settings: Settings, theta0: float = 0.0) -> Scene:
-    """Create the bodies in `client` (a fresh DIRECT client) and set the physics."""
+def build(client: BulletClient, system: System, settings: Settings, theta0: float = 0.0, *,
+          transverse: bool = False) -> Scene:
+    """Create the bodies in `client` (a fresh DIRECT client) and set the physics. `transverse`:
+    the scene of two horizontal components (GroundMotion.transverse): on an isolated base the
+    plate rides a second prismatic joint along y (joint 1) under the x joint's massless carriage,
+    the same k and c applied to both (the linear isolator is isotropic; stepping.py); without it
+    the scene is the one-component scene, unchanged. A fixed base and the free body are the same
+    in both (the plate is already as wide as it is long)."""
     c = client
     c.setPhysicsEngineParameter(fixedTimeStep=settings.control_step, numSubSteps=settings.substeps,
                                 numSolverIterations=settings.solver_iterations,
@@ -128,7 +134,7 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
     if system.fixed_base:
         base = c.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=plate, basePosition=top)
         plate_link = -1
-    else:
+    elif not transverse:
         base = c.createMultiBody(
             baseMass=0.0, baseCollisionShapeIndex=-1, basePosition=[0.0, 0.0, 0.0],
             linkMasses=[system.base_mass], linkCollisionShapeIndices=[plate], linkVisualShapeIndices=[-1],
@@ -138,6 +144,20 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
         plate_link = 0
         # the joint's default velocity motor would hold the base still
         c.setJointMotorControl2(base, 0, p.VELOCITY_CONTROL, targetVelocity=0.0, force=0.0)
+    else:
+        # two joints in series: a massless, shapeless carriage on x (link 0), the plate on y on it
+        # (link 1): the plate's mass m_b moves along both (the x joint's articulated inertia is the
+        # plate's, carried by the carriage), and u, u_y are the two joints' positions
+        base = c.createMultiBody(
+            baseMass=0.0, baseCollisionShapeIndex=-1, basePosition=[0.0, 0.0, 0.0],
+            linkMasses=[0.0, system.base_mass], linkCollisionShapeIndices=[-1, plate],
+            linkVisualShapeIndices=[-1, -1], linkPositions=[[0, 0, 0], top],
+            linkOrientations=[[0, 0, 0, 1]] * 2, linkInertialFramePositions=[[0, 0, 0]] * 2,
+            linkInertialFrameOrientations=[[0, 0, 0, 1]] * 2, linkParentIndices=[0, 1],
+            linkJointTypes=[p.JOINT_PRISMATIC] * 2, linkJointAxis=[[1, 0, 0], [0, 1, 0]])
+        plate_link = 1
+        for joint in (0, 1):  # the joints' default velocity motors would hold the base still
+            c.setJointMotorControl2(base, joint, p.VELOCITY_CONTROL, targetVelocity=0.0, force=0.0)
     frame = None
     if statue.has_solid(system):  # its own shape in the block's place (statue.py)
         block, frame = statue.build(c, p, system, theta0)

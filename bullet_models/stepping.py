@@ -5,6 +5,9 @@ a time, and the states as a RawHistory (measured outside the engine, by the regi
   ground (model.md), held over a control step and so taken at its middle, as MuJoCo
   takes its forces (at its start it would lag by half a step); a vertical üv makes its z
   −(g + üv), the base riding the ground vertically (it moves on its x joint alone);
+- a second horizontal component ÿg (GroundMotion.transverse) is gravity's y, −ÿg, the same way;
+  on the linear isolator the plate's y joint (scene.build(transverse=True)) takes the isolator
+  force by the x joint's rule; a pair is stepped throughout (the rest phase is planar);
 - the isolator force is held by Bullet over the sub-steps, so it is evaluated at the
   sub-steps' mean time: −(k(u + l u̇) + c(u̇ + l ü)), l = (n − 1)/(2n)·dt, with ü the base
   acceleration of the last step (kept from the step before when θ changed sign over it:
@@ -17,6 +20,7 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -38,6 +42,10 @@ ENGINE = "bullet"
 #: Whether PyBullet carries a statue of two edges (its own shape, statue.py): what
 #: Capabilities.two_edges says, judged in docs/statues.md ("PyBullet on the statue's hull")
 TWO_EDGES = True
+#: Whether PyBullet carries two horizontal components (GroundMotion.transverse) on a fixed base
+#: and the linear isolator: what Capabilities.transverse says, judged in docs/statues.md ("Two
+#: horizontal components", PyBullet) by tests/test_two_components_bullet.py
+TRANSVERSE = True
 #: |θ| below this fraction of α counts as "down": no sign change of θ there is an impact
 #: to keep out of the base-acceleration estimate.
 REST_FRACTION = 1e-3
@@ -50,7 +58,13 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     progress: callable(t, duration), called about once a second."""
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  isolators=CONTACT_ISOLATORS, kinetic_friction=False, two_edges=TWO_EDGES)
+                                  isolators=CONTACT_ISOLATORS, kinetic_friction=False, two_edges=TWO_EDGES,
+                                  transverse=TRANSVERSE)
+    transverse = motion.transverse is not None
+    if transverse:
+        # stepped throughout, as MuJoCo's pair is: the rest phase carries the body on the base
+        # along x alone (rest.py), so it would lose ÿg
+        settings = replace(settings, phased=False)
     statue.check(system)
     check_contact_isolator(system, ENGINE)
     settings.check_isolator(system)
@@ -71,6 +85,9 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     g = system.gravity
     # gravity's z at each control step's middle: −(g + üv) with a vertical motion, else −g throughout
     gz = [-g] * len(xg) if motion.vertical is None else (-(g + np.asarray(motion.vertical(mids)))).tolist()
+    # the second horizontal component ÿg as gravity's y, as ẍg is its x (every body, the plate
+    # too, feels −m·ÿg); 0.0 throughout without one, as before
+    gy = (-np.asarray(motion.transverse_at(mids), dtype=float)).tolist() if transverse else [0.0] * len(xg)
     k, c_dash = system.stiffness, system.damping
     element = None if linear else Element(isolator_parts(system))
     if element is not None:
@@ -80,24 +97,28 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     rocking = REST_FRACTION * system.alpha
     every = settings.output_every
     fixed = system.fixed_base
-    motion_end = motion.end_time
+    # two components: the 'falling' rule reads θ, the tilt's projection on xz, and a statue leaning
+    # on a diagonal past the x edge's α may still stand; it is planar, so it never stops a 3-D run
+    # ('lying' holds), as in MuJoCo's (mujoco_models/state.stop_in)
+    motion_end = math.inf if transverse else motion.end_time
     throttle = kinematics.Throttle(progress, duration)
     check_every = max(1, round(0.25 / dt))  # the stop rules look at the rows every 0.25 s
 
     with run_client() as client:
-        scene = build(client, system, settings, theta0)
+        scene = build(client, system, settings, theta0, transverse=transverse)
         c, block, base = client, scene.block, scene.base
         set_gravity, step = c.setGravity, c.stepSimulation
         joint_state, motor = c.getJointState, c.setJointMotorControl2
         pose, velocity = (lambda _body: scene.pose()), c.getBaseVelocity  # the statue's own frame
         torque = p.TORQUE_CONTROL
-        rows = []  # (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y, ẋ)
+        rows = []  # (t, u, u̇, x, y, z, qx, qy, qz, qw, ω_y, ẋ), and u_y, u̇_y with two components
         slider = []  # a bearing's slider position u_p at each row
         status, message, stop_reason = Status.COMPLETED, "reached the end time", None
         u = ud = 0.0
         ud_prev = udd = 0.0  # base velocity one step back; base acceleration estimate
         side_prev = 0.0  # sin θ (≈ R₀₂) one step back
-        a_set, gz_set = 0.0, -g  # build() set gravity (0, 0, −g)
+        uy = udy = udy_prev = uddy = side_y_prev = 0.0  # the same along y (two components)
+        a_set, gy_set, gz_set = 0.0, 0.0, -g  # build() set gravity (0, 0, −g)
         checked = 0  # rows already looked at by the stop rules
         why = stepped_throughout(system, motion)
         rest = None if why is not None else _rest(system, settings, theta0, xg, dt, lead)
@@ -111,10 +132,13 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
             if not fixed and not resumed:
                 # one read serves both the isolator force and the output
                 u, ud = joint_state(base, 0)[:2]
+                if transverse:
+                    uy, udy = joint_state(base, 1)[:2]
             if (i % every == 0 or i == n_steps) and not resumed:
                 pos, orn = pose(block)
                 (vx, _, _), (_, wy, _) = velocity(block)
-                rows.append((times[i], u, ud, *pos, *orn, wy, vx))
+                rows.append((times[i], u, ud, *pos, *orn, wy, vx, uy, udy) if transverse else
+                            (times[i], u, ud, *pos, *orn, wy, vx))
                 if element is not None:
                     slider.append(element.u_p)
             resumed = False
@@ -159,10 +183,10 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 lead = (m - 1) / (2 * m) * last
                 if element is not None:
                     element.start(c, base, m)  # the friction's impulse per sub-step follows the step
-            a, az = xg[i], gz[i]
-            if a != a_set or az != gz_set:  # gravity persists in Bullet: set it only when it changes
-                set_gravity(-a, 0.0, az)
-                a_set, gz_set = a, az
+            a, ay, az = xg[i], gy[i], gz[i]
+            if a != a_set or ay != gy_set or az != gz_set:  # gravity persists in Bullet: set it only when it changes
+                set_gravity(-a, ay, az)
+                a_set, gy_set, gz_set = a, ay, az
             if not fixed:
                 # ü from the last step, except over an impact (θ changed sign while rocking):
                 # the jump of u̇ there is no acceleration to extrapolate, the last one is kept
@@ -173,6 +197,14 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 ud_prev, side_prev = ud, side
                 q = 0.0 if element is None else element.force(u + lead * ud)
                 motor(base, 0, torque, force=-(k * (u + lead * ud) + c_dash * (ud + lead * udd) + q))
+                if transverse:
+                    # the isotropic isolator along y, by the same rule: ü_y from the last step except
+                    # over an impact across y (the lean of the body's z axis towards y changed sign)
+                    side_y = 2 * (qy * qz - qw * qx)
+                    if i and ((side_y > 0) == (side_y_prev > 0) or max(abs(side_y), abs(side_y_prev)) < rocking):
+                        uddy = (udy - udy_prev) / dt
+                    udy_prev, side_y_prev = udy, side_y
+                    motor(base, 1, torque, force=-(k * (uy + lead * udy) + c_dash * (udy + lead * uddy)))
             step()
             i += 1
         runtime = time.perf_counter() - start
@@ -268,7 +300,7 @@ def step_cost(system: System, settings: Settings | None = None, *, steps: int = 
 
 
 def raw_history(system, motion, rows, runtime, status, message, stop_reason) -> RawHistory:
-    t, u, ud, x, y, z, qx, qy, qz, qw, wy, xd = rows.T
+    t, u, ud, x, y, z, qx, qy, qz, qw, wy, xd = rows.T[:12]
     theta, roll, yaw = kinematics.tilts_from_quaternion(qw, qx, qy, qz)
     counted = counted_sign_changes(theta, system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(
@@ -276,6 +308,8 @@ def raw_history(system, motion, rows, runtime, status, message, stop_reason) -> 
         out_of_plane=np.maximum.reduce([np.abs(y), np.abs(roll), np.abs(yaw)]))
     slide, slide_dot = kinematics.slide_history(system, motion, x_centroid=x, x_centroid_dot=xd, theta=theta,
                                                 theta_dot=wy, u=u, u_dot=ud)
+    if motion.transverse is not None:  # the 3-D history the two-component measures read (validate.core.biaxial)
+        kinematics.pair_extras(extras, orientation=np.stack([qw, qx, qy, qz], axis=1), y_centroid=y, u_y=rows[:, 12])
     return RawHistory(engine=ENGINE, system=system, t=t, u=u, u_dot=ud, theta=theta, theta_dot=wy,
                       status=status, message=message, runtime_s=runtime, extras=extras, stop_reason=stop_reason,
                       slide=slide, slide_dot=slide_dot)

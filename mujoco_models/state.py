@@ -228,10 +228,7 @@ def raw_history(lay, system, motion, states, dt, runtime, status, message, stop_
         system, motion, x_centroid=hist["x"], x_centroid_dot=hist["x_dot"], theta=hist["theta"],
         theta_dot=hist["theta_dot"], u=hist["u"], u_dot=hist["u_dot"])
     if lay.transverse:  # histories, not scalars: read by the two-component measures only
-        # the pivot's slip is the planar one's (the corner on x, θ about y): a statue leaning
-        # along y or a diagonal would read as sliding; its 3-D slip is not measured yet
-        extras.pop("pivot_slip_max", None)
-        extras.update(orientation=hist["orientation"], y_centroid=hist["y"], u_y=hist["u_y"])
+        kinematics.pair_extras(extras, orientation=hist["orientation"], y_centroid=hist["y"], u_y=hist["u_y"])
     return RawHistory(engine=ENGINE, system=system, t=t, u=hist["u"], u_dot=hist["u_dot"], theta=hist["theta"],
                       theta_dot=hist["theta_dot"], status=status, message=message, runtime_s=runtime,
                       extras=extras, stop_reason=stop_reason, slide=slide, slide_dot=slide_dot)
