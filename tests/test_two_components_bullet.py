@@ -16,7 +16,7 @@ pytest.importorskip("pybullet")
 pytest.importorskip("mujoco")  # the helpers' module needs it
 pytest.importorskip("trimesh")
 
-from test_two_components import _leans, _record, _statue_system, bust  # noqa: E402,F401 (bust: a fixture)
+from test_two_components import ALONG_Y, _leans, _record, _statue_system, bust  # noqa: E402,F401 (bust: a fixture)
 
 from isorock.analytic import shape  # noqa: E402
 from isorock.analytic.motion import GroundMotion, load_motion  # noqa: E402
@@ -81,12 +81,7 @@ def test_a_zero_second_component_on_the_linear_isolator_is_the_run_of_one_within
 
 # --- (b) the block shaken along y alone is the exact planar model along y -----------------
 
-@pytest.mark.parametrize("system, spec", [
-    (System.fixed(height=2.0, width=0.7, mass=3800.0), "sine:amp=0.5,freq=1.5,cycles=1"),
-    # robust: ±1% PGA moves the exact θmax/α by ±0.01 (tests/test_two_components.py)
-    (System.isolated(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, period=1.0, damping_ratio=0.2),
-     "ricker:amp=1.0,freq=2"),
-], ids=["fixed", "linear"])
+@pytest.mark.parametrize("system, spec", ALONG_Y)
 def test_the_block_shaken_along_y_alone_rocks_as_the_exact_model_along_y(system, spec):
     """Nothing along x, the pulse along y. PyBullet's block is a free box 2b × 2b × 2h (square
     footprint), so along y it is the same H × B: its lean towards y against the exact model's θ by
