@@ -5,6 +5,7 @@ once for the batch, the ground motion's forces per step, each run's start, and t
 made from the stepped qpos / qvel rows are the same for both: here, once."""
 from __future__ import annotations
 
+import contextlib
 import math
 from dataclasses import dataclass, replace
 
@@ -108,3 +109,28 @@ def histories(batch: Batch, qpos: np.ndarray, qvel: np.ndarray, runtime: float, 
                           solref_1=float(batch.settings.solref[1]), stepping=stepping)
         out.append(replace(raw, engine=engine))
     return out
+
+
+@contextlib.contextmanager
+def without_native_line(dropped: bytes):
+    """Standard error at the file-descriptor level (where a C library's fprintf writes) held in a
+    temporary file while the block runs, then written back without the lines starting with
+    `dropped`: everything else a batched engine's native library says still reaches the user
+    (mjwarp.NO_DRIVER: Warp's line on a machine without an NVIDIA driver)."""
+    import os
+    import sys
+    import tempfile
+    sys.stderr.flush()
+    saved = os.dup(2)
+    with tempfile.TemporaryFile() as held:
+        os.dup2(held.fileno(), 2)
+        try:
+            yield
+        finally:
+            sys.stderr.flush()
+            os.dup2(saved, 2)
+            os.close(saved)
+            held.seek(0)
+            kept = [line for line in held.read().splitlines(keepends=True) if not line.startswith(dropped)]
+            if kept:
+                os.write(2, b"".join(kept))

@@ -54,7 +54,7 @@ def _warp():
     wp.config.quiet = True
     if hasattr(wp, "LOG_WARNING"):  # warp-lang 1.19 prints its module loads at its log level INFO
         wp.config.log_level = wp.LOG_WARNING
-    with contextlib.redirect_stdout(io.StringIO()), _without_native_line(NO_DRIVER):
+    with contextlib.redirect_stdout(io.StringIO()), batch.without_native_line(NO_DRIVER):
         wp.init()
     return wp, mjw
 
@@ -63,29 +63,6 @@ def _warp():
 #: time it starts: isorock runs Warp on its CPU device there, which the engine's status says
 NO_DRIVER = b"Warp CUDA warning: Could not find or load the NVIDIA CUDA driver"
 
-
-@contextlib.contextmanager
-def _without_native_line(dropped: bytes):
-    """Standard error at the file-descriptor level (where a C library's fprintf writes) held in a
-    temporary file while the block runs, then written back without the lines starting with
-    `dropped`: everything else Warp's library says still reaches the user."""
-    import os
-    import sys
-    import tempfile
-    sys.stderr.flush()
-    saved = os.dup(2)
-    with tempfile.TemporaryFile() as held:
-        os.dup2(held.fileno(), 2)
-        try:
-            yield
-        finally:
-            sys.stderr.flush()
-            os.dup2(saved, 2)
-            os.close(saved)
-            held.seek(0)
-            kept = [line for line in held.read().splitlines(keepends=True) if not line.startswith(dropped)]
-            if kept:
-                os.write(2, b"".join(kept))
 
 
 @functools.cache
