@@ -129,6 +129,39 @@ def test_the_block_shaken_along_y_alone_rocks_as_the_exact_model_along_y(system,
 
 # --- (c) turning the pair and the statue together changes nothing -------------------------
 
+TURNED_DURATION = 4.0
+
+
+def turned_pair_runs(engine, bust, isolated: bool, phi_deg: float, settings_of):
+    """The bust along the direction it tips first under a pair, and again with the pair and its
+    azimuth turned by φ, on one engine with the Settings `settings_of(first system)` for both: the
+    two runs' total tilts, the base's travel √(u² + u_y²) on the isolator (None on a fixed base)
+    and each run's 3-D measures with α read at its own azimuth (every engine's pair tests judge
+    these, each by its own bound). Checked here: the bust rocks, and on the isolator its base
+    moves along y too."""
+    from types import SimpleNamespace
+    azimuth = shape.weakest_direction(bust)[0]
+    if isolated:
+        pair = _record("sine:amp=0.9,freq=2.5,cycles=1").with_transverse(_record("sine:amp=0.8,freq=2.2,cycles=1"))
+    else:
+        pair = _record("sine:amp=0.7,freq=2,cycles=1").with_transverse(_record("sine:amp=0.63,freq=1.6,cycles=1"))
+    first = _statue_system(bust, azimuth, isolated)
+    settings = settings_of(first)
+    phi = math.radians(phi_deg)
+    runs = [engine.simulate(s, m, duration=TURNED_DURATION, settings=settings)
+            for s, m in ((first, pair), (_statue_system(bust, azimuth + phi, isolated), pair.rotated(phi)))]
+    travel = None
+    if isolated:
+        travel = [np.hypot(r.u, r.extras["u_y"]) for r in runs]
+        assert np.max(np.abs(runs[0].extras["u_y"])) > 0.05  # the base moves along y too
+    tilts = [biaxial.tilt_twist(r.extras["orientation"])[0] for r in runs]
+    assert tilts[0].size == tilts[1].size and np.max(tilts[0]) > 0.15 * bust.direction(1)["alpha"]  # it rocks
+    three = [biaxial.measure_3d(r.t, r.extras["orientation"], *biaxial.alpha_table(bust, az))
+             for r, az in zip(runs, (azimuth, azimuth + phi))]
+    return SimpleNamespace(runs=runs, travel=travel, tilts=tilts, three=three)
+
+
+
 @pytest.mark.parametrize("isolated, phi_deg", [(False, 30.0), (False, 200.0), (True, 30.0)],
                          ids=["fixed-30", "fixed-200", "linear-30"])
 def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, isolated, phi_deg):
@@ -140,26 +173,12 @@ def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, 
     and 1.8e-6 (linear, 30°) of the peak. A wrong turn (a sign, the components not mixed) or an
     isolator stiffer one way moves them by order 1. The steps and the contact are the same in both
     runs (Settings of the first system)."""
-    azimuth = shape.weakest_direction(bust)[0]
+    turned = turned_pair_runs(MUJOCO, bust, isolated, phi_deg,
+                              lambda first: Settings().for_system(first, TURNED_DURATION))
     if isolated:
-        pair = _record("sine:amp=0.9,freq=2.5,cycles=1").with_transverse(_record("sine:amp=0.8,freq=2.2,cycles=1"))
-    else:
-        pair = _record("sine:amp=0.7,freq=2,cycles=1").with_transverse(_record("sine:amp=0.63,freq=1.6,cycles=1"))
-    first = _statue_system(bust, azimuth, isolated)
-    settings = Settings().for_system(first, 4.0)
-    phi = math.radians(phi_deg)
-    runs = [MUJOCO.simulate(s, m, duration=4.0, settings=settings)
-            for s, m in ((first, pair), (_statue_system(bust, azimuth + phi, isolated), pair.rotated(phi)))]
-    if isolated:
-        travel = [np.hypot(r.u, r.extras["u_y"]) for r in runs]
-        assert np.max(np.abs(runs[0].extras["u_y"])) > 0.05  # the base moves along y too
-        assert np.max(np.abs(travel[0] - travel[1])) <= 1e-3 * np.max(travel[0])
-    tilts = [biaxial.tilt_twist(r.extras["orientation"])[0] for r in runs]
-    assert tilts[0].size == tilts[1].size and np.max(tilts[0]) > 0.15 * bust.direction(1)["alpha"]  # it rocks
+        assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
+    tilts, three = turned.tilts, turned.three
     assert np.max(np.abs(tilts[0] - tilts[1])) <= 1e-3 * np.max(tilts[0])
-    # and the measures: each run's α read at its own azimuth
-    three = [biaxial.measure_3d(r.t, r.extras["orientation"], *biaxial.alpha_table(bust, az))
-             for r, az in zip(runs, (azimuth, azimuth + phi))]
     assert three[1].tilt_max_over_alpha == pytest.approx(three[0].tilt_max_over_alpha, rel=1e-3)
     assert (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360 == pytest.approx(
         0, abs=0.5) or abs((three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360 - 360) < 0.5

@@ -16,7 +16,8 @@ pytest.importorskip("pybullet")
 pytest.importorskip("mujoco")  # the helpers' module needs it
 pytest.importorskip("trimesh")
 
-from test_two_components import ALONG_Y, _leans, _record, _statue_system, bust  # noqa: E402,F401 (bust: a fixture)
+from test_two_components import (ALONG_Y, _leans, _record, _statue_system, bust,  # noqa: E402,F401 (bust: a fixture)
+                                 turned_pair_runs)
 
 from isorock.analytic import shape  # noqa: E402
 from isorock.analytic.motion import GroundMotion, load_motion  # noqa: E402
@@ -118,25 +119,11 @@ def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, 
     asymmetric at rest (docs/statues.md: out of plane 4e-5–2.4e-4), is further from rotation-invariant
     than MuJoCo's. 1e-2 of a peak of 0.19 α is 0.002 α, a tenth of the 0.02 α row the engines'
     peaks are judged by; the peak tilt/α itself within 0.005 α (measured ≤ 0.0007)."""
-    azimuth = shape.weakest_direction(bust)[0]
+    turned = turned_pair_runs(BULLET, bust, isolated, phi_deg, lambda first: Settings().for_system(first))
     if isolated:
-        pair = _record("sine:amp=0.9,freq=2.5,cycles=1").with_transverse(_record("sine:amp=0.8,freq=2.2,cycles=1"))
-    else:
-        pair = _record("sine:amp=0.7,freq=2,cycles=1").with_transverse(_record("sine:amp=0.63,freq=1.6,cycles=1"))
-    first = _statue_system(bust, azimuth, isolated)
-    settings = Settings().for_system(first)
-    phi = math.radians(phi_deg)
-    runs = [BULLET.simulate(s, m, duration=4.0, settings=settings)
-            for s, m in ((first, pair), (_statue_system(bust, azimuth + phi, isolated), pair.rotated(phi)))]
-    if isolated:
-        travel = [np.hypot(r.u, r.extras["u_y"]) for r in runs]
-        assert np.max(np.abs(runs[0].extras["u_y"])) > 0.05
-        assert np.max(np.abs(travel[0] - travel[1])) <= 1e-3 * np.max(travel[0])
-    tilts = [biaxial.tilt_twist(r.extras["orientation"])[0] for r in runs]
-    assert tilts[0].size == tilts[1].size and np.max(tilts[0]) > 0.15 * bust.direction(1)["alpha"]
+        assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
+    tilts, three = turned.tilts, turned.three
     assert np.max(np.abs(tilts[0] - tilts[1])) <= 1e-2 * np.max(tilts[0])
-    three = [biaxial.measure_3d(r.t, r.extras["orientation"], *biaxial.alpha_table(bust, az))
-             for r, az in zip(runs, (azimuth, azimuth + phi))]
     assert abs(three[1].tilt_max_over_alpha - three[0].tilt_max_over_alpha) <= 0.005
     turn = (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360
     assert min(turn, 360 - turn) < 1.0
