@@ -248,11 +248,13 @@ def statue_azimuth(a, standing, names: dict = STATUE_OPTIONS) -> float:
     return shape.shaking_direction(standing, a.azimuth, names=names)
 
 
-def system_from_args(a, *, default_isolator=None, statue_names: dict = STATUE_OPTIONS):
+def system_from_args(a, *, default_isolator=None, statue_names: dict = STATUE_OPTIONS, statue=None):
     """The System the options describe; `default_isolator` (period, damping ratio)
     is used when no isolator option is given (the scene command's paper defaults). With a
-    statue's mesh (add_statue_options), its two edges along the shaking direction."""
-    statue = statue_body(a, statue_names)
+    statue's mesh (add_statue_options), its two edges along the shaking direction; `statue`:
+    statue_body's (resting, body) where the caller has read the mesh already (read here otherwise)."""
+    if statue is None:
+        statue = statue_body(a, statue_names)
     common = dict(height=a.height, width=a.width, mass=a.mass, base_mass=a.base_mass)
     if statue is not None:
         resting, body = statue

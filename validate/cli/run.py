@@ -154,13 +154,14 @@ def engine_asked(a) -> str:
 def plan_runs(a, specs):
     """The run options `a` (the parser's namespace) read into Python values, and the one Plan
     of them (core.plan.make_plan: every check made there once, before any work)."""
-    from isorock.validate.cli.options import motion_from_args, system_from_args
+    from isorock.validate.cli.options import motion_from_args, statue_body, system_from_args
     from isorock.validate.core.plan import EngineRun, make_plan
     runs = [EngineRun(label, engine, settings) for label, engine, settings in load_engines(specs, a)]
-    system, motion = system_from_args(a), motion_from_args(a)
+    statue = statue_body(a)  # a statue's mesh read once: the System's two edges, and the 3-D measures' body
+    system, motion = system_from_args(a, statue=statue), motion_from_args(a)
     # two components: the body shaken and its direction for the 3-D measures, its isolator checked
     # first; an engine that runs one component named as the option names it
-    shaken = None if motion.transverse is None else shaken_body(a, system)
+    shaken = None if motion.transverse is None else shaken_body(a, system, statue)
     for r in runs:
         if motion.transverse is not None and not getattr(r.engine.capabilities, "transverse", False):
             raise InputError(f"--engine = {r.label!r}: runs one horizontal component only; with two "
@@ -174,12 +175,13 @@ def plan_runs(a, specs):
     return plan, shaken
 
 
-def shaken_body(a, system) -> tuple:
+def shaken_body(a, system, statue) -> tuple:
     """(the body at rest, the azimuth in rad) of a run with two components: the statue's mesh
-    (statue_body's, along --azimuth or the direction it tips first), or the block H × B × D of
-    MuJoCo's scene along 0. Refuses, before any work, an isolator other than the linear one."""
+    (`statue`, statue_body's (resting, body), along --azimuth or the direction it tips first), or
+    the block H × B × D of MuJoCo's scene along 0. Refuses, before any work, an isolator other than
+    the linear one."""
     from isorock.analytic.system import LINEAR
-    from isorock.validate.cli.options import statue_azimuth, statue_body
+    from isorock.validate.cli.options import statue_azimuth
     from isorock.validate.core.biaxial import box_body
     if not system.fixed_base and system.isolator_kind != LINEAR:
         raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
@@ -187,7 +189,7 @@ def shaken_body(a, system) -> tuple:
     # the contact scenes' block stands on a square footprint (MuJoCo's DEPTH_FRACTION 1, PyBullet's 2b × 2b box)
     if system.body is None:
         return box_body(system.height, system.width, system.width, system.mass), 0.0
-    standing = statue_body(a)[0]
+    standing = statue[0]
     return standing, statue_azimuth(a, standing)
 
 
