@@ -231,7 +231,7 @@ STATUE_KEYS = {"mesh": "systems.statue.mesh", "example": "systems.statue.example
 
 
 def _statue(t, source: Path) -> dict:
-    """A statue's mesh (docs/statues.md), read and stood on its plinth once, here: its mass
+    """A statue's mesh (docs/statues.md), read once and stood on its plinth, here: its mass
     grid (its density's one mass, or systems.mass), its directions (systems.azimuth, degrees;
     default: the one it tips first) and what identifies it (an example's name, or the file's
     path and content's digest, so that a changed file is new work)."""
@@ -244,10 +244,11 @@ def _statue(t, source: Path) -> dict:
         mesh = Path(mesh) if Path(mesh).is_absolute() else Path(source).parent / mesh
     density = table.get("density")
     masses = (None,) if density is not None else _grid("systems.mass", t.get("mass", 1000.0))
-    bodies = {}
-    for m in masses:
-        bodies[m] = shape.load_statue(mesh=None if mesh is None else str(mesh), example=table.get("example"),
-                                      unit=table.get("unit"), mass=m, density=density, names=STATUE_KEYS)
+    # the file read once (statue_mesh), stood once per mass: a mass grid does not read it again
+    # (mass or density, one of the two, and each positive: checked by the schema and _grid)
+    vertices, faces, name = shape.statue_mesh(mesh=None if mesh is None else str(mesh), example=table.get("example"),
+                                              unit=table.get("unit"), names=STATUE_KEYS)
+    bodies = {m: shape.standing(vertices, faces, mass=m, density=density, name=name) for m in masses}
     first = next(iter(bodies.values()))
     if "azimuth" in t:
         azimuths = _grid("systems.azimuth", t["azimuth"], allow_zero=True)
