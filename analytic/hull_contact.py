@@ -18,12 +18,33 @@ import math
 import numpy as np
 
 from . import kinematics
+from .errors import InputError
 from .system import System
+
+#: radius of the sphere on each vertex, in units of the statue's R (of the edge it tips first), for
+#: the engines whose own contact sets no radius (PyBullet, DART; Drake's is Settings.corner_radius):
+#: small, so that the pivot, which rolls by r·θ on the sphere, stays the vertex (at θ = α of the
+#: obelisk, 1e-3·R·0.25 = 2.5e-4·R); large enough for Bullet's sphere–box contact at 0.5× (0.1 mm)
+VERTEX_RADIUS_SHARE = 1e-3
 
 
 def has_solid(system: System) -> bool:
     """True where the system is a statue of its own shape (System.body.solid)."""
     return getattr(system.body, "solid", None) is not None
+
+
+def check_shape(system: System, engine: str) -> None:
+    """A statue an engine that builds hulls does not build, in one line: a PlanarBody given by its
+    numbers alone (no mesh, no Solid). Its scene is the symmetric block's; MuJoCo builds that body
+    as the box on its two edges."""
+    if system.body is not None and not has_solid(system):
+        raise InputError(f"body: {engine} carries a statue's own shape (a mesh's convex hull, Solid) on a free body; "
+                         f"a PlanarBody given by its numbers alone is not built for {engine} (MuJoCo builds it)")
+
+
+def vertex_radius(system: System) -> float:
+    """The vertex spheres' radius (m): VERTEX_RADIUS_SHARE·R."""
+    return VERTEX_RADIUS_SHARE * system.R
 
 
 def vertex_sphere_centres(system: System, radius: float) -> np.ndarray:

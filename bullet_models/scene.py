@@ -98,7 +98,7 @@ class Scene:
 def _plate_half_extents(system: System):
     # wide enough that even an overturned block lands on it, and a statue that may slide walks on it
     # (a statue's own shape: past its hull in x and y, hull_contact.plate_half_width)
-    half = (hull_contact.plate_half_width(system) if statue.has_solid(system) else
+    half = (hull_contact.plate_half_width(system) if hull_contact.has_solid(system) else
             system.b + system.height + kinematics.slide_room(system))
     return [half, half, 0.5 * PLATE_THICKNESS]
 
@@ -159,7 +159,7 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
         for joint in (0, 1):  # the joints' default velocity motors would hold the base still
             c.setJointMotorControl2(base, joint, p.VELOCITY_CONTROL, targetVelocity=0.0, force=0.0)
     frame = None
-    if statue.has_solid(system):  # its own shape in the block's place (statue.py)
+    if hull_contact.has_solid(system):  # its own shape in the block's place (statue.py)
         block, frame = statue.build(c, p, system, theta0)
     else:
         box = c.createCollisionShape(p.GEOM_BOX, halfExtents=[system.b, system.b, system.h])

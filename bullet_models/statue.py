@@ -10,7 +10,7 @@ tensor's principal axes (hull_contact.principal_axes) and its moments are set wi
 changeDynamics(localInertiaDiagonal=…) (Bullet would otherwise take the compound shape's
 bounding-box inertia).
 
-Contact: a small sphere (radius VERTEX_RADIUS_SHARE·R) on every vertex of the hull, its bottom on
+Contact: a small sphere (radius hull_contact.VERTEX_RADIUS_SHARE·R) on every vertex of the hull, its bottom on
 the vertex at rest, as one compound collision shape. A sphere against the plate's box is Bullet's
 own sphere–box algorithm, one exact contact point each; the statue's hull as a convex mesh slid
 (docs/statues.md: Bullet's convex–box manifold keeps up to four wandering points and the pivot
@@ -26,28 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from isorock.analytic import hull_contact
-from isorock.analytic.errors import InputError
 from isorock.analytic.system import System
-
-#: sphere radius on each vertex, in units of the statue's R (of the edge it tips first): small, so
-#: that the pivot, which rolls by r·θ on the sphere, stays the vertex (at θ = α of the obelisk,
-#: 1e-3·R·0.25 = 2.5e-4·R); large enough for Bullet's sphere–box contact at 0.5× (0.1 mm)
-VERTEX_RADIUS_SHARE = 1e-3
-
-has_solid = hull_contact.has_solid
-
-
-def check(system: System) -> None:
-    """A statue PyBullet does not build, in one line: a PlanarBody given by its numbers alone (no
-    mesh, no Solid); its scene is the symmetric block's, the box on two edges is MuJoCo's."""
-    if system.body is not None and not has_solid(system):
-        raise InputError("body: PyBullet carries a statue's own shape (a mesh's convex hull, Solid) on a free body; "
-                         "a PlanarBody given by its numbers alone is not built for PyBullet (MuJoCo builds it)")
-
-
-def radius(system: System) -> float:
-    return VERTEX_RADIUS_SHARE * system.R
-
 
 def _quaternion(rotation: np.ndarray) -> list[float]:
     """(x, y, z, w) of a proper rotation matrix."""
@@ -73,7 +52,7 @@ def multiply(a, b):
 def build(client, p, system: System, theta0: float):
     """Create the statue in `client` tilted by θ0 about the edge it rests on: (body id, the
     inertial frame's orientation in the statue's frame, (x, y, z, w))."""
-    r = radius(system)
+    r = hull_contact.vertex_radius(system)
     moments, axes = hull_contact.principal_axes(system)
     frame = _quaternion(axes)
     centres = hull_contact.vertex_sphere_centres(system, r)

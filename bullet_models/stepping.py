@@ -24,7 +24,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from isorock.analytic import kinematics
+from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator, isolator_parts
@@ -33,7 +33,6 @@ from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
-from . import statue
 from .scene import build, connect, p, run_client
 from .rest import Rest
 from .settings import Settings
@@ -65,7 +64,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         # stepped throughout, as MuJoCo's pair is: the rest phase carries the body on the base
         # along x alone (rest.py), so it would lose ÿg
         settings = replace(settings, phased=False)
-    statue.check(system)
+    hull_contact.check_shape(system, "PyBullet")
     check_contact_isolator(system, ENGINE)
     settings.check_isolator(system)
     linear = system.isolator_kind == LINEAR  # a fixed base too

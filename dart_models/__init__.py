@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from isorock.analytic import hull_contact
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, Capabilities, EngineSpec, Preset, run_inputs
 from isorock.analytic.errors import InputError, import_extra
 from isorock.analytic.status import Status
@@ -79,11 +80,11 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     dart = import_extra("dartpy", "dart", "the engine 'dart'")
     settings = settings or Settings()
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  two_edges=TWO_EDGES)  # a statue without its shape: statue.check, below
+                                  two_edges=TWO_EDGES)  # a statue without its shape: hull_contact.check_shape, below
     if system.friction is not None or motion.vertical is not None:  # said again for a direct caller
         raise InputError("system: engine 'dart' carries a statue that cannot slip, on level ground")
-    statue.check(system)
-    hull = statue.has_solid(system)
+    hull_contact.check_shape(system, "DART")
+    hull = hull_contact.has_solid(system)
     h, b = system.h, system.b
     dt = float(settings.timestep)
     world = dart.simulation.World()

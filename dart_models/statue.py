@@ -9,7 +9,7 @@ rest), so the block scene's θ (the lean of z towards +x) is read from it unchan
 full inertia tensor about the centre of mass in that frame (BodyNode.setMomentOfInertia with the
 products), so no principal frame is needed, as it is in Bullet.
 
-Contact: a small sphere (radius VERTEX_RADIUS_SHARE·R) on every vertex of the hull, its bottom on
+Contact: a small sphere (radius hull_contact.VERTEX_RADIUS_SHARE·R, as PyBullet's) on every vertex of the hull, its bottom on
 the vertex at rest, each its own shape node: a convex polyhedron meets a flat plate at its
 vertices first, and a sphere against the plate's box is one exact contact point in DART's
 collision (FCL), where a mesh's contact reports a few wandering points (Drake's and Bullet's did:
@@ -22,28 +22,8 @@ import math
 import numpy as np
 
 from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.errors import InputError
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, counted_sign_changes
-
-#: sphere radius on each vertex, in units of the statue's R, as PyBullet's (bullet_models/statue.py):
-#: small, so that the pivot, which rolls by r·θ on the sphere, stays the vertex
-VERTEX_RADIUS_SHARE = 1e-3
-
-has_solid = hull_contact.has_solid
-
-
-def check(system: System) -> None:
-    """A statue DART does not build, in one line: a PlanarBody given by its numbers alone (no mesh,
-    no Solid); DART's box scene is the symmetric block's, the box on two edges is MuJoCo's."""
-    if system.body is not None and not has_solid(system):
-        raise InputError("body: DART carries a statue's own shape (a mesh's convex hull, Solid) on a free body; "
-                         "a PlanarBody given by its numbers alone is not built for DART (MuJoCo builds it)")
-
-
-def radius(system: System) -> float:
-    return VERTEX_RADIUS_SHARE * system.R
-
 
 def plate_size(system: System) -> float:
     """Side (m) of the square plate: past the hull and where an overturned statue lands."""
@@ -53,7 +33,7 @@ def plate_size(system: System) -> float:
 def build(dart, body, free, system: System, theta0: float, friction: float) -> None:
     """Give the free body `body` (on joint `free`) the statue: its mass and inertia tensor, a
     sphere on each hull vertex, tilted by θ0 about the edge it rests on."""
-    r = radius(system)
+    r = hull_contact.vertex_radius(system)
     m = float(system.mass)
     body.setMass(m)
     inertia = np.asarray(system.body.solid.inertia, dtype=float)  # about the centre of mass, the statue's axes

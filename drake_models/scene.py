@@ -70,7 +70,7 @@ try:
 except ImportError as exc:  # an optional extra; the registry and the report skip an engine that cannot import
     raise ImportError(f"the drake engine needs pydrake ({exc}): pip install 'isorock[drake]'") from exc
 
-from isorock.analytic import kinematics
+from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.errors import InputError, require, require_positive_finite
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import check_friction, contact_friction, run_inputs
@@ -451,10 +451,10 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     t = PLATE_THICKNESS
     hydro = settings.contact == "hydroelastic"
     mu = frictions(system, settings)
-    statue_shape = statue.has_solid(system)
+    statue_shape = hull_contact.has_solid(system)
     if statue_shape:  # its own shape in the block's place, on a free body (drake_models.statue)
         require(not hydro, "contact", settings.contact, "point for a statue's own shape (its hull's vertices)")
-        w = 2 * statue.plate_half_width(system)
+        w = 2 * hull_contact.plate_half_width(system)
         collisions = ""
     elif hydro:
         collisions = _BOX.format(B=2 * b, H=2 * h, D=2 * d, props=_props(settings, mu, hydro="compliant"))
@@ -495,7 +495,7 @@ class _Built:
         plant.set_contact_model(pd.ContactModel.kHydroelastic if settings.contact == "hydroelastic"
                                 else pd.ContactModel.kPoint)
         text = scene_text(system, settings)
-        if statue.has_solid(system) and settings.hull == "convex":
+        if hull_contact.has_solid(system) and settings.hull == "convex":
             # the hull's OBJ beside the SDF, which names it by a relative path
             with tempfile.TemporaryDirectory(prefix="isorock-drake-") as folder:
                 Path(folder, statue.HULL_FILE).write_text(statue.hull_obj(system))
@@ -509,7 +509,7 @@ class _Built:
         plant.Finalize()
         self.plant = plant
         self.nq, self.nv = plant.num_positions(), plant.num_velocities()
-        self.statue = statue.Indices(plant) if statue.has_solid(system) else None
+        self.statue = statue.Indices(plant) if hull_contact.has_solid(system) else None
         if self.statue is None:
             rocking = plant.GetJointByName("rocking")
             self.xq, self.yq, self.thq = (rocking.position_start() + i for i in range(3))
@@ -660,7 +660,7 @@ def check_system(system: System, settings: Settings) -> None:
     The continuous plant's regularised Stribeck friction carries both (measured:
     docs/sliding_engines.md)."""
     settings = settings.for_system(system)
-    statue.check(system)
+    hull_contact.check_shape(system, "Drake")
     _check_radius(system, settings.corner_radius)
     check_friction(system, settings.continuous, "Drake's discrete plant (timestep > 0)")
 

@@ -33,7 +33,6 @@ import math
 import numpy as np
 
 from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.errors import InputError
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
@@ -43,25 +42,6 @@ HULL_FILE = "statue_hull.obj"
 COORDS = """The statue (link "block") has no joint: Drake's quaternion floating
      joint, its position the centre of mass's; H and B above are the box of its two edges.
      Tilt it by theta0 about world +y about the edge it rests on to start free rocking."""
-
-
-#: the hull's engine-neutral geometry (analytic.hull_contact), shared with PyBullet's scene
-has_solid = hull_contact.has_solid
-
-
-def check(system: System) -> None:
-    """A statue Drake does not build, in one line: a PlanarBody given by its numbers alone (no
-    mesh, no Solid). MuJoCo makes it the box on its two edges on planar joints; Drake's planar
-    scene is the symmetric block's (corner spheres at ±b), and the box on two edges is not built."""
-    if system.body is not None and not has_solid(system):
-        raise InputError("body: Drake carries a statue's own shape (a mesh's convex hull, Solid) on a free body; a "
-                         "PlanarBody given by its numbers alone is not built for Drake (MuJoCo builds it)")
-
-
-def contact_points(system: System, radius: float) -> np.ndarray:
-    """Centres (body frame, about the centre of mass) of the spheres on the hull's vertices: r
-    above each vertex, so that at rest the bottom of each sphere is the vertex."""
-    return hull_contact.vertex_sphere_centres(system, radius)
 
 
 def hull_obj(system: System) -> str:
@@ -85,7 +65,7 @@ def link(system: System, settings, props: str) -> str:
             f'      <collision name="vertex_{i}">\n        <pose>{x!r} {y!r} {z!r} 0 0 0</pose>\n'
             f"        <geometry><sphere><radius>{r!r}</radius></sphere></geometry>\n"
             f"        <drake:proximity_properties>\n{props}\n        </drake:proximity_properties>\n      </collision>"
-            for i, (x, y, z) in enumerate(contact_points(system, r).tolist()))
+            for i, (x, y, z) in enumerate(hull_contact.vertex_sphere_centres(system, r).tolist()))
     return f"""    <!-- the statue's own shape: its convex hull's {len(system.body.solid.vertices)} vertices, contact "{settings.hull}";
          no joint: a free body (Drake's quaternion floating joint). Link frame = world axes at the
          centre of mass; to start tilted, turn it by theta0 about world +y about the edge it rests on -->
@@ -96,11 +76,6 @@ def link(system: System, settings, props: str) -> str:
       </inertial>
 {collisions}
     </link>"""
-
-
-def plate_half_width(system: System) -> float:
-    """The plate reaches past the hull across the shaking direction too (as MuJoCo's)."""
-    return hull_contact.plate_half_width(system)
 
 
 class Indices:

@@ -11,6 +11,7 @@ import pytest
 
 dart = pytest.importorskip("dartpy", reason="dartpy is not installed (the dart extra)")
 
+from isorock.analytic import hull_contact  # noqa: E402
 from isorock.analytic.errors import InputError  # noqa: E402
 from isorock.analytic.system import PlanarBody, System  # noqa: E402
 from isorock.dart_models import ENGINE  # noqa: E402
@@ -39,7 +40,7 @@ def test_the_statue_is_a_free_body_with_its_inertia_and_a_sphere_on_each_hull_ve
     # the plate's top and the lowest spheres' bottoms are on it
     assert body.getNumShapeNodes() == len(system.body.solid.vertices)
     assert np.asarray(body.getWorldTransform().translation()) == pytest.approx([0.0, 0.0, system.h], abs=1e-12)
-    r = statue.radius(system)
+    r = hull_contact.vertex_radius(system)
     bottoms = [float(body.getShapeNode(i).getWorldTransform().translation()[2]) - r
                for i in range(body.getNumShapeNodes())]
     assert min(bottoms) == pytest.approx(0.0, abs=1e-12)
