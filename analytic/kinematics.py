@@ -15,6 +15,7 @@ import time
 import numpy as np
 
 from .system import System
+from .trajectory import DEFAULT_IMPACT_THRESHOLD, counted_sign_changes
 
 
 # --- pose -----------------------------------------------------------------------------
@@ -120,15 +121,17 @@ def lift_off(system: System, z_centroid, theta):
     return np.asarray(z_centroid) - system.h * np.cos(theta) - b * np.abs(np.sin(theta))
 
 
-def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, counted_from: int | None,
-                   out_of_plane=None) -> dict:
+def contact_extras(system: System, *, x_centroid, z_centroid, theta, u, out_of_plane=None) -> dict:
     """The contact engines' extras, one vocabulary for all of them (each a scalar):
     pivot_slip_max (m: how far the corner the block stands or rocks on moved along the
     base, at rest too, while |θ| ≤ α: beyond, a falling block pivots on its edge and lands
     on its side, and "the pivot" means nothing), lift_off_max_after_impact (m, after the first
     counted impact: a hop shows here), penetration_max (m) and, where the block can
     leave its plane, out_of_plane_max (largest of |y| in m and the roll and yaw tilts in
-    rad, while |θ| ≤ α as the slip). `counted_from`: index of the first counted impact, or None."""
+    rad, while |θ| ≤ α as the slip). The first counted impact is model.md's (counted_sign_changes
+    at the default threshold), found here for every engine."""
+    counted = counted_sign_changes(np.asarray(theta, dtype=float), system.alpha, DEFAULT_IMPACT_THRESHOLD)
+    counted_from = counted[0][0] if counted else None
     theta = np.asarray(theta, dtype=float)
     upright = np.abs(theta) <= _per_side(np.where(theta >= 0, 1.0, -1.0), system.edge_alpha)
     slip = pivot_slip(system, x_centroid, theta, u)[upright]

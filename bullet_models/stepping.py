@@ -31,7 +31,7 @@ from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_iso
 from isorock.analytic.rest_phase import stepped_throughout
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
+from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
 from .scene import build, connect, p, run_client
 from .rest import Rest
@@ -301,9 +301,8 @@ def step_cost(system: System, settings: Settings | None = None, *, steps: int = 
 def raw_history(system, motion, rows, runtime, status, message, stop_reason) -> RawHistory:
     t, u, ud, x, y, z, qx, qy, qz, qw, wy, xd = rows.T[:12]
     theta, roll, yaw = kinematics.tilts_from_quaternion(qw, qx, qy, qz)
-    counted = counted_sign_changes(theta, system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(
-        system, x_centroid=x, z_centroid=z, theta=theta, u=u, counted_from=counted[0][0] if counted else None,
+        system, x_centroid=x, z_centroid=z, theta=theta, u=u,
         out_of_plane=np.maximum.reduce([np.abs(y), np.abs(roll), np.abs(yaw)]))
     slide, slide_dot = kinematics.slide_history(system, motion, x_centroid=x, x_centroid_dot=xd, theta=theta,
                                                 theta_dot=wy, u=u, u_dot=ud)

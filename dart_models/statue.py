@@ -23,7 +23,6 @@ import numpy as np
 
 from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.system import System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, counted_sign_changes
 
 def plate_size(system: System) -> float:
     """Side (m) of the square plate: past the hull and where an overturned statue lands."""
@@ -68,7 +67,5 @@ def row(body) -> tuple[float, float, float, float, float]:
 def extras(system: System, theta, u, more: np.ndarray) -> dict:
     """Every contact engine's extras (kinematics.contact_extras) with the wobble out of the plane
     (|y| in m, roll and yaw in rad), from the rows of `row`."""
-    counted = counted_sign_changes(theta, system.alpha, DEFAULT_IMPACT_THRESHOLD)
     return kinematics.contact_extras(system, x_centroid=more[:, 0], z_centroid=more[:, 2], theta=theta, u=u,
-                                     counted_from=counted[0][0] if counted else None,
                                      out_of_plane=np.max(np.abs(more[:, [1, 3, 4]]), axis=1))

@@ -34,7 +34,7 @@ import numpy as np
 
 from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.system import System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
+from isorock.analytic.trajectory import RawHistory
 
 #: the OBJ the "convex" hull's SDF names, written beside it by `simulate`
 HULL_FILE = "statue_hull.obj"
@@ -129,9 +129,7 @@ def raw_history(built, system, motion, settings, times, data, runtime, status, m
     else:
         u, u_dot = data[built.uq], v[built.uv]
     x_c, z_c = data[ix.xq], data[ix.zq]
-    counted = counted_sign_changes(theta, system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(system, x_centroid=x_c, z_centroid=z_c, theta=theta, u=u,
-                                       counted_from=counted[0][0] if counted else None,
                                        out_of_plane=np.maximum.reduce([np.abs(data[ix.yq]), np.abs(roll), np.abs(yaw)]))
     slide, slide_dot = kinematics.slide_history(system, motion, x_centroid=x_c, x_centroid_dot=v[ix.xv],
                                                 theta=theta, theta_dot=theta_dot, u=u, u_dot=u_dot)

@@ -16,7 +16,7 @@ from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.rest_phase import BLOCK
 from isorock.analytic.system import System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
+from isorock.analytic.trajectory import RawHistory
 
 ENGINE = "mujoco"
 
@@ -220,10 +220,9 @@ def raw_history(lay, system, motion, states, dt, runtime, status, message, stop_
     (kinematics.slide_history)."""
     hist = lay.histories(system, states)
     t = np.arange(hist["t"].size) * dt if t is None else np.array(t, dtype=float)
-    counted = counted_sign_changes(hist["theta"], system.alpha, DEFAULT_IMPACT_THRESHOLD)
     extras = kinematics.contact_extras(
         system, x_centroid=hist["x"], z_centroid=hist["z"], theta=hist["theta"], u=hist["u"],
-        counted_from=counted[0][0] if counted else None, out_of_plane=hist.get("out_of_plane"))
+        out_of_plane=hist.get("out_of_plane"))
     slide, slide_dot = kinematics.slide_history(
         system, motion, x_centroid=hist["x"], x_centroid_dot=hist["x_dot"], theta=hist["theta"],
         theta_dot=hist["theta_dot"], u=hist["u"], u_dot=hist["u_dot"])
