@@ -19,7 +19,7 @@ import functools
 
 import math
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -192,15 +192,11 @@ class GroundMotion:
 
     def with_vertical(self, vertical: "GroundMotion | None") -> "GroundMotion":
         """This horizontal motion paired with a vertical one (None: without)."""
-        return GroundMotion(dt=self.dt, acceleration=self.acceleration, name=self.name, pulse=self.pulse,
-                            scale=self.scale, _pulse_shift=self._pulse_shift, units=self.units, vertical=vertical,
-                            transverse=self.transverse)
+        return replace(self, vertical=vertical)
 
     def with_transverse(self, transverse: "GroundMotion | None") -> "GroundMotion":
         """This motion with a second horizontal component along +y (None: without)."""
-        return GroundMotion(dt=self.dt, acceleration=self.acceleration, name=self.name, pulse=self.pulse,
-                            scale=self.scale, _pulse_shift=self._pulse_shift, units=self.units,
-                            vertical=self.vertical, transverse=transverse)
+        return replace(self, transverse=transverse)
 
     def transverse_at(self, t):
         """ÿg at time(s) t, m/s² (zeros without a second horizontal component)."""
@@ -302,12 +298,11 @@ class GroundMotion:
         start = require_nonnegative_finite("start", start)
         end = self.end_time if end is None else require_positive_finite("end", end)
         require(end > start, "end", end, f"greater than start = {start}")
-        if self.transverse is not None:  # the same window of both horizontal components
-            transverse = self.transverse.trimmed(start, end) if self.transverse.end_time > start else None
-            return self.with_transverse(None).trimmed(start, end).with_transverse(transverse)
-        if self.vertical is not None:  # the same window of both components
-            vertical = self.vertical.trimmed(start, end) if self.vertical.end_time > start else None
-            return self.with_vertical(None).trimmed(start, end).with_vertical(vertical)
+        for key in ("transverse", "vertical"):  # the same window of every component
+            other = getattr(self, key)
+            if other is not None:
+                part = other.trimmed(start, end) if other.end_time > start else None
+                return replace(replace(self, **{key: None}).trimmed(start, end), **{key: part})
         if self.pulse is not None:
             shift = self._pulse_shift + start
             return GroundMotion(dt=self.dt, acceleration=self.acceleration, name=self.name,
