@@ -161,6 +161,7 @@ def pair_extras(extras: dict, *, orientation, y_centroid, u_y) -> dict:
                   u_y=np.asarray(u_y, dtype=float))
     return extras
 
+
 # --- when a run stops -------------------------------------------------------------------
 
 #: |θ| at which the block lies on its side: the rocking equations end there (model.md).
