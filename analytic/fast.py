@@ -1899,7 +1899,11 @@ def _contact_rows(systems, motions, case_sys, case_mot, T, th0, cases, impact_th
 
 def _batch_threads(systems, motions, case_sys, case_mot, T, th0, impact_threshold, settings, workers):
     n = case_sys.size
-    kernels = [_kernel_for(s, settings) for s in systems]  # (kernel, sp, ip, state size) per system
+    # (kernel, sp, ip, state size) per system, packed once per System: a chunk of a table
+    # passes one System per case, the same one hundreds of times
+    packed_systems = {}
+    kernels = [packed_systems.get(id(s)) or packed_systems.setdefault(id(s), _kernel_for(s, settings))
+               for s in systems]
     sps = np.stack([k[1] for k in kernels])
     ips = np.stack([k[2] for k in kernels])
     packed = [_motion_params(m) for m in motions]
