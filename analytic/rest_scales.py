@@ -42,6 +42,7 @@ _tr_state = _P["translation_state"]
 _tr_uplift = _P["translation_uplift"]
 _tr_vzeros = _P["translation_velocity_zeros"]
 _tr_ubound = _P["translation_u_bound"]
+_fv_change = _P["free_vibration_change"]
 _K, _INV_M, _THR = physics.K, physics.INV_M, physics.THR
 _PIECE, _PA0, _PA1, _INV_DT, _DT, _SAMPLED, _KIND = (physics.PIECE, physics.PA0, physics.PA1, physics.INV_DT,
                                                     physics.DT, physics.SAMPLED, physics.KIND)
@@ -65,6 +66,11 @@ def _rest_pass(sp, mp_in, acc, breaks, T, thresholds, uplift):
     n_thr = thresholds.size
     for k in range(n_thr):
         uplift[k] = math.inf
+    # the free vibration's change over a piece, as a matrix: free_vibration_change is linear in
+    # z, so its columns at z = (1, 0) and (0, 1) are it, for one piece length; a record's pieces
+    # are its dt to an ulp, so one expm1, sin and cos serve thousands of pieces (they were most
+    # of this loop's time), each piece's state then differing from the kernel's by rounding alone
+    h_coef, d00, d01, d10, d11 = -1.0, 0.0, 0.0, 0.0, 0.0
     j = 0  # thresholds[j]: the lowest not reached yet
     u, v = 0.0, 0.0
     u_max = 0.0
@@ -82,7 +88,12 @@ def _rest_pass(sp, mp_in, acc, breaks, T, thresholds, uplift):
         a1 = (mp[_PA1] - mp[_PA0]) * mp[_INV_DT] if mp[_PIECE] == 1.0 else 0.0
         zu0, zv0, p0, p1 = _tr_start(sp, u, v, a0, a1)
         h = t_end - t
-        u1, v1, dW, dD = _tr_state(sp, zu0, zv0, p1, u, v, a0, a1, h)
+        if abs(h - h_coef) > 1e-12 * h:
+            d00, d10 = _fv_change(sp, 1.0, 0.0, h)
+            d01, d11 = _fv_change(sp, 0.0, 1.0, h)
+            h_coef = h
+        u1 = u + (d00 * zu0 + d01 * zv0) + p1 * h  # translation_state's u and u̇
+        v1 = v + (d10 * zu0 + d11 * zv0)
         a_end = _base_acc(sp, u1, v1, 0.0)
         while j < n_thr:
             tau, side = _tr_uplift(sp, zu0, zv0, a0, a1, h, thresholds[j], a_end)
