@@ -15,7 +15,6 @@ from the same data (its own checks of ranges and sizes stay there).
 """
 from __future__ import annotations
 
-from dataclasses import MISSING, fields
 from typing import Annotated, Any, Literal
 
 from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, StrictInt, StrictStr,
@@ -190,35 +189,12 @@ class Motions(_Strict):
 
 
 def _settings_table(engine: str, table: dict) -> None:
-    """Each value has the type of the engine's setting (its default's): a number for a
-    number (not a string or a boolean), a word for a word, a list of numbers for a tuple."""
-    from isorock.validate.core.engines import ALL_ENGINES, get_engine
-    if engine not in ALL_ENGINES:
-        return  # spec.py names an unknown engine with the engines there are
-    try:
-        known = {f.name: f for f in fields(get_engine(engine).Settings)}
-    except ImportError:
-        return  # an engine not installed here is reported when it runs
-    for key, value in table.items():
-        f = known.get(key)
-        if f is None:
-            continue  # spec.py names an unknown setting with what the engine has
-        default = f.default if f.default is not MISSING else None
-        if isinstance(default, bool):
-            ok = isinstance(value, bool)
-        elif isinstance(default, str):
-            ok = isinstance(value, str)
-        elif isinstance(default, tuple):
-            ok = isinstance(value, list) and all(isinstance(x, (int, float)) and not isinstance(x, bool)
-                                                 for x in value)
-        else:  # a number (or None: a number when given)
-            ok = isinstance(value, (int, float)) and not isinstance(value, bool)
-            if ok:
-                _number(value, positive=False)
-        if not ok:
-            what = ("true or false" if isinstance(default, bool) else "a word" if isinstance(default, str)
-                    else "a list of numbers" if isinstance(default, tuple) else "a number")
-            raise ValueError(f"{key} = {value!r}: must be {what}")
+    """Each value has the type of the engine's setting (core.engines.check_settings_table, the
+    one schema the config file and the command line's --set share); an unknown engine or
+    setting is named later by spec.py, with the engines and settings there are."""
+    from isorock.validate.core.engines import ALL_ENGINES, check_settings_table
+    if engine.partition(":")[0] in ALL_ENGINES:
+        check_settings_table(engine, table, unknown_keys=False)
 
 
 class Engine(_Strict):

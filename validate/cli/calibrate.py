@@ -20,10 +20,23 @@ def _options(a, keys) -> list[str]:
     return words
 
 
+def _toml_value(value) -> str:
+    """A --set value as it is typed again: a word bare, a number or a list as TOML writes it."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (list, tuple)):
+        return "[" + ",".join(f"{x:g}" for x in value) + "]"
+    return f"{value:g}"
+
+
 def _command(a) -> str:
     """The command line that gives this result again (the options that were given)."""
     from isorock.validate.cli.options import ENGINE_OPTIONS, SYSTEM_KEYS
-    words = ["isorock calibrate", f"--engine {a.engine}", *_options(a, SYSTEM_KEYS), *_options(a, ENGINE_OPTIONS)]
+    words = ["isorock calibrate", f"--engine {a.engine}", *_options(a, SYSTEM_KEYS), *_options(a, ENGINE_OPTIONS),
+             *(f"--set {'' if table == '*' else table + '.'}{key}={_toml_value(value)}"
+               for table, key, value in a.set_settings or ())]
     if a.tilts != DEFAULT_TILTS:
         words.append(f"--tilts {a.tilts}")
     words.append(f"--max-evals {a.max_evals}")

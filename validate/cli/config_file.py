@@ -12,11 +12,9 @@ the key as the user wrote it, the value, and what is allowed:
 """
 from __future__ import annotations
 
-import math
-from dataclasses import fields
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, ValidationError, field_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, ValidationError, field_validator
 
 from isorock.analytic.errors import InputError
 
@@ -105,39 +103,15 @@ class ConfigFile(_Strict):
     @field_validator("settings")
     @classmethod
     def _known_settings(cls, tables):
-        from isorock.validate.core.engines import ALL_ENGINES, get_engine
-        every = set()
-        per_engine = {}
-        for name in ALL_ENGINES:
-            try:
-                per_engine[name] = {f.name for f in fields(get_engine(name).Settings)}
-            except ImportError:  # an engine not installed here: its table is checked where it is
-                per_engine[name] = None
-            every |= per_engine[name] or set()
+        from isorock.validate.core.engines import check_settings_table
         for table, values in tables.items():
-            base = table.partition(":")[0]
-            if table != "*" and base not in per_engine:
-                raise ValueError(f"[settings.{table}]: not an engine (allowed: *, {', '.join(ALL_ENGINES)}, "
-                                 "or ENGINE:PRESET)")
-            preset = table.partition(":")[2]
-            if preset and per_engine[base] is not None:
-                try:
-                    get_engine(base).preset(preset)
-                except InputError as e:
-                    raise ValueError(f"[settings.{table}]: {e}") from None
-            known = every if table == "*" else per_engine[base]
-            for key, value in values.items():
-                if known is not None and key not in known:
-                    raise ValueError(f"[settings.{table}] {key}: not a setting of {table} (allowed: "
-                                     f"{', '.join(sorted(known))})")
-                if isinstance(value, bool) and key not in _BOOLEAN_SETTINGS:
-                    raise ValueError(f"[settings.{table}] {key} = {value!r}: must be a number or a word, "
-                                     "not a boolean")
+            try:
+                check_settings_table(table, values)  # the one schema of engine settings
+            except ValueError as e:
+                msg = str(e)  # "TABLE: …" (the table itself) or "KEY …" (one of its keys)
+                raise ValueError(f"[settings.{table}]{msg[len(table) + 1:]}" if msg.startswith(f"{table}:")
+                                 else f"[settings.{table}] {msg}") from None
         return tables
-
-
-#: engine settings that are booleans (none today: every setting is a number, a word or a list)
-_BOOLEAN_SETTINGS: frozenset[str] = frozenset()
 
 
 def _where(loc) -> str:

@@ -511,18 +511,70 @@ def add_engine_options(p: argparse.ArgumentParser) -> None:
                         "crossing of the base acceleration can hide inside one step)")
     g.add_argument("--rest-velocity", type=number,
                    help="analytic: rocking ends at an impact with |θ̇| below this × p·α (default 1e-5)")
+    g.add_argument("--set", action="append", dest="set_settings", type=setting_assignment,
+                   metavar="[ENGINE.]KEY=VALUE",
+                   help="any setting of an engine (`isorock presets ENGINE` lists them): for ENGINE (or "
+                        "ENGINE:PRESET) alone, or without it for every engine run that has it; the value is read "
+                        "as a TOML value (a number, true/false, [a, b]) or else as a word. Repeatable, e.g. "
+                        "--set drake.accuracy=1e-5 --set mujoco.integrator=RK4; the options above are its "
+                        "shorthands, checked by the same schema as a --config file's [settings.ENGINE] tables")
     g.add_argument("--overturn", choices=("past-alpha", "alpha"),
                    help="the overturning rule (model.md, 'Past α'), for every engine: past-alpha (default: the "
                         "block has overturned when |θ| reaches π/2 or the run ends with |θ| > α) or alpha "
                         "(conservative: once |θ| reaches α)")
 
 
+def setting_assignment(text: str) -> tuple[str, str, object]:
+    """argparse type of --set: "[ENGINE.]KEY=VALUE" → (table, key, value), the table "*" where
+    no engine is named; checked by the one schema of engine settings
+    (core.engines.check_settings_table), as a --config file's tables are."""
+    import tomllib
+
+    from isorock.validate.core.engines import check_settings_table
+    target, eq, raw = text.partition("=")
+    table, dot, key = target.strip().rpartition(".")
+    table, key = (table if dot else "*"), key.strip()
+    if not eq or not key or not raw.strip():
+        raise argparse.ArgumentTypeError(f"{text!r}: must be KEY=VALUE or ENGINE.KEY=VALUE (e.g. drake.accuracy=1e-5)")
+    try:
+        value = tomllib.loads(f"v = {raw.strip()}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw.strip()  # a word, written without TOML's quotes
+    try:
+        check_settings_table(table, {key: value})
+    except ValueError as e:
+        raise argparse.ArgumentTypeError(f"{text!r}: {e}") from None
+    return table, key, value
+
+
+def engine_tables(a) -> dict[str, dict]:
+    """The engine settings given on the command line, as a --config file's tables: "*" (every
+    engine that has the key: the shorthand options, and --set KEY=VALUE) and one per engine or
+    ENGINE:PRESET that --set names; read with core.engines.table_overrides."""
+    tables = {"*": engine_overrides(a)}
+    for table, key, value in getattr(a, "set_settings", None) or ():
+        tables.setdefault(table, {})[key] = tuple(value) if isinstance(value, list) else value
+    return tables
+
+
+def check_tables_run(tables: dict, labels) -> None:
+    """A --set for an engine that is not run would do nothing: one line naming it."""
+    labels = list(labels)
+    bases = {label.partition(":")[0] for label in labels}
+    for table, values in tables.items():
+        if table != "*" and table not in labels and table not in bases:
+            key = next(iter(values))
+            raise InputError(f"--set {table}.{key}: engine {table} is not run here (run: {', '.join(labels)})")
+
+
 def engine_settings_from_args(engine, a):
     """The engine's default settings with the engine options given (core.engines.choose,
     strict: an option the engine does not have is named); a bad value is named as its option."""
-    from isorock.validate.core.engines import choose
+    from isorock.validate.core.engines import choose, table_overrides
+    tables = engine_tables(a)
+    check_tables_run(tables, [engine.name])
     try:
-        return choose(engine.name, engine_overrides(a), strict=True).settings()
+        return choose(engine.name, table_overrides(tables, engine.name), strict=True).settings()
     except InputError as e:
         raise InputError(str(e).replace("_", "-")) from None
 

@@ -99,15 +99,17 @@ def _read_config(path) -> dict:
 def report_config(args):
     """The validate options `args` (the parser's namespace) and the --config file they name,
     checked and merged into the report's ReportConfig, before any run."""
-    from isorock.validate.cli.options import ENGINE_OPTIONS, system_from_options
+    from isorock.validate.cli.options import check_tables_run, engine_tables, system_from_options
     from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig
     from isorock.validate.cli.run import engine_labels
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
     overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
-    given = {k: getattr(args, k) for k in ENGINE_OPTIONS if getattr(args, k, None) is not None}
-    if given:  # a setting on the command line applies to every engine that has it
-        overrides["*"] = {**overrides.get("*", {}), **given}
+    given = engine_tables(args)  # the command line's settings, over the file's table by table
+    check_tables_run(given, engines)
+    for table, values in given.items():
+        if values:  # "*": a setting on the command line applies to every engine that has it
+            overrides[table] = {**overrides.get(table, {}), **values}
     if args.workers is not None:
         from isorock.analytic.limits import check_workers
         check_workers("workers", args.workers)

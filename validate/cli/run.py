@@ -19,7 +19,7 @@ from dataclasses import fields
 from pathlib import Path
 
 from isorock.analytic.errors import InputError
-from isorock.validate.cli.options import ENGINE_OPTIONS, engine_overrides, settings_dict
+from isorock.validate.cli.options import check_tables_run, engine_tables, settings_dict
 
 
 def parse_engines(text: str) -> list[tuple[str, str | None]]:
@@ -62,17 +62,18 @@ def load_engines(specs, a) -> list[tuple[str, object, object]]:
     (core.engines.choose): the preset or the defaults, with the engine options given that
     the engine has. An engine option that none of the engines has is an error (it would
     silently do nothing); a bad value is named as its option."""
-    from isorock.validate.core.engines import choose, get_engine
-    overrides = engine_overrides(a)
+    from isorock.validate.core.engines import choose, get_engine, table_overrides
+    tables = engine_tables(a)
     engines = [(spec_label(n, p), get_engine(n)) for n, p in specs]
-    unused = sorted(set(overrides) - {f.name for _, e in engines for f in fields(e.Settings)})
+    check_tables_run(tables, [label for label, _ in engines])
+    unused = sorted(set(tables["*"]) - {f.name for _, e in engines for f in fields(e.Settings)})
     if unused:
         names = ", ".join("--" + k.replace("_", "-") for k in unused)
         raise InputError(f"{names}: not a setting of engine {', '.join(label for label, _ in engines)}")
     out = []
     for label, engine in engines:
         try:
-            out.append((label, engine, choose(label, overrides).settings()))
+            out.append((label, engine, choose(label, table_overrides(tables, label)).settings()))
         except InputError as e:
             raise InputError(str(e).replace("_", "-")) from None
     return out

@@ -260,6 +260,84 @@ def refuse_unknown_settings(name: str, settings_type, overrides) -> None:
                          f"(its settings: {', '.join(sorted(f.name for f in fields(settings_type)))})")
 
 
+def setting_value_problem(settings_type, key: str, value) -> str | None:
+    """What is wrong with `value` for setting `key` of `settings_type`, judged by the type of
+    the key's default (a number for a number or for None, a word for a word, true or false for
+    a boolean, a list of numbers for a tuple), or None. The one schema of an engine setting's
+    value: a --config [settings.ENGINE] table, a campaign's [[engines]] settings and the command
+    line's --set all ask it (an engine's own Settings checks ranges when it is made)."""
+    import math
+    from dataclasses import MISSING
+    f = next((f for f in fields(settings_type) if f.name == key), None)
+    if f is None:
+        return None
+    default = f.default if f.default is not MISSING else None
+    if isinstance(default, bool):
+        ok = isinstance(value, bool)
+    elif isinstance(default, str):
+        ok = isinstance(value, str)
+    elif isinstance(default, tuple):
+        ok = isinstance(value, (list, tuple)) and all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                                                      for x in value)
+    else:  # a number (or None: a number when given)
+        ok = isinstance(value, (int, float)) and not isinstance(value, bool)
+        try:
+            if ok and not math.isfinite(float(value)):
+                return f"{key} = {value!r}: must be a finite number"
+        except OverflowError:  # an integer beyond a float's range
+            return f"{key} = {value!r}: must be a finite number (beyond a float's range)"
+    if ok:
+        return None
+    what = ("true or false" if isinstance(default, bool) else "a word" if isinstance(default, str)
+            else "a list of numbers" if isinstance(default, tuple) else "a number")
+    return f"{key} = {value!r}: must be {what}"
+
+
+def check_settings_table(table: str, values: dict, *, unknown_keys: bool = True) -> None:
+    """A table of engine settings (`table`: an engine, ENGINE:PRESET, or "*" for every engine
+    that has the key) checked whole: the engine and its preset exist, each key is a setting of
+    it (unknown_keys; a campaign names unknown ones later, with the engine's settings), each
+    value has its setting's type (setting_value_problem). Raises ValueError, one line; an engine
+    not installed here is checked where it runs."""
+    def settings_of(name):
+        try:
+            return get_engine(name).Settings
+        except ImportError:
+            return None
+    base, _, preset = table.partition(":")
+    if table == "*":
+        types = [t for t in map(settings_of, ALL_ENGINES) if t is not None]
+    elif base not in ALL_ENGINES:
+        raise ValueError(f"{table}: not an engine (allowed: *, {', '.join(ALL_ENGINES)}, or ENGINE:PRESET)")
+    else:
+        types = [settings_of(base)]
+        if types[0] is None:
+            return
+        if preset:
+            try:
+                get_engine(base).preset(preset)
+            except InputError as e:
+                raise ValueError(str(e)) from None
+    for key, value in values.items():
+        having = [t for t in types if any(f.name == key for f in fields(t))]
+        if not having:
+            if unknown_keys:
+                known = sorted({f.name for t in types for f in fields(t)})
+                raise ValueError(f"{key}: not a setting of {'any engine' if table == '*' else table} "
+                                 f"(allowed: {', '.join(known)})")
+            continue
+        problem = setting_value_problem(having[0], key, value)
+        if problem:
+            raise ValueError(problem)
+
+
+def table_overrides(tables: dict, label: str) -> dict:
+    """The overrides engine `label` ("ENGINE" or "ENGINE:PRESET") takes from tables of settings
+    keyed "*", ENGINE and ENGINE:PRESET: each later one over the one before."""
+    base = label.partition(":")[0]
+    return {**tables.get("*", {}), **tables.get(base, {}), **tables.get(label, {})}
+
+
 class EngineUnavailable(InputError, ImportError):
     """An engine a package registers that cannot be loaded here (its module missing, or raising
     on import): one line when it is asked for by name (an InputError), skipped with the reason

@@ -135,8 +135,8 @@ class ReportConfig:
         return (("your isolated base", self.system), (f"the same {noun} on a fixed base", self.system.on_fixed_base()))
 
     def overrides_for(self, name: str) -> dict:
-        base = name.partition(":")[0]
-        return {**self.overrides.get("*", {}), **self.overrides.get(base, {}), **self.overrides.get(name, {})}
+        from isorock.validate.core.engines import table_overrides
+        return table_overrides(self.overrides, name)
 
 
 @dataclass
