@@ -17,6 +17,7 @@ from typing import Annotated, Literal
 from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, ValidationError, field_validator
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.system import ISOLATOR_KINDS
 
 #: ξ of an isolator this command runs: below 1 (underdamped), as `isorock sweep` takes
 #: it; ξ = 1e6 made the report's search for the uplift scale run for ever (issue 24)
@@ -60,6 +61,20 @@ class SystemTable(_Strict):
     #: the statue's friction on its base, μ_s and μ_k (docs/sliding.md)
     statue_friction: Positive | None = None
     kinetic_friction: Positive | None = None
+    #: a non-linear isolator and its parameters, as --isolator and its options name them
+    #: (docs/isolators.md; which keys each kind takes is checked where the System is made,
+    #: options.system_from_args, so the file and the options are refused in the same words)
+    isolator: Literal[ISOLATOR_KINDS] | None = None
+    radius: Positive | None = None
+    friction_coefficient: NonNegative | None = None
+    friction_max: NonNegative | None = None
+    friction_rate: NonNegative | None = None
+    post_yield_ratio: NonNegative | None = None
+    yield_displacement: Positive | None = None
+    slope: Positive | None = None
+    rolling_resistance: NonNegative | None = None
+    radius_2: Positive | None = None
+    friction_coefficient_2: NonNegative | None = None
 
     @field_validator("damping_ratio")
     @classmethod

@@ -138,7 +138,9 @@ def read_design_config(a) -> dict:
     if "pgv" in config:
         raise InputError(f"config pgv = {config['pgv']!r}: a design scales every record to PGA levels; give pga (g) "
                          "in the file, or --pga")
-    unused = ([f"[system] {k}" for k in ("period", "damping_ratio", "stiffness", "dashpot", "fixed_base")
+    from isorock.validate.cli.options import ISOLATOR_KEYS
+    unused = ([f"[system] {k}" for k in ("period", "damping_ratio", "stiffness", "dashpot", "fixed_base", "isolator",
+                                          *ISOLATOR_KEYS)
                if k in config.get("system", {})] + [k for k in config if k not in DESIGN_CONFIG_KEYS])
     if unused and not a.quiet:
         print(f"isorock design: note: {a.config}: {', '.join(unused)} not used (the design runs the isolator family "

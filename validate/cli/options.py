@@ -108,13 +108,15 @@ ISOLATOR_KEYS = ("radius", "friction_coefficient", "friction_max", "friction_rat
                  "yield_displacement", "slope", "rolling_resistance", "radius_2", "friction_coefficient_2")
 
 
-def add_isolator_options(p: argparse.ArgumentParser) -> None:
+def add_isolator_options(p: argparse.ArgumentParser, *, in_file: bool = False) -> None:
     """--isolator and its parameters (docs/isolators.md): the linear isolator is the
     default and takes the system options as before; a bilinear bearing takes its initial
-    stiffness and dashpot from them (--stiffness/--dashpot or --period/--damping-ratio)."""
+    stiffness and dashpot from them (--stiffness/--dashpot or --period/--damping-ratio).
+    in_file: a --config file's [system] table may give them too (validate), so --isolator
+    has no default of its own here, and an option given wins over the file's key."""
     from isorock.analytic.system import ISOLATOR_KINDS, LINEAR
     g = p.add_argument_group("isolator (docs/isolators.md)")
-    g.add_argument("--isolator", choices=ISOLATOR_KINDS, default=LINEAR,
+    g.add_argument("--isolator", choices=ISOLATOR_KINDS, default=None if in_file else LINEAR,
                    help="the isolator under the base (default: %(default)s; bilinear: --stiffness/--period set its "
                         "initial stiffness)")
     g.add_argument("--radius", type=number, help="friction-pendulum: radius of curvature R_fp, m; ball-in-bowl: "
@@ -305,7 +307,7 @@ STATUE_KEYS = ("statue", "statue_example", "unit", "density", "azimuth")
 
 #: The system options, as argparse names them (and a TOML [system] table does).
 SYSTEM_KEYS = ("height", "width", "mass", "base_mass", "period", "damping_ratio", "stiffness", "dashpot",
-               "fixed_base", "statue_friction", "kinetic_friction")
+               "fixed_base", "statue_friction", "kinetic_friction", "isolator", *ISOLATOR_KEYS)
 
 
 def system_from_options(a, defaults: dict | None = None, statue: dict | None = None):

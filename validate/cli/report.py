@@ -64,6 +64,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="processes for the contact engines (default: 2, or the cores there are; 1: one process)")
     p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     add_system_options(p, required=False)
+    from isorock.validate.cli.options import add_isolator_options
+    add_isolator_options(p, in_file=True)  # every isolator kind, as `run` takes it (docs/isolators.md)
     from isorock.validate.cli.options import add_statue_options
     add_statue_options(p)  # its mesh instead of H × B: the engines that carry it judged on it (docs/statues.md)
     add_engine_options(p)

@@ -352,9 +352,17 @@ def describe_system(results: Results) -> str:
                 "of the paper that fits its figure: the paper's own values are unreadable in our copy), and on a fixed base")
     s = cfg.system
     noun = s.subject.removeprefix("the ")
-    base = ("a fixed base" if s.fixed_base else
-            f"an isolated base (m_b {s.base_mass:g} kg, T {s.period:.3g} s, ξ {s.damping_ratio:.3g}), and the same "
-            f"{noun} on a fixed base")
+    if s.fixed_base:
+        base = "a fixed base"
+    elif s.isolator is None:
+        base = (f"an isolated base (m_b {s.base_mass:g} kg, T {s.period:.3g} s, ξ {s.damping_ratio:.3g}), and the "
+                f"same {noun} on a fixed base")
+    else:  # a non-linear isolator: its kind and its own parameters, not a linear T and ξ it does not have
+        params = {k: v for k, v in s.isolator.describe(s.total_mass, s.gravity).items()
+                  if k != "isolator" and isinstance(v, (int, float)) and not isinstance(v, bool)}
+        words = ", ".join(f"{k.replace('_', ' ')} {v:.3g}" for k, v in params.items())
+        base = (f"a base of m_b {s.base_mass:g} kg on a {s.isolator_kind} isolator ({words}), and the same {noun} on "
+                "a fixed base")
     if s.body is not None:  # a statue's mesh: its two edges along the shaking direction
         e = s.body
         return (f"your statue (m {s.mass:g} kg; centre of mass {e.centre_height:.3g} m up, edges b₊ "
