@@ -105,8 +105,11 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     joint.setTransformFromParentBodyNode(below)  # the plate's top at z = 0
     # a statue's plate is square, past its hull and where it lands overturned (hull_contact)
     side = statue.plate_size(system) if hull else None
+    # the plate's friction is the body's: DART takes the smaller of the two shapes' coefficients,
+    # so the plate's default 1 held Settings.friction to 1 at most (the default, 1, is unchanged)
     _box(plate, (side, side, PLATE_THICKNESS) if hull else
-         (PLATE_WIDTH_RATIO * system.width, DEPTH_RATIO * system.width * 2, PLATE_THICKNESS))
+         (PLATE_WIDTH_RATIO * system.width, DEPTH_RATIO * system.width * 2, PLATE_THICKNESS),
+         friction=settings.friction)
     world.addSkeleton(base)
 
     block = dart.dynamics.Skeleton("block")
