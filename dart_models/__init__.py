@@ -9,9 +9,17 @@ enters as the uniform inertial field of the base's translating frame: the gravit
 (−ẍg(t), 0, −g) before each step (exact for a translating frame: the bullet_models hull scene
 does the same), so u is the base's joint position relative to the ground.
 
+Two horizontal components (GroundMotion.transverse, issue 36): ÿg is the gravity's y as ẍg is its
+x, (−ẍg, −ÿg, −g), so every body, the plate too, feels −m·ÿg; on the linear isolator the plate is on
+one joint of two translations (x and y, DART's TranslationalJoint2D) with the same k and c on each
+(the isolator is isotropic); a fixed base is the same weld. A pair runs at a friction of
+PAIR_FRICTION or more (the preset `pair`; below it the statue slips). Without a second component
+the scene is the one above, unchanged.
+
 What it carries: the linear isolator, a statue that cannot slip on its base (its friction is
-DART's high default, Settings.friction), horizontal ground motion, a statue's own shape in the
-block's place (statue.py; Capabilities below: anything else is refused in one line). Measured in docs/dart.md; its limits in validate/core/tolerances.py.
+DART's high default, Settings.friction), horizontal ground motion (one component or a pair), a
+statue's own shape in the block's place (statue.py; Capabilities below: anything else is refused
+in one line). Measured in docs/dart.md; its limits in validate/core/tolerances.py.
 """
 from __future__ import annotations
 
@@ -20,8 +28,9 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
-from isorock.analytic import hull_contact
+from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, Capabilities, EngineSpec, Preset, run_inputs
 from isorock.analytic.errors import InputError, import_extra
 from isorock.analytic.status import Status
@@ -38,6 +47,17 @@ SAMPLE_DT = 1e-3
 #: a statue's own shape (statue.py) is carried: Capabilities.two_edges says so, judged in
 #: docs/statues.md ("DART on the statue's hull": the bust and the obelisk within MuJoCo's statue rows)
 TWO_EDGES = True
+#: two horizontal components on a fixed base and the linear isolator: what Capabilities.transverse
+#: says, judged in docs/statues.md ("Two horizontal components", DART) by tests/test_two_components_dart.py
+TRANSVERSE = True
+#: the least Settings.friction a pair runs at: the statue's hull (its vertex spheres) slips under two
+#: components below it, and its tilt then turns on μ and on the pair's direction against the world's
+#: axes, the friction pyramid's; measured on the bust's test pairs (tests/test_two_components_dart.py):
+#: peak tilt 0.465 α at μ 1, 0.1955 α at μ 3 to 10 on a fixed base; 0.154 α at μ 1, 0.188 at μ 2–3,
+#: 0.1813 at μ 5 to 10 on the linear isolator (docs/statues.md, "Two horizontal components", DART).
+#: The block (a box on its four corners) held at μ 1 (its peak under a pair the same as at μ 3 to
+#: 4e-12): one rule for both keeps what a pair's settings mean the same whatever the body
+PAIR_FRICTION = 5.0
 
 
 @dataclass(frozen=True)
@@ -80,11 +100,18 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     dart = import_extra("dartpy", "dart", "the engine 'dart'")
     settings = settings or Settings()
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  two_edges=TWO_EDGES)  # a statue without its shape: hull_contact.check_shape, below
+                                  two_edges=TWO_EDGES,  # a statue without its shape: hull_contact.check_shape, below
+                                  transverse=TRANSVERSE)  # a pair on any isolator but the linear one: refused there
     if system.friction is not None or motion.vertical is not None:  # said again for a direct caller
         raise InputError("system: engine 'dart' carries a statue that cannot slip, on level ground")
     hull_contact.check_shape(system, "DART")
     hull = hull_contact.has_solid(system)
+    transverse = motion.transverse is not None
+    if transverse and settings.friction < PAIR_FRICTION:  # refused, never run slipping in its place
+        raise InputError(f"friction = {settings.friction:g}: engine 'dart' runs two horizontal components with a "
+                         f"friction of {PAIR_FRICTION:g} or more (below it its statue slips, the tilt turning on the "
+                         f"pair's direction: docs/statues.md); the preset dart:pair, or Settings(friction={PAIR_FRICTION:g}) "
+                         "up to 10")
     h, b = system.h, system.b
     dt = float(settings.timestep)
     world = dart.simulation.World()
@@ -95,18 +122,29 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     if system.fixed_base:
         joint, plate = base.createWeldJointAndBodyNodePair()
     else:
-        joint, plate = base.createPrismaticJointAndBodyNodePair()
-        joint.setAxis([1.0, 0.0, 0.0])
-        joint.setSpringStiffness(0, float(system.stiffness))
-        joint.setDampingCoefficient(0, float(system.damping))
+        if transverse:
+            # one joint of two translations, x then y (its default plane): the plate's one mass
+            # moves along both, u and u_y its two positions
+            joint, plate = base.createTranslationalJoint2DAndBodyNodePair()
+        else:
+            joint, plate = base.createPrismaticJointAndBodyNodePair()
+            joint.setAxis([1.0, 0.0, 0.0])
+        for dof in range(joint.getNumDofs()):  # the isotropic isolator: the same k and c along each
+            joint.setSpringStiffness(dof, float(system.stiffness))
+            joint.setDampingCoefficient(dof, float(system.damping))
         plate.setMass(float(system.base_mass))
     below = dart.math.Isometry3()
     below.set_translation([0.0, 0.0, -0.5 * PLATE_THICKNESS])
     joint.setTransformFromParentBodyNode(below)  # the plate's top at z = 0
-    # a statue's plate is square, past its hull and where it lands overturned (hull_contact)
+    # a statue's plate is square, past its hull and where it lands overturned (hull_contact); the
+    # block's is square too under a pair, as it may fall along y as along x
     side = statue.plate_size(system) if hull else None
+    # the plate's friction is the body's: DART takes the smaller of the two shapes' coefficients,
+    # so the plate's default 1 held Settings.friction to 1 at most (the default, 1, is unchanged)
     _box(plate, (side, side, PLATE_THICKNESS) if hull else
-         (PLATE_WIDTH_RATIO * system.width, DEPTH_RATIO * system.width * 2, PLATE_THICKNESS))
+         (PLATE_WIDTH_RATIO * system.width,
+          PLATE_WIDTH_RATIO * system.width if transverse else DEPTH_RATIO * system.width * 2, PLATE_THICKNESS),
+         friction=settings.friction)
     world.addSkeleton(base)
 
     block = dart.dynamics.Skeleton("block")
@@ -132,6 +170,8 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     rows = np.empty((n // every + 2, 5))
     # a statue's wobble out of the plane and its centre of mass, for the contact engines' extras
     more = np.empty((rows.shape[0], 5)) if hull else None
+    # a pair's 3-D history (kinematics.pair_extras): the body's rotation matrix (9), its centre's y, u_y
+    pair = np.empty((rows.shape[0], 11)) if transverse else None
     k = 0
     status, message, start = Status.COMPLETED, "reached the end time", time.perf_counter()
 
@@ -142,28 +182,46 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
         u, ud = (0.0, 0.0) if system.fixed_base else (float(joint.getPosition(0)), float(joint.getVelocity(0)))
         return t, u, ud, theta, float(omega[1])
 
+    def pair_row():
+        tf = body.getWorldTransform()
+        u_y = 0.0 if system.fixed_base else float(joint.getPosition(1))
+        return (*np.asarray(tf.rotation(), dtype=float).ravel(), float(tf.translation()[1]), u_y)
+
     rows[k] = row(0.0)
     if hull:
         more[k] = statue.row(body)
+    if transverse:
+        pair[k] = pair_row()
     k += 1
+    # ÿg at each step's start, as ẍg; 0.0 throughout without a second component, as before
+    y_at = motion.transverse.at if transverse else (lambda _t: 0.0)
     for i in range(1, n + 1):
         t = i * dt
-        world.setGravity([-float(motion.at(t - dt)), 0.0, -system.gravity])
+        world.setGravity([-float(motion.at(t - dt)), -float(y_at(t - dt)), -system.gravity])
         world.step()
         if i % every == 0 or i == n:
             rows[k] = row(min(t, duration))
             if hull:
                 more[k] = statue.row(body)
+            if transverse:
+                pair[k] = pair_row()
             if not np.all(np.isfinite(rows[k])):
                 status, message = Status.FAILED, f"non-finite state at t = {t:.4g} s"
                 break
             k += 1
+            # on its side: measure() judges the fall from the history. |atan2(R02, R22)| ≥ π/2 is
+            # R22 ≤ 0, the total tilt past π/2 whichever way it leans: a pair's rule too
             if abs(rows[k - 1, 3]) >= 0.5 * math.pi:
-                break  # on its side: measure() judges the fall from the history
+                break
         if progress is not None and i % 20000 == 0:
             progress(t, duration)
     rows = rows[:k]
     extras = statue.extras(system, rows[:, 3], rows[:, 1], more[:k]) if hull else {}
+    if transverse:  # the 3-D history the two-component measures read (validate.core.biaxial)
+        pair = pair[:k]
+        x, y, z, w = Rotation.from_matrix(pair[:, :9].reshape(-1, 3, 3)).as_quat().T  # scipy: scalar last
+        kinematics.pair_extras(extras, orientation=np.stack([w, x, y, z], axis=1), y_centroid=pair[:, 9],
+                               u_y=pair[:, 10])
     return RawHistory(engine="dart", system=system, t=rows[:, 0], u=rows[:, 1], u_dot=rows[:, 2], theta=rows[:, 3],
                       theta_dot=rows[:, 4], status=status, message=message, runtime_s=time.perf_counter() - start,
                       extras=extras)
@@ -179,9 +237,11 @@ ENGINE = EngineSpec(
     name="dart", label="DART", settings_type=Settings, simulate=simulate, ladder=ladder,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False, campaigns=False,
                               isolators=("linear",), kinetic_friction=False, statue_friction=False, vertical=False,
-                              two_edges=TWO_EDGES),
+                              two_edges=TWO_EDGES, transverse=TRANSVERSE),
     presets={"default": Preset("a 0.1 ms step, restitution 0, friction 1 (docs/dart.md)", Settings),
              "coarse": Preset("a 1 ms step: what DART's step costs in β (docs/dart.md)",
-                              lambda: Settings(timestep=1e-3))})
+                              lambda: Settings(timestep=1e-3)),
+             "pair": Preset(f"friction {PAIR_FRICTION:g}: the least two horizontal components run at (below it the "
+                            "statue slips under a pair; docs/statues.md)", lambda: Settings(friction=PAIR_FRICTION))})
 
 __all__ = ["ENGINE", "Settings", "simulate", "ladder"]

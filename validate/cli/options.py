@@ -501,7 +501,7 @@ def add_engine_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--solimp", type=_floats(3, 5, "solimp"), help="mujoco: contact solimp 'dmin,dmax,width[,mid,power]'")
     g.add_argument("--cone", choices=("pyramidal", "elliptic"), help="mujoco: friction cone")
     g.add_argument("--integrator", choices=("Euler", "implicit", "implicitfast", "RK4"), help="mujoco: integrator")
-    g.add_argument("--friction", type=number, help="mujoco, bullet: block–base friction coefficient")
+    g.add_argument("--friction", type=number, help="mujoco, bullet, dart: block–base friction coefficient")
     g.add_argument("--noslip", type=whole_number, dest="noslip", metavar="N", help="mujoco: noslip iterations")
     g.add_argument("--solver-iterations", type=whole_number, help="bullet: constraint solver iterations")
     g.add_argument("--substeps", type=whole_number,
