@@ -22,7 +22,6 @@ columns 1–2 of each record; the README says the other axis and the displacemen
 from __future__ import annotations
 
 import gzip
-import time
 from pathlib import Path
 
 import numpy as np
@@ -66,35 +65,43 @@ def check_frictions(values) -> tuple[float, ...]:
     return tuple(out)
 
 
-def run_sliding(system, accel: dict, dt: dict, mu: float) -> dict:
-    """{test: (overturned, θmax/α, slid m, wall s)} of the exact model of `system` with friction
-    μ (static = kinetic) under each record: the analytic engine's contact model."""
+#: simulated seconds per wall second of the sliding runs on this machine's 2 cores (core.estimate's
+#: speeds, for the cost said before the work): 20 tests × 2 specimens × 2 μ, 4,000 simulated s in
+#: 47 s wall at load 3, rounded down (a bound on an idle machine)
+SLIDING_SPEED = {"analytic": 80.0}
+#: tests per batch of the sliding runs: each batch runs on every core (analytic.fast.simulate_batch's
+#: threads over the sliding kernel), and the progress moves once per batch
+SLIDING_BATCH = 16
+
+
+def sliding_seconds(accel: dict, dt: dict, frictions) -> float:
+    """Simulated seconds of the sliding runs of `build`: every test, both specimens, each μ (the
+    rigid runs' share is a few percent, not counted)."""
+    return sum((a.size - 1) * dt[t] + study.PAD for t, a in accel.items()) * len(data.SPECIMENS) * len(frictions)
+
+
+def run_sliding(system, accel: dict, dt: dict, mu: float, *, on_runs=None) -> dict:
+    """{test: (overturned, θmax/α, slid m)} of the exact model of `system` with friction μ (static
+    = kinetic) under each record: the analytic engine's contact model, in batches on every core.
+    on_runs(n): called as each batch of n runs is done (a progress bar's update)."""
+    from isorock.analytic.fast import simulate_batch
     from isorock.analytic.motion import GroundMotion
-    from isorock.validate.core.engines import get_engine
-    engine = get_engine("analytic")
+    from isorock.analytic.status import Status
     rock = system.with_friction(mu)
+    tests = list(accel)
     rows = {}
-    for test, a in accel.items():
-        motion = GroundMotion.from_array(a, dt=dt[test], units="m/s2", name=f"Test{test:03d}")
-        start = time.perf_counter()
-        tr = engine.simulate(rock, motion, duration=motion.end_time + study.PAD)
-        wall = time.perf_counter() - start
-        if tr.status.is_failure:
-            # a run the contact model cannot carry (free flight, Painlevé): reported, not guessed
-            rows[test] = (None, float("nan"), float("nan"), wall)
-            continue
-        rows[test] = (bool(tr.overturned), float(tr.theta_max_over_alpha), slid(tr), wall)
+    for k in range(0, len(tests), SLIDING_BATCH):
+        batch = tests[k:k + SLIDING_BATCH]
+        motions = [GroundMotion.from_array(accel[t], dt=dt[t], units="m/s2", name=f"Test{t:03d}") for t in batch]
+        for t, r in zip(batch, simulate_batch([rock], motions, duration=[m.end_time + study.PAD for m in motions])):
+            if Status(r["status"]).is_failure:
+                # a run the contact model cannot carry (free flight, Painlevé): reported, not guessed
+                rows[t] = (None, float("nan"), float("nan"))
+            else:
+                rows[t] = (bool(r["overturned"]), float(r["theta_max_over_alpha"]), abs(float(r["slide_max"])))
+        if on_runs is not None:
+            on_runs(len(batch))
     return rows
-
-
-def slid(tr) -> float:
-    """The largest |slide| (m) of the statue on its table in a run, 0 when the trace has none."""
-    for name in ("slide", "x_slide", "slide_x"):
-        x = getattr(tr, name, None)
-        if x is not None:
-            x = np.asarray(x, dtype=float)
-            return float(np.nanmax(np.abs(x))) if x.size else 0.0
-    return float("nan")
 
 
 def beyond_x(folder) -> dict:
@@ -110,18 +117,24 @@ def beyond_x(folder) -> dict:
 
 
 def build(folder, *, frictions=FRICTIONS, tests=None, steps=processing.DEFAULT_STEPS,
-          lowpass_hz=processing.LOWPASS_HZ, asymmetric=True) -> dict:
+          lowpass_hz=processing.LOWPASS_HZ, asymmetric=True, announce=None, progress=None) -> dict:
     """Every test's verdicts per specimen: measured, rigid forward block, the rock's own edges
-    (±x), and the forward block with friction at each μ; and the counts of the issue's table."""
+    (±x), and the forward block with friction at each μ; and the counts of the issue's table.
+    announce(simulated s), if given, is called once the records are read, before the runs (the
+    cost said before the work); progress(total) returns a bar with update(n) and close()."""
     frictions = check_frictions(frictions)
     outcomes, testlist, _, accel, dts, specimens, _ = study.read(folder, tests, steps, lowpass_hz)
+    if announce is not None:
+        announce(sliding_seconds(accel, dts, frictions))
+    bar = progress(len(accel) * len(specimens) * len(frictions)) if progress is not None else None
     classes, split = period_classes(outcomes, testlist)
     rows, counts = [], {}
     for s, spec in specimens.items():
         block = study.equivalent_block(spec, 1)
         rigid = study.run_block(block, accel, dts)
         own = study.run_asymmetric(spec, accel, dts) if asymmetric else {}
-        sliding = {mu: run_sliding(block, accel, dts, mu) for mu in frictions}
+        sliding = {mu: run_sliding(block, accel, dts, mu, on_runs=bar.update if bar is not None else None)
+                   for mu in frictions}
         for t in testlist:
             y = outcomes[t].measured[s]
             row = {"specimen": f"SP{s}", "test": t, "measured": int(y), "pgv_over_pga_s": outcomes[t].pgv_over_pga_s,
@@ -130,11 +143,13 @@ def build(folder, *, frictions=FRICTIONS, tests=None, steps=processing.DEFAULT_S
             for name, runs in own.items():
                 row[name] = int(runs[t][0])
             for mu, runs in sliding.items():
-                over, theta, x, _ = runs[t]
+                over, theta, x = runs[t]
                 row[f"slide_mu{mu:g}"] = "" if over is None else int(over)
                 row[f"slide_mu{mu:g}_slid_m"] = x
             rows.append(row)
         counts[f"SP{s}"] = tally([r for r in rows if r["specimen"] == f"SP{s}"], frictions, list(own))
+    if bar is not None:
+        bar.close()
     return {"rows": rows, "counts": counts, "split_s": split, "frictions": frictions,
             "beyond_x": beyond_x(folder)}
 

@@ -2,7 +2,6 @@
 docs/scripts/experiments_misses.py). The oracles are closed forms and hand counts; the shake-table
 data (GPL-3.0, ../shared/data/vsr) are read only by the tests that say so, skipped without them."""
 import gzip
-import math
 import subprocess
 import sys
 from pathlib import Path
@@ -31,7 +30,7 @@ def test_sliding_replaces_rocking_below_tan_alpha_by_the_closed_form():
     a[1:int(round(T / dt)) + 1] = a0
     rigid = study.run_block(block, {1: a}, {1: dt})[1]
     assert rigid[0] is True                                            # the rigid block falls
-    over, theta, slid, _ = misses.run_sliding(block, {1: a}, {1: dt}, mu)[1]
+    over, theta, slid = misses.run_sliding(block, {1: a}, {1: dt}, mu)[1]
     assert over is False and theta == 0.0                              # never tips
     expected = (a0 - mu * G) * a0 * T**2 / (2 * mu * G)
     # the record's one-sample ramps (linear between samples) shift the pulse by O(dt/T)
@@ -44,7 +43,7 @@ def test_a_block_that_cannot_slip_at_this_pulse_does_not_slide():
     block = System.fixed(height=1.0, width=0.2, mass=100.0)
     a = np.zeros(1001)
     a[1:500] = 0.05 * G
-    over, theta, slid, _ = misses.run_sliding(block, {1: a}, {1: 1e-3}, 0.5)[1]
+    over, theta, slid = misses.run_sliding(block, {1: a}, {1: 1e-3}, 0.5)[1]
     assert over is False and theta == 0.0 and slid == 0.0
 
 
@@ -100,3 +99,50 @@ def test_on_three_tests_the_rows_and_counts_agree(tmp_path):
         wrong = sum(x["rigid"] != x["measured"] for x in rows)
         assert c["long: misses"] + c["long: false alarms"] + c["short: misses"] + c["short: false alarms"] == wrong
         assert c["mu 0.5: fixed"] <= wrong
+
+
+def test_the_batched_sliding_runs_are_the_engine_runs_one_by_one():
+    """run_sliding's batches (analytic.fast.simulate_batch's summaries, on threads) against the
+    analytic engine's own run of each record with its history: the same verdict, θmax/α and
+    slide (the largest |slide| of the history, within its sampling)."""
+    from isorock.analytic.motion import GroundMotion
+    from isorock.validate.core.engines import get_engine
+    block = System.fixed(height=1.0, width=0.5, mass=100.0)  # tanα 0.5 > μ 0.3: it slides before it tips
+    rng = np.random.default_rng(38)
+    dt = 0.005
+    accel = {t: np.convolve(rng.normal(0.0, 0.8 * G, 1200), np.ones(8) / 8, mode="same") for t in (1, 2, 3)}
+    rows = misses.run_sliding(block, accel, {t: dt for t in accel}, 0.3)
+    slid_somewhere = False
+    for t, a in accel.items():
+        motion = GroundMotion.from_array(a, dt=dt, units="m/s2", name=f"Test{t:03d}")
+        tr = get_engine("analytic").simulate(block.with_friction(0.3), motion, duration=motion.end_time + study.PAD)
+        over, theta, slid = rows[t]
+        assert over == bool(tr.overturned) and theta == pytest.approx(tr.theta_max_over_alpha, rel=1e-9, abs=1e-12)
+        history = float(np.max(np.abs(tr.slide)))
+        assert history <= slid * (1 + 1e-9) + 1e-12 and slid == pytest.approx(history, rel=1e-3, abs=1e-9)
+        slid_somewhere |= slid > 1e-3
+    assert slid_somewhere  # the block slid in at least one record: the slide was exercised
+
+
+@needs_data
+def test_the_command_writes_the_study_whole(tmp_path, capsys):
+    from isorock.validate.cli.main import main
+    out = tmp_path / "m"
+    assert main(["experiments", "--misses", "0.5", "--tests", "11,62,383", "--data", str(VSR), "--out", str(out)]) == 0
+    assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == ["misses.csv", "misses.md"]
+    assert len((out / "misses.csv").read_text().splitlines()) == 1 + 6
+    assert "mu 0.5: fixed" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["--misses", "0"], "friction"),
+    (["--misses", "abc"], "misses"),
+    (["--misses", "0.5", "--fit", "x"], "misses"),
+    (["--misses", "0.5", "--overturning-scale"], "misses"),
+])
+def test_a_bad_misses_option_is_one_line(tmp_path, capsys, argv, words):
+    from isorock.validate.cli.main import main
+    out = tmp_path / "m"
+    assert main(["experiments", *argv, "--data", str(ROOT), "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and words in err and not out.exists(), err

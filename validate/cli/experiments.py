@@ -11,7 +11,7 @@ import math
 
 from isorock.analytic.errors import InputError
 
-from isorock.experiments import data, processing, study
+from isorock.experiments import data, misses, processing, study
 
 DEFAULT_OUT = "isorock-experiments"
 DEFAULT_MODEL = "isorock-model.json"
@@ -55,6 +55,11 @@ def add_parser(sub) -> None:
     p.add_argument("--predict", metavar="DIR", help="score the tests of DIR (--tests to take some) with the frozen "
                    "--model, refitting nothing; writes prediction.md and prediction.json to --out")
     p.add_argument("--model", metavar="FILE", help="the model file --fit wrote (with --predict)")
+    p.add_argument("--misses", nargs="?", const="default", metavar="MU[,MU]",
+                   help="what the rigid model misses, test by test (issue 38): the forward block's verdicts beside "
+                        "the rock's own two edges and the block sliding on the table at each friction μ (default "
+                        + ",".join(f"{m:g}" for m in misses.FRICTIONS) + "); writes misses.csv and misses.md "
+                        "into --out (docs/experiments.md)")
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR", help="output folder (default: %(default)s); with "
                    "--fit the model file")
     p.set_defaults(func=main)
@@ -180,8 +185,47 @@ def predict_lines(result) -> list[str]:
     return lines
 
 
+def _frictions(text: str) -> tuple[float, ...]:
+    if text == "default":
+        return misses.FRICTIONS
+    try:
+        return misses.check_frictions(tuple(float(x) for x in text.split(",")))
+    except ValueError:
+        raise InputError(f"misses = {text!r}: must be comma-separated friction coefficients, e.g. 0.3,0.5,0.8") \
+            from None
+
+
+def run_misses(a) -> int:
+    """--misses: the rigid model's misses, test by test (experiments/misses.py), written whole or not at all."""
+    from isorock.validate.io.output import Outputs
+    if a.fit is not None or a.predict is not None or a.model is not None or a.overturning_scale or a.sensitivity:
+        raise InputError("misses: a study of its own; give it without --fit, --predict, --model, "
+                         "--overturning-scale and --sensitivity")
+    frictions = _frictions(a.misses)
+    steps = processing.parse_steps(a.steps)
+    processing.check_lowpass(a.lowpass_hz)
+    tests = _tests(a.tests)
+    from isorock.validate.cli.options import announce_cost
+    from isorock.validate.io.progress import Progress
+
+    def announce(simulated):  # the sliding runs' cost, before their minutes
+        announce_cost("experiments --misses", {"analytic": simulated}, budget_s=0, speeds=misses.SLIDING_SPEED,
+                      basis="on these records' sliding runs, measured loaded (docs/experiments.md)")
+    with Outputs() as outputs:
+        out = outputs.folder("out", a.out)
+        result = misses.build(a.data, frictions=frictions, tests=tests, steps=steps, lowpass_hz=a.lowpass_hz,
+                              announce=announce, progress=lambda n: Progress(n, "sliding runs", enabled=None))
+        out.write(lambda folder: misses.write(result, folder))
+        outputs.commit()
+    print("\n".join(misses.table_lines(result)))
+    print(f"wrote {a.out}/misses.md, misses.csv")
+    return 0
+
+
 def main(a) -> int:
     from isorock.validate.io.output import Outputs
+    if a.misses is not None:
+        return run_misses(a)
     if a.fit is not None or a.predict is not None:
         return fit_or_predict(a)
     if a.model is not None:
