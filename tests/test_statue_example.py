@@ -22,11 +22,11 @@ def test_it_parses_as_the_bust_it_describes():
 
 def test_every_key_of_the_format_is_in_it_and_each_commented_one_is_valid(tmp_path):
     text = EXAMPLE.read_text()
-    written = set(re.findall(r"^#?\s*\[?([a-z_]+)\s*=", text, re.M)) | set(re.findall(r"^#?\s*\[([a-z_]+)", text, re.M))
+    written = set(re.findall(r"^#?\s*\[?([a-z_0-9]+)\s*=", text, re.M)) | set(re.findall(r"^#?\s*\[([a-z_0-9]+)", text, re.M))
     for key in set(ConfigFile.model_fields) | set(SystemTable.model_fields) | set(StatueTable.model_fields):
         assert key in written, f"examples/statue.toml does not document {key}"
     # the [statue] table, uncommented with its lines, is a valid file (its keys read as written)
-    block = [line[1:] for line in text.splitlines() if re.match(r"^#\[statue\]|^#[a-z_]+ =", line)]
+    block = [line[1:] for line in text.splitlines() if re.match(r"^#\[statue\]|^#[a-z_0-9]+ =", line)]
     path = tmp_path / "statue.toml"
     path.write_text("\n".join(block) + "\n")
     assert set(read_config(path)["statue"]) == set(StatueTable.model_fields)
@@ -34,7 +34,7 @@ def test_every_key_of_the_format_is_in_it_and_each_commented_one_is_valid(tmp_pa
     head, _, tail = text.partition("\n# [settings")
     lines = head.splitlines()
     for i, line in enumerate(lines):
-        m = re.match(r"^# ([a-z_]+ = .*?)(\s+#.*)?$", line)
+        m = re.match(r"^# ([a-z_0-9]+ = .*?)(\s+#.*)?$", line)
         if not m or m.group(1).startswith(("motions", "fixed_base")):
             continue  # the records are the user's own files; fixed_base with the isolator is refused (below)
         trial = lines[:i] + [m.group(1)] + lines[i + 1:]
