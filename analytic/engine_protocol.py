@@ -73,8 +73,9 @@ class Capabilities:
     #: is refused such a System in one line (check_body), never runs the box in its place
     two_edges: bool = False
     #: it carries a second horizontal ground-motion component (GroundMotion.transverse: a record
-    #: pair, issue 36): MuJoCo's, PyBullet's and DART's scenes, whose body may leave the plane; a planar model, or a
-    #: contact engine on planar joints, is refused such a motion in one line (check_transverse),
+    #: pair, issue 36): MuJoCo's, PyBullet's, Drake's and DART's scenes, whose body may leave the plane
+    #: (Drake puts its block on a free body for a pair); a planar model, or a contact engine on planar
+    #: joints, is refused such a motion in one line (check_transverse),
     #: never runs the first component alone in its place
     transverse: bool = False
 
@@ -255,7 +256,7 @@ def check_transverse(system: "System", motion: "GroundMotion", transverse: bool,
         return
     if not transverse:
         raise InputError(f"transverse = {motion.transverse.name or 'a second component'}: {engine} runs one "
-                         "horizontal component only (engines 'mujoco', 'bullet' and 'dart' carry two)")
+                         "horizontal component only (engines 'mujoco', 'bullet', 'drake' and 'dart' carry two)")
     if not system.fixed_base and system.isolator_kind != LINEAR:
         raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be linear "
                          "(isotropic: the same k and c along x and y) or a fixed base")

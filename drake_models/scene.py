@@ -26,6 +26,14 @@ same text, so what a user opens is what ran):
   (exact for a translating ground), from a first-order-hold trajectory source into the
   plant's applied-generalized-force port; the stepping runs in C++ (Simulator.AdvanceTo
   over chunks of CHUNK s) and a VectorLogSink samples the state every `sample_interval`.
+- two horizontal components (GroundMotion.transverse, issue 36; `scene_text(transverse=True)`):
+  the second, ÿg along the world's y, is applied as the first: −m ÿg on the body's world y
+  and, on the linear isolator, −m_b ÿg on a second prismatic joint of the base along y
+  ("isolator_y", the same spring k and damping c: the isolator is isotropic) under a
+  massless carriage on the x joint. The block leaves its planar joint for a free body
+  (its four bottom corner spheres; a statue's own shape is a free body already); a fixed
+  base and the plate (square already) are as before. Without a second component the
+  scene is the one-component scene, unchanged.
 
 Outputs follow model.md: u (m) is the base's joint position, θ the planar joint's angle;
 `simulate` returns a RawHistory, measured by the registry like every engine's. Extras, in
@@ -37,7 +45,10 @@ follow the corner spheres' own geometry (they roll), not the sharp corners of
 
 A run stops by the shared rules of `analytic.kinematics.first_stop` (a non-finite state,
 the block lying on its side, falling on a fixed base after the motion), and when Drake's
-integrator gives up (status "failed"); it goes on past α (model.md, "Past α").
+integrator gives up (status "failed"); it goes on past α (model.md, "Past α"). A run of two
+components is never stopped as falling (that rule reads θ, the tilt's projection on xz, and a
+body leaning on a diagonal past the x edge's α may still stand), as MuJoCo's and PyBullet's;
+its extras add the 3-D history the two-component measures read (`kinematics.pair_extras`).
 
 Presets (PRESETS; measured in docs/drake.md with docs/scripts/drake_presets.py; worst
 β error over the first 4 impacts from θ0 = 0.3–0.8α, fixed / μ = 1 isolated):
@@ -75,7 +86,7 @@ from isorock.analytic.errors import InputError, require, require_positive_finite
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import check_friction, contact_friction, run_inputs
 from isorock.analytic.status import Status
-from isorock.analytic.system import System, paper_system
+from isorock.analytic.system import LINEAR, System, paper_system
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
 from . import statue
@@ -119,6 +130,10 @@ _PAPER = paper_system()
 #: Whether Drake carries a statue of two edges (its own shape, drake_models.statue): what
 #: Capabilities.two_edges says, judged in docs/statues.md
 TWO_EDGES = True
+#: Whether Drake carries two horizontal components (GroundMotion.transverse) on a fixed base
+#: and the linear isolator: what Capabilities.transverse says, judged in docs/statues.md ("Two
+#: horizontal components", Drake) by tests/test_two_components_drake.py
+TRANSVERSE = True
 
 
 @dataclass(frozen=True)
@@ -337,7 +352,7 @@ _SDF = """<?xml version="1.0"?>
      Plant settings that SDFormat cannot hold (simulate() applies them):
        {plant}
      Ground motion: apply -m*xg''(t) to the {body_x} and -m_b*xg''(t) to the isolator joint
-     (MultibodyPlant applied generalized force). {coords}
+     (MultibodyPlant applied generalized force).{pair} {coords}
      Settings: {settings} -->
 <sdf version="1.9" xmlns:drake="http://drake.mit.edu">
   <model name="isorock">
@@ -383,21 +398,53 @@ _BLOCK = """    <!-- the link frame is the ground's orientation at the centroid:
       <drake:child>block</drake:child>
       <drake:damping>0 0 0</drake:damping>
     </drake:joint>"""
-_ISOLATOR = """    <joint name="isolator" type="prismatic">
-      <parent>world</parent><child>base</child>
-      <axis><xyz>1 0 0</xyz>
+#: the block of two horizontal components: a free body (no joint), which may leave the plane
+_FREE_BLOCK = """    <!-- two horizontal components: the block on no joint (Drake's quaternion floating joint), free to
+         leave the plane; the link frame is the world's axes at the centroid (x along the first
+         component, y along the second, z up) -->
+    <link name="block">
+      <pose>0 0 {h!r} 0 0 0</pose>
+      <inertial><mass>{m}</mass>
+        <inertia><ixx>{ixx}</ixx><iyy>{iyy}</iyy><izz>{izz}</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia>
+      </inertial>
+{block_collisions}
+      <visual name="block"><geometry><box><size>{B} {D} {H}</size></box></geometry></visual>
+    </link>"""
+#: the header's account of the free block's coordinates (two components)
+_FREE_COORDS = """The block (link "block") has no joint: Drake's quaternion floating
+     joint, its position the centroid's. Tilt it by theta0 about world +y about its corner spheres
+     to start free rocking."""
+_PRISMATIC = """    <joint name="{name}" type="prismatic">
+      <parent>{parent}</parent><child>{child}</child>
+      <axis><xyz>{axis}</xyz>
         <limit><lower>-1e30</lower><upper>1e30</upper><effort>1e30</effort></limit>
         <dynamics><damping>{c!r}</damping><spring_stiffness>{k!r}</spring_stiffness><spring_reference>0</spring_reference></dynamics>
       </axis>
     </joint>"""
+#: the isolator of one component: the base on a prismatic joint along x
+_ISOLATOR = _PRISMATIC.replace("{name}", "isolator").replace("{parent}", "world").replace(
+    "{child}", "base").replace("{axis}", "1 0 0")
+#: two components (GroundMotion.transverse): the base on a y joint on a massless carriage on the x
+#: joint, the same k and c on both (the linear isolator is isotropic). The carriage carries no
+#: mass, so the x joint's inertia is the plate's m_b, as the y joint's is: u and u_y are the two
+#: joints' positions, each driven by −m_b·(its component), as the one joint is
+_CARRIAGE = """    <!-- two horizontal components: the base rides a y joint on a massless carriage on the x joint -->
+    <link name="carriage">
+      <inertial><mass>0</mass>
+        <inertia><ixx>0</ixx><iyy>0</iyy><izz>0</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia>
+      </inertial>
+    </link>
+"""
 _WELD = """    <joint name="base_weld" type="fixed"><parent>world</parent><child>base</child></joint>"""
-_SPHERE = """      <collision name="{name}">
-        <pose>{x!r} {y!r} 0 0 0 0</pose>
+_SPHERE_AT = """      <collision name="{name}">
+        <pose>{x!r} {y!r} {z!r} 0 0 0</pose>
         <geometry><sphere><radius>{r!r}</radius></sphere></geometry>
         <drake:proximity_properties>
 {props}
         </drake:proximity_properties>
       </collision>"""
+#: a corner sphere of the planar block, in its rocking plane (link z = 0)
+_SPHERE = _SPHERE_AT.replace("{z!r}", "0")
 _BOX = """      <collision name="block">
         <geometry><box><size>{B!r} {H!r} {D!r}</size></box></geometry>
         <drake:proximity_properties>
@@ -439,9 +486,12 @@ def _plant_description(settings: Settings) -> str:
             f"{settings.discrete_solver}, contact model {settings.contact}")
 
 
-def scene_text(system: System, settings: Settings | None = None) -> str:
+def scene_text(system: System, settings: Settings | None = None, *, transverse: bool = False) -> str:
     """The SDFormat text of this system with these settings (what `simulate` parses),
-    block upright at rest."""
+    block upright at rest. `transverse`: the scene of two horizontal components
+    (GroundMotion.transverse): the block a free body on four bottom corner spheres (a statue
+    is one already), on an isolated base the base on a second prismatic joint along y under
+    a massless carriage (the same k and c); without it the one-component scene, unchanged."""
     settings = (settings or Settings()).for_system(system)
     b, h, d = system.b, system.h, DEPTH_FRACTION * system.b
     m, mb = system.mass, system.base_mass
@@ -452,22 +502,45 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
     hydro = settings.contact == "hydroelastic"
     mu = frictions(system, settings)
     statue_shape = hull_contact.has_solid(system)
+    free_block = transverse and not statue_shape
+    if transverse:
+        require(system.fixed_base or system.isolator_kind == LINEAR, "isolator", system.isolator_kind,
+                "linear or a fixed base with two horizontal components")
+        require(not hydro, "contact", settings.contact, "point with two horizontal components (the corner spheres)")
     if statue_shape:  # its own shape in the block's place, on a free body (drake_models.statue)
         require(not hydro, "contact", settings.contact, "point for a statue's own shape (its hull's vertices)")
         w = 2 * hull_contact.plate_half_width(system)
         collisions = ""
+    elif free_block:  # the four bottom corners, each sphere inscribed (centre r inside all three faces)
+        collisions = "\n".join(
+            _SPHERE_AT.format(name=f"corner_{'pn'[sx < 0]}{'pn'[sy < 0]}", x=sx * (b - r), y=sy * (d - r),
+                              z=-(h - r), r=r, props=_props(settings, mu))
+            for sx in (1.0, -1.0) for sy in (1.0, -1.0))
     elif hydro:
         collisions = _BOX.format(B=2 * b, H=2 * h, D=2 * d, props=_props(settings, mu, hydro="compliant"))
     else:  # the two bottom corners of the rocking plane, in link coordinates (up is −y)
         collisions = "\n".join(_SPHERE.format(name=name, x=sx * (b - r), y=h - r, r=r, props=_props(settings, mu))
                                for name, sx in (("corner_pos", 1.0), ("corner_neg", -1.0)))
-    base_joint = _WELD if system.fixed_base else _ISOLATOR.format(k=system.stiffness, c=system.damping)
+    if system.fixed_base:
+        base_joint = _WELD
+    elif transverse:
+        base_joint = _CARRIAGE + "\n".join(
+            _PRISMATIC.format(name=name, parent=parent, child=child, axis=axis, k=system.stiffness, c=system.damping)
+            for name, parent, child, axis in (("isolator", "world", "carriage", "1 0 0"),
+                                              ("isolator_y", "carriage", "base", "0 1 0")))
+    else:
+        base_joint = _ISOLATOR.format(k=system.stiffness, c=system.damping)
     listed = ", ".join(f"{f.name} = {getattr(settings, f.name)!r}" for f in fields(settings))
-    # link axes: x = world x, y = world −z, z = world y (the rocking axis)
-    body = statue.link(system, settings, _props(settings, mu)) if statue_shape else _BLOCK.format(
-        h=h, rot=repr(-math.pi / 2), m=m, B=system.width, H=system.height, D=2 * d,
-        ixx=m * (h * h + d * d) / 3, iyy=m * (b * b + d * d) / 3, izz=m * (b * b + h * h) / 3,
-        block_collisions=collisions)
+    if statue_shape:
+        body = statue.link(system, settings, _props(settings, mu))
+    elif free_block:  # link axes the world's: I about x, y, z of the box 2b × 2d × 2h
+        body = _FREE_BLOCK.format(h=h, m=m, B=system.width, D=2 * d, H=system.height, ixx=m * (d * d + h * h) / 3,
+                                  iyy=m * (b * b + h * h) / 3, izz=m * (b * b + d * d) / 3, block_collisions=collisions)
+    else:  # link axes: x = world x, y = world −z, z = world y (the rocking axis)
+        body = _BLOCK.format(
+            h=h, rot=repr(-math.pi / 2), m=m, B=system.width, H=system.height, D=2 * d,
+            ixx=m * (h * h + d * d) / 3, iyy=m * (b * b + d * d) / 3, izz=m * (b * b + h * h) / 3,
+            block_collisions=collisions)
     return _SDF.format(
         base_kind="a fixed" if system.fixed_base else
         f"an isolated (k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N s/m)",
@@ -477,14 +550,19 @@ def scene_text(system: System, settings: Settings | None = None) -> str:
         bizz=mb * w * w / 6, plate_props=_props(settings, mu, hydro="rigid" if hydro else None),
         base_joint=base_joint, body=body,
         what="a statue's own shape (its hull's vertices)" if statue_shape else "block",
-        body_x="statue's free-body world x (the centre of mass)" if statue_shape else "block's planar x",
-        coords=statue.COORDS if statue_shape else _PLANAR_COORDS)
+        body_x="statue's free-body world x (the centre of mass)" if statue_shape else
+        "block's free-body world x (the centroid)" if free_block else "block's planar x",
+        pair="\n     Second horizontal component: apply -m*yg''(t) to the body's world y and -m_b*yg''(t) to\n"
+        "     isolator_y (the base's y joint)." if transverse else "",
+        coords=statue.COORDS if statue_shape else _FREE_COORDS if free_block else _PLANAR_COORDS)
 
 
 class _Built:
     """A built diagram and where the scene's quantities sit in the plant's state."""
 
     def __init__(self, system: System, motion: GroundMotion, settings: Settings, duration: float):
+        #: two horizontal components: the pair's scene (scene_text(transverse=True))
+        self.transverse = motion.transverse is not None
         builder = pd.DiagramBuilder()
         plant, _ = pd.AddMultibodyPlantSceneGraph(builder, settings.timestep)
         if not settings.continuous:
@@ -494,7 +572,7 @@ class _Built:
                 "lagged": pd.DiscreteContactApproximation.kLagged}[settings.discrete_solver])
         plant.set_contact_model(pd.ContactModel.kHydroelastic if settings.contact == "hydroelastic"
                                 else pd.ContactModel.kPoint)
-        text = scene_text(system, settings)
+        text = scene_text(system, settings, transverse=self.transverse)
         if hull_contact.has_solid(system) and settings.hull == "convex":
             # the hull's OBJ beside the SDF, which names it by a relative path
             with tempfile.TemporaryDirectory(prefix="isorock-drake-") as folder:
@@ -509,7 +587,8 @@ class _Built:
         plant.Finalize()
         self.plant = plant
         self.nq, self.nv = plant.num_positions(), plant.num_velocities()
-        self.statue = statue.Indices(plant) if hull_contact.has_solid(system) else None
+        # the free body's indices: a statue's own shape, or the block of a pair (None: the planar block)
+        self.statue = statue.Indices(plant) if hull_contact.has_solid(system) or self.transverse else None
         if self.statue is None:
             rocking = plant.GetJointByName("rocking")
             self.xq, self.yq, self.thq = (rocking.position_start() + i for i in range(3))
@@ -521,6 +600,10 @@ class _Built:
         else:
             iso = plant.GetJointByName("isolator")
             self.uq, self.uv = iso.position_start(), iso.velocity_start()
+        self.uyq = self.uyv = None  # the base's y joint (two components on an isolated base)
+        if self.transverse and not system.fixed_base:
+            iso_y = plant.GetJointByName("isolator_y")
+            self.uyq, self.uyv = iso_y.position_start(), iso_y.velocity_start()
 
         # ground motion as generalized forces, linear between knots
         knots = _force_knots(motion, duration)
@@ -529,6 +612,13 @@ class _Built:
         forces[self.xv] = -system.mass * xg
         if self.uv is not None:
             forces[self.uv] = -system.base_mass * xg
+        if self.transverse:
+            # ÿg as ẍg: −m·ÿg on the free body's world y (at its centre of mass: no torque), −m_b·ÿg
+            # on the base's y joint (zero rows on a fixed base, as before)
+            yg = np.asarray(motion.transverse_at(knots), dtype=float)
+            forces[self.statue.yv] = -system.mass * yg
+            if self.uyv is not None:
+                forces[self.uyv] = -system.base_mass * yg
         if motion.vertical is not None:
             # −m·üv on the block's world z, and the planar joint's y is −z: +m·üv on y (the base
             # rides the ground vertically, welded or on its x joint); a free body's z is the world's
@@ -552,7 +642,8 @@ class _Built:
 def _force_knots(motion: GroundMotion, duration: float) -> np.ndarray:
     """Knots of the ground-force trajectory up to `duration`: spaced at most FORCE_KNOT,
     a record's samples among them (it is linear between them), and the end of a motion
-    (a pulse stops there, possibly with a jump); a vertical component's knots too."""
+    (a pulse stops there, possibly with a jump); a vertical or a second horizontal
+    component's knots too."""
     if motion.is_zero:
         return np.array([0.0, duration])
     step = FORCE_KNOT if motion.pulse is not None else motion.dt / math.ceil(motion.dt / FORCE_KNOT - 1e-9)
@@ -561,23 +652,39 @@ def _force_knots(motion: GroundMotion, duration: float) -> np.ndarray:
     end = motion.end_time
     if 0 < end < duration:  # ẍg is zero after the end: add its last value and the zero beside it
         knots = np.union1d(knots, [end, min(end + 1e-9, duration)])
-    if motion.vertical is not None:
-        knots = np.union1d(knots, _force_knots(motion.vertical, duration))
+    for other in (motion.vertical, motion.transverse):  # another component's samples and end too
+        if other is not None:
+            knots = np.union1d(knots, _force_knots(other, duration))
     return knots
 
 
-def _initial_positions(built: _Built, system: System, settings: Settings, theta0: float) -> np.ndarray:
-    """Tilted by θ0 about the corner sphere it rests on, the sphere touching the plate:
-    centroid = sphere centre + R(θ)·(−s(b − r), h − r), the centre at (s(b − r) + rθ0, r),
-    where rolling from upright puts it."""
-    q = np.zeros(built.nq)
+def _tilted_centroid(system: System, settings: Settings, theta0: float) -> tuple[float, float]:
+    """(x, z) of the block's centroid tilted by θ0 about the corner sphere it rests on, the
+    sphere touching the plate: centroid = sphere centre + R(θ)·(−s(b − r), h − r), the centre
+    at (s(b − r) + rθ0, r), where rolling from upright puts it."""
     s = 1.0 if theta0 >= 0 else -1.0
     r = settings.corner_radius if settings.contact == "point" else 0.0
     bp, hp = system.b - r, system.h - r
     c, sn = math.cos(theta0), math.sin(theta0)
-    x = s * bp + r * theta0 - s * bp * c + hp * sn
-    z = r + s * bp * sn + hp * c
+    return s * bp + r * theta0 - s * bp * c + hp * sn, r + s * bp * sn + hp * c
+
+
+def _initial_positions(built: _Built, system: System, settings: Settings, theta0: float) -> np.ndarray:
+    """The planar block tilted by θ0 about its corner sphere (_tilted_centroid)."""
+    q = np.zeros(built.nq)
+    x, z = _tilted_centroid(system, settings, theta0)
     q[built.xq], q[built.yq], q[built.thq] = x, -z, theta0
+    return q
+
+
+def _free_block_positions(built: _Built, system: System, settings: Settings, theta0: float) -> np.ndarray:
+    """The block of a pair (a free body, its frame the world's axes) tilted by θ0 about world +y
+    about its two corner spheres on that side: the planar block's pose (_tilted_centroid)."""
+    q = np.zeros(built.nq)
+    ix = built.statue
+    x, z = _tilted_centroid(system, settings, theta0)
+    q[ix.quat] = (math.cos(theta0 / 2), 0.0, math.sin(theta0 / 2), 0.0)
+    q[ix.xq], q[ix.yq], q[ix.zq] = x, 0.0, z
     return q
 
 
@@ -589,8 +696,12 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     a second."""
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  two_edges=TWO_EDGES)
+                                  two_edges=TWO_EDGES, transverse=TRANSVERSE)
     check_system(system, settings)
+    # two components: the 'falling' rule reads θ, the tilt's projection on xz, and a body leaning
+    # on a diagonal past the x edge's α may still stand; it is planar, so it never stops a 3-D run
+    # ('lying' holds), as in MuJoCo's and PyBullet's
+    motion_end = math.inf if motion.transverse is not None else motion.end_time
     start = time.perf_counter()
     built = _Built(system, motion, settings, duration)
     simulator = pd.Simulator(built.diagram)
@@ -601,8 +712,13 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                                                    publish_every_time_step=False), simulator)
     context = simulator.get_mutable_context()
     plant_context = built.plant.GetMyMutableContextFromRoot(context)
-    built.plant.SetPositions(plant_context, _initial_positions(built, system, settings, theta0) if built.statue is None
-                             else statue.initial_positions(built.plant, built.statue, built.nq, system, settings, theta0))
+    if built.statue is None:
+        q0 = _initial_positions(built, system, settings, theta0)
+    elif hull_contact.has_solid(system):
+        q0 = statue.initial_positions(built.plant, built.statue, built.nq, system, settings, theta0)
+    else:
+        q0 = _free_block_positions(built, system, settings, theta0)
+    built.plant.SetPositions(plant_context, q0)
     built.plant.SetVelocities(plant_context, np.zeros(built.nv))
 
     status, message, stop_reason = Status.COMPLETED, "reached the end time", None
@@ -636,7 +752,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         new, new_t = log.data()[:, checked:], log.sample_times()[checked:]
         k, reason = kinematics.first_stop(new_t, *built.tilt(new),
                                           np.all(np.isfinite(new), axis=0), system=system,
-                                          motion_end=motion.end_time)
+                                          motion_end=motion_end)
         if reason == "non-finite":
             status = Status.FAILED
             message = (f"the state stopped being finite near t = {new_t[k]:.6g} s; "
@@ -671,7 +787,7 @@ def _raw_history(built: _Built, system, motion, settings, times, data, runtime, 
     finite sample, with the extras of this geometry, and the slide where the run needs it
     (kinematics.slide_history: the box's sharp corners, as for every engine; the corner
     sphere's rolling, r·θ, stays below 2e-4·b, as the spheres are ∝ R)."""
-    if built.statue is not None:
+    if built.statue is not None:  # a free body: a statue's own shape, or the block of a pair
         return statue.raw_history(built, system, motion, settings, times, data, runtime, status, message,
                                   stop_reason, ENGINE)
     times = np.asarray(times, dtype=float)

@@ -24,7 +24,10 @@ Contact (Settings.hull):
 What it returns is the block scene's history: θ the lean of the body's z axis towards +x
 (kinematics.tilts_from_quaternion, as MuJoCo's free joint), θ̇ the world angular velocity about
 +y, and the extras of every contact engine (kinematics.contact_extras) with the wobble out of
-the plane (|y|, roll, yaw).
+the plane (|y|, roll, yaw). The block of a run of two horizontal components is a free body too
+(scene.py, its frame the world's axes at the centroid): `Indices`, `tilt` and `raw_history` read
+it as they read a statue, and a pair's history adds what the two-component measures read
+(kinematics.pair_extras).
 """
 from __future__ import annotations
 
@@ -113,7 +116,9 @@ def initial_positions(plant, ix: Indices, nq: int, system: System, settings, the
 def raw_history(built, system, motion, settings, times, data, runtime, status, message, stop_reason,
                 engine: str) -> RawHistory:
     """The raw history of the logged states, up to the last finite sample, in the block scene's
-    vocabulary (kinematics.contact_extras, with the wobble out of the plane)."""
+    vocabulary (kinematics.contact_extras, with the wobble out of the plane); with two horizontal
+    components the 3-D history too (kinematics.pair_extras: u_y the base's y joint, zeros on a
+    fixed base)."""
     ix = built.statue
     times = np.asarray(times, dtype=float)
     data = np.asarray(data, dtype=float)
@@ -131,6 +136,9 @@ def raw_history(built, system, motion, settings, times, data, runtime, status, m
     x_c, z_c = data[ix.xq], data[ix.zq]
     extras = kinematics.contact_extras(system, x_centroid=x_c, z_centroid=z_c, theta=theta, u=u,
                                        out_of_plane=np.maximum.reduce([np.abs(data[ix.yq]), np.abs(roll), np.abs(yaw)]))
+    if motion.transverse is not None:  # the 3-D history the two-component measures read (validate.core.biaxial)
+        u_y = np.zeros(times.size) if built.uyq is None else data[built.uyq]
+        kinematics.pair_extras(extras, orientation=np.stack([w, x, y, z], axis=1), y_centroid=data[ix.yq], u_y=u_y)
     slide, slide_dot = kinematics.slide_history(system, motion, x_centroid=x_c, x_centroid_dot=v[ix.xv],
                                                 theta=theta, theta_dot=theta_dot, u=u, u_dot=u_dot)
     return RawHistory(engine=engine, system=system, t=times, u=u, u_dot=u_dot, theta=theta, theta_dot=theta_dot,

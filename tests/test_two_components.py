@@ -132,13 +132,13 @@ def test_the_block_shaken_along_y_alone_rocks_as_the_exact_model_along_y(system,
 TURNED_DURATION = 4.0
 
 
-def turned_pair_runs(engine, bust, isolated: bool, phi_deg: float, settings_of):
+def turned_pair_runs(engine, bust, isolated: bool, phi_deg: float, settings_of, duration: float = TURNED_DURATION):
     """The bust along the direction it tips first under a pair, and again with the pair and its
     azimuth turned by φ, on one engine with the Settings `settings_of(first system)` for both: the
     two runs' total tilts, the base's travel √(u² + u_y²) on the isolator (None on a fixed base)
     and each run's 3-D measures with α read at its own azimuth (every engine's pair tests judge
-    these, each by its own bound). Checked here: the bust rocks, and on the isolator its base
-    moves along y too."""
+    these, each by its own bound), over `duration` s (a slower engine's tests take less of the
+    rocking's tail). Checked here: the bust rocks, and on the isolator its base moves along y too."""
     from types import SimpleNamespace
     azimuth = shape.weakest_direction(bust)[0]
     if isolated:
@@ -148,7 +148,7 @@ def turned_pair_runs(engine, bust, isolated: bool, phi_deg: float, settings_of):
     first = _statue_system(bust, azimuth, isolated)
     settings = settings_of(first)
     phi = math.radians(phi_deg)
-    runs = [engine.simulate(s, m, duration=TURNED_DURATION, settings=settings)
+    runs = [engine.simulate(s, m, duration=duration, settings=settings)
             for s, m in ((first, pair), (_statue_system(bust, azimuth + phi, isolated), pair.rotated(phi)))]
     travel = None
     if isolated:

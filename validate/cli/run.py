@@ -166,7 +166,7 @@ def plan_runs(a, specs):
     for r in runs:
         if motion.transverse is not None and not getattr(r.engine.capabilities, "transverse", False):
             raise InputError(f"--engine = {r.label!r}: runs one horizontal component only; with two "
-                             "(--motion-transverse, --pair) the engine is mujoco, bullet or dart")
+                             "(--motion-transverse, --pair) the engine is mujoco, bullet, drake or dart")
     if not (abs(a.theta0_over_alpha) < 1):
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     # a fraction of the α of the edge it tilts onto (a statue's two edges differ)
@@ -187,8 +187,8 @@ def shaken_body(a, system, statue) -> tuple:
     if not system.fixed_base and system.isolator_kind != LINEAR:
         raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
                          "--pair) must be linear (the same k and c along x and y), or give --fixed-base")
-    # the contact scenes' block stands on a square footprint (MuJoCo's DEPTH_FRACTION 1, PyBullet's 2b × 2b box,
-    # DART's DEPTH_RATIO 1)
+    # the contact scenes' block stands on a square footprint (MuJoCo's and Drake's DEPTH_FRACTION 1, PyBullet's
+    # 2b × 2b box, DART's DEPTH_RATIO 1)
     if system.body is None:
         return box_body(system.height, system.width, system.width, system.mass), 0.0
     standing = statue[0]
