@@ -87,3 +87,19 @@ def test_validate_judges_on_the_friction_pendulum_the_file_describes(tmp_path):
     assert "T 2.01 s" not in report  # no linear period it does not have
     metrics = json.loads((out / "metrics.json").read_text())
     assert "friction-pendulum" in json.dumps(metrics)
+
+
+def test_an_engines_contact_friction_is_not_the_statues_sliding_friction(capsys):
+    """`run --friction` is MuJoCo's and PyBullet's block–base contact coefficient (an engine
+    setting), which a statue's hull takes as the block does; only --statue-friction (the sliding
+    model's μ_s, which takes the block alone) is refused with a statue. `design --friction` is
+    the statue's own μ_s there, and is refused with a mesh."""
+    assert main(["run", "--engine", "mujoco", "--statue-example", "bust", "--mass", "80", "--fixed-base",
+                 "--motion", "sine:amp=0.5,freq=2", "--friction", "0.9", "--duration", "0.5", "--json", "-"]) == 0
+    out = capsys.readouterr().out
+    assert json.loads(out)["settings"]["friction"] == 0.9  # one engine: its run's JSON
+    assert main(["run", "--engine", "analytic", "--statue-example", "bust", "--mass", "80", "--fixed-base",
+                 "--statue-friction", "0.5"]) == 2
+    assert "--statue-friction" in capsys.readouterr().err
+    assert main(["design", "--statue-example", "bust", "--mass", "80", "--friction", "0.5", "--quiet"]) == 2
+    assert "--friction" in capsys.readouterr().err

@@ -306,7 +306,8 @@ def cmd_design(a) -> int:
     check_decision(a.target, a.max_stroke, a.tail, a.check_runs, named=lambda key: "--" + key.replace("_", "-"))
     checks = check_engines(a.check)
     config = read_design_config(a)
-    mesh = statue_body(a)  # --statue FILE or --statue-example NAME: (the statue at rest, its two edges)
+    # --statue FILE or --statue-example NAME: (the statue at rest, its two edges); design's --friction is μ_s
+    mesh = statue_body(a, slip="friction")
     statue = statue_from_args(a, config, mesh)
     family = family_from_args(a)
     check_family_runs(family)

@@ -219,10 +219,13 @@ STATUE_OPTIONS = {"mesh": "--statue", "example": "--statue-example", "unit": "--
                   "source": "its mesh (--statue FILE) or --statue-example NAME"}
 
 
-def statue_body(a, names: dict = STATUE_OPTIONS):
+def statue_body(a, names: dict = STATUE_OPTIONS, *, slip: str = "statue_friction"):
     """(the statue at rest, its PlanarBody along the shaking direction) of its mesh; None without
     one. The direction is --azimuth, or the one it tips first. `names`: how the inputs are
-    spelled in errors (a config file's [statue] keys, or the options)."""
+    spelled in errors (a config file's [statue] keys, or the options). `slip`: the option that
+    gives the statue's sliding friction μ_s (refused with a mesh: the sliding model takes the block
+    alone): run's and validate's --statue-friction, design's --friction (run's --friction is an
+    engine's contact coefficient, which a hull takes as the block does)."""
     from isorock.analytic import shape
     from isorock.analytic.system import PlanarBody
     path, example = getattr(a, "statue", None), getattr(a, "statue_example", None)
@@ -235,7 +238,7 @@ def statue_body(a, names: dict = STATUE_OPTIONS):
     for name in ("height", "width", "slenderness"):
         if given(getattr(a, name, None)):
             raise InputError(f"--{name} = {getattr(a, name)!r}: the statue's mesh gives its shape; leave --{name} out")
-    for name in ("statue_friction", "friction"):
+    for name in (slip,):
         if given(getattr(a, name, None)):
             raise InputError(f"--{name.replace('_', '-')}: the sliding model takes the block H × B, not a statue's "
                              "mesh yet")
