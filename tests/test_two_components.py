@@ -161,6 +161,39 @@ def turned_pair_runs(engine, bust, isolated: bool, phi_deg: float, settings_of, 
     return SimpleNamespace(runs=runs, travel=travel, tilts=tilts, three=three)
 
 
+#: the bust's pair from the command line, on a fixed base (every engine's command test)
+BUST_PAIR_ARGS = ["--statue-example", "bust", "--mass", "80", "--fixed-base", "--motion", "sine:amp=0.7,freq=2,cycles=1",
+                  "--motion-transverse", "sine:amp=0.63,freq=1.6,cycles=1", "--duration", "3"]
+
+
+def check_turned(turned, phi_deg: float, *, history: float, peak: float, turn_deg: float,
+                 travel: float = 1e-3) -> None:
+    """turned_pair_runs' two runs judged by one engine's bounds: the total tilt's history within
+    `history` of its peak, the peak tilt/α within `peak` (α), the direction at the peak turned by φ
+    within `turn_deg`, and on the isolator the base's travel within `travel` of its own peak."""
+    if turned.travel is not None:
+        assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= travel * np.max(turned.travel[0])
+    tilts, three = turned.tilts, turned.three
+    assert np.max(np.abs(tilts[0] - tilts[1])) <= history * np.max(tilts[0])
+    assert abs(three[1].tilt_max_over_alpha - three[0].tilt_max_over_alpha) <= peak
+    turn = (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360
+    assert min(turn, 360 - turn) < turn_deg
+
+
+def run_reports_3d(argv, tmp_path, capsys, engine: str) -> dict:
+    """`isorock run ARGV --json` under a pair: exit 0, the verdict first on standard output, the
+    3-D measures and the planar runs along x and y in the JSON (returned)."""
+    code = main(["run", *argv, "--json", str(tmp_path / "r.json")])
+    out = capsys.readouterr().out
+    assert code == 0
+    report = json.loads((tmp_path / "r.json").read_text())
+    two = report["two_components"]
+    assert report["engine"] == engine and out.splitlines()[0] == two["verdict"]
+    assert set(two["three_d"]) >= {"tilt_max_over_alpha", "overturned", "twist_max_deg", "wobble_deg"}
+    assert set(two["planar"]) == {"x", "y"}
+    return report
+
+
 
 @pytest.mark.parametrize("isolated, phi_deg", [(False, 30.0), (False, 200.0), (True, 30.0)],
                          ids=["fixed-30", "fixed-200", "linear-30"])

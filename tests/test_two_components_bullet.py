@@ -6,8 +6,6 @@ together changes the total tilt by no more than the contact's roundoff grows to,
 reports the 3-D measures beside the planar runs."""
 from __future__ import annotations
 
-import json
-import math
 
 import numpy as np
 import pytest
@@ -16,12 +14,11 @@ pytest.importorskip("pybullet")
 pytest.importorskip("mujoco")  # the helpers' module needs it
 pytest.importorskip("trimesh")
 
-from test_two_components import (ALONG_Y, _leans, _record, _statue_system, bust,  # noqa: E402,F401 (bust: a fixture)
-                                 turned_pair_runs)
+from test_two_components import (ALONG_Y, BUST_PAIR_ARGS, _leans, _statue_system, bust,  # noqa: E402,F401 (bust: a fixture)
+                                 check_turned, run_reports_3d, turned_pair_runs)
 
 from isorock.analytic import shape  # noqa: E402
 from isorock.analytic.motion import GroundMotion, load_motion  # noqa: E402
-from isorock.analytic.system import System  # noqa: E402
 from isorock.analytic.trajectory import counted_sign_changes  # noqa: E402
 from isorock.bullet_models import Settings  # noqa: E402
 from isorock.validate.cli.main import main  # noqa: E402
@@ -120,28 +117,13 @@ def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, 
     than MuJoCo's. 1e-2 of a peak of 0.19 α is 0.002 α, a tenth of the 0.02 α row the engines'
     peaks are judged by; the peak tilt/α itself within 0.005 α (measured ≤ 0.0007)."""
     turned = turned_pair_runs(BULLET, bust, isolated, phi_deg, lambda first: Settings().for_system(first))
-    if isolated:
-        assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
-    tilts, three = turned.tilts, turned.three
-    assert np.max(np.abs(tilts[0] - tilts[1])) <= 1e-2 * np.max(tilts[0])
-    assert abs(three[1].tilt_max_over_alpha - three[0].tilt_max_over_alpha) <= 0.005
-    turn = (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360
-    assert min(turn, 360 - turn) < 1.0
+    check_turned(turned, phi_deg, history=1e-2, peak=0.005, turn_deg=1.0)
 
 
 # --- the command ------------------------------------------------------------------------------
 
 def test_run_reports_the_3d_numbers_for_bullet(tmp_path, capsys):
-    code = main(["run", "--engine", "bullet", "--statue-example", "bust", "--mass", "80", "--fixed-base",
-                 "--motion", "sine:amp=0.7,freq=2,cycles=1", "--motion-transverse", "sine:amp=0.63,freq=1.6,cycles=1",
-                 "--duration", "3", "--json", str(tmp_path / "r.json")])
-    out = capsys.readouterr().out
-    assert code == 0
-    report = json.loads((tmp_path / "r.json").read_text())
-    two = report["two_components"]
-    assert report["engine"] == "bullet" and out.splitlines()[0] == two["verdict"]
-    assert set(two["three_d"]) >= {"tilt_max_over_alpha", "overturned", "twist_max_deg", "wobble_deg"}
-    assert set(two["planar"]) == {"x", "y"}
+    run_reports_3d(["--engine", "bullet", *BUST_PAIR_ARGS], tmp_path, capsys, "bullet")
 
 
 def test_a_pair_on_the_friction_pendulum_is_one_line_and_exit_2(capsys):

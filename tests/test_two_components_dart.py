@@ -7,7 +7,6 @@ contact's roundoff grows to, and the command reports the 3-D measures beside the
 pair runs at friction PAIR_FRICTION or more (the preset dart:pair): below it the bust slips."""
 from __future__ import annotations
 
-import json
 
 import numpy as np
 import pytest
@@ -16,7 +15,8 @@ pytest.importorskip("dartpy")
 pytest.importorskip("mujoco")  # the helpers' module needs it
 pytest.importorskip("trimesh")
 
-from test_two_components import ALONG_Y, _leans, _statue_system, turned_pair_runs  # noqa: E402
+from test_two_components import (ALONG_Y, BUST_PAIR_ARGS, _leans, _statue_system, check_turned,  # noqa: E402
+                                 run_reports_3d, turned_pair_runs)
 
 from isorock.analytic import shape  # noqa: E402
 from isorock.analytic.errors import InputError  # noqa: E402
@@ -124,28 +124,13 @@ def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, 
     so a turned scene is not the same problem to roundoff, but the bust does not slip at PAIR_FRICTION.
     At μ 1 it slips and this fails: 42% of the peak at 30° (docs/statues.md)."""
     turned = turned_pair_runs(DART, bust, isolated, phi_deg, lambda first: PAIR)
-    if isolated:
-        assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
-    tilts, three = turned.tilts, turned.three
-    assert np.max(np.abs(tilts[0] - tilts[1])) <= 1e-2 * np.max(tilts[0])
-    assert abs(three[1].tilt_max_over_alpha - three[0].tilt_max_over_alpha) <= 1e-3
-    turn = (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360
-    assert min(turn, 360 - turn) < 0.5
+    check_turned(turned, phi_deg, history=1e-2, peak=1e-3, turn_deg=0.5)
 
 
 # --- the command ------------------------------------------------------------------------------
 
 def test_run_reports_the_3d_numbers_for_dart(tmp_path, capsys):
-    code = main(["run", "--engine", "dart:pair", "--statue-example", "bust", "--mass", "80", "--fixed-base",
-                 "--motion", "sine:amp=0.7,freq=2,cycles=1", "--motion-transverse", "sine:amp=0.63,freq=1.6,cycles=1",
-                 "--duration", "3", "--json", str(tmp_path / "r.json")])
-    out = capsys.readouterr().out
-    assert code == 0
-    report = json.loads((tmp_path / "r.json").read_text())
-    two = report["two_components"]
-    assert report["engine"] == "dart" and out.splitlines()[0] == two["verdict"]
-    assert set(two["three_d"]) >= {"tilt_max_over_alpha", "overturned", "twist_max_deg", "wobble_deg"}
-    assert set(two["planar"]) == {"x", "y"}
+    run_reports_3d(["--engine", "dart:pair", *BUST_PAIR_ARGS], tmp_path, capsys, "dart")
 
 
 @pytest.mark.parametrize("engine, args, says", [

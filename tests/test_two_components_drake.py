@@ -7,7 +7,6 @@ total tilt by no more than the integrator's error grows to, and the command repo
 measures. Drake's runs cost seconds each: the cases are few and short (the rocking's tail cut)."""
 from __future__ import annotations
 
-import json
 
 import numpy as np
 import pytest
@@ -17,7 +16,7 @@ pytest.importorskip("mujoco")  # the helpers' module needs it
 pytest.importorskip("trimesh")
 
 from test_two_components import (ALONG_Y, _leans, _statue_system, bust,  # noqa: E402,F401 (bust: a fixture)
-                                 turned_pair_runs)
+                                 check_turned, run_reports_3d, turned_pair_runs)
 
 from isorock.analytic import shape  # noqa: E402
 from isorock.analytic.errors import InputError  # noqa: E402
@@ -171,12 +170,7 @@ def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt_on_the
     on the fixed base at 200° the history parts by 0.19 of its peak at 1e-4 late in the rocking (a
     small, twisting phase after 0.85 s; the peaks agree within 0.0002 α) and by 5.4e-3 at 1e-5."""
     turned = turned_pair_runs(DRAKE, bust, True, 30.0, lambda first: Settings().for_system(first), duration=1.2)
-    assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
-    tilts, three = turned.tilts, turned.three
-    assert np.max(np.abs(tilts[0] - tilts[1])) <= 2e-2 * np.max(tilts[0])
-    assert abs(three[1].tilt_max_over_alpha - three[0].tilt_max_over_alpha) <= 0.005
-    turn = (three[1].direction_at_max_deg - three[0].direction_at_max_deg + 30.0) % 360
-    assert min(turn, 360 - turn) < 1.0
+    check_turned(turned, 30.0, history=2e-2, peak=0.005, turn_deg=1.0)
 
 
 # --- the command ------------------------------------------------------------------------------
@@ -185,15 +179,10 @@ def test_run_reports_the_3d_numbers_for_drake(tmp_path, capsys):
     """The block (its free body) on a fixed base under a pair, from the command line: the report's
     two-component part, and its planar run along y the exact model's run along y. 1.2 s: past the
     peak (0.35 α, measured) and before the block's late rocking on a corner, which costs Drake 6 s."""
-    code = main(["run", "--engine", "drake", "--height", "2", "--width", "0.7", "--mass", "3800", "--fixed-base",
-                 "--motion", "sine:amp=0.5,freq=2,cycles=1", "--motion-transverse", "sine:amp=0.5,freq=1.5,cycles=1",
-                 "--duration", "1.2", "--json", str(tmp_path / "r.json")])
-    out = capsys.readouterr().out
-    assert code == 0
-    report = json.loads((tmp_path / "r.json").read_text())
+    report = run_reports_3d(["--engine", "drake", "--height", "2", "--width", "0.7", "--mass", "3800", "--fixed-base",
+                             "--motion", "sine:amp=0.5,freq=2,cycles=1", "--motion-transverse",
+                             "sine:amp=0.5,freq=1.5,cycles=1", "--duration", "1.2"], tmp_path, capsys, "drake")
     two = report["two_components"]
-    assert report["engine"] == "drake" and out.splitlines()[0] == two["verdict"]
-    assert set(two["three_d"]) >= {"tilt_max_over_alpha", "overturned", "twist_max_deg", "wobble_deg"}
     assert two["three_d"]["tilt_max_over_alpha"] > 0.1  # it rocks
     along_y = EXACT.simulate(System.fixed(height=2.0, width=0.7, mass=3800.0),
                              load_motion("sine:amp=0.5,freq=1.5,cycles=1"), duration=1.2)
