@@ -74,6 +74,17 @@ DEFAULT_TIMESTEP = 1e-4
 #: "Smaller, and lighter-based, in every hull engine"), and the atlas's blocks, 0.1 m to 10 m, meet
 #: one step in their own time units (docs/dart.md, "Every size").
 STEP_SHARE = DEFAULT_TIMESTEP * paper_system().rocking_rate
+#: m/s; the body's speed scale R·p_eff as DART's world sees it (Settings.time_stretch). DART's contact
+#: keeps constants in m/s that dartpy does not expose (its ContactConstraint pushes a penetration
+#: out at ERP·depth/dt, 1% per step, but at 1e-3 m/s at most), so at a fixed share of 1/p_eff its β
+#: still turned on the body's size: the squat block on a light base (λ 1.5, μ 4) erred 0.17% at 0.1 m
+#: (R·p_eff 0.87 m/s), 0.60% at 1 m and 0.85% at 10 m (8.7 m/s), and the same 0.1 m block under 100 g
+#: as the 10 m one (0.83%): a speed, not a length or a mass. The scene runs in a time unit stretched
+#: by R·p_eff/SCENE_SPEED (exact: its step, gravity, ground motion, spring and dashpot rescaled, the
+#: history's velocities scaled back), so every body meets those constants at this one speed, below
+#: where the cap binds: that block then errs 0.14–0.16% at every size, the atlas's 100 cells ≤ 0.17%
+#: (docs/dart.md, "Every size").
+SCENE_SPEED = 0.3
 
 
 @dataclass(frozen=True)
@@ -91,6 +102,10 @@ class Settings:
     friction: float = 1.0
     sample_interval: float = SAMPLE_DT
     follow_system: bool = True
+    #: DART's time units per second of the system (1: its world in seconds, its contact's
+    #: constants in m/s then meeting each body at its own speed); None: R·p_eff/SCENE_SPEED, the
+    #: system's own (fixed by for_system, or at the run)
+    stretch: float | None = None
 
     def for_system(self, system, duration: float | None = None) -> "Settings":
         """These settings for `system`: with follow_system, the step and the sample interval
@@ -101,7 +116,8 @@ class Settings:
         if not self.follow_system:
             return self
         k = contact_scale(system, DEFAULT_TIMESTEP, STEP_SHARE)
-        return replace(self, timestep=self.timestep * k, sample_interval=self.sample_interval * k, follow_system=False)
+        return replace(self, timestep=self.timestep * k, sample_interval=self.sample_interval * k,
+                       stretch=self.time_stretch(system), follow_system=False)
 
     def __post_init__(self):
         if not (isinstance(self.timestep, (int, float)) and 1e-6 <= self.timestep <= 1e-2):
@@ -112,6 +128,16 @@ class Settings:
             raise InputError(f"sample_interval = {self.sample_interval!r}: must be a time in (0, 1] s")
         if not isinstance(self.follow_system, bool):
             raise InputError(f"follow_system = {self.follow_system!r}: must be true or false")
+        if self.stretch is not None and not (isinstance(self.stretch, (int, float)) and not isinstance(self.stretch, bool)
+                                             and 1e-3 <= self.stretch <= 1e4):
+            raise InputError(f"stretch = {self.stretch!r}: must be from 0.001 to 10000 (DART's time units per "
+                             "second; 1: seconds), or none (the system's own, SCENE_SPEED)")
+
+    def time_stretch(self, system) -> float:
+        """How many of DART's time units a second of `system` lasts: `stretch`, or without it
+        R·p_eff/SCENE_SPEED, so that the body's speed scale R·p_eff is SCENE_SPEED in DART's world.
+        Every speed DART sees is the body's divided by it."""
+        return float(self.stretch) if self.stretch is not None else system.R * system.rocking_rate / SCENE_SPEED
 
 
 def settings_for(**overrides) -> Settings:
@@ -163,8 +189,18 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     h, b = system.h, system.b
     dt = float(settings.timestep)
     world = dart.simulation.World()
-    world.setTimeStep(dt)
-    world.setGravity([0.0, 0.0, -system.gravity])
+    # DART's own time unit (Settings.time_stretch, SCENE_SPEED): a second of the system lasts `stretch`
+    # of them, so its step is stretch·dt, every acceleration (gravity, the ground's) and the spring
+    # 1/stretch² (its period stretch·T), the dashpot 1/stretch, and each speed DART reports is
+    # stretch times too slow (scaled back in the history's rows; positions and angles are unchanged)
+    stretch = settings.time_stretch(system)
+    world.setTimeStep(dt * stretch)
+    # DART puts a body slower than 0.01 m/s and 0.05 rad/s for 0.5 s to sleep: absolute speeds and
+    # a time again, and the exact model has no sleep
+    sleep = world.getDeactivationOptions()
+    sleep.mEnabled = False
+    world.setDeactivationOptions(sleep)
+    world.setGravity([0.0, 0.0, -system.gravity / stretch**2])
 
     base = dart.dynamics.Skeleton("base")
     if system.fixed_base:
@@ -178,8 +214,8 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
             joint, plate = base.createPrismaticJointAndBodyNodePair()
             joint.setAxis([1.0, 0.0, 0.0])
         for dof in range(joint.getNumDofs()):  # the isotropic isolator: the same k and c along each
-            joint.setSpringStiffness(dof, float(system.stiffness))
-            joint.setDampingCoefficient(dof, float(system.damping))
+            joint.setSpringStiffness(dof, float(system.stiffness) / stretch**2)
+            joint.setDampingCoefficient(dof, float(system.damping) / stretch)
         plate.setMass(float(system.base_mass))
     below = dart.math.Isometry3()
     below.set_translation([0.0, 0.0, -0.5 * PLATE_THICKNESS])
@@ -228,7 +264,7 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
         theta = math.atan2(Rw[0, 2], Rw[2, 2])
         omega = np.asarray(body.getAngularVelocity())  # world frame: its y is θ̇
         u, ud = (0.0, 0.0) if system.fixed_base else (float(joint.getPosition(0)), float(joint.getVelocity(0)))
-        return t, u, ud, theta, float(omega[1])
+        return t, u, ud * stretch, theta, float(omega[1]) * stretch
 
     def pair_row():
         tf = body.getWorldTransform()
@@ -245,7 +281,8 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     y_at = motion.transverse.at if transverse else (lambda _t: 0.0)
     for i in range(1, n + 1):
         t = i * dt
-        world.setGravity([-float(motion.at(t - dt)), -float(y_at(t - dt)), -system.gravity])
+        world.setGravity([-float(motion.at(t - dt)) / stretch**2, -float(y_at(t - dt)) / stretch**2,
+                          -system.gravity / stretch**2])
         world.step()
         if i % every == 0 or i == n:
             rows[k] = row(min(t, duration))
