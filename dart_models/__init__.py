@@ -1,7 +1,9 @@
 """The block on its base in DART (dartpy, the optional `dart` extra; issue 37): a fourth contact
 engine, DART's own collision (FCL box–box) and its constraint solver (an LCP of the contacts,
 restitution 0, Coulomb friction), at a fixed step that follows the body's size (Settings.for_system:
-the same share of its rocking time 1/p_eff at every size, 0.1 ms on the paper's block).
+the same share of its rocking time 1/p_eff at every size, 0.1 ms on the paper's block), in a time
+unit of its own that puts the body's speed scale R·p_eff at SCENE_SPEED (Settings.time_stretch: DART's
+contact keeps a constant in m/s), so that one dimensionless case meets its contact alike at every size.
 
 The scene: the block a box H × D × B on a free joint (it may rock, slide, twist and lift off in
 3-D), resting on a base plate: welded to the world on a fixed base, or on a prismatic joint along
@@ -68,7 +70,7 @@ PAIR_FRICTION = 5.0
 DEFAULT_TIMESTEP = 1e-4
 #: The step in units of the body's rocking time 1/p_eff (System.rocking_rate): follow_system makes
 #: timestep·p_eff = STEP_SHARE at every size, the default's on the paper's isolated block (so that
-#: block steps 0.1 ms and keeps a row every 1 ms, as before, digit for digit). A fixed 0.1 ms was
+#: block steps 0.1 ms and keeps a row every 1 ms, as before). A fixed 0.1 ms was
 #: 1.06e-3 of the bust's 1/p_eff at 0.25× (0.11 m tall) and put its β 1.32% off on a fixed base; at
 #: this share the bust and the obelisk from 0.25× to 3× keep β within 0.53% (docs/statues.md,
 #: "Smaller, and lighter-based, in every hull engine"), and the atlas's blocks, 0.1 m to 10 m, meet
