@@ -113,10 +113,12 @@ class Settings:
         """These settings for `system`: with follow_system, the step and the sample interval
         times contact_scale(system, DEFAULT_TIMESTEP, STEP_SHARE) (0.30 on the bust at 0.25× on a fixed base, 0.22
         on a squat 0.1 m block on a light base, 2.2 on a 10 m one), so that a run steps and samples
-        alike in units of its own 1/p_eff at every size; final (follow_system False). `duration` is
-        not needed: the last step's row is stamped at the duration, as with a step given in seconds."""
+        alike in units of its own 1/p_eff at every size; final (follow_system False). Without
+        follow_system, the step as given, the time unit fixed for the system all the same (what a
+        run uses, and what its report shows). `duration` is not needed: the last step's row is
+        stamped at the duration, as with a step given in seconds."""
         if not self.follow_system:
-            return self
+            return self if self.stretch is not None else replace(self, stretch=self.time_stretch(system))
         k = contact_scale(system, DEFAULT_TIMESTEP, STEP_SHARE)
         return replace(self, timestep=self.timestep * k, sample_interval=self.sample_interval * k,
                        stretch=self.time_stretch(system), follow_system=False)
