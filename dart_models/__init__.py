@@ -1,6 +1,9 @@
 """The block on its base in DART (dartpy, the optional `dart` extra; issue 37): a fourth contact
 engine, DART's own collision (FCL box–box) and its constraint solver (an LCP of the contacts,
-restitution 0, Coulomb friction), at a fixed step.
+restitution 0, Coulomb friction), at a fixed step that follows the body's size (Settings.for_system:
+the same share of its rocking time 1/p_eff at every size, 0.1 ms on the paper's block), in a time
+unit of its own that puts the body's speed scale R·p_eff at SCENE_SPEED (Settings.time_stretch: DART's
+contact keeps a constant in m/s), so that one dimensionless case meets its contact alike at every size.
 
 The scene: the block a box H × D × B on a free joint (it may rock, slide, twist and lift off in
 3-D), resting on a base plate: welded to the world on a fixed base, or on a prismatic joint along
@@ -25,15 +28,17 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
 from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, Capabilities, EngineSpec, Preset, run_inputs
+from isorock.analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, Capabilities, EngineSpec, Preset, contact_scale,
+                                             run_inputs)
 from isorock.analytic.errors import InputError, import_extra
 from isorock.analytic.status import Status
+from isorock.analytic.system import paper_system
 from isorock.analytic.trajectory import RawHistory
 
 from . import statue
@@ -42,7 +47,8 @@ from . import statue
 DEPTH_RATIO = 1.0
 #: the base plate's size against the block's width, and its thickness (m)
 PLATE_WIDTH_RATIO, PLATE_THICKNESS = 6.0, 0.1
-#: a row of the history every this many seconds (at most), as the other contact engines store
+#: s; a row of the history every this many seconds (at most), as the other contact engines store,
+#: on the paper's isolated block (Settings.sample_interval: it follows the body's size as the step does)
 SAMPLE_DT = 1e-3
 #: a statue's own shape (statue.py) is carried: Capabilities.two_edges says so, judged in
 #: docs/statues.md ("DART on the statue's hull": the bust and the obelisk within MuJoCo's statue rows)
@@ -60,19 +66,90 @@ TRANSVERSE = True
 PAIR_FRICTION = 5.0
 
 
+#: s; DART's step on the paper's isolated block (p_eff 3.23/s), measured there (docs/dart.md)
+DEFAULT_TIMESTEP = 1e-4
+#: The step in units of the body's rocking time 1/p_eff (System.rocking_rate): follow_system makes
+#: timestep·p_eff = STEP_SHARE at every size, the default's on the paper's isolated block (so that
+#: block steps 0.1 ms and keeps a row every 1 ms, as before). A fixed 0.1 ms was
+#: 1.06e-3 of the bust's 1/p_eff at 0.25× (0.11 m tall) and put its β 1.32% off on a fixed base; at
+#: this share the bust and the obelisk from 0.25× to 3× keep β within 0.53% (docs/statues.md,
+#: "Smaller, and lighter-based, in every hull engine"), and the atlas's blocks, 0.1 m to 10 m, meet
+#: one step in their own time units (docs/dart.md, "Every size").
+STEP_SHARE = DEFAULT_TIMESTEP * paper_system().rocking_rate
+#: m/s; the body's speed scale R·p_eff as DART's world sees it (Settings.time_stretch). DART's contact
+#: keeps constants in m/s that dartpy does not expose (its ContactConstraint pushes a penetration
+#: out at ERP·depth/dt, 1% per step, but at 1e-3 m/s at most), so at a fixed share of 1/p_eff its β
+#: still turned on the body's size: the squat block on a light base (λ 1.5, μ 4) erred 0.17% at 0.1 m
+#: (R·p_eff 0.87 m/s), 0.60% at 1 m and 0.85% at 10 m (8.7 m/s), and the same 0.1 m block under 100 g
+#: as the 10 m one (0.83%): a speed, not a length or a mass. The scene runs in a time unit stretched
+#: by R·p_eff/SCENE_SPEED (exact: its step, gravity, ground motion, spring and dashpot rescaled, the
+#: history's velocities scaled back), so every body meets those constants at this one speed, below
+#: where the cap binds: that block then errs 0.14–0.16% at every size, the atlas's 100 cells ≤ 0.17%
+#: (docs/dart.md, "Every size").
+SCENE_SPEED = 0.3
+
+
 @dataclass(frozen=True)
 class Settings:
     """timestep (s): DART's fixed step; friction: the block's Coulomb coefficient on the plate
-    (high: the model assumes no sliding)."""
+    (high: the model assumes no sliding); sample_interval (s): a row of the history at most this
+    far apart (at whole steps); follow_system: True: `for_system` scales the step and the sample
+    interval with the body's rocking time, by contact_scale(system, DEFAULT_TIMESTEP, STEP_SHARE)
+    as MuJoCo's and PyBullet's steps (1 on the paper's isolated block; a preset ten times coarser
+    stays ten times coarser). A timestep or sample interval given to `settings_for` (every
+    command's path: --timestep, a campaign's or a table's) sets it False, as does `for_system`
+    once applied: what a user sets, the run uses."""
 
-    timestep: float = 1e-4
+    timestep: float = DEFAULT_TIMESTEP
     friction: float = 1.0
+    sample_interval: float = SAMPLE_DT
+    follow_system: bool = True
+    #: DART's time units per second of the system (1: its world in seconds, its contact's
+    #: constants in m/s then meeting each body at its own speed); None: R·p_eff/SCENE_SPEED, the
+    #: system's own (fixed by for_system, or at the run)
+    stretch: float | None = None
+
+    def for_system(self, system, duration: float | None = None) -> "Settings":
+        """These settings for `system`: with follow_system, the step and the sample interval
+        times contact_scale(system, DEFAULT_TIMESTEP, STEP_SHARE) (0.30 on the bust at 0.25× on a fixed base, 0.22
+        on a squat 0.1 m block on a light base, 2.2 on a 10 m one), so that a run steps and samples
+        alike in units of its own 1/p_eff at every size; final (follow_system False). Without
+        follow_system, the step as given, the time unit fixed for the system all the same (what a
+        run uses, and what its report shows). `duration` is not needed: the last step's row is
+        stamped at the duration, as with a step given in seconds."""
+        if not self.follow_system:
+            return self if self.stretch is not None else replace(self, stretch=self.time_stretch(system))
+        k = contact_scale(system, DEFAULT_TIMESTEP, STEP_SHARE)
+        return replace(self, timestep=self.timestep * k, sample_interval=self.sample_interval * k,
+                       stretch=self.time_stretch(system), follow_system=False)
 
     def __post_init__(self):
         if not (isinstance(self.timestep, (int, float)) and 1e-6 <= self.timestep <= 1e-2):
             raise InputError(f"timestep = {self.timestep!r}: must be a step from 1e-6 to 0.01 s")
         if not (isinstance(self.friction, (int, float)) and 0 < self.friction <= 10 and math.isfinite(self.friction)):
             raise InputError(f"friction = {self.friction!r}: must be a friction coefficient in (0, 10]")
+        if not (isinstance(self.sample_interval, (int, float)) and 0 < self.sample_interval <= 1.0):
+            raise InputError(f"sample_interval = {self.sample_interval!r}: must be a time in (0, 1] s")
+        if not isinstance(self.follow_system, bool):
+            raise InputError(f"follow_system = {self.follow_system!r}: must be true or false")
+        if self.stretch is not None and not (isinstance(self.stretch, (int, float)) and not isinstance(self.stretch, bool)
+                                             and 1e-3 <= self.stretch <= 1e4):
+            raise InputError(f"stretch = {self.stretch!r}: must be from 0.001 to 10000 (DART's time units per "
+                             "second; 1: seconds), or none (the system's own, SCENE_SPEED)")
+
+    def time_stretch(self, system) -> float:
+        """How many of DART's time units a second of `system` lasts: `stretch`, or without it
+        R·p_eff/SCENE_SPEED, so that the body's speed scale R·p_eff is SCENE_SPEED in DART's world.
+        Every speed DART sees is the body's divided by it."""
+        return float(self.stretch) if self.stretch is not None else system.R * system.rocking_rate / SCENE_SPEED
+
+
+def settings_for(**overrides) -> Settings:
+    """Settings with `overrides`; a timestep or sample interval given is what the run takes
+    (follow_system False unless told), as for PyBullet and MuJoCo."""
+    if {"timestep", "sample_interval"} & set(overrides):
+        overrides.setdefault("follow_system", False)
+    return Settings(**overrides)
 
 
 def _box(skeleton_node, size, *, friction=None):
@@ -98,7 +175,8 @@ def _pose(tilt: float, b: float, h: float, z0: float):
 
 def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, progress=None) -> RawHistory:
     dart = import_extra("dartpy", "dart", "the engine 'dart'")
-    settings = settings or Settings()
+    # the step this system takes (Settings.for_system): the bounds below judge that one
+    settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
                                   two_edges=TWO_EDGES,  # a statue without its shape: hull_contact.check_shape, below
                                   transverse=TRANSVERSE)  # a pair on any isolator but the linear one: refused there
@@ -115,8 +193,18 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     h, b = system.h, system.b
     dt = float(settings.timestep)
     world = dart.simulation.World()
-    world.setTimeStep(dt)
-    world.setGravity([0.0, 0.0, -system.gravity])
+    # DART's own time unit (Settings.time_stretch, SCENE_SPEED): a second of the system lasts `stretch`
+    # of them, so its step is stretch·dt, every acceleration (gravity, the ground's) and the spring
+    # 1/stretch² (its period stretch·T), the dashpot 1/stretch, and each speed DART reports is
+    # stretch times too slow (scaled back in the history's rows; positions and angles are unchanged)
+    stretch = settings.time_stretch(system)
+    world.setTimeStep(dt * stretch)
+    # DART puts a body slower than 0.01 m/s and 0.05 rad/s for 0.5 s to sleep: absolute speeds and
+    # a time again, and the exact model has no sleep
+    sleep = world.getDeactivationOptions()
+    sleep.mEnabled = False
+    world.setDeactivationOptions(sleep)
+    world.setGravity([0.0, 0.0, -system.gravity / stretch**2])
 
     base = dart.dynamics.Skeleton("base")
     if system.fixed_base:
@@ -130,8 +218,8 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
             joint, plate = base.createPrismaticJointAndBodyNodePair()
             joint.setAxis([1.0, 0.0, 0.0])
         for dof in range(joint.getNumDofs()):  # the isotropic isolator: the same k and c along each
-            joint.setSpringStiffness(dof, float(system.stiffness))
-            joint.setDampingCoefficient(dof, float(system.damping))
+            joint.setSpringStiffness(dof, float(system.stiffness) / stretch**2)
+            joint.setDampingCoefficient(dof, float(system.damping) / stretch)
         plate.setMass(float(system.base_mass))
     below = dart.math.Isometry3()
     below.set_translation([0.0, 0.0, -0.5 * PLATE_THICKNESS])
@@ -165,7 +253,7 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
         free.setPositions(dart.dynamics.FreeJoint.convertToPositions(pose))
     world.addSkeleton(block)
 
-    every = max(1, int(round(SAMPLE_DT / dt)))
+    every = max(1, int(round(settings.sample_interval / dt)))
     n = int(math.ceil(duration / dt))
     rows = np.empty((n // every + 2, 5))
     # a statue's wobble out of the plane and its centre of mass, for the contact engines' extras
@@ -180,7 +268,7 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
         theta = math.atan2(Rw[0, 2], Rw[2, 2])
         omega = np.asarray(body.getAngularVelocity())  # world frame: its y is θ̇
         u, ud = (0.0, 0.0) if system.fixed_base else (float(joint.getPosition(0)), float(joint.getVelocity(0)))
-        return t, u, ud, theta, float(omega[1])
+        return t, u, ud * stretch, theta, float(omega[1]) * stretch
 
     def pair_row():
         tf = body.getWorldTransform()
@@ -197,7 +285,8 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     y_at = motion.transverse.at if transverse else (lambda _t: 0.0)
     for i in range(1, n + 1):
         t = i * dt
-        world.setGravity([-float(motion.at(t - dt)), -float(y_at(t - dt)), -system.gravity])
+        world.setGravity([-float(motion.at(t - dt)) / stretch**2, -float(y_at(t - dt)) / stretch**2,
+                          -system.gravity / stretch**2])
         world.step()
         if i % every == 0 or i == n:
             rows[k] = row(min(t, duration))
@@ -228,20 +317,22 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
 
 
 def ladder(quick: bool):
-    """Work-precision ladder (label, Settings), cheapest first: DART's fixed step."""
+    """Work-precision ladder (label, Settings), cheapest first: DART's step, as named (a rung is
+    the step it says, whatever the system: follow_system False)."""
     steps = (1e-3, 3e-4, 1e-4) if quick else (1e-3, 3e-4, 1e-4, 3e-5)
-    return [(f"dt={h:g}", Settings(timestep=h)) for h in steps]
+    return [(f"dt={h:g}", settings_for(timestep=h)) for h in steps]
 
 
 ENGINE = EngineSpec(
-    name="dart", label="DART", settings_type=Settings, simulate=simulate, ladder=ladder,
+    name="dart", label="DART", settings_type=Settings, simulate=simulate, ladder=ladder, settings_for=settings_for,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False, campaigns=False,
                               isolators=("linear",), kinetic_friction=False, statue_friction=False, vertical=False,
                               two_edges=TWO_EDGES, transverse=TRANSVERSE),
-    presets={"default": Preset("a 0.1 ms step, restitution 0, friction 1 (docs/dart.md)", Settings),
-             "coarse": Preset("a 1 ms step: what DART's step costs in β (docs/dart.md)",
-                              lambda: Settings(timestep=1e-3)),
+    presets={"default": Preset("a step of STEP_SHARE/p_eff (0.1 ms on the paper's block, following the body's size), "
+                               "restitution 0, friction 1 (docs/dart.md)", Settings),
+             "coarse": Preset("ten times the default's step (1 ms on the paper's block, following the body's size): "
+                              "what DART's step costs in β (docs/dart.md)", lambda: Settings(timestep=1e-3)),
              "pair": Preset(f"friction {PAIR_FRICTION:g}: the least two horizontal components run at (below it the "
                             "statue slips under a pair; docs/statues.md)", lambda: Settings(friction=PAIR_FRICTION))})
 
-__all__ = ["ENGINE", "Settings", "simulate", "ladder"]
+__all__ = ["ENGINE", "Settings", "simulate", "ladder", "settings_for"]

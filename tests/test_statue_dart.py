@@ -57,6 +57,16 @@ def test_dart_hull_rocks_as_the_exact_model_of_its_two_edges(name, scale, base):
     assert r["out_of_plane"] < 1e-9, r  # it stays in its plane, as MuJoCo's and Drake's hulls
 
 
+def test_the_bust_at_a_quarter_of_its_size_keeps_each_impacts_beta():
+    """The bust at 0.25× (0.11 m tall) on a fixed base, a robust reference: every impact's β within
+    MuJoCo's statue row (1%) of its own edge's closed form (measure.beta_errors), θmax and impacts
+    as the exact model's (judge_hull). At a fixed 0.1 ms step (1.06e-3 of its 1/p_eff, three times
+    the paper's block's share) DART's β erred 1.32%; its step now follows the body (Settings.for_system,
+    STEP_SHARE): measured 0.19% (docs/statues.md, "Smaller, and lighter-based, in every hull engine")."""
+    r = judge_hull("dart", "bust", 0.25, "fixed")
+    assert r["beta_rel_error"] <= 0.005, r  # within DART's own block row too: the same share of 1/p_eff
+
+
 @pytest.mark.parametrize("side", [1, -1])
 def test_free_rocking_on_each_edge_meets_its_closed_forms(side):
     """Free rocking from 0.4·α of each of the bust's edges, by DART's block rows."""

@@ -16,7 +16,8 @@ from __future__ import annotations
 #: (continuous preset: 0.27). An engine not listed counts as the slowest.
 SPEEDS = {"analytic": 1000.0, "analytic-fast": 1000.0, "analytic-reference": 20.0, "mujoco": 40.0,
           "bullet": 10.0, "drake": 0.27,
-          # DART at its 0.1 ms step: 8.4 on the atlas grid, 5 on Kobe 40 s (docs/dart.md); MJX on a CPU,
+          # DART at its default step (0.1 ms on the paper's block, following the body's size): 8.6 on the
+          # atlas's 18 cells, 9.0 on its 100, 5 on Kobe 40 s (docs/dart.md); MJX on a CPU,
           # stepped throughout: 0.15 on the atlas grid (docs/mjx.md); MuJoCo Warp on a CPU, stepped
           # throughout: 1.5 on the atlas grid (0.08–7.7 a cell: each run records its steps first, ~1 s),
           # 2.9 on validate --quick (docs/mjwarp.md)
