@@ -5,6 +5,8 @@ free rocking from rest on one edge against that edge's closed forms, by the engi
 Oracles: the exact model (its SciPy reference), model.md's quadrature t₁ and each edge's β."""
 import pytest
 
+from isorock.analytic.errors import InputError
+from isorock.analytic.system import PlanarBody, System
 from isorock.validate.core.compare import exact_first_impact_time
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.measure import beta_errors
@@ -44,3 +46,15 @@ def judge_free_rocking(engine: str, side: int, *, min_impacts: int = 4):
     assert len(errors) >= min_impacts and max(abs(e) for e in errors) <= tolerance(engine, "beta_rel_error").limit, errors
     assert {1 if i.theta_dot_pre > 0 else -1 for i in tr.counted_impacts[:2]} == {1, -1}
     return tr
+
+
+#: a statue given by its numbers alone (two edges, no mesh): what a hull engine cannot build
+SHAPELESS = System.of_body(PlanarBody(centre_height=1.0, lever_forward=0.25, lever_backward=0.45,
+                                      inertia=800 * (0.35**2 + 1.0) / 3), mass=800.0)
+
+
+def judge_refused(engine: str, system, match: str) -> None:
+    """The engine refuses `system` before any work, in one line saying `match`."""
+    with pytest.raises(InputError, match=match) as exc:
+        get_engine(engine).simulate(system, None, duration=1.0, theta0=0.1)
+    assert len(str(exc.value).splitlines()) == 1
