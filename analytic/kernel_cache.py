@@ -181,11 +181,11 @@ def call_kernel(dispatcher, *args):
     if dispatcher in _aot_exports:
         fn = _aot_function(dispatcher)
         if fn is not None:
-            return fn(*[_c_writable(a) for a in args])
+            return fn(*[c_writable(a) for a in args])
     # every array writable and C-contiguous, as the ahead-of-time export takes them: numba
     # compiles a signature per array flavour, and a record's read-only array beside a pulse's
     # writable one compiled the sliding kernel once for each (33 s each; four in one cache)
-    args = [_c_writable(a) for a in args]
+    args = [c_writable(a) for a in args]
     if dispatcher in _ready:
         return dispatcher(*args)
     cf = _cache_file(dispatcher)
@@ -520,7 +520,9 @@ def _try_lock(fcntl, handle) -> bool:
         return False
 
 
-def _c_writable(a):
+def c_writable(a):
+    """a, or a C-contiguous writable copy of an array that is not: the one flavour of array every
+    kernel is compiled for."""
     import numpy as np
     if isinstance(a, np.ndarray):
         if a.flags.c_contiguous and a.flags.writeable:

@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from . import physics
-from .kernel_cache import cached_jit
+from .kernel_cache import c_writable, cached_jit, call_kernel
 from .settings import AnalyticSettings
 
 # the kernel's compiled physics (analytic.fast), the same functions its closed-form
@@ -146,7 +146,10 @@ def rest_phases(systems, records, factors, durations, settings: AnalyticSettings
     for record, fr, T in zip(records, f, durations):
         mp, acc = physics.motion_params(record)
         order = np.argsort(-fr, kind="stable")  # largest factor first: the lowest threshold
-        prepared.append((mp, np.ascontiguousarray(acc), _breaks(record, float(T)), float(T), order))
+        # every array writable and C-contiguous, the one signature call_kernel compiles and
+        # kernel_cache.is_ready looks for (a record's samples are read-only)
+        prepared.append((mp, c_writable(np.asarray(acc, dtype=np.float64)), _breaks(record, float(T)), float(T),
+                         order))
     uplift = np.empty((len(systems), len(records), f.shape[1]))
     u1_max = np.empty((len(systems), len(records)))
 
@@ -156,7 +159,8 @@ def rest_phases(systems, records, factors, durations, settings: AnalyticSettings
             up = np.empty(order.size)
             # the forward edge's threshold per factor; translation_uplift scales the backward
             # edge's alike (physics.other_threshold), so a statue lifts on either edge
-            u1_max[i, r] = _rest_pass(sp, mp, acc, breaks, T, np.ascontiguousarray(sp[_THR] / f[r][order]), up)
+            u1_max[i, r] = call_kernel(_rest_pass, sp, mp, acc, breaks, T, np.ascontiguousarray(sp[_THR] / f[r][order]),
+                                       up)
             uplift[i, r, order] = up
             if np.isfinite(up).all():
                 u1_max[i, r] = math.nan  # the pass stopped at the last uplift
