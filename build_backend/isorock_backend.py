@@ -40,9 +40,11 @@ def build_kernels() -> bool:
     """analytic.kernel_build.build in pip's build environment; False where it was skipped or failed."""
     if os.environ.get("ISOROCK_BUILD_KERNELS", "1") == "0":
         return False
-    namespace = {}
+    # the checkout's package in place of any other of that name, for this call only
+    ours = [name for name in sys.modules if name == "isorock" or name.startswith("isorock.")]
+    saved = {name: sys.modules.pop(name) for name in ours}
     try:
-        exec(compile(PREAMBLE, "<isorock build preamble>", "exec"), namespace)
+        exec(compile(PREAMBLE, "<isorock build preamble>", "exec"), {})
         from isorock.analytic import kernel_build
         return kernel_build.build(preamble=PREAMBLE, python=sys.executable)
     except Exception as e:  # noqa: BLE001 - the install goes on; a first run builds the kernels
@@ -50,8 +52,9 @@ def build_kernels() -> bool:
               "a first run builds them", file=sys.stderr)
         return False
     finally:
-        for name in [m for m in sys.modules if m == "isorock" or m.startswith("isorock.")]:
+        for name in [name for name in sys.modules if name == "isorock" or name.startswith("isorock.")]:
             del sys.modules[name]
+        sys.modules.update(saved)
 
 
 def build_editable(wheel_directory, config_settings=None, metadata_directory=None):

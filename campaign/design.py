@@ -37,13 +37,21 @@ ENGINE = "analytic"
 #: Default time after each record's end (s): model.md's tail, as campaigns use.
 DEFAULT_TAIL = 5.0
 #: Simulated seconds per CPU second over a design grid, for the estimate announced before
-#: the work: the kernel running every run (KERNEL_SPEED: 8,800 runs of ~49 s in 3.2–6.9 s
-#: wall on 2 threads at load 3), and with the rest phase settling the runs that never lift
-#: (REST_PHASE_SPEED: the paper's block, T 1–4 s × ξ 0.02–0.4 × FEMA P695 far field ×
-#: PGA 0.1–1 g, 8.69e6 simulated s in 33.7–36.6 CPU s; the 0.5 m statue in 27.5), both
-#: rounded down (docs/design.md).
-KERNEL_SPEED = 40_000.0
+#: the work, per path (design_speed), rounded down (docs/design.md):
+#: - REST_PHASE_SPEED, a linear isolator's, with the rest phase settling the runs that never lift:
+#:   the paper's block, T 1–4 s × ξ 0.02–0.4 × FEMA P695 far field × PGA 0.1–1 g, 8.69e6 simulated
+#:   s in 33.7–36.6 CPU s; the 0.5 m statue in 27.5;
+#: - ISOLATOR_KERNEL_SPEED, the non-linear isolators' kernel, which runs every run throughout: the
+#:   bust of 80 kg on friction pendulums under that hazard, 8.69e6 simulated s in 196 s wall on 2
+#:   threads (~22,000 per CPU s); the paper's block on friction pendulums, ball-in-cone and
+#:   ball-in-bowl isolators under 6 records, 26,000–31,000;
+#: - SLIDING_SPEED, a statue that may slip (the sliding model's kernel): the paper's block at μ_s 0.5
+#:   on linear isolators under 6 records, 969,217 simulated s in 447 CPU s (~2,200).
+#: The last two were one speed of 40,000, which announced 109 s and 2 s for designs that took 196 s
+#: and 226 s (load 1.0–1.9, 29 Nov 2026).
 REST_PHASE_SPEED = 200_000.0
+ISOLATOR_KERNEL_SPEED = 12_000.0
+SLIDING_SPEED = 1_500.0
 #: The statuses of a run that gave an answer (overturned or not); any other is counted apart.
 ANSWERED = ("completed", "overturned")
 #: Largest number of runs a design may ask for (the campaigns' bound: campaign.spec.MAX_RUNS).
@@ -518,11 +526,24 @@ def simulated_seconds(hazard: Hazard, n_systems: int, tail: float = DEFAULT_TAIL
     return n_systems * len(hazard.levels) * sum(r.end_time + tail for r in hazard.records.values())
 
 
-def estimate_s(family, hazard: Hazard, tail: float, cores: int) -> float:
+def settles_at_rest(family, statue: Statue) -> bool:
+    """Whether run_design settles the runs in which the block never lifts in closed form
+    (analytic.rest_scales): a linear isolator's rest phase, under a statue that cannot slip."""
+    return family.kind == LINEAR and statue.friction is None
+
+
+def design_speed(family, statue: Statue) -> float:
+    """Simulated seconds per CPU second of the path run_design takes for this family and statue."""
+    if statue.friction is not None:
+        return SLIDING_SPEED
+    return REST_PHASE_SPEED if settles_at_rest(family, statue) else ISOLATOR_KERNEL_SPEED
+
+
+def estimate_s(family, hazard: Hazard, tail: float, cores: int, statue: Statue) -> float:
     """Wall seconds a design should take on `cores` idle cores (load on a shared machine
-    stretches it)."""
+    stretches it), at the speed of the path it takes (design_speed)."""
     simulated = simulated_seconds(hazard, 1 + len(family.x_values) * len(family.y_values), tail)
-    return simulated / (REST_PHASE_SPEED if family.kind == LINEAR else KERNEL_SPEED) / max(cores, 1)
+    return simulated / design_speed(family, statue) / max(cores, 1)
 
 
 def check_size(family, hazard: Hazard, tail: float = DEFAULT_TAIL) -> int:
@@ -568,7 +589,7 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     start = time.perf_counter()
     settled = []
     # the rest phase in closed form holds a statue that cannot slip (a linear isolator's, analytic.rest_scales)
-    if rest_phase and family.kind == LINEAR and statue.friction is None:
+    if rest_phase and settles_at_rest(family, statue):
         bar = progress(shape[0] - 1, "rest phase", "isolators") if progress is not None else None
         settled = _settle_at_rest(cases, shape, hazard, tail, threads, bar)
     done = {row["case"] for row in settled}

@@ -327,7 +327,7 @@ def cmd_design(a) -> int:
                                                                            family.y_values[0])])
             print(f"isorock design: {n_runs:,} runs ({len(family.x_values)} × {len(family.y_values)} isolators and the "
                   f"fixed base × {len(hazard.records)} records × {len(hazard.levels)} levels), "
-                  f"{simulated:,.0f} simulated s; estimated ≈ {estimate_s(family, hazard, a.tail, cores):.0f} s on "
+                  f"{simulated:,.0f} simulated s; estimated ≈ {estimate_s(family, hazard, a.tail, cores, statue):.0f} s on "
                   f"{cores} idle core{'s' if cores != 1 else ''} (the compiled kernel; other load stretches it)"
                   + (f"; before it, once per install, it builds {', and '.join(builds)}" if builds else ""),
                   file=sys.stderr, flush=True)
