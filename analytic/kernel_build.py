@@ -13,7 +13,6 @@ the non-linear isolators' kernel takes longer than the other three together
 """
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 import time
