@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any, Callable, Protocol
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any, Callable, Mapping, Protocol
 
 #: model.md's counting rule: an impact counts when its half-cycle's peak |θ| exceeds this
 #: fraction of α. Here, in the light module every engine and the registry load, so that it
@@ -107,55 +108,82 @@ class Preset:
 
 
 @dataclass(frozen=True)
+class Facet:
+    """A tool's optional part of an engine, declared by the tool that uses it (`declare_facet`):
+    its `name` (the key of EngineSpec.facets), who uses it and what the value is. An engine without
+    it is simply not offered what that tool does with it (bench's ladder, calibrate's tuning, …)."""
+
+    name: str
+    used_by: str
+    what: str
+
+    def of(self, spec: "EngineSpec"):
+        """spec's value of this facet, or None."""
+        return spec.facets.get(self.name)
+
+
+#: every facet declared by the tools imported so far: name → Facet (tests/test_engine_facets.py
+#: imports every tool and holds each engine's facets to it)
+FACETS: dict[str, Facet] = {}
+
+
+def declare_facet(name: str, used_by: str, what: str) -> Facet:
+    """The Facet `name`, declared once (a tool module's import); declared again with another
+    meaning is a programming error."""
+    facet = FACETS.setdefault(name, Facet(name, used_by, what))
+    if facet != Facet(name, used_by, what):
+        raise ValueError(f"facet {name!r} declared twice: by {facet.used_by} and by {used_by}")
+    return facet
+
+
+@dataclass(frozen=True, init=False)
 class EngineSpec:
-    """One engine. `settings_type` is its frozen Settings dataclass (validated on
-    construction); `settings_for(**overrides)` builds one where some settings follow
-    others (default: the dataclass with the overrides); `scene_text(system, settings)`
-    is the model file a user can open, `scene_format` its format and suffix (None: no
-    file); `label` is the name figures and reports show; `presets` maps a name a user
-    can ask for as ENGINE:PRESET to a `Preset` (its one-line reason, and a zero-argument
-    callable returning Settings);
-    `ladder(quick)` lists (label, Settings) from cheapest to most accurate, for
-    work-precision benchmarks; `tuning` is what `isorock calibrate` may move;
-    `simulate_many(runs, *, settings, threads, budget_s)` (optional) runs many (system,
-    motion, duration, theta0) at once, each within `budget_s` s of wall time, each result
-    what `simulate` returns for it alone or the exception it raised (without it, the registry runs them one by one);
-    `replay_scene(system)` (optional) is (model, pose(u, θ) → joint positions): a scene of
-    the engine's viewer in which any engine's history can be replayed (`isorock view`);
-    `simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration, friction,
-    **contact)` (optional) is a free rigid body of that convex hull on a flat table moved by a
-    horizontal acceleration history (m/s², step dt s), friction and the engine's own
-    contact keywords (MuJoCo: dampratio; PyBullet: restitution) None for its defaults: a dict with `overturned`,
-    `tilt_max` (rad) and `wall_s` (`isorock experiments`); `step_cost(system, settings)`
-    (optional) is the CPU time (s) of one physics step of the engine's scene, the block at
-    rest, with no Python between steps: the limit of its speed (`isorock bench`);
-    `check_system(system, settings)` (optional) raises an InputError naming the field for a
-    System the engine cannot carry with those (derived) settings, beyond the checks every
-    engine shares (MuJoCo: a body below mjMINVAL; PyBullet: a base too light, an isolator
-    too stiff for its control step): what `simulate` refuses, asked before any work (a
-    campaign asks it of every system of its grid when its file is read); `tolerances` (an
-    engine a package registers) its limits, each with its reason."""
+    """One engine: the narrow protocol every command relies on, and the optional parts single
+    tools use, apart.
+
+    The protocol: `name`; `label`, the name figures and reports show; `settings_type`, its frozen
+    Settings dataclass (validated on construction); `simulate` (Simulate); `capabilities`, what it
+    carries (anything else is refused in one line before any work); `presets`, a name a user can
+    ask for as ENGINE:PRESET → a `Preset` (its one-line reason, and a zero-argument callable
+    returning Settings); `settings_for(system=…, **overrides)`, the settings that follow the
+    system (default: the dataclass with the overrides); `check_system(system, settings)`, which
+    raises an InputError naming the field for a System it cannot carry with those (derived)
+    settings, beyond the checks every engine shares (MuJoCo: a body below mjMINVAL; PyBullet: a
+    base too light, an isolator too stiff for its control step), asked before any work;
+    `tolerances` (an engine a package registers), its limits, each with its reason.
+
+    `facets`: name → value, the parts a tool uses, each declared by that tool (`declare_facet`,
+    FACETS; docs/plugins.md lists them): the registry's batch path (`simulate_many`), the scene
+    file (`scene_text`, `scene_format`), bench's work-precision ladder (`ladder`) and step cost
+    (`step_cost`), calibrate's `tuning`, view's `replay_scene`, experiments' `simulate_body`. They
+    may also be given as keywords: `EngineSpec(..., ladder=f)` is `facets={"ladder": f}`."""
 
     name: str
     label: str
     settings_type: type
     simulate: Simulate
     capabilities: Capabilities = Capabilities()
-    settings_for: Callable[..., Any] | None = None
-    scene_text: Callable[..., str] | None = None
-    scene_format: tuple[str, str] | None = None  # (format name, file suffix)
     presets: dict = field(default_factory=dict)
-    ladder: Callable[[bool], list] | None = None
-    tuning: Tuning | None = None
-    simulate_many: Callable[..., list] | None = None
-    replay_scene: Callable[..., tuple] | None = None
-    simulate_body: Callable[..., dict] | None = None
-    step_cost: Callable[..., float] | None = None
+    settings_for: Callable[..., Any] | None = None
     check_system: Callable[..., None] | None = None
     #: an engine a package registers (docs/plugins.md) brings its own limits: metric → an object
     #: with `limit`, `reason` and `kind` ("max", "min", "equal"; validate.core.tolerances.Tolerance),
     #: judged like the table's rows; the built-in engines' are in the table itself
     tolerances: dict = field(default_factory=dict)
+    facets: Mapping[str, Any] = field(default_factory=dict)
+
+    def __init__(self, name: str, label: str, settings_type: type, simulate: Simulate,
+                 capabilities: Capabilities = Capabilities(), presets: dict | None = None,
+                 settings_for: Callable[..., Any] | None = None, check_system: Callable[..., None] | None = None,
+                 tolerances: dict | None = None, facets: Mapping[str, Any] | None = None, **more_facets):
+        values = dict(name=name, label=label, settings_type=settings_type, simulate=simulate,
+                      capabilities=capabilities, presets=dict(presets or {}), settings_for=settings_for,
+                      check_system=check_system, tolerances=dict(tolerances or {}),
+                      # a facet given as None is one the engine does not have
+                      facets=MappingProxyType({k: v for k, v in {**dict(facets or {}), **more_facets}.items()
+                                               if v is not None}))
+        for key, value in values.items():
+            object.__setattr__(self, key, value)
 
     def settings(self, **overrides):
         if self.settings_for is not None:
@@ -163,7 +191,7 @@ class EngineSpec:
         return replace(self.settings_type(), **overrides)
 
 
-#: A rigid body of EngineSpec.simulate_body whose tilt from its resting orientation passes
+#: A rigid body of the simulate_body facet (experiments/study.py) whose tilt from its resting orientation passes
 #: this (rad) has overturned: well past any rocking edge's α of the measured rocks (≤ 0.41
 #: rad), where no granite rock comes back. One rule for every engine's hull scene.
 BODY_OVERTURN_TILT = 1.0

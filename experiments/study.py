@@ -32,6 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
+from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
 
 from isorock.validate.core.scenarios import shared_folder
@@ -166,8 +167,14 @@ def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
     return out
 
 
-#: the engines with a rigid body of the rock's hull on a table (EngineSpec.simulate_body)
+#: the engines with a rigid body of the rock's hull on a table (their SIMULATE_BODY facet)
 HULL_ENGINES = ("mujoco", "bullet", "drake")
+SIMULATE_BODY = declare_facet(
+    "simulate_body", "isorock experiments (the shake-table study), scorecard",
+    "(vertices, com, inertia, mass, acceleration, dt, *, duration, friction, **contact) → a dict with "
+    "overturned, tilt_max (rad) and wall_s: a free rigid body of that convex hull on a flat table moved by a "
+    "horizontal acceleration history (m/s², step dt s); friction and the engine's own contact keywords (MuJoCo: "
+    "dampratio; PyBullet: restitution) None for its defaults")
 #: simulated s per wall s of one hull run on one core, for the estimate said before the runs
 #: (core.estimate): rounded down from the cost measured here (docs/experiments.md, "Cost"):
 #: MuJoCo 1220 runs of ≈ 43 s in 381 s wall (113); PyBullet 1432 s wall at load 6–8 (36);
@@ -184,13 +191,13 @@ def hull_seconds(accel: dict, dt: dict, engines) -> dict:
 
 def run_body(engine: str, spec: specimen.Specimen, accel: dict, dt: dict, progress=None, signs=SIGNS,
              **contact) -> dict:
-    """The engine's rigid body (the rock's hull on a free joint, EngineSpec.simulate_body),
+    """The engine's rigid body (the rock's hull on a free joint, its SIMULATE_BODY facet),
     through the registry, the acceleration along each of `signs` of the rest pose (both,
     by default); `contact`: the engine's contact keywords (friction, and MuJoCo's dampratio
     or PyBullet's restitution), absent for its own defaults. The continuous score: the peak
     tilt over the smaller α."""
     from isorock.validate.core.engines import get_engine
-    simulate_body = get_engine(engine).spec.simulate_body
+    simulate_body = SIMULATE_BODY.of(get_engine(engine).spec)
     alpha = min(spec.direction(1)["alpha"], spec.direction(-1)["alpha"])
     out = {}
     for name, sign in signs:

@@ -1,6 +1,6 @@
 """A scene to replay any engine's history in: the same block and base on planar joints,
 so that a frame is set by u and θ alone (the block pivoting on its corner, riding on the
-base). `isorock view` reaches it through the registry (EngineSpec.replay_scene)."""
+base). `isorock view` reaches it through the registry (its replay_scene facet, validate/tools/view.py)."""
 from __future__ import annotations
 
 from isorock.analytic import kinematics

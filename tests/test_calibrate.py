@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from isorock.analytic import paper_system
-from isorock.validate.tools.calibrate import (IMPACTS, PENALTY, Score, bootstrap_change, cases, holds,
+from isorock.validate.tools.calibrate import (TUNING, IMPACTS, PENALTY, Score, bootstrap_change, cases, holds,
                                         settings_toml, tilts)
 from isorock.validate.cli.main import main
 from isorock.validate.core.engines import resolve
@@ -56,7 +56,7 @@ def test_mujocos_calibration_coordinates_are_its_own_timeconst_and_dampratio():
     """The coordinates (log2 τ/dt, ζ, dmin) give the direct form MuJoCo itself derives from
     solref (τ, ζ): the same run to rounding, and back the same coordinates."""
     from isorock.mujoco_models import ENGINE, Settings, simulate
-    tuning = ENGINE.tuning
+    tuning = TUNING.of(ENGINE)
     # follow_system off: the direct form is used as given, so the (τ, ζ) form must be too
     # phased off: both forms step at the timestep (the (τ, ζ) form would step coarse away
     # from impacts, the direct form, tied to its step, would not)
@@ -82,7 +82,7 @@ def test_a_run_that_hops_after_its_impacts_has_failed_whatever_its_beta():
     system = paper_system(fixed_base=True)
     case = Case.named("hop", system, "none", 2.1, 0.3, impacts=4)
     good = get_engine("mujoco").settings(timestep=2e-3)
-    hopping = ENGINE.tuning.apply(good, [math.log2(2.2), 0.7, 0.9])
+    hopping = TUNING.of(ENGINE).apply(good, [math.log2(2.2), 0.7, 0.9])
     tr = get_engine("mujoco").simulate(system, None, settings=hopping, duration=2.1, theta0=0.3 * system.alpha)
     betas = [i.theta_dot_post / i.theta_dot_pre / housner_beta(system) - 1 for i in tr.counted_impacts[:4]]
     assert max(map(abs, betas)) < 0.01 and tr.extras["lift_off_max_after_impact"] > 2 * lift_off_limit("mujoco")
@@ -147,7 +147,7 @@ def test_the_preset_file_reads_back_as_the_same_settings(engine):
     if engine == "drake":
         pytest.importorskip("pydrake")
     e, s = resolve(engine, {"timestep": 2e-3} if engine == "mujoco" else {})
-    tuned = e.spec.tuning.apply(s, [b[0] + 0.3 * (b[1] - b[0]) for b in e.spec.tuning.bounds])
+    tuned = TUNING.of(e.spec).apply(s, [b[0] + 0.3 * (b[1] - b[0]) for b in TUNING.of(e.spec).bounds])
     table = tomllib.loads(settings_toml(engine, tuned, ["a header"]))["settings"][engine]
     assert resolve(engine, table)[1] == tuned
 

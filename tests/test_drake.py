@@ -227,7 +227,7 @@ def test_settings_tie_sampling_to_the_step():
 
 def test_registered_as_an_engine():
     engine = get_engine("drake")
-    assert engine.has_scene and engine.spec.scene_format == ("SDFormat", ".sdf")
+    assert engine.has_scene and engine.scene_format == ("SDFormat", ".sdf")
     assert not engine.capabilities.campaigns  # bench and stress leave it out unless asked
     assert engine.settings(timestep=2e-4).discrete_solver == "sap"
     with pytest.raises(InputError, match="not a setting"):

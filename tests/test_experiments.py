@@ -292,7 +292,8 @@ HULL_ENGINES = ("mujoco", "bullet", "drake")
 
 def _simulate_body(engine):
     from isorock.validate.core.engines import get_engine
-    return get_engine(engine).spec.simulate_body
+    from isorock.experiments.study import SIMULATE_BODY
+    return SIMULATE_BODY.of(get_engine(engine).spec)
 
 
 @pytest.mark.parametrize("engine", HULL_ENGINES)

@@ -26,6 +26,7 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.hybrid import simulate
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import FrictionPendulum, PlanarBody, System
+from isorock.experiments.study import SIMULATE_BODY
 
 G = 9.81
 M = 3800.0
@@ -304,7 +305,7 @@ def test_mujocos_hull_of_a_statue_rocks_as_the_exact_model_of_its_two_edges(name
     # the same θmax/α at every size, but for the pulse's samples (1 ms at every size: 1e-4 apart)
     assert tr.theta_max_over_alpha == pytest.approx(hull.TARGET, rel=1e-3) and not tr.overturned
     from isorock.validate.core.engines import get_engine
-    got = get_engine("mujoco").spec.simulate_body(body.vertices, body.com, body.inertia, body.mass, a, dt,
+    got = SIMULATE_BODY.of(get_engine("mujoco").spec)(body.vertices, body.com, body.inertia, body.mass, a, dt,
                                                   duration=a.size * dt + 3.0)
     assert not got["overturned"]
     error = got["tilt_max"] / float(np.max(np.abs(tr.theta))) - 1.0

@@ -1,7 +1,7 @@
 """The contact engines on a statue's real shape against the exact model of its two edges
 (issue 36; docs/statues.md, "The contact engines on the hull"): each example statue (bust,
 amphora, obelisk: analytic.shape.example_statue, 2,600 kg/m³) at 0.5×, 1× and 3× its size, as
-its convex hull on a free joint on a fixed table (EngineSpec.simulate_body: the scenes the
+its convex hull on a free joint on a fixed table (the simulate_body facet: the scenes the
 shake-table study runs), under one sine cycle along the direction it tips first, against the
 exact model of its two edges along that direction (System.body, engine "analytic").
 
@@ -24,6 +24,7 @@ from isorock.analytic import shape
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import PlanarBody, System
 from isorock.validate.core.engines import get_engine
+from isorock.experiments.study import SIMULATE_BODY
 
 G = 9.81
 STATUES = ("bust", "amphora", "obelisk")
@@ -77,7 +78,7 @@ def rows(engines, target=TARGET):
             theta = float(np.max(np.abs(tr.theta)))
             for engine in engines:
                 start = time.perf_counter()
-                got = get_engine(engine).spec.simulate_body(body.vertices, body.com, body.inertia, body.mass, a, dt,
+                got = SIMULATE_BODY.of(get_engine(engine).spec)(body.vertices, body.com, body.inertia, body.mass, a, dt,
                                                             duration=a.size * dt + 3.0)
                 yield dict(statue=name, scale=scale, k=k, mass=body.mass, engine=engine,
                            alpha_forward=system.body.alpha(1), alpha_backward=system.body.alpha(-1),

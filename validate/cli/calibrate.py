@@ -81,7 +81,8 @@ def cmd_calibrate(a) -> int:
     from isorock.validate.io.progress import Progress
     from isorock.validate.core.executor import default_workers
     engine = get_engine(a.engine)
-    if engine.spec.tuning is None:
+    from isorock.validate.tools.calibrate import TUNING
+    if TUNING.of(engine.spec) is None:
         raise InputError(f"engine = {a.engine!r}: has no contact parameters to calibrate")
     if not 5 <= a.max_evals <= 2000:
         raise InputError(f"max-evals = {a.max_evals!r}: must be a whole number from 5 to 2000")

@@ -204,7 +204,7 @@ def cmd_scene(a) -> int:
         outputs.commit()
     if a.out == "-":
         return 0
-    kind, suffix = engine.spec.scene_format
+    kind, suffix = engine.scene_format
     if not str(a.out).lower().endswith(suffix):
         print(f"note: {a.engine} scenes are {kind} files ({suffix}); {a.out} holds {kind}", file=sys.stderr)
     print(a.out)

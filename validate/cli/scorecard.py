@@ -8,7 +8,7 @@ Each column comes from the tool that measures it, called here as its command cal
   the paper's block, the engine at its defaults beside the analytic model;
 - stress (validate.tools.stress.run_stress): robust disagreements with the exact model;
 - speed (validate.tools.bench.speed_goals): Kobe 40 s on the paper's block, one run alone and
-  a batch, and the share of the engine's own step floor (EngineSpec.step_cost);
+  a batch, and the share of the engine's own step floor (its step_cost facet);
 - experiments (experiments.study.build): the held-out accuracy against the shake-table tests.
 
 Nothing is measured here: this module chooses the work that fits the budget (--budget S,
@@ -246,13 +246,13 @@ def plan(labels: list[str], effort: Effort, budget: float, grid) -> tuple[list[d
     for name in engines:
         mine = [label for label in run if label.partition(":")[0] == name]
         default = default_label(name, mine)
-        spec = get_engine(name).spec
+        engine = get_engine(name)
         for label in mine:
             first = label == default
             # each engine's defaults first, every measure; then every other preset's atlas; then their speed
             candidates.append((0 if first else 1, "atlas", label, atlas_sim * OVERHEAD["atlas"] / _speed_of(name)))
             candidates.append((0 if first else 2, "speed", label,
-                               speed_estimate(name, effort, spec) / KOBE_SPEEDS.get(name, _speed_of(name))))
+                               speed_estimate(name, effort, engine) / KOBE_SPEEDS.get(name, _speed_of(name))))
             for m in ("validate", "stress", "experiments"):
                 if not first:
                     why[(m, label)] = (f"not run: {m} judges each engine at its defaults (row {default})" if default
@@ -291,12 +291,12 @@ def atlas_simulated_s(grid) -> float:
     return sum(reference(c)["duration"] for c in grid.cells())
 
 
-def speed_estimate(name: str, effort: Effort, spec) -> float:
+def speed_estimate(name: str, effort: Effort, engine) -> float:
     """Simulated seconds of bench.speed_goals for one label: Kobe 40 s on two bases, alone and
     mapped, `speed_repeats` times, a 1 s warm-up, and the batch of BATCH_RUNS where the engine
     has a batch path."""
     from isorock.validate.tools.bench import BATCH_RUNS
-    batch = BATCH_RUNS * 40.0 if spec.simulate_many is not None and not spec.capabilities.exact_impacts else 0.0
+    batch = BATCH_RUNS * 40.0 if engine.has_batch else 0.0
     return OVERHEAD["speed"] * (1.0 + 2 * 2 * effort.speed_repeats * 40.0 + batch)
 
 
@@ -316,7 +316,7 @@ def per_engine_estimate(measure: str, name: str, effort: Effort) -> tuple[float,
         from isorock.experiments import study
         if name not in study.ENGINES:
             return 0.0, (f"not run: the shake-table study has no model of the rock for {name} (its hull engines: "
-                         f"{', '.join(study.HULL_ENGINES)}; EngineSpec.simulate_body)")
+                         f"{', '.join(study.HULL_ENGINES)}; the simulate_body facet)")
         if not study.default_data().is_dir():
             return 0.0, f"not run: the shake-table data are not here ({study.default_data()})"
         if name not in study.HULL_ENGINES:
@@ -640,7 +640,7 @@ def floor_cell(c: dict) -> str:
     if _not_run(c):
         return "not run (speed)"
     if c["step_us"] is None:
-        return "— (no step cost: EngineSpec.step_cost)"
+        return "— (no step cost: the engine has no step_cost facet)"
     return f"{_num(c['floor_share_isolated'])}× / {_num(c['floor_share_fixed'])}× (step {c['step_us']:.2f} µs)"
 
 
@@ -751,7 +751,7 @@ HOW = [
     "chosen on training folds) per specimen, with its 95% bootstrap interval (docs/experiments.md).",
     "- **speed**: `validate.tools.bench.speed_goals` on Kobe 40 s, the paper's block: simulated s per wall s "
     "of one run alone (medians), isolated / fixed; a batch of 16 on 2 threads where the engine has a batch path "
-    "(EngineSpec.simulate_many); the step floor: timestep / one physics step's CPU time (EngineSpec.step_cost), "
+    "(its simulate_many facet); the step floor: timestep / one physics step's CPU time (its step_cost facet), "
     "and the run's speed per CPU s as a multiple of it (above 1×: the rest phase skipped).",
 ]
 

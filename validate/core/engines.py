@@ -15,7 +15,7 @@ from dataclasses import dataclass, field, fields, replace
 
 from typing import TYPE_CHECKING
 
-from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, EngineSpec
+from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, EngineSpec, declare_facet
 from isorock.analytic.errors import InputError
 
 if TYPE_CHECKING:
@@ -44,6 +44,15 @@ ENGINE_MODULES = {
 #: pyproject.toml, `[project.entry-points."isorock.engines"] NAME = "package.module:ENGINE"`,
 #: ENGINE an EngineSpec whose `name` is NAME (docs/plugins.md; examples/isorock-engine-example).
 PLUGIN_GROUP = "isorock.engines"
+
+#: the facets the registry itself uses (engine_protocol.Facet)
+BATCH = declare_facet("simulate_many", "the registry (Engine.simulate_many: campaigns, ensembles, bench's batch)",
+                      "(runs, *, settings, threads, budget_s) → per (system, motion, duration, theta0) of runs, "
+                      "what simulate returns for it alone or the exception it raised, each within budget_s s "
+                      "of wall time")
+SCENE_TEXT = declare_facet("scene_text", "isorock scene, validate's scene files",
+                           "(system, settings) → the text of the model file a user can open")
+SCENE_FORMAT = declare_facet("scene_format", "isorock scene", "(format name, file suffix) of scene_text's file")
 
 
 def _plugins() -> tuple[dict, dict]:
@@ -124,11 +133,21 @@ class Engine:
 
     @property
     def has_scene(self) -> bool:
-        return self.spec.scene_text is not None
+        return SCENE_TEXT.of(self.spec) is not None
+
+    @property
+    def scene_format(self) -> tuple[str, str] | None:
+        return SCENE_FORMAT.of(self.spec)
+
+    @property
+    def has_batch(self) -> bool:
+        """Whether simulate_many runs its cases together (the engine's simulate_many facet) rather
+        than one by one."""
+        return BATCH.of(self.spec) is not None and not self.capabilities.exact_impacts
 
     def scene_text(self, system, settings=None) -> str:
         self.check_isolator(system)
-        return self.spec.scene_text(system, settings)
+        return SCENE_TEXT.of(self.spec)(system, settings)
 
     def check_isolator(self, system) -> None:
         """One line refusing, before any work, a System this engine does not carry: on an
@@ -212,7 +231,7 @@ class Engine:
                       threads: int = 1, budget_s: float | None = None) -> list:
         """`simulate` of each (system, motion, duration, theta0) in `runs`: per run its
         Trajectory, or the exception it raised. An engine with a batch path
-        (EngineSpec.simulate_many: MuJoCo's, `threads` runs at a time) runs them
+        (its simulate_many facet, BATCH: MuJoCo's, `threads` runs at a time) runs them
         together, each exactly as alone; any other runs them one by one."""
         from isorock.analytic.motion import GroundMotion
         from isorock.analytic.overturning import PAST_ALPHA
@@ -223,7 +242,7 @@ class Engine:
             check_budget(budget_s)
         for system, *_ in runs:
             self.check_isolator(system)
-        if self.spec.simulate_many is None or self.capabilities.exact_impacts:
+        if not self.has_batch:
             out = []
             for system, motion, duration, theta0 in runs:
                 try:
@@ -233,8 +252,8 @@ class Engine:
                 except Exception as e:  # noqa: BLE001 — one bad case is that case's result
                     out.append(e)
             return out
-        raws = self.spec.simulate_many(runs, settings=settings if settings is not None else self.settings(),
-                                       threads=threads, budget_s=budget_s)
+        raws = BATCH.of(self.spec)(runs, settings=settings if settings is not None else self.settings(),
+                                   threads=threads, budget_s=budget_s)
         return [raw if isinstance(raw, Exception) else
                 measure.measure(raw, motion or GroundMotion.zero(), overturn_rule=overturn_rule or PAST_ALPHA,
                                 effective_beta=effective_beta)

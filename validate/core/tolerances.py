@@ -173,7 +173,7 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     **{("mujoco", m): t for m, t in _ENSEMBLE_OVERTURN.items()},
     ("mujoco", "hull_theta_max_rel_error"): Tolerance(
         0.02, "|θmax/θmax_exact − 1| of a statue's convex hull on a free joint (the shake-table scene, "
-              "EngineSpec.simulate_body) against the exact model of its two edges, one sine cycle along the "
+              "the simulate_body facet) against the exact model of its two edges, one sine cycle along the "
               "direction it tips first (docs/scripts/hull_two_edges.py): measured ≤ 0.2% on the bust at 1× and 3× "
               "and ≤ 1.2% on the obelisk at 0.5×–3×; not met, and not judged, on the 0.5× bust (+65%: the "
               "scene's 4 ms contact is soft for a 0.25 m statue) and the amphora (+16% to +102%: its round foot "

@@ -19,6 +19,7 @@ import time
 
 import numpy as np
 
+from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
 from isorock.analytic.hybrid import AnalyticSettings
 from isorock.analytic.hybrid import simulate as reference_simulate
@@ -41,6 +42,13 @@ FORMER = "absolute"
 FAST_RUN = 0.1
 FAST_REPEATS = 5
 
+#: the parts of an engine bench uses (engine_protocol.Facet)
+LADDER = declare_facet("ladder", "isorock bench", "(quick) → [(label, Settings)], cheapest first: "
+                       "the engine's work-precision ladder")
+STEP_COST = declare_facet("step_cost", "isorock bench, scorecard", "(system, settings) → the CPU time (s) of one "
+                          "physics step of the engine's scene, the block at rest, no Python between steps: the "
+                          "limit of its speed")
+
 
 def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
     """(label, settings) from cheapest to most accurate: the engine's own ladder; for
@@ -51,7 +59,8 @@ def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
     if preset:
         return [(preset, resolve(engine)[1])]
     spec = get_engine(name).spec
-    return spec.ladder(quick) if spec.ladder else [("default", spec.settings())]
+    own = LADDER.of(spec)
+    return own(quick) if own else [("default", spec.settings())]
 
 
 def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
@@ -139,12 +148,12 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True, labels=None) -
     paper's block, isolated and fixed: one run alone (medians of `repeats` of the wall and
     CPU time of the whole call), θmax/α against the analytic model's with the validation
     tolerance, a batch of BATCH_RUNS (half isolated, half fixed) through the registry's
-    simulate_many on BATCH_THREADS threads, and the engine's step cost (EngineSpec.step_cost:
+    simulate_many on BATCH_THREADS threads, and the engine's step cost (its STEP_COST facet:
     one physics step of the scene in C, the block at rest) as the limit each speed is a
     fraction of. Rows: one per (label, base), the batch on the isolated row.
 
     `labels`: measure exactly these ENGINE:PRESET labels instead, of any engine (the
-    scorecard's rows): the batch where the engine has a batch path (EngineSpec.simulate_many;
+    scorecard's rows): the batch where the engine has a batch path (its simulate_many facet;
     None otherwise, as it would only run them one by one), the step's limit where it has a
     step cost, θ judged where the table has its theta_max_diff tolerance (None otherwise)."""
     from isorock.analytic import limits, paper_system
@@ -172,7 +181,7 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True, labels=None) -
         engine.simulate(bases["fixed"], motion, settings=settings, duration=1.0)  # loaded outside the clock
         batch = None
         if (SPEED_GOALS[name][1] is not None if labels is None
-                else engine.spec.simulate_many is not None and not engine.capabilities.exact_impacts):
+                else engine.has_batch):
             runs = [(bases[b], motion, 40.0, 0.0) for b in ("isolated", "fixed") for _ in range(BATCH_RUNS // 2)]
             start = time.perf_counter()
             out = engine.simulate_many(runs, settings=settings, threads=BATCH_THREADS, effective_beta=False,
@@ -201,7 +210,8 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True, labels=None) -
                     print(f"  kobe-40s {base:8s} {label:16s} {e}", file=sys.stderr, flush=True)
                 continue
             used = settings_used(settings, system, 40.0)
-            cost = engine.spec.step_cost(system, settings) if engine.spec.step_cost else None
+            step_cost = STEP_COST.of(engine.spec)
+            cost = step_cost(system, settings) if step_cost else None
             timestep = getattr(used, "timestep", None)  # an event-driven engine (analytic) has none
             limit_cpu = timestep / cost if cost and timestep else None
             simulated = float(traj.t[-1])  # a run that overturned and lies on its side stops early
@@ -236,7 +246,7 @@ def goal_lines(goal_rows: list[dict]) -> list[str]:
              "(impacts located and counted, not mapped to effective β), and beside it with every counted "
              "impact mapped (`validate.core.measure.effective_impacts`, the same for every engine); batch: "
              f"{BATCH_RUNS} runs (half isolated, half fixed) on {BATCH_THREADS} threads; the step's limit: "
-             "one physics step of the scene in C with the block at rest (EngineSpec.step_cost), "
+             "one physics step of the scene in C with the block at rest (its step_cost facet), "
              "timestep / its CPU time, and each run's speed per CPU s as a multiple of it (above 1×: phased "
              "stepping skips the scene where the block rests). Simulated s: as run (a block that overturned "
              "and lies on its side stops early). θmax/α against the analytic model's, within the validation "

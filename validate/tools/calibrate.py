@@ -4,7 +4,7 @@ impact law of one system, and check them on cases they were not fitted on.
 Cases: free rocking of the system and of the block on its other base, from tilts spread
 evenly over TILT_RANGE (fitted), and from the tilts halfway between those (held out);
 every run's first IMPACTS counted impacts are compared with the closed-form β. Each
-engine says what may move (its `EngineSpec.tuning`: MuJoCo the contact time constant in
+engine says what may move (its `tuning` facet, TUNING: MuJoCo the contact time constant in
 steps, damping ratio and solimp dmin; PyBullet the contact ERP; Drake the point
 contact's stiffness and dissipation). The search runs in the unit cube of those
 coordinates: a coarse Sobol design, then Nelder–Mead from its best point. The result is
@@ -30,12 +30,12 @@ worst error or by that bound.
 from __future__ import annotations
 
 import math
-import sys
 import time
 from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 
+from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
 from isorock.validate.core.cases import Case as _Case
 from isorock.validate.io.progress import bar_of
@@ -57,6 +57,9 @@ PENALTY = 1.0
 #: m: a run whose block hops higher than this after an impact has failed, where the engine
 #: has no lift-off tolerance of its own (MuJoCo's and PyBullet's are this too).
 LIFT_OFF = limit("calibrate_lift_off")
+#: what an engine lets calibrate move (engine_protocol.Tuning)
+TUNING = declare_facet("tuning", "isorock calibrate", "a Tuning: the contact parameters a calibration may move, "
+                       "their bounds, the coordinates of given settings and the settings at given coordinates")
 #: A run of other settings may take this many times the starting settings' slowest run
 #: (at least MIN_TIME_LIMIT s), or it has failed: Drake's point contact at 1e11 N/m costs
 #: tens of times its default's, and the search is for contact laws, not for slow ones.
@@ -390,7 +393,7 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
     best 2σ bound so far."""
     from isorock.validate.core.engines import get_engine
     engine = get_engine(engine_name)
-    tuning = engine.spec.tuning
+    tuning = TUNING.of(engine.spec)
     if tuning is None:
         raise InputError(f"engine = {engine_name!r}: has no contact parameters to calibrate")
     start_settings = settings or engine.settings()

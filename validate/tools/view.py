@@ -18,8 +18,8 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
-from pathlib import Path
 
+from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK
 from isorock.validate.core.scenarios import ROBUST_SINE
@@ -74,10 +74,14 @@ def _size(text: str) -> tuple[int, int]:
 
 # --- replay ---------------------------------------------------------------------------
 
+#: an engine's scene in which any engine's history can be replayed (MuJoCo's)
+REPLAY_SCENE = declare_facet("replay_scene", "isorock view", "(system) → (model, pose(u, θ) → joint positions): a "
+                             "scene of the engine's viewer in which any engine's history can be replayed")
+
 def replay_scene(system):
     """(model, pose(u, θ) → qpos): MuJoCo's replay scene, through the registry."""
     from isorock.validate.core.engines import get_engine
-    return get_engine("mujoco").spec.replay_scene(system)
+    return REPLAY_SCENE.of(get_engine("mujoco").spec)(system)
 
 
 #: most frames one GIF or replay may have (a 40 s run at 20 fps is 800): `--speed 1e-6`
