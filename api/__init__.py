@@ -16,7 +16,7 @@ platform. The notebook API (isorock.validate.cli.api), loaded on first use so th
 
 The packages: isorock.analytic (the model), isorock.mujoco_models, isorock.bullet_models,
 isorock.drake_models (the engines), isorock.validate (registry, measuring, reports, the
-command line), isorock.campaign (sweeps), isorock.experiments (shake-table tests).
+command line), isorock.validate.tools.campaign (sweeps), isorock.validate.tools.experiments (shake-table tests).
 """
 from __future__ import annotations
 
@@ -25,7 +25,7 @@ from __future__ import annotations
 #: (isorock.validate.core, …) and cannot also be a function; `design` takes Python values
 #: (Statue's numbers, sequences, GroundMotions) and parses no command line
 API = {"run": "isorock.validate.cli.api", "report": "isorock.validate.cli.api", "sweep": "isorock.validate.cli.api",
-       "design": "isorock.campaign.design",
+       "design": "isorock.validate.tools.campaign.design",
        # typed, from Python values: one run of any engine, and the values it takes
        "simulate": "isorock.validate.core.plan", "System": "isorock.analytic.system",
        "GroundMotion": "isorock.analytic.motion", "load_motion": "isorock.analytic.motion"}

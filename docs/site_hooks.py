@@ -20,7 +20,7 @@ ROOT = Path(__file__).resolve().parent.parent
 REFERENCE = ("isorock", "isorock.analytic", "isorock.analytic.system", "isorock.analytic.motion", "isorock.analytic.shape",
              "isorock.analytic.trajectory", "isorock.analytic.coefficients", "isorock.validate.core", "isorock.validate.core.engines",
              "isorock.validate.core.measure", "isorock.validate.core.tolerances", "isorock.validate.cli.api",
-             "isorock.campaign")
+             "isorock.validate.tools.campaign")
 
 # a link to a file of the repository that is not a page (an example, a script, a folder): the
 # site has no copy of it, so it is shown as the path it has in a checkout

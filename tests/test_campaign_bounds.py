@@ -10,8 +10,8 @@ import sys
 import pytest
 
 from isorock.analytic.errors import InputError
-from isorock.campaign import load_spec
-from isorock.campaign.spec import MAX_RUNS
+from isorock.validate.tools.campaign import load_spec
+from isorock.validate.tools.campaign.spec import MAX_RUNS
 
 from test_campaign import write_spec
 
@@ -47,7 +47,7 @@ def test_a_huge_grid_is_refused_from_its_lengths_before_it_is_built(tmp_path, ed
         text = text.replace(old, new)
     spec.write_text(text)
     # in a child process, bounded: the grid built first took minutes or a MemoryError
-    code = ("import sys\nfrom isorock.campaign import load_spec\nfrom isorock.analytic.errors import InputError\n"
+    code = ("import sys\nfrom isorock.validate.tools.campaign import load_spec\nfrom isorock.analytic.errors import InputError\n"
             f"try:\n    load_spec({str(spec)!r})\nexcept InputError as e:\n    print(e)\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert out.returncode == 0 and "campaign size" in out.stdout and str(MAX_RUNS) in out.stdout, out
@@ -57,7 +57,7 @@ def test_no_grid_is_built_for_a_campaign_its_lengths_already_refuse(tmp_path, mo
     """The table found two 1e6-point ranges taking 15-30 s to refuse on a loaded machine:
     each range was built (2e6 values) before the product was checked. The lengths are
     multiplied first, so no range is spaced at all."""
-    from isorock.campaign import spec as spec_module
+    from isorock.validate.tools.campaign import spec as spec_module
     spec = write_spec(tmp_path, more="")
     spec.write_text(spec.read_text().replace("size = 1.0", "size = {from = 0.5, to = 2, num = 1000000}")
                     .replace("mass = 1000.0", "mass = {from = 10, to = 2000, num = 1000000}"))

@@ -93,7 +93,7 @@ def test_records_campaign_faults_are_one_line(tmp_path, capsys, motions, files, 
 
 
 def test_a_byte_order_mark_is_utf8(tmp_path):
-    from isorock.campaign import load_spec
+    from isorock.validate.tools.campaign import load_spec
     spec = write_spec(tmp_path, more="")
     spec.write_bytes(b"\xef\xbb\xbf" + spec.read_bytes())
     assert load_spec(spec).n_cases == 18
@@ -104,7 +104,7 @@ def test_a_failed_analytic_row_says_why(monkeypatch):
     from isorock.analytic import fast
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.analytic.system import System
-    from isorock.campaign import Case, run_cases
+    from isorock.validate.tools.campaign import Case, run_cases
     real = fast.simulate_batch
 
     def failing(*a, **k):
@@ -137,7 +137,7 @@ def test_a_full_disk_while_drawing_is_one_line_and_the_table_is_whole(tmp_path, 
 
     import pyarrow.parquet as pq
 
-    from isorock.campaign import products
+    from isorock.validate.tools.campaign import products
 
     def full(*a, **k):
         raise OSError(errno.ENOSPC, "No space left on device")
@@ -158,7 +158,7 @@ def _with_base_mass(text: str, value: str) -> str:
 def test_base_mass_runs_the_systems_of_the_mass_ratios_it_means(tmp_path):
     """base_mass = [500, 2000] kg under a 1000 kg block is μ = 2 and 0.5: the same rows as
     the file that says mass_ratio = [2.0, 0.5], and the base built at the mass given."""
-    from isorock.campaign import load_spec, run_campaign
+    from isorock.validate.tools.campaign import load_spec, run_campaign
     from test_campaign import assert_same_rows
     by_ratio = write_spec(tmp_path, more="", name="ratio.toml")
     by_ratio.write_text(by_ratio.read_text().replace("mass_ratio = 1.0", "mass_ratio = [2.0, 0.5]"))

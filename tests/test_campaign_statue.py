@@ -10,8 +10,8 @@ import pyarrow.parquet as pq
 import pytest
 
 from isorock.analytic.errors import InputError
-from isorock.campaign.run import run_campaign
-from isorock.campaign.spec import load_spec
+from isorock.validate.tools.campaign.run import run_campaign
+from isorock.validate.tools.campaign.spec import load_spec
 
 trimesh = pytest.importorskip("trimesh")
 

@@ -12,8 +12,8 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 import pytest
 
-from isorock.campaign import run_campaign
-from isorock.campaign.run import PARTS
+from isorock.validate.tools.campaign import run_campaign
+from isorock.validate.tools.campaign.run import PARTS
 
 from test_campaign import assert_same_rows, write_spec
 

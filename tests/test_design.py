@@ -15,7 +15,7 @@ from isorock.analytic.fast import simulate_batch, simulate_fast
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.rest_scales import rest_phase
 from isorock.analytic.system import System
-from isorock.campaign.design import SETTLED_AT_REST, Hazard, LinearFamily, Statue, run_design, unit_scaled
+from isorock.validate.tools.campaign.design import SETTLED_AT_REST, Hazard, LinearFamily, Statue, run_design, unit_scaled
 from isorock.validate.cli.main import main
 
 pytestmark = pytest.mark.isolator_kernel  # its isolator families need the isolator kernel (tests/conftest.py)
@@ -142,7 +142,7 @@ def test_a_cone_family_cannot_lift_the_block_where_slope_and_resistance_stay_bel
     """A ball in a cone transmits at most g(tanφ + μ_r) (docs/isolators.md): in every cell with
     tanφ + μ_r < tanα nothing rocks at any level, whatever the record; cells above it do rock
     (so the check can fail)."""
-    from isorock.campaign.design import BallInConeFamily
+    from isorock.validate.tools.campaign.design import BallInConeFamily
     family = BallInConeFamily((0.1, 0.4), (0.02, 0.1))
     d = run_design(STATUE, family, Hazard(RECORDS, (0.4, 1.0)), tail=TAIL, threads=1)
     tan_alpha = STATUE.width / STATUE.height
@@ -234,7 +234,7 @@ def test_the_command_writes_the_chart_and_the_answer(tmp_path, capsys, records_f
 
 
 def test_the_fema_suite_without_its_package_is_one_line_naming_the_extra(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("isorock.campaign.records.fema_available", lambda: False)
+    monkeypatch.setattr("isorock.validate.tools.campaign.records.fema_available", lambda: False)
     rc = main(["design", "--out", str(tmp_path / "out"), "--quiet"])
     err = capsys.readouterr().err.strip()
     assert rc == 2 and len(err.splitlines()) == 1 and "isorock[records]" in err
@@ -246,7 +246,7 @@ def test_the_contact_check_reruns_the_picked_runs_and_compares_them(small_design
     kernel says overturn and survive; MuJoCo's stroke where both stand within its
     tolerance (the same spring and dashpot; only the rocking's feedback differs)."""
     pytest.importorskip("mujoco")
-    from isorock.campaign.design import check_points, check_with
+    from isorock.validate.tools.campaign.design import check_points, check_with
     picks = check_points(small_design, 0.05, None, 3)
     assert {k for k, _, _ in picks} == {0, 1 + int(np.argmax(small_design.p_hazard()[1:])),
                                         1 + small_design.best(0.05, None)[0] * 2 + small_design.best(0.05, None)[1]}
@@ -295,7 +295,7 @@ def test_every_p_has_the_exact_binomial_interval_of_its_records(small_design):
     it; fails: the lower bound past it; cannot tell otherwise)."""
     from scipy import stats
 
-    from isorock.campaign.design import target_judgement
+    from isorock.validate.tools.campaign.design import target_judgement
     d = run_design(STATUE, LinearFamily((1.0, 2.5), (0.05,)), Hazard(RECORDS, (0.8,)), tail=TAIL, threads=1)
     n = len(RECORDS)
     assert (d.records_answered() == n).all()
@@ -316,7 +316,7 @@ def test_the_records_needed_to_show_a_target_follow_the_exact_bound():
     of n is within it: the first n for which SciPy's exact interval does."""
     from scipy import stats
 
-    from isorock.campaign.design import records_needed
+    from isorock.validate.tools.campaign.design import records_needed
     for target in (0.02, 0.05, 0.1):
         n = records_needed(target)
         assert stats.binomtest(0, n).proportion_ci(0.95, method="exact").high <= target
@@ -326,7 +326,7 @@ def test_the_records_needed_to_show_a_target_follow_the_exact_bound():
 def test_the_verdict_says_when_the_fixed_base_already_suffices(small_design):
     """At 0.02 g no block of tanα 0.35 can lift on a fixed base (uplift needs g·tanα): the fixed
     base meets any target, the verdict says so first, and that 3 records cannot show 5%."""
-    from isorock.campaign.design import records_needed, verdict
+    from isorock.validate.tools.campaign.design import records_needed, verdict
     d = run_design(STATUE, LinearFamily((2.5,), (0.3,)), Hazard(RECORDS, (0.02,)), tail=TAIL, threads=1)
     assert not d.overturned.any()
     v = verdict(d, 0.05, None)
@@ -341,7 +341,7 @@ def test_an_isolator_that_never_breaks_away_is_locked_and_not_named():
     """A friction pendulum stays put while the ground's acceleration is below μ_f·g (the friction
     on the whole mass holds it): at 0.1 g, μ_f 0.3 never slides (stroke 0, locked), μ_f 0.02 does.
     Both keep P 0 (the block cannot lift below g·tanα = 0.35 g): the one that moves is named."""
-    from isorock.campaign.design import FrictionPendulumFamily, verdict
+    from isorock.validate.tools.campaign.design import FrictionPendulumFamily, verdict
     family = FrictionPendulumFamily((1.5,), (0.02, 0.3))
     d = run_design(STATUE, family, Hazard(RECORDS, (0.1,)), tail=TAIL, threads=1)
     assert not d.overturned.any()
@@ -401,7 +401,7 @@ def test_design_from_python_counts_what_the_kernel_runs_and_writes_what_the_comm
 ])
 def test_design_from_python_refuses_bad_values_naming_the_keyword(kwargs, field, tmp_path):
     from isorock.analytic.errors import InputError
-    from isorock.campaign.design import design
+    from isorock.validate.tools.campaign.design import design
     with pytest.raises(InputError) as e:
         design(**{"records": RECORDS, "pga": [0.2], "out": tmp_path / "never", **kwargs})
     assert str(e.value).startswith(field) and "\n" not in str(e.value)
@@ -445,7 +445,7 @@ def test_the_worst_direction_is_where_the_fixed_base_overturns_most_often_run_by
     from dataclasses import replace
     from isorock.analytic import shape
     from isorock.analytic.system import PlanarBody
-    from isorock.campaign.design import DIRECTIONS, worst_direction
+    from isorock.validate.tools.campaign.design import DIRECTIONS, worst_direction
     resting = shape.standing(*shape.example_statue("bust"), mass=80.0)
     hazard = Hazard(dict(list(RECORDS.items())[:2]), (0.5, 0.9), (1.0, 3.0))
     w = worst_direction(resting, hazard, TAIL)
@@ -477,7 +477,7 @@ MEASURED_DESIGNS = [("linear", None, 8_688_246, 36.6), ("friction-pendulum", Non
 
 @pytest.mark.parametrize("kind, friction, simulated, cpu_s", MEASURED_DESIGNS)
 def test_the_estimate_announced_bounds_the_measured_work_of_each_path(kind, friction, simulated, cpu_s):
-    from isorock.campaign.design import FAMILIES, design_speed
+    from isorock.validate.tools.campaign.design import FAMILIES, design_speed
     statue = Statue(2.0, 0.7, 3800.0, 3800.0)
     if friction is not None:
         statue = dataclasses.replace(statue, friction=friction)

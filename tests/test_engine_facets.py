@@ -13,7 +13,7 @@ from isorock.validate.core.engines import ENGINE_NAMES, get_engine
 
 #: the modules that declare the facets they use
 TOOLS = ("isorock.validate.core.engines", "isorock.validate.tools.bench", "isorock.validate.tools.calibrate",
-         "isorock.validate.tools.view", "isorock.experiments.study")
+         "isorock.validate.tools.view", "isorock.validate.tools.experiments.study")
 PROTOCOL = ("name", "label", "settings_type", "simulate", "capabilities", "presets", "settings_for", "check_system",
             "tolerances", "facets")
 

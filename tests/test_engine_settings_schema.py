@@ -11,7 +11,7 @@ from dataclasses import MISSING, fields
 
 import pytest
 
-from isorock.campaign.schema import check_campaign
+from isorock.validate.tools.campaign.schema import check_campaign
 from isorock.analytic.errors import InputError
 from isorock.validate.cli.config_file import read_config
 from isorock.validate.cli.main import build_parser, main

@@ -11,7 +11,7 @@ import pytest
 
 from isorock.analytic.errors import InputError
 from isorock.analytic import shape
-from isorock.experiments import data, processing, scores, specimen
+from isorock.validate.tools.experiments import data, processing, scores, specimen
 
 ROOT = Path(__file__).resolve().parent.parent
 VSR = ROOT.parent / "shared" / "data" / "vsr"
@@ -292,7 +292,7 @@ HULL_ENGINES = ("mujoco", "bullet", "drake")
 
 def _simulate_body(engine):
     from isorock.validate.core.engines import get_engine
-    from isorock.experiments.study import SIMULATE_BODY
+    from isorock.validate.tools.experiments.study import SIMULATE_BODY
     return SIMULATE_BODY.of(get_engine(engine).spec)
 
 
@@ -384,7 +384,7 @@ def test_overturning_scale_of_a_constant_push_is_the_first_scale_past_g_tan_alph
     """Closed form: under a constant table acceleration A a rigid block overturns iff A > g tanα
     (the tilted gravity then points past its edge; nothing pulls it back). So the first
     overturning scale of A = k·g tanα is the smallest 2^(j/8) above 1/k, and none when 2k ≤ 1."""
-    from isorock.experiments import study
+    from isorock.validate.tools.experiments import study
     sp = specimen.resting(*_box(0.4, 0.3, 1.2), 500.0, np.eye(3))
     alpha = sp.direction(1)["alpha"]
     dt, n = 0.01, 1001
@@ -532,7 +532,7 @@ def test_asymmetric_model_of_the_forward_block_agrees_with_the_exact_model_on_re
 def test_cv_selection_of_a_setting_never_sees_the_held_out_label():
     """A setting that is right only on one test must not be picked for that test: the
     held-out prediction of test i does not change when test i's label flips."""
-    from isorock.experiments.study import select_cv
+    from isorock.validate.tools.experiments.study import select_cv
     rng = np.random.default_rng(3)
     y = rng.uniform(size=50) < 0.4
     cands = {"a": (rng.uniform(size=50) < 0.5, rng.uniform(0, 2, 50)), "b": (y.copy(), y * 2.0)}

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from isorock.experiments import fitted, scores
+from isorock.validate.tools.experiments import fitted, scores
 from isorock.validate.cli.main import main
 
 VSR = Path(__file__).resolve().parents[2] / "shared" / "data" / "vsr"

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from isorock.analytic.system import System
-from isorock.experiments import misses, study
+from isorock.validate.tools.experiments import misses, study
 
 ROOT = Path(__file__).resolve().parent.parent
 VSR = ROOT.parent / "shared" / "data" / "vsr"

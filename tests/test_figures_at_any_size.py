@@ -45,7 +45,7 @@ def _fits(n_systems: int, pairs: list[tuple[str, str]]):
 
 @pytest.mark.parametrize("n_systems", [1, 3, 16])
 def test_fragility_lays_out_many_systems_as_a_grid(n_systems):
-    from isorock.campaign.products import FRAGILITY_COLUMNS, fragility_plot
+    from isorock.validate.tools.campaign.products import FRAGILITY_COLUMNS, fragility_plot
     pairs = [("analytic", "default"), ("mujoco", "preset=fast,timestep=0.002"), ("bullet", "default")]
     fig = fragility_plot(_fits(n_systems, pairs))
     visible = [ax for ax in fig.axes if ax.get_visible()]
@@ -151,7 +151,7 @@ def _cell_rgb(fig, ax, x, y):
 
 
 def test_an_agreement_maps_zero_and_not_applicable_look_apart_and_many_maps_keep_their_texts_apart():
-    from isorock.campaign.products import agreement_plot
+    from isorock.validate.tools.campaign.products import agreement_plot
     maps = [_map("mujoco", "default"), _map("mujoco", "preset=event-resolved,timestep=0.0005,friction=0.8"),
             _map("bullet", "preset=substeps-30"), _map("drake", "preset=hydroelastic")]
     fig = agreement_plot(maps)
@@ -196,7 +196,7 @@ def test_the_pareto_plots_labels_do_not_overlap():
 def test_a_fragility_fit_says_what_it_does_not_know():
     """A median beyond the levels tried is an extrapolation; a band over 2 records means
     little (issue 25): said in the table's note and in the figure's legend."""
-    from isorock.campaign.products import fragility_caveats, fragility_plot
+    from isorock.validate.tools.campaign.products import fragility_caveats, fragility_plot
     from isorock.validate.core.fragility import fit_fragility
     levels = np.array([0.1, 0.2, 0.3])
     few = np.array([[0, 0, 1], [0, 0, 0]], dtype=float)  # 2 records, 1 of 6 runs overturned, at the top level

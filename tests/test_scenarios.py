@@ -3,7 +3,7 @@ the checkout, then beside the working folder), never computed from where a modul
 lies, which in a wheel install is site-packages (issue 23 item 6)."""
 from pathlib import Path
 
-from isorock.experiments import study
+from isorock.validate.tools.experiments import study
 from isorock.validate.core import scenarios
 
 

@@ -12,7 +12,7 @@ import time
 
 import pytest
 
-from isorock.campaign.run import PARTS
+from isorock.validate.tools.campaign.run import PARTS
 
 from test_campaign import write_spec
 

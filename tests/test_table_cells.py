@@ -20,7 +20,7 @@ def test_missing_values_are_the_tables_spelling_and_numbers_follow_the_format():
 
 
 def test_the_stress_table_and_a_campaign_summary_use_it():
-    from isorock.campaign.products import _md_table
+    from isorock.validate.tools.campaign.products import _md_table
     from isorock.validate.tools.stress import markdown
     assert _md_table([{"a": math.nan, "b": 2.0, "c": None}])[-1] == "| – | 2 | – |"
     row = dict(engine="analytic", case="c", verdict="pass", cross="", status="completed", finite=True,

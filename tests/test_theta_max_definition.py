@@ -49,7 +49,7 @@ def test_the_conservative_rule_keeps_alpha_and_the_json_says_which():
 
 
 def test_campaign_rows_and_run_json_use_the_same_definition(tmp_path, capsys):
-    from isorock.campaign import Case, run_cases
+    from isorock.validate.tools.campaign import Case, run_cases
     side = 0.5 * math.pi / FIXED.alpha
     motion = GroundMotion.from_pulse(PULSE)
     t = run_cases([Case(0, FIXED, motion, 4.0)], ["analytic"]).to_pydict()

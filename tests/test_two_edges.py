@@ -26,7 +26,7 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.hybrid import simulate
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import FrictionPendulum, PlanarBody, System
-from isorock.experiments.study import SIMULATE_BODY
+from isorock.validate.tools.experiments.study import SIMULATE_BODY
 
 G = 9.81
 M = 3800.0

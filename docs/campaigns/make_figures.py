@@ -18,7 +18,7 @@ import pyarrow as pa
 import pyarrow.compute as pc
 import pyarrow.parquet as pq
 
-from isorock.campaign.products import (_columns, agreement, agreement_figure, fragility_figure,
+from isorock.validate.tools.campaign.products import (_columns, agreement, agreement_figure, fragility_figure,
                                        fragility_fits, spectrum_figure)
 
 

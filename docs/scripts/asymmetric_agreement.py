@@ -28,7 +28,7 @@ import numpy as np
 
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
-from isorock.experiments import data, processing, specimen, study
+from isorock.validate.tools.experiments import data, processing, specimen, study
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.tolerances import tolerance
 

@@ -23,7 +23,7 @@ import numpy as np
 
 
 def _spectrum_spec(n_freq=80, n_amp=50, engines=({"name": "analytic"},), base="fixed"):
-    from isorock.campaign.spec import parse_spec
+    from isorock.validate.tools.campaign.spec import parse_spec
     return parse_spec({
         "campaign": {"name": "bench spectrum", "analytic_chunk": 500, "contact_chunk": 2},
         "systems": {"alpha": 0.25, "size": 1.0, "mass": 1000.0, "base": base},
@@ -38,7 +38,7 @@ def _emit(**kw):
 
 def bench_spectrum(workers):
     from isorock.validate.core.executor import close_client, local_client
-    from isorock.campaign.run import run_campaign
+    from isorock.validate.tools.campaign.run import run_campaign
     spec = _spectrum_spec()
     run_campaign(_spectrum_spec(2, 2), None, workers=0, progress=False)  # load the kernel first
     t = time.perf_counter()
@@ -87,7 +87,7 @@ def bench_kobe(n, repeats=5):
 def _contact_cases(n):
     from isorock.analytic.motion import GroundMotion, Pulse
     from isorock.analytic.system import paper_system
-    from isorock.campaign.spec import Case
+    from isorock.validate.tools.campaign.spec import Case
     system = paper_system(fixed_base=True)
     # one-sine pulses around uplift (3 s runs): rocking with impacts, some overturning
     return [Case(i, system, GroundMotion.from_pulse(Pulse("sine", amp=a, freq=1.0)), 3.0)
@@ -124,7 +124,7 @@ def bench_contact(n, workers, repeats=5):
     process involved) say what each way costs whatever the load."""
     from isorock.validate.core.engines import get_engine
     from isorock.validate.core.executor import close_client, local_client
-    from isorock.campaign.run import run_cases
+    from isorock.validate.tools.campaign.run import run_cases
     cases = _contact_cases(n)
     client = local_client(workers)
     try:
@@ -167,7 +167,7 @@ def bench_contact(n, workers, repeats=5):
 def bench_overhead(n, workers):
     from isorock.analytic.fast import simulate_fast
     from isorock.validate.core.executor import close_client, local_client
-    from isorock.campaign.run import run_cases
+    from isorock.validate.tools.campaign.run import run_cases
     cases = _contact_cases(n)
     simulate_fast(cases[0].system, cases[0].motion, duration=1.0)
     run_cases(cases[:1], ["analytic"])  # imports (pyarrow, the registry) out of the timing

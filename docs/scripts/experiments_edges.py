@@ -20,7 +20,7 @@ import sys
 import numpy as np
 
 from isorock.analytic.system import STANDARD_GRAVITY, System
-from isorock.experiments import data, processing, scores, specimen, study
+from isorock.validate.tools.experiments import data, processing, scores, specimen, study
 
 
 def fmt(m):

@@ -42,7 +42,7 @@ from contextlib import contextmanager
 
 import numpy as np
 
-from isorock.experiments import data, processing, scores, specimen, study
+from isorock.validate.tools.experiments import data, processing, scores, specimen, study
 
 #: the impact's angular-velocity ratio β of the forward block: fixed values, and "housner"
 #: (1 − 3/2 sin²α ≈ 0.98 here, the exact model's: the baseline). Not above it: β = 1 loses

@@ -12,7 +12,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from isorock.experiments import misses, study
+from isorock.validate.tools.experiments import misses, study
 from isorock.validate.cli.main import main as isorock
 
 

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.experiments import data, scores, specimen, study
+from isorock.validate.tools.experiments import data, scores, specimen, study
 
 FRICTIONS = (0.5, 0.8)
 DAMPRATIOS = (1.0, 0.5, 0.25)

@@ -16,7 +16,7 @@ import sys
 
 import numpy as np
 
-from isorock.experiments import scores, study
+from isorock.validate.tools.experiments import scores, study
 
 
 def main(path, row=study.SCALE_BY_PERIOD):

@@ -27,7 +27,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 
-from isorock.experiments import data, processing, scores, specimen, study
+from isorock.validate.tools.experiments import data, processing, scores, specimen, study
 
 #: scales per octave (study.overturning_scales): 8 fixed before the first run; 32 (2.2% steps)
 #: run after it, to converge the first overturning scale the 9% grid rounds (the threshold can

@@ -24,7 +24,7 @@ from isorock.analytic import shape
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import PlanarBody, System
 from isorock.validate.core.engines import get_engine
-from isorock.experiments.study import SIMULATE_BODY
+from isorock.validate.tools.experiments.study import SIMULATE_BODY
 
 G = 9.81
 STATUES = ("bust", "amphora", "obelisk")

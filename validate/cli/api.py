@@ -187,8 +187,8 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
     starts a local Dask cluster of N processes, which a script must call under
     `if __name__ == "__main__":` (said in one line where it is not)."""
     from isorock.analytic.limits import check_workers
-    from isorock.campaign.run import run_campaign
-    from isorock.campaign.spec import load_spec
+    from isorock.validate.tools.campaign.run import run_campaign
+    from isorock.validate.tools.campaign.spec import load_spec
     spec, out = _path("spec", spec, optional=False), _path("out", out)
     products, progress = _flag("products", products), _flag("progress", progress)
     check_workers("workers", workers, serial=True)

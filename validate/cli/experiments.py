@@ -11,7 +11,7 @@ import math
 
 from isorock.analytic.errors import InputError
 
-from isorock.experiments import data, misses, processing, study
+from isorock.validate.tools.experiments import data, misses, processing, study
 
 DEFAULT_OUT = "isorock-experiments"
 DEFAULT_MODEL = "isorock-model.json"
@@ -96,7 +96,7 @@ STUDY_ONLY = {"engines": "analytic,asymmetric", "sensitivity": False, "overturni
 
 def fit_or_predict(a) -> int:
     """`--fit DIR` and `--predict DIR --model FILE` (experiments.fitted)."""
-    from isorock.experiments import fitted
+    from isorock.validate.tools.experiments import fitted
     from isorock.validate.io.output import Outputs
     if a.fit is not None and a.predict is not None:
         raise InputError("fit, predict: give one of them (fit on one set of tests, then predict another)")
@@ -341,5 +341,5 @@ def write(result, folder) -> None:
     if sens:
         md += ["", "## Processing sensitivity (accuracy)", "", *sens]
     (folder / "experiments.md").write_text("\n".join(md) + "\n")
-    from isorock.experiments.figures import error_figure
+    from isorock.validate.tools.experiments.figures import error_figure
     error_figure(result, folder / "errors.png")

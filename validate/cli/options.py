@@ -409,7 +409,7 @@ def _with_transverse(a, m):
     if pair is not None:
         if spec is not None or (a.motion or "none").strip().lower() != "none":
             raise InputError(f"--pair = {pair!r}: names both components; leave --motion and --motion-transverse out")
-        from isorock.campaign.records import fema_pair
+        from isorock.validate.tools.campaign.records import fema_pair
         first, second = fema_pair(pair)
         return first.with_transverse(second)
     if spec is None:

@@ -313,7 +313,7 @@ def per_engine_estimate(measure: str, name: str, effort: Effort) -> tuple[float,
         recheck = 0.0 if name == "analytic" else STRESS_RECHECK_S
         return OVERHEAD["stress"] * sum(c.scenario.duration for c in cases) / speed + recheck, ""
     if measure == "experiments":
-        from isorock.experiments import study
+        from isorock.validate.tools.experiments import study
         if name not in study.ENGINES:
             return 0.0, (f"not run: the shake-table study has no model of the rock for {name} (its hull engines: "
                          f"{', '.join(study.HULL_ENGINES)}; the simulate_body facet)")
@@ -332,7 +332,7 @@ _HULL_SECONDS: dict = {}
 def experiment_tests(effort: Effort) -> list[int]:
     """Every effort.experiment_stride-th test of the shake-table data that has a file and an
     outcome (experiments.data.load), the same for every engine."""
-    from isorock.experiments import data, study
+    from isorock.validate.tools.experiments import data, study
     outcomes, _ = data.load(study.default_data(), None)
     return sorted(outcomes)[::effort.experiment_stride]
 
@@ -340,7 +340,7 @@ def experiment_tests(effort: Effort) -> list[int]:
 def experiment_hull_seconds(effort: Effort) -> float:
     """Simulated seconds one hull engine runs on the scorecard's tests (study.hull_seconds)."""
     if effort.name not in _HULL_SECONDS:
-        from isorock.experiments import processing, study
+        from isorock.validate.tools.experiments import processing, study
         _, testlist, _, accel, dts, _, _ = study.read(study.default_data(), experiment_tests(effort),
                                                       processing.DEFAULT_STEPS, processing.LOWPASS_HZ)
         _HULL_SECONDS[effort.name] = study.hull_seconds(accel, dts, ("mujoco",))["mujoco"]
@@ -551,7 +551,7 @@ def run_speed(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 
 def run_experiments(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from isorock.experiments import study
+    from isorock.validate.tools.experiments import study
     tests = experiment_tests(effort)
     out = {"experiment_tests": {"stride": effort.experiment_stride, "tests": len(tests)}}
     for label in labels:

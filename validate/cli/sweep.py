@@ -27,8 +27,8 @@ def add_parser(subparsers) -> None:
 def run(a) -> int:
     from isorock.analytic.limits import available_cores
 
-    from isorock.campaign.run import run_campaign
-    from isorock.campaign.spec import load_spec
+    from isorock.validate.tools.campaign.run import run_campaign
+    from isorock.validate.tools.campaign.spec import load_spec
     if a.workers is not None:
         from isorock.analytic.limits import check_workers
         check_workers("--workers", a.workers, serial=True)

@@ -92,7 +92,7 @@ def run_ensembles(specs, engines, *, overrides_for=None, overturn_rule: str | No
                   executor=None, threads: int | None = None, progress=None) -> list[Ensemble]:
     """One Ensemble per spec (system, motion, label, duration, scales): every engine
     ("ENGINE" or "ENGINE:PRESET", the analytic reference among them) on the motion scaled
-    by each factor. The runs are campaign cases (`isorock.campaign.run_cases`): the
+    by each factor. The runs are campaign cases (`isorock.validate.tools.campaign.run_cases`): the
     analytic model's in batches of its compiled kernel in this process, the contact
     engines' in chunks on the `executor` (core.executor.Executor: validate's worker
     processes) or the Dask `client`'s workers, or here when there is neither (in `threads`

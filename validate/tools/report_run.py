@@ -3,7 +3,7 @@ system) under each motion, side by side with the analytic model, each check agai
 tolerance table. `build(config)` runs everything and returns a Results;
 `isorock.validate.tools.report_render` writes it.
 
-Every run goes through the campaign machinery (`isorock.campaign`): the histories and
+Every run goes through the campaign machinery (`isorock.validate.tools.campaign`): the histories and
 free rocking as `isorock.validate.core.runner` tasks (whole Trajectories), the ensembles as
 campaign cases (`validate.ensemble.run_ensembles`: the analytic model in batches of its
 compiled kernel); the analytic model's runs in this process, the contact engines' on the

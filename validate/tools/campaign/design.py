@@ -1087,7 +1087,7 @@ def _whole_of(name: str, value) -> int:
 
 def _records(records, units) -> dict:
     """The hazard's records: a dict name → GroundMotion as given, or a suite or folder read."""
-    from isorock.campaign.records import load_suite, suite_spec
+    from isorock.validate.tools.campaign.records import load_suite, suite_spec
     if isinstance(records, dict):
         for name, r in records.items():
             if not (isinstance(name, str) and name.strip()):  # a name the table's string column holds
