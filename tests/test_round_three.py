@@ -275,7 +275,6 @@ def test_a_failed_contact_run_is_counted_apart_never_as_agreement(monkeypatch):
 
     from isorock.analytic.motion import GroundMotion
     from isorock.validate.tools.campaign import design
-    from isorock.validate.core import chunks
     records = {f"r{k}": GroundMotion.from_array(0.5 * np.sin(np.arange(200) * 0.1 * (k + 1)), dt=0.01, units="g",
                                                 name=f"r{k}") for k in range(2)}
     d = design.run_design(design.Statue(1.0, 0.35, 100.0, 100.0), design.LinearFamily((2.0,), (0.1,)),
@@ -286,7 +285,7 @@ def test_a_failed_contact_run_is_counted_apart_never_as_agreement(monkeypatch):
         return pa.table({"case": [c.case for c in cases], "overturned": [False] * len(cases),
                          "u_max": [None] * len(cases), "status": ["failed"] * len(cases),
                          "theta_max_over_alpha": [None] * len(cases)})
-    monkeypatch.setattr(chunks, "run_cases", all_failed)
+    monkeypatch.setattr(design, "run_cases", all_failed)  # the executor as design calls it
     c = design.check_with(d, "mujoco", picks)
     assert (c["outcomes_agree"], c["outcomes_differ"], c["failed"], c["n"]) == (0, 0, len(picks), len(picks))
     assert f"{len(picks)} failed" in c["text"] and "in 0 of 0" in c["text"]

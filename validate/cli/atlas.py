@@ -1,11 +1,16 @@
 """The `isorock atlas` command: options, the engines asked for, the atlas written as one folder."""
 from __future__ import annotations
 
-from isorock.analytic.errors import InputError
-from isorock.validate.tools import atlas as tool
 import math
-from isorock.validate.tools.atlas import AXES, FULL, QUICK, QUICK_HEIGHTS, QUICK_MASS_RATIOS, QUICK_SLENDERNESS, RUN_BUDGET, build, default_engines, user_grid, verdict_lines, write
 
+from isorock.analytic.errors import InputError
+from isorock.validate.cli.run import engine_labels
+from isorock.validate.core.engines import get_engine
+from isorock.validate.io.output import check_folder
+from isorock.validate.io.progress import Progress
+from isorock.validate.tools import atlas as tool
+from isorock.validate.tools.atlas import (AXES, FULL, QUICK, QUICK_HEIGHTS, QUICK_MASS_RATIOS, QUICK_SLENDERNESS,
+                                          RUN_BUDGET, build, default_engines, user_grid, verdict_lines, write)
 
 DEFAULT_OUT = "isorock-atlas"
 
@@ -42,8 +47,6 @@ def add_parser(sub) -> None:
 def expand(items) -> list[str]:
     """--engines → labels: ENGINE:PRESET as given, ENGINE alone as every preset of it;
     an unknown engine or preset is an InputError before any work (run_cli.engine_labels)."""
-    from isorock.validate.cli.run import engine_labels
-    from isorock.validate.core.engines import get_engine
     out = []
     for label in engine_labels(items):
         name, _, preset = label.partition(":")
@@ -58,8 +61,6 @@ def expand(items) -> list[str]:
 
 
 def cmd_atlas(a) -> int:
-    from isorock.validate.io.output import check_folder
-    from isorock.validate.io.progress import Progress
     engines = expand(a.engines) if a.engines else default_engines()
     if a.workers is not None:
         from isorock.analytic.limits import check_workers

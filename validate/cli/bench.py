@@ -1,14 +1,19 @@
 """The `isorock bench` command: options, then the work-precision table written as one folder."""
 from __future__ import annotations
 
-from isorock.validate.tools import bench as tool
-from pathlib import Path
+import csv
+import io
 import time
+from pathlib import Path
+
+from isorock.validate.cli.run import engine_labels
+from isorock.validate.core.engines import ALL_ENGINES
+from isorock.validate.io.output import check_folder, to_json, write_folder_atomic
+from isorock.validate.tools import bench as tool
 from isorock.validate.tools.bench import COLUMNS, markdown, plot, run_bench
 
 
 def _engine_names():
-    from isorock.validate.core.engines import ALL_ENGINES
     return ALL_ENGINES
 
 
@@ -28,11 +33,6 @@ def add_parser(sub) -> None:
 
 
 def cmd_bench(a) -> int:
-    import csv
-    import io
-
-    from isorock.validate.io.output import check_folder, to_json, write_folder_atomic
-    from isorock.validate.cli.run import engine_labels
     # an unknown engine or preset is an InputError before anything runs
     engines = engine_labels(a.engines) if a.engines else None
     check_folder(a.out)  # so is a folder we may not write

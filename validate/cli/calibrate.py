@@ -1,10 +1,20 @@
 """The `isorock calibrate` command: options, the fit, and the preset file written only when it holds."""
 from __future__ import annotations
 
-from isorock.analytic.errors import InputError
-from isorock.validate.tools import calibrate as tool
 import sys
-from isorock.validate.tools.calibrate import DEFAULT_TILTS, TILT_RANGE, preset_worthy, report_lines, result_json, settings_toml
+
+from isorock.analytic.errors import InputError
+from isorock.analytic.limits import check_workers
+from isorock.analytic.system import paper_system
+from isorock.validate.cli.options import (ENGINE_OPTIONS, SYSTEM_KEYS, add_engine_options, add_system_options,
+                                          whole_number)
+from isorock.validate.core.engines import get_engine
+from isorock.validate.core.executor import default_workers
+from isorock.validate.io.output import Outputs, to_json
+from isorock.validate.io.progress import Progress
+from isorock.validate.tools import calibrate as tool
+from isorock.validate.tools.calibrate import (DEFAULT_TILTS, TILT_RANGE, TUNING, preset_worthy, report_lines,
+                                              result_json, settings_toml)
 
 
 def _options(a, keys) -> list[str]:
@@ -33,7 +43,6 @@ def _toml_value(value) -> str:
 
 def _command(a) -> str:
     """The command line that gives this result again (the options that were given)."""
-    from isorock.validate.cli.options import ENGINE_OPTIONS, SYSTEM_KEYS
     words = ["isorock calibrate", f"--engine {a.engine}", *_options(a, SYSTEM_KEYS), *_options(a, ENGINE_OPTIONS),
              *(f"--set {'' if table == '*' else table + '.'}{key}={_toml_value(value)}"
                for table, key, value in a.set_settings or ())]
@@ -51,7 +60,6 @@ EXIT_CODES = ("exit codes: 0, the calibration ran and its verdict is said (bette
 
 
 def add_parser(sub) -> None:
-    from isorock.validate.cli.options import add_engine_options, add_system_options, whole_number
     p = sub.add_parser("calibrate", help="fit a contact engine's contact parameters to the closed-form β",
                        description=tool.__doc__.split("\n\n")[0], epilog=EXIT_CODES)
     p.add_argument("--engine", required=True, help="mujoco, bullet or drake")
@@ -74,21 +82,14 @@ def add_parser(sub) -> None:
 
 
 def cmd_calibrate(a) -> int:
-    from isorock.analytic.system import paper_system
     from isorock.validate.cli.options import SYSTEM_KEYS, announce_cost, engine_settings_from_args, system_from_options
-    from isorock.validate.core.engines import get_engine
-    from isorock.validate.io.output import Outputs, to_json
-    from isorock.validate.io.progress import Progress
-    from isorock.validate.core.executor import default_workers
     engine = get_engine(a.engine)
-    from isorock.validate.tools.calibrate import TUNING
     if TUNING.of(engine.spec) is None:
         raise InputError(f"engine = {a.engine!r}: has no contact parameters to calibrate")
     if not 5 <= a.max_evals <= 2000:
         raise InputError(f"max-evals = {a.max_evals!r}: must be a whole number from 5 to 2000")
     if not 2 <= a.tilts <= 101:
         raise InputError(f"tilts = {a.tilts!r}: must be a whole number from 2 to 101")
-    from isorock.analytic.limits import check_workers
     workers = default_workers() if a.workers is None else check_workers("workers", a.workers)
     system = system_from_options(a) or paper_system(fixed_base=True)
     settings = engine_settings_from_args(engine, a)

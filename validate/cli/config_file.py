@@ -24,6 +24,7 @@ from isorock.analytic.system import ISOLATOR_KINDS
 MAX_DAMPING_RATIO = 1.0
 
 
+from isorock.validate.core.engines import check_settings_table
 from isorock.validate.io.schema import NonNegative, Positive, number as _number, read_toml  # noqa: F401 (shared)
 
 
@@ -118,7 +119,6 @@ class ConfigFile(_Strict):
     @field_validator("settings")
     @classmethod
     def _known_settings(cls, tables):
-        from isorock.validate.core.engines import check_settings_table
         for table, values in tables.items():
             try:
                 check_settings_table(table, values)  # the one schema of engine settings

@@ -6,13 +6,21 @@ from __future__ import annotations
 import math
 import sys
 import time
-
-import numpy as np
+from dataclasses import replace
+from pathlib import Path
 
 from isorock.analytic.errors import InputError
-from isorock.analytic.system import BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK
-from isorock.validate.tools.campaign.design import DEFAULT_GRIDS, DEFAULT_LEVELS
-from isorock.validate.cli.options import add_statue_options, number, statue_body
+from isorock.analytic.system import BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, System
+from isorock.validate.cli.config_file import read_config
+from isorock.validate.cli.options import ISOLATOR_KEYS, add_statue_options, number, statue_body
+from isorock.validate.io.output import Outputs
+from isorock.validate.io.progress import Progress
+from isorock.validate.tools.campaign.design import (DEFAULT_GRIDS, DEFAULT_LEVELS, DIRECTIONS, FAMILIES, Hazard, Statue,
+                                                    check_axis, check_decision, check_engines_carry, check_family_runs,
+                                                    check_points, check_size, check_with, contact_engines, estimate_s,
+                                                    even_grid, run_design, simulated_seconds, worst_direction)
+from isorock.validate.tools.campaign.design_report import write_design
+from isorock.validate.tools.campaign.records import load_suite, suite_spec
 
 DEFAULT_OUT = "isorock-design"
 
@@ -101,7 +109,6 @@ def parse_grid(option: str, text: str, *, below_one: bool = False) -> tuple[floa
     """'0.5', 'A,B,C' or 'FROM:TO:NUM' (both ends included, evenly spaced): positive,
     finite, increasing values (below 1 for a damping ratio); one line naming the option otherwise
     (the values' rules: campaign.design.check_axis, which isorock.design applies too)."""
-    from isorock.validate.tools.campaign.design import check_axis, even_grid
     allowed = "a number, a list A,B,C or a range FROM:TO:NUM"
     parts = text.split(":")
     try:
@@ -133,12 +140,10 @@ def read_design_config(a) -> dict:
     it does not use are noted, not silently dropped."""
     if a.config is None:
         return {}
-    from isorock.validate.cli.config_file import read_config
     config = read_config(a.config)
     if "pgv" in config:
         raise InputError(f"config pgv = {config['pgv']!r}: a design scales every record to PGA levels; give pga (g) "
                          "in the file, or --pga")
-    from isorock.validate.cli.options import ISOLATOR_KEYS
     unused = ([f"[system] {k}" for k in ("period", "damping_ratio", "stiffness", "dashpot", "fixed_base", "isolator",
                                           *ISOLATOR_KEYS)
                if k in config.get("system", {})] + [k for k in config if k not in DESIGN_CONFIG_KEYS])
@@ -152,7 +157,6 @@ def statue_from_args(a, config: dict, mesh=None):
     """The Statue the options (over a --config file's [system] table) describe; the paper's
     block when none is given. `mesh`: options.statue_body's (the statue at rest, its two edges)
     of --statue FILE or --statue-example NAME."""
-    from isorock.validate.tools.campaign.design import Statue
     table = config.get("system", {})
     if mesh is not None:
         if table:
@@ -205,8 +209,6 @@ def statue_from_args(a, config: dict, mesh=None):
 def along_worst_direction(a, statue, resting, hazard):
     """The statue's mesh (`resting`) along the shaking direction in which it overturns most often
     on a fixed base under the hazard (campaign.design.worst_direction), said on stderr."""
-    from dataclasses import replace
-    from isorock.validate.tools.campaign.design import DIRECTIONS, worst_direction
     if not a.quiet:
         print(f"isorock design: the worst of {DIRECTIONS} shaking directions for the statue's mesh on a fixed base: "
               f"{DIRECTIONS * len(hazard.names) * len(hazard.levels):,} runs", file=sys.stderr, flush=True)
@@ -219,7 +221,6 @@ def along_worst_direction(a, statue, resting, hazard):
 def _slip(a, table: dict) -> dict:
     """The statue's friction (the option over the file's [system] statue_friction) and its plinth margin, checked
     as the System checks them, named as their options."""
-    from isorock.analytic.system import System
     friction = a.friction if a.friction is not None else table.get("statue_friction")
     margin = a.plinth_margin
     if friction is not None:
@@ -233,7 +234,6 @@ def _slip(a, table: dict) -> dict:
 
 
 def family_from_args(a):
-    from isorock.validate.tools.campaign.design import FAMILIES
     (x_opt, x_default), (y_opt, y_default) = DEFAULT_AXES[a.isolator]
     for kind, axes in DEFAULT_AXES.items():
         if kind == a.isolator:
@@ -248,10 +248,6 @@ def family_from_args(a):
 
 
 def hazard_from_args(a, config: dict):
-    from pathlib import Path
-
-    from isorock.validate.tools.campaign.design import Hazard
-    from isorock.validate.tools.campaign.records import load_suite, suite_spec
     if a.limit < 0:
         raise InputError(f"--limit = {a.limit!r}: must be a whole number ≥ 0 (0: every record)")
     if a.pga is not None:
@@ -274,15 +270,12 @@ def hazard_from_args(a, config: dict):
 
 def check_engines(given) -> list[str]:
     """--check as given (repeated, each comma-separated) → the contact engines, each once."""
-    from isorock.validate.tools.campaign.design import contact_engines
     return contact_engines([x.strip() for text in (given or ()) for x in text.split(",")],
                            named=lambda key: "--" + key)
 
 
 def _check(d, engine: str, picks, hazard, cores: int, quiet: bool) -> dict:
     """The picked runs again with one contact engine (its estimate first, then its progress)."""
-    from isorock.validate.tools.campaign.design import check_with
-    from isorock.validate.io.progress import Progress
     if not quiet:
         from isorock.validate.core.estimate import estimate_s
         sim = sum(hazard.records[name].end_time + d.tail for _, name, _ in picks)
@@ -297,12 +290,6 @@ def _check(d, engine: str, picks, hazard, cores: int, quiet: bool) -> dict:
 
 
 def cmd_design(a) -> int:
-    from isorock.validate.tools.campaign.design import (check_engines_carry, check_family_runs, check_points, check_size, estimate_s,
-                                         run_design, simulated_seconds)
-    from isorock.validate.tools.campaign.design_report import write_design
-    from isorock.validate.io.output import Outputs
-    from isorock.validate.io.progress import Progress
-    from isorock.validate.tools.campaign.design import check_decision
     check_decision(a.target, a.max_stroke, a.tail, a.check_runs, named=lambda key: "--" + key.replace("_", "-"))
     checks = check_engines(a.check)
     config = read_design_config(a)

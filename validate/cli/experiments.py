@@ -10,8 +10,11 @@ import csv
 import math
 
 from isorock.analytic.errors import InputError
-
-from isorock.validate.tools.experiments import data, misses, processing, study
+from isorock.validate.cli.options import announce_cost
+from isorock.validate.io.output import Outputs, to_json
+from isorock.validate.io.progress import Progress
+from isorock.validate.tools.experiments import data, fitted, misses, processing, study
+from isorock.validate.tools.experiments.figures import error_figure
 
 DEFAULT_OUT = "isorock-experiments"
 DEFAULT_MODEL = "isorock-model.json"
@@ -96,8 +99,6 @@ STUDY_ONLY = {"engines": "analytic,asymmetric", "sensitivity": False, "overturni
 
 def fit_or_predict(a) -> int:
     """`--fit DIR` and `--predict DIR --model FILE` (experiments.fitted)."""
-    from isorock.validate.tools.experiments import fitted
-    from isorock.validate.io.output import Outputs
     if a.fit is not None and a.predict is not None:
         raise InputError("fit, predict: give one of them (fit on one set of tests, then predict another)")
     for name, default in STUDY_ONLY.items():
@@ -197,7 +198,6 @@ def _frictions(text: str) -> tuple[float, ...]:
 
 def run_misses(a) -> int:
     """--misses: the rigid model's misses, test by test (experiments/misses.py), written whole or not at all."""
-    from isorock.validate.io.output import Outputs
     if a.fit is not None or a.predict is not None or a.model is not None or a.overturning_scale or a.sensitivity:
         raise InputError("misses: a study of its own; give it without --fit, --predict, --model, "
                          "--overturning-scale and --sensitivity")
@@ -205,8 +205,6 @@ def run_misses(a) -> int:
     steps = processing.parse_steps(a.steps)
     processing.check_lowpass(a.lowpass_hz)
     tests = _tests(a.tests)
-    from isorock.validate.cli.options import announce_cost
-    from isorock.validate.io.progress import Progress
 
     def announce(simulated):  # the sliding runs' cost, before their minutes
         announce_cost("experiments --misses", {"analytic": simulated}, budget_s=0, speeds=misses.SLIDING_SPEED,
@@ -223,7 +221,6 @@ def run_misses(a) -> int:
 
 
 def main(a) -> int:
-    from isorock.validate.io.output import Outputs
     if a.misses is not None:
         return run_misses(a)
     if a.fit is not None or a.predict is not None:
@@ -314,7 +311,6 @@ def specimen_lines(result) -> list[str]:
 
 
 def write(result, folder) -> None:
-    from isorock.validate.io.output import to_json
     (folder / "study.json").write_text(to_json(result) + "\n")
     with open(folder / "scores.csv", "w", newline="") as f:
         w = csv.writer(f)
@@ -341,5 +337,4 @@ def write(result, folder) -> None:
     if sens:
         md += ["", "## Processing sensitivity (accuracy)", "", *sens]
     (folder / "experiments.md").write_text("\n".join(md) + "\n")
-    from isorock.validate.tools.experiments.figures import error_figure
     error_figure(result, folder / "errors.png")

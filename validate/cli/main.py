@@ -60,31 +60,13 @@ EXTRA_COMMANDS = {
 }
 
 
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
+def _command(module: str, name: str):
+    """The function `name` of `module`, imported when the command runs: the dispatch, the one place
+    where imports wait, so that building the parser stays light (`isorock beta` loads no NumPy)
+    while each command's module has its imports at its top."""
+    def command(args):
+        return getattr(importlib.import_module(module), name)(args)
+    return command
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
@@ -134,8 +116,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
                         "otherwise, unless --json or --csv is '-')")
     add_engine_options(p)
     add_budget_option(p)
-    from isorock.validate.cli.run import cmd_run
-    p.set_defaults(func=cmd_run)
+    p.set_defaults(func=_command("isorock.validate.cli.run", "cmd_run"))
 
     p = sub.add_parser("scene", help="write the model file a contact engine runs (MuJoCo: MJCF, PyBullet and "
                                      "Drake: SDFormat)",
@@ -310,6 +291,7 @@ def main(argv=None) -> int:
         if signum is not None:
             if argv_given is None:
                 import logging
+
                 # a stopped command's one line is its last: what libraries log while their
                 # loops and clusters are torn down (Dask's "Task exception was never
                 # retrieved", a nanny that failed to start) is not for the user (issue 34)

@@ -5,10 +5,14 @@ engines cannot disagree."""
 from __future__ import annotations
 
 import sys
+import textwrap
+
+from isorock.analytic.errors import InputError
+from isorock.validate.core.engines import DISTINCT_ENGINES
+from isorock.validate.io.output import to_json
 
 
 def add_parser(sub) -> None:
-    from isorock.validate.core.engines import DISTINCT_ENGINES
     p = sub.add_parser("presets", help="every engine's presets, with their reasons and settings",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     p.add_argument("engine", nargs="?", metavar="ENGINE",
@@ -37,7 +41,6 @@ def _settings_line(entry: dict, *, default: bool) -> str:
 def listing(table: dict) -> str:
     """The text form: per engine, each preset's name and reason, then its settings (the
     default's all, another's those that differ from the default)."""
-    import textwrap
     lines = []
     for engine, presets in table.items():
         if "unavailable" in presets:  # an engine that cannot be loaded here says why
@@ -55,9 +58,7 @@ def listing(table: dict) -> str:
 
 
 def cmd_presets(a) -> int:
-    from isorock.analytic.errors import InputError
     from isorock.validate.core.engines import ALIASES, DISTINCT_ENGINES, get_engine, presets_of
-    from isorock.validate.io.output import to_json
     if a.engine is not None:
         get_engine(a.engine)  # an unknown name: one line, exit 2
         table = {ALIASES.get(a.engine, a.engine): presets_of(a.engine)}

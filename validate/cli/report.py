@@ -11,7 +11,16 @@ import sys
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
-from isorock.validate.core.engines import ENGINE_NAMES
+from isorock.validate.cli.config_file import check_damping_ratio, read_config
+from isorock.validate.cli.options import (add_engine_options, add_isolator_options, add_statue_options,
+                                          add_system_options, add_units_option, check_tables_run, engine_tables, number,
+                                          system_from_options)
+from isorock.validate.cli.run import engine_labels
+from isorock.validate.core.engines import ENGINE_NAMES, resolve
+from isorock.validate.core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
+from isorock.validate.io.output import check_folder
+from isorock.validate.io.progress import Progress
+from isorock.validate.tools.report_run import build
 
 DEFAULT_OUT = "isorock-report"
 #: ensemble bounds: steps each run every engine on every motion; a factor of 100 turns
@@ -21,8 +30,6 @@ MAX_SCALE = 100.0
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
-    from isorock.validate.cli.options import add_engine_options, add_system_options
-    from isorock.validate.core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
     p = subparsers.add_parser(
         "validate", help="the validation report: all engines side by side with the analytic model",
         description=f"Run a block on its base (the paper's by default: isolated T {PAPER_PERIOD:g} s "
@@ -40,7 +47,6 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                         f"(default: {' and '.join(DEFAULT_MOTIONS)})")
     p.add_argument("--format", choices=("at2", "jma", "csv"),
                    help="record format; guessed from the file when omitted")
-    from isorock.validate.cli.options import add_units_option, number
     add_units_option(p)
     p.add_argument("--pga", type=number, metavar="G",
                    help="scale every motion to this peak ground acceleration, g (the ensembles scale from there)")
@@ -64,9 +70,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="processes for the contact engines (default: 2, or the cores there are; 1: one process)")
     p.add_argument("--quiet", action="store_true", help="no progress bar on stderr")
     add_system_options(p, required=False)
-    from isorock.validate.cli.options import add_isolator_options
     add_isolator_options(p, in_file=True)  # every isolator kind, as `run` takes it (docs/isolators.md)
-    from isorock.validate.cli.options import add_statue_options
     add_statue_options(p)  # its mesh instead of H × B: the engines that carry it judged on it (docs/statues.md)
     add_engine_options(p)
     p.set_defaults(func=run)
@@ -94,16 +98,13 @@ def _scales(text):
 
 
 def _read_config(path) -> dict:
-    from isorock.validate.cli.config_file import read_config  # the file's schema (pydantic)
     return read_config(path)
 
 
 def report_config(args):
     """The validate options `args` (the parser's namespace) and the --config file they name,
     checked and merged into the report's ReportConfig, before any run."""
-    from isorock.validate.cli.options import check_tables_run, engine_tables, system_from_options
     from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig
-    from isorock.validate.cli.run import engine_labels
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
     overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
@@ -124,9 +125,7 @@ def report_config(args):
                           # a target on the command line wins over the file's, whichever it names
                           **({"pga": args.pga, "pgv": args.pgv} if args.pga is not None or args.pgv is not None
                              else {"pga": config.get("pga"), "pgv": config.get("pgv")}))
-    from isorock.validate.cli.config_file import check_damping_ratio
     check_damping_ratio(report.system)
-    from isorock.validate.core.engines import resolve
     for name in report.engines:  # an unknown setting or preset is bad input before anything runs
         try:
             resolve(name, report.overrides_for(name))
@@ -136,10 +135,7 @@ def report_config(args):
 
 
 def run(args) -> int:
-    from isorock.validate.io.output import check_folder
-    from isorock.validate.io.progress import Progress
     from isorock.validate.tools.report_render import verdict, write_report
-    from isorock.validate.tools.report_run import build
     check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     report = report_config(args)
     bars = []  # made by the report once it knows how many runs it makes

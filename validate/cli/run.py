@@ -18,8 +18,20 @@ import sys
 from dataclasses import fields
 from pathlib import Path
 
+import numpy as np
+
 from isorock.analytic.errors import InputError
-from isorock.validate.cli.options import check_tables_run, engine_tables, settings_dict
+from isorock.analytic.limits import BudgetExceeded, check_resample
+from isorock.analytic.system import LINEAR
+from isorock.validate.cli.options import (announce_cost, budget_stopped, check_tables_run, engine_tables,
+                                          motion_from_args, run_budget, settings_dict, statue_azimuth, statue_body,
+                                          system_from_args, transverse_asked)
+from isorock.validate.core.biaxial import box_body
+from isorock.validate.core.compare import compare
+from isorock.validate.core.engines import choose, get_engine, resolve, table_overrides
+from isorock.validate.core.plan import EngineRun, make_plan, run_plan
+from isorock.validate.io.naming import cell
+from isorock.validate.io.output import Outputs, to_json
 
 
 def parse_engines(text: str) -> list[tuple[str, str | None]]:
@@ -45,7 +57,6 @@ def engine_labels(items) -> list[str]:
     comma-separated, as validate takes it) → labels, each checked before any work: an
     unknown engine or preset is an InputError naming it and what is allowed. An engine
     that cannot be imported here is kept; the command reports it as not run."""
-    from isorock.validate.core.engines import resolve
     # "analytic, mujoco" arrives as the items "analytic," and "mujoco": an item's own
     # leading or trailing comma separates, it does not name an empty engine
     specs = parse_engines(",".join(str(item).strip().strip(",") for item in items))
@@ -62,7 +73,6 @@ def load_engines(specs, a) -> list[tuple[str, object, object]]:
     (core.engines.choose): the preset or the defaults, with the engine options given that
     the engine has. An engine option that none of the engines has is an error (it would
     silently do nothing); a bad value is named as its option."""
-    from isorock.validate.core.engines import choose, get_engine, table_overrides
     tables = engine_tables(a)
     engines = [(spec_label(n, p), get_engine(n)) for n, p in specs]
     check_tables_run(tables, [label for label, _ in engines])
@@ -96,9 +106,7 @@ def plot_format(path) -> str:
 
 def comparison_table(runs: dict, comparisons: dict) -> str:
     """Each engine's metrics, then each engine against the reference (the first)."""
-    import numpy as np
 
-    from isorock.validate.io.naming import cell
     ref_label = next(iter(runs))
     width = max(18, 2 + max(len(label) for label in runs))
     slides = any(tr.slide is not None for tr in runs.values())  # the statue may slip: its walk beside
@@ -146,7 +154,6 @@ def engine_asked(a) -> str:
     """--engine as given, or the default: the compiled kernel, which carries every isolator
     the model has (docs/isolators.md); with two horizontal components, MuJoCo, the engine
     that carries them."""
-    from isorock.validate.cli.options import transverse_asked
     if a.engine is not None:
         return a.engine
     return "mujoco" if transverse_asked(a) else "analytic"
@@ -155,8 +162,6 @@ def engine_asked(a) -> str:
 def plan_runs(a, specs):
     """The run options `a` (the parser's namespace) read into Python values, and the one Plan
     of them (core.plan.make_plan: every check made there once, before any work)."""
-    from isorock.validate.cli.options import motion_from_args, statue_body, system_from_args
-    from isorock.validate.core.plan import EngineRun, make_plan
     runs = [EngineRun(label, engine, settings) for label, engine, settings in load_engines(specs, a)]
     statue = statue_body(a)  # a statue's mesh read once: the System's two edges, and the 3-D measures' body
     system, motion = system_from_args(a, statue=statue), motion_from_args(a)
@@ -181,9 +186,6 @@ def shaken_body(a, system, statue) -> tuple:
     (`statue`, statue_body's (resting, body), along --azimuth or the direction it tips first), or
     the block H × B × D of MuJoCo's scene along 0. Refuses, before any work, an isolator other than
     the linear one."""
-    from isorock.analytic.system import LINEAR
-    from isorock.validate.cli.options import statue_azimuth
-    from isorock.validate.core.biaxial import box_body
     if not system.fixed_base and system.isolator_kind != LINEAR:
         raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
                          "--pair) must be linear (the same k and c along x and y), or give --fixed-base")
@@ -198,7 +200,6 @@ def shaken_body(a, system, statue) -> tuple:
 def simulate_plan(plan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:
     """(label → Trajectory, label → Settings used), in the order the engines were given;
     each run within `budget` s (core.plan.run_plan)."""
-    from isorock.validate.core.plan import run_plan
     runs = run_plan(plan, progress=_progress(getattr(a, "quiet", True)), budget_s=budget,
                     on_start=(lambda label: print(f"\r{label} …", file=sys.stderr)) if announce else None)
     return runs, {r.label: r.settings for r in plan.runs}
@@ -206,10 +207,6 @@ def simulate_plan(plan, a, *, announce: bool = False, budget: float | None = Non
 
 def cmd_run(a) -> int:
     """One or several engines on one system and motion; exit 1 when any run failed."""
-    from isorock.analytic.limits import BudgetExceeded, check_resample
-    from isorock.validate.cli.options import announce_cost, budget_stopped, run_budget
-    from isorock.validate.core.compare import compare
-    from isorock.validate.io.output import Outputs, to_json
     specs = parse_engines(engine_asked(a))
     several = len(specs) > 1
     with Outputs() as outputs:

@@ -22,12 +22,28 @@ from __future__ import annotations
 import json
 import math
 import os
+import platform
 import sys
 import time
 from dataclasses import dataclass
+from datetime import datetime, timezone
+from shlex import quote
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.limits import check_workers
+from isorock.validate.cli.atlas import expand
+from isorock.validate.core.engines import DISTINCT_ENGINES, engine_label, get_engine, presets_of
+from isorock.validate.core.estimate import SPEEDS
+from isorock.validate.core.scenarios import KOBE
 from isorock.validate.io.naming import markdown_cell
+from isorock.validate.io.output import Outputs, to_json
+from isorock.validate.io.progress import Progress
+from isorock.validate.io.provenance import provenance
+from isorock.validate.tools.atlas import RUN_BUDGET, Grid, build as atlas_build, distinct, reference
+from isorock.validate.tools.bench import BATCH_RUNS
+from isorock.validate.tools.experiments import data, study
+from isorock.validate.tools.report_run import ReportConfig, build as report_build
+from isorock.validate.tools.stress import NOT_CARRIED, NOT_FAILED, engine_agreement, run_stress as stress_run
 
 DEFAULT_OUT = "docs/engines.md"
 #: s: what the whole command may take by default (CI's suite must stay under ~5 min on 2 cores:
@@ -95,7 +111,6 @@ FIXED_S = {"atlas": 2.0, "validate": 3.0, "stress": 3.0, "speed": 1.0, "experime
 # --- the command line -------------------------------------------------------------------------
 
 def add_parser(sub) -> None:
-    from isorock.validate.core.engines import DISTINCT_ENGINES
     p = sub.add_parser("scorecard", help="every engine and preset on the same rows: atlas, validate, stress, "
                                          "speed and the shake-table score, written to docs/engines.md",
                        description=__doc__.split("\n\n")[0])
@@ -158,8 +173,6 @@ def readme_block(text: str) -> str:
 
 
 def cmd_scorecard(a) -> int:
-    from isorock.analytic.limits import check_workers
-    from isorock.validate.io.output import Outputs, to_json
     budget = check_budget(a.budget)
     if a.workers is not None:
         check_workers("workers", a.workers)
@@ -189,7 +202,6 @@ def cmd_scorecard(a) -> int:
 
 def command_of(a) -> str:
     """The command line that makes this scorecard again, from its parsed options."""
-    from shlex import quote
     parts = ["isorock", "scorecard"] + (["--quick"] if a.quick else [])
     if a.engines:
         parts += ["--engines", *a.engines]
@@ -204,8 +216,6 @@ def command_of(a) -> str:
 def labels_of(items) -> list[str]:
     """--engines → ENGINE:PRESET labels (ENGINE alone: each of its presets), checked before any
     work as atlas checks them (an unknown engine or preset is one line, exit 2)."""
-    from isorock.validate.cli.atlas import expand
-    from isorock.validate.core.engines import DISTINCT_ENGINES
     items = items or [n for n in DISTINCT_ENGINES if n not in EXCLUDED_BY_DEFAULT]
     return expand(items)
 
@@ -215,7 +225,6 @@ def labels_of(items) -> list[str]:
 def _speed_of(engine: str) -> float:
     """Simulated s per wall s of one run on one core, the block rocking (core.estimate.SPEEDS;
     an engine not listed counts as the slowest)."""
-    from isorock.validate.core.estimate import SPEEDS
     return SPEEDS.get(engine, min(SPEEDS.values()))
 
 
@@ -230,8 +239,6 @@ def plan(labels: list[str], effort: Effort, budget: float, grid) -> tuple[list[d
     or the engine's default label for a per-engine measure), estimate_s. Admitted greedily in
     priority order (each engine's defaults first, every measure; then the other presets' atlas and
     speed) while the admitted estimates stay within ADMIT_SHARE of the budget."""
-    from isorock.validate.core.engines import get_engine
-    from isorock.validate.tools.atlas import distinct
     run, aliases, skipped = distinct(labels)
     why: dict = {}
     for label, reason in skipped.items():
@@ -287,7 +294,6 @@ def _secs(s: float) -> str:
 def atlas_simulated_s(grid) -> float:
     """Simulated seconds of one preset over `grid`: each cell's run lasts its reference's
     duration (atlas.reference: the analytic model's run, the cell's own)."""
-    from isorock.validate.tools.atlas import reference
     return sum(reference(c)["duration"] for c in grid.cells())
 
 
@@ -295,7 +301,6 @@ def speed_estimate(name: str, effort: Effort, engine) -> float:
     """Simulated seconds of bench.speed_goals for one label: Kobe 40 s on two bases, alone and
     mapped, `speed_repeats` times, a 1 s warm-up, and the batch of BATCH_RUNS where the engine
     has a batch path."""
-    from isorock.validate.tools.bench import BATCH_RUNS
     batch = BATCH_RUNS * 40.0 if engine.has_batch else 0.0
     return OVERHEAD["speed"] * (1.0 + 2 * 2 * effort.speed_repeats * 40.0 + batch)
 
@@ -332,7 +337,6 @@ _HULL_SECONDS: dict = {}
 def experiment_tests(effort: Effort) -> list[int]:
     """Every effort.experiment_stride-th test of the shake-table data that has a file and an
     outcome (experiments.data.load), the same for every engine."""
-    from isorock.validate.tools.experiments import data, study
     outcomes, _ = data.load(study.default_data(), None)
     return sorted(outcomes)[::effort.experiment_stride]
 
@@ -376,10 +380,7 @@ def build(labels: list[str], effort: Effort, *, budget: float = DEFAULT_BUDGET, 
           quiet: bool = True, command: str = "") -> dict:
     """Every measure of every label that fits `budget`: the scorecard as a dict (rows, the grid,
     how it was made). The plan is said on stderr before the work (unless quiet)."""
-    import platform
-    from datetime import datetime, timezone
 
-    from isorock.validate.tools.atlas import Grid
     clock = Clock(budget)
     grid = Grid(effort.slenderness, effort.mass_ratios, effort.heights)
     items, why, deferred = plan(labels, effort, budget, grid)
@@ -414,7 +415,6 @@ def build(labels: list[str], effort: Effort, *, budget: float = DEFAULT_BUDGET, 
             got = results.get((m, label))
             row[m] = got if got is not None else {"not_run": why.get((m, label), "not run: no result (see stderr)")}
         rows.append(row)
-    from isorock.validate.io.provenance import provenance
     return {"command": command, "effort": effort.name, "budget_s": budget, "wall_s": clock.elapsed,
             "date": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
             "load_before": load_before, "load_after": _load(), "cores": os.cpu_count(),
@@ -460,8 +460,6 @@ def _load() -> list[float] | None:
 
 
 def run_atlas(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from isorock.validate.io.progress import Progress
-    from isorock.validate.tools.atlas import RUN_BUDGET, build as atlas_build
     # each run's CPU budget is what is left of the whole (a run past it is 'too slow' in its row)
     per_run = max(1.0, min(RUN_BUDGET, clock.left))
     atlas = atlas_build(labels, grid, workers=workers, budget=per_run,
@@ -478,9 +476,7 @@ def run_atlas(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 
 def run_validate(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from isorock.validate.io.progress import Progress
     from isorock.validate.tools.report_render import engine_verdicts
-    from isorock.validate.tools.report_run import ReportConfig, build as report_build
     names = [label.partition(":")[0] for label in labels]
     engines = ("analytic",) + tuple(n for n in names if n != "analytic")
     kwargs = {} if effort.validate_motions is None else {"motions": effort.validate_motions}
@@ -503,8 +499,6 @@ def run_validate(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 
 def run_stress(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from isorock.validate.io.progress import Progress
-    from isorock.validate.tools.stress import NOT_CARRIED, NOT_FAILED, engine_agreement, run_stress as stress_run
     names = [label.partition(":")[0] for label in labels]
     engines = list(dict.fromkeys(["analytic"] + names))  # the contact engines are judged against it
     results = stress_run(quick=True, engines=engines, drawn=effort.stress_drawn, workers=workers or 2,
@@ -528,7 +522,6 @@ def run_stress(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 
 def run_speed(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from isorock.validate.core.scenarios import KOBE
     from isorock.validate.tools.bench import BATCH_RUNS, BATCH_THREADS, speed_goals
     if not KOBE.is_file():
         return {("speed", label): {"not_run": f"not run: the Kobe record is not here ({KOBE})"} for label in labels}
@@ -785,7 +778,6 @@ def engine_facts(engine: str) -> dict:
     """The engine's name in reports and its default setting's reason, as the registry has them
     where the scorecard is made: kept in each row, so that the README's table renders the same
     wherever it is rendered (an engine not installed there has neither)."""
-    from isorock.validate.core.engines import engine_label, presets_of
     try:
         reason = presets_of(engine)["default"]["reason"] or "its defaults"
     except InputError:

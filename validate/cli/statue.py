@@ -10,13 +10,18 @@ from __future__ import annotations
 import math
 import sys
 
+from isorock.analytic import shape
+from isorock.analytic.errors import InputError
+from isorock.analytic.motion import load_motion
+from isorock.analytic.shape import EXAMPLES, UNITS
+from isorock.validate.cli.options import number
+from isorock.validate.io.output import Outputs, to_json
+
 #: directions on the polar figure and in the JSON's table, one per degree
 N_AZIMUTHS = 360
 
 
 def add_parser(sub) -> None:
-    from isorock.analytic.shape import EXAMPLES, UNITS
-    from isorock.validate.cli.options import number
     p = sub.add_parser("statue", help="a statue's mesh: the direction it tips first, and its two tipping edges",
                        description=__doc__.split("\n\n")[0].split(": ", 1)[1])
     p.add_argument("file", nargs="?", metavar="FILE", help="the statue's mesh (STL, OBJ, PLY, OFF, GLB), standing "
@@ -44,7 +49,6 @@ def add_parser(sub) -> None:
 
 def load(a):
     """(the statue at rest, its vertices and faces in m, a label) from the options."""
-    from isorock.analytic import shape
     names = {"mesh": "FILE", "example": "--example", "unit": "--unit", "mass": "--mass", "density": "--density",
              "source": "its mesh FILE or --example NAME"}
     vertices, faces, label = shape.statue_mesh(mesh=a.file, example=a.example, unit=a.unit, names=names)
@@ -53,7 +57,6 @@ def load(a):
 
 def summary(body, azimuth_deg: float | None) -> dict:
     """Every number the command prints, writes and draws."""
-    from isorock.analytic import shape
     weakest, weakest_g = shape.weakest_direction(body)
     azimuth = shape.shaking_direction(body, azimuth_deg)
     grid = [2 * math.pi * k / N_AZIMUTHS for k in range(N_AZIMUTHS)]
@@ -84,9 +87,6 @@ def verdict(label: str, s: dict) -> str:
 
 def sweep(body, a) -> dict:
     """analytic.shape.overturning_by_azimuth under --motion, its size said before the runs."""
-    from isorock.analytic import shape
-    from isorock.analytic.errors import InputError
-    from isorock.analytic.motion import load_motion
     motion = load_motion(a.motion, format=a.format, units=a.units)
     if motion.is_zero:
         raise InputError(f"--motion = {a.motion!r}: is zero throughout; it has no peak to scale")
@@ -138,8 +138,6 @@ def polar_plot(s: dict, label: str, path) -> None:
 
 
 def cmd_statue(a) -> int:
-    from isorock.analytic.errors import InputError
-    from isorock.validate.io.output import Outputs, to_json
     with Outputs() as outputs:
         json_out = outputs.file("json", a.json) if a.json is not None else None
         plot_out = outputs.file("plot", a.plot) if a.plot is not None else None

@@ -1,10 +1,18 @@
 """The `isorock stress` command: options, then the stress grid's tables written as one folder."""
 from __future__ import annotations
 
-from isorock.validate.tools import stress as tool
-from pathlib import Path
+import csv
+import io
 import time
-from isorock.validate.tools.stress import (DRAWN_FULL, DRAWN_QUICK, COLUMNS, failed, failures, markdown, run_stress,
+from pathlib import Path
+
+from isorock.analytic.errors import InputError
+from isorock.analytic.limits import check_workers
+from isorock.validate.core.engines import get_engine
+from isorock.validate.io.output import check_folder, to_json, write_folder_atomic
+from isorock.validate.io.progress import Progress
+from isorock.validate.tools import stress as tool
+from isorock.validate.tools.stress import (COLUMNS, DRAWN_FULL, DRAWN_QUICK, failed, failures, markdown, run_stress,
                                            stress_verdict)
 
 
@@ -25,24 +33,15 @@ def add_parser(sub) -> None:
 
 
 def cmd_stress(a) -> int:
-    import csv
-    import io
-
-    from isorock.analytic.errors import InputError
-    from isorock.validate.core.engines import get_engine
-    from isorock.validate.io.output import to_json, write_folder_atomic
     for e in a.engines or []:
         get_engine(e)  # an unknown name is an InputError before anything runs
     if a.time_limit is not None and not a.time_limit > 0:
         raise InputError(f"time-limit = {a.time_limit!r}: must be a positive number of seconds")
-    from isorock.validate.io.output import check_folder
     check_folder(a.out)  # a folder we may not write is refused before the grid runs
     start = time.perf_counter()
     if a.drawn is not None and not 0 <= a.drawn <= 100_000:
         raise InputError(f"drawn = {a.drawn!r}: must be a number of cases from 0 to 100000")
-    from isorock.analytic.limits import check_workers
     check_workers("workers", a.workers)
-    from isorock.validate.io.progress import Progress
     results = run_stress(quick=a.quick, engines=a.engines, time_limit=a.time_limit, drawn=a.drawn,
                          workers=a.workers, progress=lambda total: Progress(total, "stress"))
 

@@ -7,6 +7,11 @@ import argparse
 import sys
 from pathlib import Path
 
+from isorock.analytic.limits import available_cores
+from isorock.validate.io.output import Terminated, signal_received
+from isorock.validate.tools.campaign.run import run_campaign
+from isorock.validate.tools.campaign.spec import load_spec
+
 
 def add_parser(subparsers) -> None:
     p = subparsers.add_parser(
@@ -25,17 +30,12 @@ def add_parser(subparsers) -> None:
 
 
 def run(a) -> int:
-    from isorock.analytic.limits import available_cores
-
-    from isorock.validate.tools.campaign.run import run_campaign
-    from isorock.validate.tools.campaign.spec import load_spec
     if a.workers is not None:
         from isorock.analytic.limits import check_workers
         check_workers("--workers", a.workers, serial=True)
     spec = load_spec(a.spec)
     out = Path(a.out) if a.out else Path(f"sweep-{Path(a.spec).stem}")
     workers = available_cores() if a.workers is None else a.workers
-    from isorock.validate.io.output import Terminated, signal_received
     try:
         result = run_campaign(spec, out, workers=workers, scheduler=a.scheduler, products=not a.no_products)
     except BaseException as e:

@@ -1,18 +1,24 @@
 """The `isorock view` command: options, then a replay in MuJoCo's viewer or a GIF."""
 from __future__ import annotations
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
-from isorock.validate.tools import view as tool
-from pathlib import Path
 import os
 import sys
-from isorock.validate.tools.view import DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_BACKENDS, PAPER, _size, replay_in_viewer, write_gif
+from pathlib import Path
+
+from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
+from isorock.analytic.errors import InputError
+from isorock.analytic.limits import BudgetExceeded
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
+from isorock.validate.cli.options import (add_budget_option, add_engine_options, add_motion_options, add_system_options,
+                                          motion_from_args, run_budget, system_from_args)
+from isorock.validate.cli.run import load_engines, parse_engines
+from isorock.validate.core.engines import settings_used
+from isorock.validate.tools import view as tool
+from isorock.validate.tools.view import (DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_BACKENDS, PAPER, _size,
+                                         replay_in_viewer, write_gif)
 
 
 def add_parser(sub) -> None:
-    from isorock.validate.cli.options import (add_budget_option, add_engine_options, add_motion_options,
-                                              add_system_options)
     p = sub.add_parser("view", help="replay a run in MuJoCo's viewer, or write it as a GIF where there is no display",
                        description=tool.__doc__.split("\n\n")[0] + "\n\nWithout options: the paper's block "
                        f"(T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g}) under " + DEFAULT_MOTION + ".")
@@ -47,13 +53,10 @@ def _check(a) -> None:
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     if a.duration is not None and not a.duration > 0:
         raise InputError(f"duration = {a.duration!r}: must be a positive number of seconds")
-    from isorock.validate.cli.options import run_budget
     run_budget(a)  # before any display or renderer is looked for
 
 
 def run(a) -> int:
-    from isorock.validate.cli.options import motion_from_args, system_from_args
-    from isorock.validate.cli.run import load_engines, parse_engines
     _check(a)
     size = _size(a.size)
     specs = parse_engines(a.engine)
@@ -75,12 +78,9 @@ def run(a) -> int:
         os.environ["MUJOCO_GL"] = backend  # read when mujoco is first imported, which is below
     label, engine, settings = load_engines(specs, a)[0]
     # the run's budget, and its cost said first when it is long (as `run`)
-    from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
-    from isorock.analytic.limits import BudgetExceeded
     from isorock.validate.cli.options import announce_cost, budget_stopped, run_budget
     budget = run_budget(a)
     theta0 = a.theta0_over_alpha * system.alpha
-    from isorock.validate.core.engines import settings_used
     _, duration = run_inputs(system, motion, a.duration, theta0, DEFAULT_IMPACT_THRESHOLD,
                              settings=settings_used(settings, system))  # the steps the run will take
     announce_cost("view", {label: duration}, budget)

@@ -22,15 +22,34 @@ tables and figures.
 """
 from __future__ import annotations
 
+import csv
+import io
 import math
 import statistics
 import time
 from dataclasses import dataclass
 
+import numpy as np
+
+from isorock.analytic.coefficients import beta
 from isorock.analytic.errors import InputError
-from isorock.validate.core.tolerances import limit
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, System, paper_system
+from isorock.validate.core.cases import block_system
+from isorock.validate.core.chunks import worker_pool
+from isorock.validate.core.compare import exact_first_impact_time
+from isorock.validate.core.engines import REFERENCE, get_engine, resolve
+from isorock.validate.core.executor import default_workers
+from isorock.validate.core.measure import beta_errors
+from isorock.validate.core.runner import Task
+from isorock.validate.core.scenarios import FREE_THETA0_OVER_ALPHA
+from isorock.validate.core.summary import row_of_trajectory
+from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
+from isorock.validate.core.verdict import rate_verdict
+from isorock.validate.io.output import to_json, write_folder_atomic
 from isorock.validate.io.progress import bar_of
-from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, paper_system
+from isorock.validate.io.provenance import provenance
+from isorock.validate.tools.report_run import beta_impacts
 
 #: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's
 #: (λ 1.5–10, μ 0 and 0.25–4, H 0.2–5 m) with issue 19's sizes from 0.1 to 10 m.
@@ -168,8 +187,6 @@ class Cell:
     friction: float | None = None  # the statue's μ_s (None: it cannot slip)
 
     def system(self):
-        from isorock.analytic.system import System
-        from isorock.validate.core.cases import block_system
         width = self.height / self.slenderness
         mass = DENSITY * self.height * width * width
         p = System.fixed(height=self.height, width=width, mass=mass).p
@@ -188,7 +205,6 @@ def peak_betas(traj) -> list[float]:
     Where the statue may slip (a friction cell) the rigid map of a contact engine's states
     to θ = 0 no longer holds (its pivot may slide after the impact); the peaks are read alike
     from every engine's history and the exact model's, and compared with each other."""
-    import numpy as np
     a = traj.alpha
     amps = [i.amplitude for i in traj.counted_impacts]
 
@@ -204,11 +220,6 @@ def reference(cell: Cell) -> dict:
     fixed base, the analytic model on an isolated one), which of the counted impacts β is
     judged on (their order in the rigid model's history), and how long a contact run must
     last to show them."""
-    from isorock.analytic.coefficients import beta
-    from isorock.validate.core.compare import exact_first_impact_time
-    from isorock.validate.core.engines import REFERENCE, get_engine
-    from isorock.validate.tools.report_run import beta_impacts
-    from isorock.validate.core.scenarios import FREE_THETA0_OVER_ALPHA
     system = cell.system()
     theta0 = FREE_THETA0_OVER_ALPHA * system.alpha
     rigid = get_engine(REFERENCE).simulate(system, None, duration=REFERENCE_SPAN / system.p, theta0=theta0)
@@ -244,9 +255,6 @@ def run_cell(task) -> dict:
     stops it at its CPU budget). Every way a run can end is a result: its status says how
     (the rows judge it, `judge`)."""
     # loaded before the clock: a worker's first run would otherwise pay for the imports
-    from isorock.validate.core.engines import resolve
-    from isorock.validate.core.measure import beta_errors
-    from isorock.validate.core.summary import row_of_trajectory
     out = {"status": "error", "message": "", "sim_s": 0.0, "loop_s": math.nan}
     try:
         engine, settings = resolve(task.engine, task.overrides)  # imports the engine's package
@@ -375,7 +383,6 @@ def distinct(labels: list[str]) -> tuple[list[str], dict, dict]:
     """(labels to run, alias → the label whose settings it shares, label → why not run): a
     preset with the same settings as an earlier one of its engine (mujoco:newton is the
     default) is run once; an engine that cannot be imported here is not run, with the reason."""
-    from isorock.validate.core.engines import resolve
     run, aliases, skipped, seen = [], {}, {}, {}
     for label in labels:
         try:
@@ -397,8 +404,6 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
     """Run every engine label on every cell; the atlas as a dict (rows, summaries, verdict).
     `overrides`: settings applied to every run that has them (a test's way to break one);
     `progress`: a factory total → bar (io.progress.bar_of), updated as each run ends."""
-    from isorock.validate.core.executor import default_workers
-    from isorock.validate.core.runner import Task
     labels, aliases, skipped = distinct(engines)
     cells = grid.cells()
     start = time.perf_counter()
@@ -409,7 +414,6 @@ def build(engines: list[str], grid: Grid, *, workers: int | None = None, budget:
                   duration=refs[c.key]["duration"], theta0=refs[c.key]["theta0"], overrides=dict(overrides or {}))
              for c in cells for label in labels]
     bar = bar_of(progress, len(tasks))
-    from isorock.validate.core.chunks import worker_pool
     with worker_pool(default_workers() if workers is None else workers) as executor:
         outcomes = executor.map(run_cell, [(t,) for t in tasks], budget=budget, clock="cpu", progress=bar,
                                 note=lambda args: args[0].key[0])
@@ -433,9 +437,7 @@ def sustained_push(system):
     """(motion, duration) that slides a block with μ_s < tanα without rocking it in the exact
     model (friction's resultant stays inside its base): the ground pushed at μ_s·g + 0.5·g until
     the slip reaches TILT_SLIP·√(g·R), then still while the slip stops."""
-    import numpy as np
 
-    from isorock.analytic.motion import GroundMotion
     g = system.gravity
     length = TILT_SLIP * math.sqrt(g * system.R) / (0.5 * g)
     dt = length / 100
@@ -452,7 +454,6 @@ def slide_tilts(labels, grid: Grid, overrides: dict | None = None) -> list[dict]
     engine cannot follow a sliding statue, and why (issue 33: MuJoCo's soft contact lets the
     leading corners sink, the more the nearer μ_s is to tanα)."""
     from isorock.validate.core.engines import REFERENCE, get_engine, resolve
-    from isorock.validate.core.tolerances import has_tolerance, tolerance
     out = []
     cells = [c for c in grid.cells() if c.mass_ratio == 0 and c.friction is not None
              and c.friction < 1.0 / c.slenderness]
@@ -588,7 +589,6 @@ def cell_count(rows: list[dict], level: float):
     which systems of the grid's range part from the closed form by more than the level.
     The atlas's verdict stays the worst case over the grid (`qualifies`); the count says
     how far one bad cell generalises."""
-    from isorock.validate.core.verdict import rate_verdict
     beyond = sum(r["status"] != OK or abs(r["beta_error"]) > level for r in rows)
     return rate_verdict(beyond, len(rows), limit=limit("verdict_disagreement_rate"),
                         confidence=limit("verdict_confidence"), min_cases=int(limit("verdict_min_cases")),
@@ -770,12 +770,8 @@ def file_stem(label: str) -> str:
 
 def write(atlas: dict, out: str, *, quick: bool) -> None:
     """The whole folder, or nothing (validate.io.output)."""
-    import csv
-    import io
 
     from isorock.validate.tools.atlas_figures import error_map, pareto
-    from isorock.validate.io.output import to_json, write_folder_atomic
-    from isorock.validate.io.provenance import provenance
 
     def fill(tmp):
         (tmp / "atlas.md").write_text(markdown(atlas, quick=quick), encoding="utf-8")

@@ -16,15 +16,18 @@ import statistics
 import sys
 import time
 
-
 import numpy as np
 
+from isorock.analytic import limits
 from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
-from isorock.analytic.hybrid import AnalyticSettings
-from isorock.analytic.hybrid import simulate as reference_simulate
+from isorock.analytic.fast import compare_on_grid, simulate_fast
+from isorock.analytic.hybrid import AnalyticSettings, simulate as reference_simulate
+from isorock.analytic.motion import load_motion
+from isorock.validate.core.compare import compare
+from isorock.validate.core.engines import campaign_engines, canonical, get_engine, resolve
 from isorock.validate.core.scenarios import KOBE, Scenario, bench_scenarios
-from isorock.validate.core.tolerances import limit
+from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
 
 #: the reference path's settings the bench measures errors against (tighter than the
 #: engine's defaults); core.engines.REFERENCE is the reference engine's name
@@ -53,8 +56,6 @@ STEP_COST = declare_facet("step_cost", "isorock bench, scorecard", "(system, set
 def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
     """(label, settings) from cheapest to most accurate: the engine's own ladder; for
     ENGINE:PRESET the preset alone (a row of its own, labelled by it)."""
-    from isorock.validate.core.engines import get_engine
-    from isorock.validate.core.engines import resolve
     name, _, preset = engine.partition(":")
     if preset:
         return [(preset, resolve(engine)[1])]
@@ -65,9 +66,6 @@ def ladder(engine: str, quick: bool) -> list[tuple[str, object]]:
 
 def measure(engine, label, settings, sc: Scenario, ref, repeats: int) -> dict:
     """One (engine or ENGINE:PRESET, setting) on one scenario; the row's engine is the label."""
-    from isorock.validate.core.compare import compare
-    from isorock.validate.core.engines import get_engine
-    from isorock.analytic import limits
     run = get_engine(engine.partition(":")[0]).simulate
     motion = sc.ground_motion()
     kwargs = dict(settings=settings, duration=sc.duration, theta0=sc.theta0, budget_s=limits.RUN_BUDGET_S)
@@ -103,7 +101,6 @@ def bench_engines(engines=None) -> list[str]:
     """The series to bench, each once: those asked for (default: the engines fast enough
     for grids) that can be imported here, an engine asked for under its former name too
     (analytic-fast) one series with it."""
-    from isorock.validate.core.engines import campaign_engines, canonical
     engines = list(dict.fromkeys(canonical(e) for e in (engines or campaign_engines())))
     return [e for e in engines if _importable(e.partition(":")[0])]
 
@@ -118,7 +115,6 @@ def _stopped_row(engine, label, sc: Scenario, why: str) -> dict:
 
 
 def run_bench(*, quick=False, engines=None, progress=True) -> tuple[list[dict], dict]:
-    from isorock.validate.core.engines import get_engine
     engines = bench_engines(engines)
     rows = []
     for sc in bench_scenarios(quick):
@@ -159,11 +155,8 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True, labels=None) -
     from isorock.analytic import limits, paper_system
     from isorock.validate.core.engines import get_engine, resolve, settings_used
     from isorock.validate.core.scenarios import KOBE
-    from isorock.validate.core.tolerances import tolerance
-    from isorock.analytic.motion import load_motion
     if not KOBE.is_file():
         return []
-    from isorock.validate.core.tolerances import has_tolerance
     if labels is None:
         names = [n for n in SPEED_GOALS if _importable(n)
                  and (engines is None or any(e.partition(":")[0] == n for e in engines))]
@@ -280,7 +273,6 @@ def goal_lines(goal_rows: list[dict]) -> list[str]:
 
 
 def _importable(engine: str) -> bool:
-    from isorock.validate.core.engines import get_engine
     try:
         get_engine(engine)
         return True
@@ -311,7 +303,6 @@ def against_solve_ivp(system, motion, *, duration: float = 40.0, repeats: int = 
     Trajectory included), reference_s, ratio = reference_s / fast_s, first_call_s (this
     process's first call: loading the compiled kernel), max_abs_dtheta (rad, over the
     common output grid) and both runs' θmax/α and impact counts."""
-    from isorock.analytic.fast import compare_on_grid, simulate_fast
     settings = settings or AnalyticSettings()
     if not (isinstance(repeats, int) and repeats >= 1 and isinstance(reference_repeats, int) and reference_repeats >= 1):
         raise InputError(f"repeats = {(repeats, reference_repeats)!r}: must be positive whole numbers")

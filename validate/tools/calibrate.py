@@ -34,12 +34,20 @@ import time
 from dataclasses import asdict, dataclass, fields
 
 import numpy as np
+from scipy.optimize import minimize
+from scipy.stats import qmc
 
+from isorock.analytic import limits
 from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
+from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.core.cases import Case as _Case
+from isorock.validate.core.chunks import worker_pool
+from isorock.validate.core.engines import get_engine
+from isorock.validate.core.executor import Executor
+from isorock.validate.core.measure import beta_errors
+from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
 from isorock.validate.io.progress import bar_of
-from isorock.validate.core.tolerances import limit
 
 #: Free-rocking tilts, fractions of α: `tilts` fitted tilts spread evenly over this range,
 #: held out on the `tilts − 1` halfway between them (the same regime, never the same runs).
@@ -107,7 +115,6 @@ def tilts(n: int = DEFAULT_TILTS) -> tuple[tuple[float, ...], tuple[float, ...]]
 def other_base(system):
     """The block on its other base, and how each base is named: a fixed base for an
     isolated system; the paper's isolator (T 1.5 s, ξ 0.2) for a fixed one."""
-    from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
     if system.fixed_base:
         return (system.on_isolator(PAPER_PERIOD, PAPER_DAMPING_RATIO),
                 ("fixed base", f"isolated base (T {PAPER_PERIOD:g} s, ξ {PAPER_DAMPING_RATIO:g})"))
@@ -139,7 +146,6 @@ def cases(system, n_tilts: int = DEFAULT_TILTS, impacts: int = IMPACTS) -> tuple
 
 
 def _reference_engine():
-    from isorock.validate.core.engines import get_engine
     try:
         return get_engine("analytic")
     except ImportError:  # the compiled kernel needs numba: the SciPy path gives the same times
@@ -228,8 +234,6 @@ def run_case(engine_name: str, settings, case: Case, time_limit: float | None = 
     crash), when the block hops after an impact by more than the engine's lift-off
     tolerance (the impact law is perfectly inelastic, and a hopping contact can still
     give a plausible β), or when the run takes longer than `time_limit` s."""
-    from isorock.validate.core.engines import get_engine
-    from isorock.validate.core.measure import beta_errors
     start = time.perf_counter()
 
     def watch(t, duration):  # the engines call it between chunks of their own loops
@@ -261,7 +265,6 @@ class _TooSlow(Exception):
 def lift_off_limit(engine_name: str) -> float:
     """m: the engine's tolerance on the lift-off after an impact (validate/core/tolerances.py),
     or LIFT_OFF where it has none."""
-    from isorock.validate.core.tolerances import has_tolerance, tolerance
     if has_tolerance(engine_name, "lift_off_after_impact"):
         return tolerance(engine_name, "lift_off_after_impact").limit
     return LIFT_OFF
@@ -277,9 +280,6 @@ class Runner:
     `slowest` is the longest run of the last set."""
 
     def __init__(self, engine_name: str, workers: int = 0, on_run=None):
-        from isorock.validate.core.chunks import worker_pool
-        from isorock.validate.core.executor import Executor
-        from isorock.analytic import limits
         self.engine_name, self.on_run = engine_name, on_run
         # the starting settings' runs, before any is timed, have every run's budget
         self.time_limit, self.slowest = limits.RUN_BUDGET_S, 0.0
@@ -305,7 +305,6 @@ class Runner:
     def limit_from_slowest(self, slowest: float) -> None:
         """The search's runs may take TIME_FACTOR × the starting settings' slowest (at least
         MIN_TIME_LIMIT), never more than every run's budget (RUN_BUDGET_S)."""
-        from isorock.analytic import limits
         self.time_limit = min(max(TIME_FACTOR * slowest, MIN_TIME_LIMIT), limits.RUN_BUDGET_S)
 
     def _ran(self):
@@ -340,8 +339,6 @@ def search(objective, u0: np.ndarray, f0: float, max_evals: int, seed: int = 0) 
     Nelder–Mead from the best point so far.
     The caller keeps every value (the best seen is the result: Nelder–Mead's last simplex
     on a noisy objective is not always its best point)."""
-    from scipy.optimize import minimize
-    from scipy.stats import qmc
     seen = {tuple(np.round(np.clip(u0, 0.0, 1.0), 9)): f0}
 
     def f(u):
@@ -391,7 +388,6 @@ def calibrate(engine_name: str, system, *, settings=None, n_tilts: int = DEFAULT
     its bootstrap spread. `workers`: processes for the runs (0: this one; Runner).
     `progress`: a factory total → bar (io.progress.bar_of), updated after each run with the
     best 2σ bound so far."""
-    from isorock.validate.core.engines import get_engine
     engine = get_engine(engine_name)
     tuning = TUNING.of(engine.spec)
     if tuning is None:

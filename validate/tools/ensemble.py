@@ -13,7 +13,9 @@ import numpy as np
 
 from isorock.analytic.errors import InputError, require
 from isorock.analytic.system import System
-from isorock.validate.core.engines import REFERENCE
+from isorock.validate.core.cases import Case
+from isorock.validate.core.chunks import run_cases
+from isorock.validate.core.engines import REFERENCE, choose as engine_setting
 
 DEFAULT_SCALES = (0.25, 1.5, 21)  # first, last factor of the motion's PGA, number of steps
 #: θmax/α above which a case counts as rocking (model.md's impact threshold).
@@ -100,9 +102,6 @@ def run_ensembles(specs, engines, *, overrides_for=None, overturn_rule: str | No
     (those it lacks are ignored). A run that raised gets NaN and its message in `failed`;
     one that failed inside the engine (a blow-up) keeps what it measured, as a single
     run reports it. progress: an object with update(n, work), called as runs finish."""
-    from isorock.validate.core.cases import Case
-    from isorock.validate.core.chunks import run_cases
-    from isorock.validate.core.engines import choose as engine_setting
     names = list(engines)
     if REFERENCE not in names:
         raise InputError(f"engines = {names}: an ensemble needs the {REFERENCE!r} reference")

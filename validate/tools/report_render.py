@@ -16,15 +16,16 @@ from dataclasses import fields
 from pathlib import Path
 
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD
-from isorock.validate.io import figures
 from isorock.validate.core.engines import REFERENCE, describe_settings
+from isorock.validate.core.measure import mode_sequence, slide_onset
+from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
+from isorock.validate.core.verdict import TOO_FEW_CASES
+from isorock.validate.io import figures
 from isorock.validate.io.naming import describe_motion, markdown_cell
 from isorock.validate.io.output import write_folder_atomic, write_json
 from isorock.validate.io.provenance import provenance
 from isorock.validate.tools.paper import PAPER_FIGURE5, is_kobe, paper_blocks
 from isorock.validate.tools.report_run import OWN, PAPER_SLENDERNESS, Results
-from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
-from isorock.validate.core.verdict import TOO_FEW_CASES
 
 #: The families of checks the scorecard shows, in order: (title, metrics).
 FAMILIES = (
@@ -57,7 +58,6 @@ def _f(x, fmt=".3f"):
 
 def sliding_rows(results) -> list[list[str]]:
     """One row per sliding scenario and engine: how far the statue walked, when, and its modes."""
-    from isorock.validate.core.measure import mode_sequence, slide_onset
     rows = []
     for sc in results.sliding:
         for name, tr in sc.runs.items():

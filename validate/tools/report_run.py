@@ -21,27 +21,31 @@ import sys
 import time
 from dataclasses import dataclass, field, replace
 from datetime import datetime, timezone
+from pathlib import Path
 
 import numpy as np
 
 from isorock.analytic.errors import InputError, require
+from isorock.analytic.limits import check_settings
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
+from isorock.analytic.trajectory import SLIDING_FRACTION
+from isorock.validate.core.chunks import worker_pool
 from isorock.validate.core.compare import (Comparison, compare, exact_first_impact_time, horizon_units, own_horizon,
                                            reference_sensitivity)
-from isorock.validate.core.engines import ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine
-from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
+from isorock.validate.core.engines import (ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine, resolve, runs_here,
+                                           settings_used, table_overrides)
+from isorock.validate.core.executor import Executor, default_workers
 from isorock.validate.core.measure import beta_errors, impact_closed_forms
-from isorock.validate.io.naming import describe_motion
-from isorock.validate.io.progress import bar_of
-from isorock.validate.core.engines import resolve, runs_here
-from isorock.validate.core.executor import default_workers
 from isorock.validate.core.runner import Task, run_tasks
 from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
-                                       free_rocking_grid, paper_bases)
+                                             free_rocking_grid, paper_bases)
 from isorock.validate.core.tolerances import (ROBUST_SPREAD, Check, check, has_tolerance, judged, limit, not_exercised,
-                                             skipped, tolerance, unjudged)
+                                              skipped, tolerance, unjudged)
 from isorock.validate.core.verdict import overturn_verdicts, quantile_verdict
+from isorock.validate.io.naming import describe_motion
+from isorock.validate.io.progress import bar_of
+from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 
 #: Built-in pulses of the default report, chosen with the analytic model so that the
 #: paper's block rocks on both bases without overturning, and (the sine) robustly:
@@ -135,7 +139,6 @@ class ReportConfig:
         return (("your isolated base", self.system), (f"the same {noun} on a fixed base", self.system.on_fixed_base()))
 
     def overrides_for(self, name: str) -> dict:
-        from isorock.validate.core.engines import table_overrides
         return table_overrides(self.overrides, name)
 
 
@@ -178,7 +181,6 @@ class HistoryRuns:
 
 def _slid(tr) -> bool:
     """Whether a run's statue slid more than SLIDING_FRACTION·b (a statue with friction)."""
-    from isorock.analytic.trajectory import SLIDING_FRACTION
     return (tr.slide is not None and tr.slide.size > 0
             and float(np.max(np.abs(tr.slide - tr.slide[0]))) > SLIDING_FRACTION * tr.system.b)
 
@@ -289,7 +291,6 @@ def scenario_duration(motion: GroundMotion, config: ReportConfig) -> float:
 
 def load_motions(config: ReportConfig):
     """(GroundMotion, path or None) of every motion."""
-    from pathlib import Path
     motions = []
     for spec in config.motions:
         kwargs = {"format": config.format}
@@ -381,8 +382,6 @@ def build(config: ReportConfig, *, progress=None) -> Results:
         tasks += [Task(("slide", i, name), name, sc.system, sc.motion, sc.duration, 0.0, o, rule)
                   for i, sc in enumerate(sliding) if engines[name].capabilities.statue_friction]
     total = len(tasks) + len(engines) * sum(len(s) for s in scales)
-    from isorock.analytic.limits import check_settings
-    from isorock.validate.core.engines import settings_used
     for t in tasks:  # the work bounds before any run (the steps each run will take): in a worker they were a traceback
         check_settings(settings_used(settings[t.engine], t.system, t.duration), t.duration)
     if progress is not None:  # a long report says so before it starts (core.estimate)
@@ -537,8 +536,6 @@ def _executor(config: ReportConfig, engines):
     """The one executor (core.executor) on config.workers worker processes (default:
     executor.default_workers) when a contact engine runs, else serial (the analytic
     model runs here in milliseconds)."""
-    from isorock.validate.core.chunks import worker_pool
-    from isorock.validate.core.executor import Executor
     workers = default_workers() if config.workers is None else config.workers
     if workers <= 1 or all(runs_here(name) for name in engines):
         return Executor()

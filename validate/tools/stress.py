@@ -31,23 +31,24 @@ defines it, π/(2α) for an overturned block) and the grid's own checks beside i
 from __future__ import annotations
 
 import math
-import sys
 import time
 import traceback
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from isorock.analytic.coefficients import no_bounce_slenderness
+from isorock.analytic.errors import InputError
 from isorock.analytic.kinematics import LYING
-from isorock.validate.core.engines import REFERENCE
 from isorock.validate.core.cases import with_vertical_spec
+from isorock.validate.core.chunks import worker_pool
+from isorock.validate.core.engines import ENGINE_NAMES, REFERENCE, campaign_engines, get_engine
 from isorock.validate.core.scenarios import Scenario, block
 from isorock.validate.core.summary import row_of_trajectory
-from isorock.validate.core.tolerances import limit
-from isorock.validate.core.verdict import rate_verdict
+from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
+from isorock.validate.core.verdict import DISAGREES, rate_verdict
 from isorock.validate.io.naming import cell
+from isorock.validate.io.progress import bar_of
 
 #: The stress grid's limits, with their reasons, are in the one tolerance table.
 ENERGY_TOLERANCE = limit("stress_energy_residual")
@@ -268,7 +269,6 @@ def run_cases(todo, time_limit: float, *, workers: int = 2, bar=None) -> list[di
     (core.executor.Executor), `workers` at a time, each stopped and reported as 'timeout'
     past time_limit s of wall time; results in the order of `todo`. `bar`: the progress
     bar (io.progress) the executor updates as each run ends, noting its case."""
-    from isorock.validate.core.chunks import worker_pool
     with worker_pool(max(1, min(workers, len(todo) or 1))) as executor:
         outcomes = executor.map(run_one, todo, budget=time_limit, progress=bar, note=lambda item: item[1].name[:30])
     return [_finish(outcome, item, time_limit) for outcome, item in zip(outcomes, todo)]
@@ -325,7 +325,6 @@ def _slide_over_b(tr) -> float | None:
 def slide_agrees(engine: str, r: dict, ref: dict) -> bool | None:
     """Whether an engine's largest slide is the exact model's within the engine's slide_max
     tolerance (None: nothing to judge: either fell, or the engine has no such row)."""
-    from isorock.validate.core.tolerances import has_tolerance, tolerance
     if r.get("slide_over_b") is None or ref.get("slide_over_b") is None or not has_tolerance(engine, "slide_max"):
         return None
     return abs(r["slide_over_b"] - ref["slide_over_b"]) <= tolerance(engine, "slide_max").limit
@@ -414,7 +413,6 @@ def reference_flips(results, names, cases, time_limit: float, *, workers: int = 
 
 def _not_carried(engine, case) -> str:
     """Why `engine` cannot carry `case` (its Capabilities), or ''."""
-    from isorock.analytic.errors import InputError
     try:  # the motion is made only for an engine that may refuse it (a built-in carries every one)
         engine.check_run(case.scenario.system, None if engine.capabilities.vertical else case.scenario.ground_motion())
     except InputError as e:
@@ -426,8 +424,6 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, dra
                workers: int = 2) -> list[dict]:
     """Every edge case and drawn case on its engines. `progress`: a factory total → bar
     (io.progress.bar_of), updated as each run ends; None shows nothing."""
-    from isorock.validate.core.engines import ENGINE_NAMES, campaign_engines, get_engine
-    from isorock.validate.io.progress import bar_of
     engines = list(engines or campaign_engines())
     time_limit = time_limit or (30.0 if quick else 120.0)
     edges = edge_cases(quick)
@@ -512,7 +508,6 @@ def failed(results) -> bool:
     interval every count is judged by). A robust disagreement is listed, and counted there: on
     4,000 cases a contact model parts from the exact one somewhere (issue 33: a squat block's
     tilting slide, docs/sliding_engines.md), and it is its rate that says whether to trust it."""
-    from isorock.validate.core.verdict import DISAGREES
     broke = any(r["verdict"] not in NOT_FAILED for r in results)
     return broke or nothing_run(results) or any(v.word == DISAGREES for v in engine_agreement(results).values())
 

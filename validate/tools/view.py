@@ -18,11 +18,18 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import time
+
+import mujoco
+import numpy as np
+from PIL import Image, ImageDraw
 
 from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK
+from isorock.validate.core.engines import get_engine
 from isorock.validate.core.scenarios import ROBUST_SINE
+from isorock.validate.io.output import write_atomic
 
 #: Tried in this order when MUJOCO_GL is not set.
 OFFSCREEN_BACKENDS = ("egl", "osmesa")
@@ -80,7 +87,6 @@ REPLAY_SCENE = declare_facet("replay_scene", "isorock view", "(system) → (mode
 
 def replay_scene(system):
     """(model, pose(u, θ) → qpos): MuJoCo's replay scene, through the registry."""
-    from isorock.validate.core.engines import get_engine
     return REPLAY_SCENE.of(get_engine("mujoco").spec)(system)
 
 
@@ -105,7 +111,6 @@ def frames(traj, dt: float):
 
 
 def _camera(system):
-    import mujoco
     cam = mujoco.MjvCamera()
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
     cam.lookat[:] = (0.0, 0.0, system.h)
@@ -123,8 +128,6 @@ def _prepare(scene, system) -> None:
     """Shadows and reflections off; the ground drawn under the plate, with a mark at
     x = 0, so the base's motion relative to the ground is seen (the scene's world frame
     is the ground, which the MuJoCo scene does not draw)."""
-    import mujoco
-    import numpy as np
     for name in _OFF:
         scene.flags[getattr(mujoco.mjtRndFlag, name)] = 0
     half = system.b + system.height
@@ -140,10 +143,6 @@ def _prepare(scene, system) -> None:
 
 
 def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], title: str) -> None:
-    import mujoco
-    from PIL import Image, ImageDraw
-
-    from isorock.validate.io.output import write_atomic
     system = traj.system
     shots = frames(traj, speed / fps)  # too many frames is bad input, refused before any rendering
     model, pose = replay_scene(system)
@@ -174,9 +173,7 @@ def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], ti
 def replay_in_viewer(traj, *, speed: float) -> int:
     """The run in MuJoCo's interactive viewer, in real time × speed; the window stays
     open on the last frame until it is closed."""
-    import time
 
-    import mujoco
     import mujoco.viewer
     system = traj.system
     dt = 1 / 60  # the window's frame interval, s

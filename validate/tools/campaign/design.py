@@ -22,15 +22,28 @@ and says how far it agrees.
 from __future__ import annotations
 
 import math
+import numbers
+import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from isorock.analytic.errors import InputError, python_number
+from isorock.analytic.errors import InputError, import_extra, path_value, python_number, real_number
+from isorock.analytic.fast import simulate_batch
+from isorock.analytic.limits import check_acceleration, check_duration, check_isolator, check_period
 from isorock.analytic.motion import GroundMotion
-from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, BallInBowl, BallInCone,
-                                     FrictionPendulum, PlanarBody, System)
+from isorock.analytic.rest_scales import rest_phases
+from isorock.analytic.shape import along_directions, weakest_direction
+from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, BallInBowl,
+                                     BallInCone, FrictionPendulum, PlanarBody, System)
 from isorock.validate.core.cases import Case, _LazyScaled, record_factor
+from isorock.validate.core.chunks import run_cases
+from isorock.validate.core.engines import choose, get_engine
+from isorock.validate.core.fragility import fit_counts
+from isorock.validate.core.summary import case_inputs, row_of_batch
+from isorock.validate.core.tolerances import has_tolerance, tolerance
+from isorock.validate.io.output import Outputs
+from isorock.validate.tools.campaign.records import load_suite, suite_spec
 
 #: The engine that answers the design question (the compiled kernel).
 ENGINE = "analytic"
@@ -92,7 +105,6 @@ def numbers_of(name: str, values) -> tuple[float, ...]:
     """A keyword given a number or a sequence of numbers, as floats (any real number: NumPy's,
     a Fraction); text, a bool, a dict or nesting is one line naming `name` ('2' was the period
     2 s, True the period 1 s)."""
-    from isorock.analytic.errors import real_number
     allowed = "a number or a sequence of numbers"
     try:
         ndim = np.ndim(values)
@@ -207,7 +219,6 @@ class Family:
         ISOLATOR_PERIOD_RANGE: a friction pendulum of radius 1e308 m (a period of 2e154 s)
         drew a chart whose axis matplotlib could not tick (a traceback). A family's isolator
         does not depend on the statue: a stand-in carries it."""
-        from isorock.analytic.limits import check_period
         stand_in = Statue(2.0, 0.7, 1.0, 1.0)
         for x in self.x_values:
             for y in self.y_values:
@@ -236,7 +247,6 @@ class LinearFamily(Family):
     x_unit, y_unit = "s", ""
 
     def __post_init__(self):
-        from isorock.analytic.limits import check_period
         for period in self.x_values:  # before a stiffness M·(2π/T)² is computed from it
             check_period("periods", period)
         super().__post_init__()
@@ -294,7 +304,6 @@ FAMILIES = {LINEAR: LinearFamily, FRICTION_PENDULUM: FrictionPendulumFamily, BAL
 
 def check_family_runs(family) -> None:
     """The kernel must carry the family's isolator: one line otherwise, before any work."""
-    from isorock.validate.core.engines import get_engine
     carried = get_engine(ENGINE).capabilities.isolators
     if family.kind not in carried:
         raise InputError(f"isolator = {family.kind}: the compiled kernel (engine '{ENGINE}') that answers a design "
@@ -323,7 +332,6 @@ class Hazard:
                 raise InputError(f"pga = {x!r}: must be a positive finite PGA (g)")
         if list(self.levels) != sorted(set(self.levels)):
             raise InputError(f"pga = {','.join(f'{x:g}' for x in self.levels)}: must be increasing, each level once")
-        from isorock.analytic.limits import check_acceleration
         for x in self.levels:
             check_acceleration("pga", x)  # the kernel spun on accelerations far past it
         w = self.weights or (1.0,) * len(self.levels)
@@ -466,7 +474,6 @@ class Design:
         """The PGA (g) at which half the records overturn `system` (lognormal MLE,
         core.fragility); nan where no run or every run overturned. (Per system on demand:
         a fit is ~10 ms, 400 of them were a chart's slowest step.)"""
-        from isorock.validate.core.fragility import fit_counts
         v = self._valid()[system]
         return fit_counts(self.hazard.levels, v.sum(axis=0), (self.overturned[system] & v).sum(axis=0))[0]
 
@@ -548,7 +555,6 @@ def estimate_s(family, hazard: Hazard, tail: float, cores: int, statue: Statue) 
 
 def check_size(family, hazard: Hazard, tail: float = DEFAULT_TAIL) -> int:
     """The number of runs, refused past MAX_DESIGN_RUNS; each run within analytic/limits.py."""
-    from isorock.analytic.limits import check_duration, check_isolator
     n = (1 + len(family.x_values) * len(family.y_values)) * len(hazard.records) * len(hazard.levels)
     if n > MAX_DESIGN_RUNS:
         raise InputError(f"design size = {n} runs (isolators × records × levels): must be at most {MAX_DESIGN_RUNS}")
@@ -578,9 +584,7 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     (tests/test_design.py). progress: None, or a factory (total, label, unit) → a bar
     (io.progress.Progress) for each phase, made when the phase's size is known, closed
     by the caller."""
-    import time
 
-    from isorock.validate.core.chunks import run_cases
     check_family_runs(family)
     check_size(family, hazard, tail)
     cases = build_cases(statue, family, hazard, tail)
@@ -615,11 +619,7 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
 def _settle_at_rest(cases, shape, hazard: Hazard, tail: float, threads, bar=None) -> list[dict]:
     """The summary rows of the isolated runs in which the block never lifts, from one
     rest-phase pass per (isolator, record): stays down, completes, stroke factor·max|u₁|."""
-    import time
 
-    from isorock.analytic.rest_scales import rest_phases
-    from isorock.validate.core.engines import choose
-    from isorock.validate.core.summary import case_inputs, row_of_batch
     n_sys, n_rec, n_lev = shape
     start = time.perf_counter()
     records = [hazard.records[n] for n in hazard.names]
@@ -865,8 +865,6 @@ def check_with(d: Design, engine: str, picks, *, progress=None) -> dict:
     where neither overturned, judged by the engine's u_max tolerance (a single history's,
     core.tolerances); runs near overturning may part for reasons of chaos, not of the
     engine (model.md), so the outcome count is reported, not judged."""
-    from isorock.validate.core.chunks import run_cases
-    from isorock.validate.core.tolerances import has_tolerance, tolerance
     fam, h = d.family, d.hazard
     systems = [d.statue.fixed()] + [fam.system(d.statue, x, y) for y in fam.y_values for x in fam.x_values]
     cases = []
@@ -940,8 +938,6 @@ def worst_direction(resting, hazard: Hazard, tail: float, *, threads=None) -> di
     over the hazard as the design weighs it (the levels' fractions, weighted). Ties go to the
     first, so a statue that overturns nowhere keeps the direction it tips first.
     {azimuth_deg, body, p_hazard, p_by_azimuth}."""
-    from isorock.analytic.fast import simulate_batch
-    from isorock.analytic.shape import along_directions, weakest_direction
     start = weakest_direction(resting)[0]
     angles = [(start + 2.0 * math.pi * k / DIRECTIONS) % (2.0 * math.pi) for k in range(DIRECTIONS)]
     systems = along_directions(resting, angles)
@@ -981,12 +977,11 @@ class Answer:
         return self.verdict["headline"]
 
     def rows(self) -> list[dict]:
-        from .design_report import isolator_rows
+        from .design_report import isolator_rows  # design_report imports this module
         return isolator_rows(self.design, self.target, self.max_stroke)
 
     def to_dataframe(self):
         """The rows as a pandas DataFrame (the notebook extra), the values at the highest level as columns."""
-        from isorock.analytic.errors import import_extra
         pd = import_extra("pandas", "notebook", "Answer.to_dataframe")
         top = self.design.hazard.levels[-1]
         return pd.DataFrame([{**{k: v for k, v in r.items() if not isinstance(v, list)},
@@ -997,11 +992,8 @@ class Answer:
     def write(self, out) -> None:
         """design.md, design.png, design.json, design.csv and runs.parquet into `out` (a new or
         empty folder, or an earlier isorock output), all or none (validate.io.output)."""
-        from isorock.validate.io.output import Outputs
 
-        from isorock.analytic.errors import path_value
-
-        from .design_report import write_design
+        from .design_report import write_design  # design_report imports this module
         out = path_value("out", out, optional=False)
         with Outputs() as outputs:
             folder = outputs.folder("out", out)
@@ -1027,8 +1019,6 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
     and `check`, contact engines that rerun `check_runs` of the runs. `out`: a folder to
     write the files `isorock design --out` writes. Every value is checked by the rules the
     command's options follow (an InputError naming the keyword)."""
-    from isorock.analytic.system import PAPER_BLOCK
-    from isorock.analytic.errors import path_value
     out = path_value("out", out)  # a number would name a folder '123'
     # every number as its float, once, here: Python values are not the command line's floats
     # (np.float32(0.05) was refused as a target, True taken as 1, 'x' a TypeError further down)
@@ -1079,7 +1069,6 @@ def design(*, height: float | None = None, width: float | None = None, mass: flo
 def _whole_of(name: str, value) -> int:
     """A keyword's whole number as an int (NumPy's integers too); a bool, a float or text is one
     line naming it."""
-    import numbers
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise InputError(f"{name} = {value!r}: must be a whole number")
     return int(value)
@@ -1087,7 +1076,6 @@ def _whole_of(name: str, value) -> int:
 
 def _records(records, units) -> dict:
     """The hazard's records: a dict name → GroundMotion as given, or a suite or folder read."""
-    from isorock.validate.tools.campaign.records import load_suite, suite_spec
     if isinstance(records, dict):
         for name, r in records.items():
             if not (isinstance(name, str) and name.strip()):  # a name the table's string column holds

@@ -10,7 +10,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .design import ANSWERED, Design, _pct, hazard_text, region_rows, target_judgement, verdict
+from isorock.validate.io.output import to_json
+from isorock.validate.io.provenance import provenance
+from .design import ANSWERED, Design, _pct, hazard_text, target_judgement, verdict
 
 #: P(overturn) bands of the chart's colours: the decisions an engineer makes sit at 1–10 %
 P_BANDS = (0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0)
@@ -22,10 +24,10 @@ def chart(d: Design, target: float, max_stroke: float | None, path) -> None:
     recommended region outlined and hatched, the named isolator starred, the fixed base's
     P in the title. Right (several levels): P(overturn) against PGA for the fixed base,
     the named isolator and the grid's corners."""
+    import matplotlib as mpl
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.colors import BoundaryNorm
     from matplotlib.figure import Figure
-    import matplotlib as mpl
 
     fam, h = d.family, d.hazard
     x, y = np.asarray(fam.x_values), np.asarray(fam.y_values)
@@ -223,8 +225,6 @@ def write_design(d: Design, target: float, max_stroke: float | None, folder: Pat
     """Fill `folder` (a staging folder of validate.io.output): every output of a design."""
     import pyarrow.parquet as pq
 
-    from isorock.validate.io.output import to_json
-    from isorock.validate.io.provenance import provenance
     v = verdict(d, target, max_stroke)
     rows = isolator_rows(d, target, max_stroke)
     fam, h = d.family, d.hazard

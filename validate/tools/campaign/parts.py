@@ -8,11 +8,11 @@ from __future__ import annotations
 from pathlib import Path
 
 from isorock.validate.core.summary import COLUMNS, rows_to_table, schema, sort_table
+from isorock.validate.io.output import write_atomic
 
 
 def write_part(path: Path, rows: list[dict]) -> None:
     import pyarrow.parquet as pq
-    from isorock.validate.io.output import write_atomic
     write_atomic(path, lambda tmp: pq.write_table(rows_to_table(rows), tmp))
 
 

@@ -7,12 +7,17 @@ record cases for fragility, a contact engine beside the analytic one for agreeme
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
 
 from isorock.validate.core.chunks import runs_as_batch
+from isorock.validate.core.fragility import fit_fragility
+from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
+from isorock.validate.core.verdict import overturn_verdicts, quantile_verdict, rate_verdict
 from isorock.validate.io.naming import cell
+from isorock.validate.io.output import write_text
 from .spec import AXES
 
 #: θmax/α departure for an agreement map when the tolerance table has no entry for the
@@ -67,7 +72,6 @@ def _is(cols, pair):
 
 
 def theta_tolerance(engine: str) -> float:
-    from isorock.validate.core.tolerances import has_tolerance, tolerance
     return tolerance(engine, "theta_max_diff").limit if has_tolerance(engine, "theta_max_diff") \
         else DEFAULT_THETA_TOLERANCE
 
@@ -167,7 +171,6 @@ def _edges(v):
 
 def fragility_fits(cols) -> list[dict]:
     """One lognormal fit per (system, engine, setting) over the record cases."""
-    from isorock.validate.core.fragility import fit_fragility
     out = []
     for idx in _groups(cols, SYSTEM_KEYS + ("engine", "setting")):
         g = _select(cols, idx)
@@ -186,13 +189,11 @@ def fragility_fits(cols) -> list[dict]:
 
 
 def _limit(engine: str, metric: str, fallback: float) -> float:
-    from isorock.validate.core.tolerances import has_tolerance, tolerance
     return tolerance(engine, metric).limit if has_tolerance(engine, metric) else fallback
 
 
 def _judging():
     """The confidence and the fewest cases of every statistical verdict (the tolerance table)."""
-    from isorock.validate.core.tolerances import limit
     return dict(confidence=limit("verdict_confidence"), min_cases=int(limit("verdict_min_cases")))
 
 
@@ -203,7 +204,6 @@ def fragility_comparisons(cols) -> list[dict]:
     bootstrap over the records (a record's outcomes at every level drawn together) against
     the tolerance table's limits: agrees, disagrees or inconclusive with the records that
     would decide. A record at a level one engine lacks is left out of both."""
-    from isorock.validate.core.verdict import overturn_verdicts
     reference, contacts = _engine_settings(cols)
     if reference is None:
         return []
@@ -231,7 +231,6 @@ def fragility_caveats(f) -> list[str]:
     """What a fragility fit does not know, said beside it: a median outside the levels
     tried is an extrapolation of the lognormal, and a bootstrap band over fewer records
     than a statistical verdict needs (tolerances: verdict_min_cases) means little."""
-    from isorock.validate.core.tolerances import limit
     fit, levels, out = f["fit"], np.asarray(f["levels"], dtype=float), []
     if math.isfinite(fit.median) and fit.median > levels.max():
         out.append(f"median beyond the highest level tried ({levels.max():g}): an extrapolation")
@@ -250,7 +249,6 @@ FRAGILITY_COLUMNS = 4
 def _wrap(text: str, width: int) -> str:
     """`text` in lines of at most `width` characters, broken after a space or a comma (a
     setting's label "preset=fast,timestep=0.002" has no spaces), never inside a word."""
-    import re
     lines = [""]
     for token in re.split(r"(?<=[,\s])", text):
         if lines[-1] and len(lines[-1] + token.rstrip()) > width:
@@ -337,8 +335,6 @@ def agreement(cols, x: str, y: str) -> list[dict]:
     verdict differs from the analytic one, and of those both survive, the fraction
     whose θmax/α departs by more than the engine's tolerance; and each engine's whole map
     judged by core.verdict's rule (`overturn_verdict`, `theta_verdict`)."""
-    from isorock.validate.core.tolerances import limit
-    from isorock.validate.core.verdict import quantile_verdict, rate_verdict
     reference, contacts = _engine_settings(cols)
     if reference is None:
         return []
@@ -442,7 +438,6 @@ def _md_table(rows: list[dict]) -> list[str]:
 
 
 def write_products(table, out: Path, spec=None) -> list[Path]:
-    from isorock.validate.io.output import write_text
     cols = _columns(table)
     made, lines = [], [f"# Campaign: {spec.name if spec else 'cases'}", ""]
     if not cols["case"].size:

@@ -14,13 +14,12 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from isorock.analytic.errors import InputError
-
+from isorock.analytic.errors import InputError, import_extra
 from isorock.validate.core.chunks import chunk_weight, expected_cost, make_tasks, run_cases, run_chunk
 from isorock.validate.core.executor import client_for, close_client, execute
 from isorock.validate.core.summary import rows_to_table, sort_table
+from isorock.validate.io.output import write_atomic, write_text
 from isorock.validate.io.progress import bar_of, logged
-
 from .parts import part_problem, read_parts, write_part
 from .spec import CampaignSpec, load_spec
 
@@ -56,7 +55,6 @@ class CampaignResult:
     def to_dataframe(self):
         """The results table as a pandas DataFrame (one row per case, engine and setting;
         columns as docs/campaigns.md lists them). Needs pandas (`isorock[notebook]`)."""
-        from isorock.analytic.errors import import_extra
         import_extra("pandas", "notebook", "CampaignResult.to_dataframe")
         return self.table.to_pandas()
 
@@ -112,7 +110,6 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     bar = None
     try:
         if out is not None:
-            from isorock.validate.io.output import write_text
             try:
                 parts_dir.mkdir(parents=True, exist_ok=True)
             except OSError as e:  # a read-only or full file system: one line, not a traceback
@@ -141,13 +138,13 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     # only this campaign's parts: a folder may hold parts of an earlier version of the file
     table = read_parts([parts_dir / f"{t.id}.parquet" for t in tasks])
     import pyarrow.parquet as pq
-    from isorock.validate.io.output import write_atomic, write_text
     write_atomic(out / RESULTS, lambda tmp: pq.write_table(table, tmp))
     if spec.source and Path(spec.source).is_file():
         write_text(out / "campaign.toml", Path(spec.source).read_text(encoding="utf-8"))
     made = []
     if products:
         from .products import write_products
+
         # drawing takes its own while after the bar reached 100%: a line of its own, so that
         # a finished bar and a silent terminal do not read as a hang
         if progress:

@@ -17,10 +17,11 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, StrictInt, StrictStr,
-                      ValidationError, model_validator)
+from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, StrictInt, StrictStr, ValidationError,
+                      model_validator)
 
 from isorock.analytic.errors import InputError
+from isorock.validate.core.engines import ALL_ENGINES, check_settings_table
 from isorock.validate.io.schema import number as _number
 
 #: the block-to-base mass ratio μ = m/m_b a campaign may ask for: μ = 1e-300 made a
@@ -192,7 +193,6 @@ def _settings_table(engine: str, table: dict) -> None:
     """Each value has the type of the engine's setting (core.engines.check_settings_table, the
     one schema the config file and the command line's --set share); an unknown engine or
     setting is named later by spec.py, with the engines and settings there are."""
-    from isorock.validate.core.engines import ALL_ENGINES, check_settings_table
     if engine.partition(":")[0] in ALL_ENGINES:
         check_settings_table(engine, table, unknown_keys=False)
 

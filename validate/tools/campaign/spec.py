@@ -13,18 +13,21 @@ import hashlib
 import itertools
 import json
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
 
+from isorock.analytic import shape
 from isorock.analytic.errors import InputError
+from isorock.analytic.limits import check_duration, check_isolator
 from isorock.analytic.motion import PULSES
-
-from isorock.validate.core.cases import Case, build_case
-from isorock.validate.core.engines import EngineChoice
+from isorock.analytic.system import MAX_STATUE_FRICTION, PlanarBody, System
+from isorock.validate.core.cases import Case, build_case, build_system, pulse_for
 from isorock.validate.core.chunks import ANALYTIC_CHUNK, CONTACT_CHUNK
+from isorock.validate.core.engines import ALL_ENGINES, EngineChoice, check_carries, choose, get_engine
 from isorock.validate.io.schema import read_toml
+from .schema import check_campaign
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).
 AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
@@ -169,7 +172,6 @@ class CampaignSpec:
         return [{**row, "friction": mu} if mu is not None else row for row in out for mu in frictions]
 
     def _statue_body(self, azimuth_deg: float, mass: float) -> dict:
-        from isorock.analytic.system import PlanarBody
         s = self.systems
         resting = s["_resting"][s["mass"].index(mass)]
         body = PlanarBody.from_resting(resting.along(math.radians(azimuth_deg)))
@@ -235,7 +237,6 @@ def _statue(t, source: Path) -> dict:
     grid (its density's one mass, or systems.mass), its directions (systems.azimuth, degrees;
     default: the one it tips first) and what identifies it (an example's name, or the file's
     path and content's digest, so that a changed file is new work)."""
-    from isorock.analytic import shape
     table = t["statue"]
     mesh = table.get("mesh")
     if mesh is not None and not str(mesh).strip():  # "" would be the campaign's own folder
@@ -295,7 +296,6 @@ def _systems(t, source: Path = Path("campaign.toml")) -> dict:
         out["mass"] = _grid("systems.mass", t.get("mass", 1000.0))
     # the statue's friction (docs/sliding.md): None, a statue that cannot slip, is the axis's one value by default
     out["friction"] = (None,) if "friction" not in t else _grid("systems.friction", t["friction"])
-    from isorock.analytic.system import MAX_STATUE_FRICTION
     for mu in out["friction"]:
         if mu is not None and not 0 < mu <= MAX_STATUE_FRICTION:
             raise _where("systems.friction", mu, f"a friction coefficient in (0, {MAX_STATUE_FRICTION:g}]")
@@ -377,7 +377,6 @@ def _motions(t, source: Path) -> dict:
 
 
 def _engines(t) -> tuple[EngineSetting, ...]:
-    from isorock.validate.core.engines import ALL_ENGINES, choose
     if not isinstance(t, list) or not t:
         raise InputError("engines: missing (one or more [[engines]] tables with name = ...)")
     out = []
@@ -432,7 +431,6 @@ def _products(t) -> dict:
 
 
 def parse_spec(data: dict, source: Path = Path("campaign.toml")) -> CampaignSpec:
-    from .schema import check_campaign  # types, keys, duplicates, the isolator's base (pydantic)
     check_campaign(data)
     for k in data:
         if k not in _TOP_KEYS:
@@ -474,7 +472,6 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
     case (its longest motion, `longest_motion` s, and the duration rule), its shortest
     isolator period and each engine setting's steps: an InputError naming the key the
     user wrote, before anything runs."""
-    from isorock.analytic.limits import check_duration, check_isolator
     d = spec.duration
     if "end" in d:
         longest = check_duration("duration.end", d["end"])
@@ -492,8 +489,6 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
             check_isolator(shortest, longest)
         except InputError as e:
             raise InputError(f"systems.period: {str(e).replace(' (stiffness nan N/m)', '')}") from None
-    from isorock.validate.core.cases import build_system
-    from isorock.validate.core.engines import check_carries
     systems = [build_system(g) for g in spec.system_grid()]
     if spec.motions["type"] == "pulse":  # a pulse's peak is amplitude_ratio·g·tanα (a record's: record_factor)
         from isorock.analytic.limits import check_acceleration
@@ -512,8 +507,6 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
 def longest_pulse(spec: CampaignSpec) -> float:
     """The longest pulse of a pulse campaign (s): the lowest frequency ratio on the
     largest block (the smallest p), for each pulse kind."""
-    from isorock.validate.core.cases import pulse_for
-    from isorock.analytic.system import System
     s, m = spec.systems, spec.motions
     if "statue" in s:  # its box along every direction: the largest H, B
         boxes = [g for g in spec.system_grid()]
@@ -565,7 +558,6 @@ def _check_size(spec: CampaignSpec) -> None:
     if n_runs > MAX_RUNS:
         raise InputError(f"campaign size = {n_runs} runs ({spec.n_cases} cases × {len(spec.engines)} "
                          f"engine settings): must be at most {MAX_RUNS}")
-    from isorock.validate.core.engines import get_engine
     n_contact = spec.n_cases * sum(not get_engine(e.engine).capabilities.batch for e in spec.engines)
     if n_contact > MAX_CONTACT_RUNS:
         raise InputError(f"campaign size = {n_contact} contact-engine runs: must be at most "

@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import PlanarBody, System
+from isorock.validate.core.engines import get_engine
 
 
 def system(spec) -> System:
@@ -25,8 +27,6 @@ def simulate(rock: System, acceleration, dt: float, pad: float = 5.0) -> tuple[b
     """(overturned, peak φ/α of either edge against its own α, impacts) of the exact model's run
     under the table acceleration (m/s², step dt, linear between samples) and `pad` s of stillness
     after it (the registry's analytic engine: the compiled kernel)."""
-    from isorock.analytic.motion import GroundMotion
-    from isorock.validate.core.engines import get_engine
     a = np.asarray(acceleration, dtype=float)
     motion = GroundMotion.from_array(a, dt=dt, units="m/s2", name="table")
     tr = get_engine("analytic").simulate(rock, motion, duration=(a.size - 1) * dt + pad)

@@ -21,14 +21,17 @@ columns 1–2 of each record; the README says the other axis and the displacemen
 """
 from __future__ import annotations
 
+import csv
 import gzip
 from pathlib import Path
 
 import numpy as np
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.fast import simulate_batch
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.status import Status
 from isorock.analytic.system import MAX_STATUE_FRICTION
-
 from . import data, processing, study
 
 #: the friction coefficients run (module doc: the data's simulation's 0.3–0.5 and 0.8)
@@ -84,9 +87,6 @@ def run_sliding(system, accel: dict, dt: dict, mu: float, *, on_runs=None) -> di
     """{test: (overturned, θmax/α, slid m)} of the exact model of `system` with friction μ (static
     = kinetic) under each record: the analytic engine's contact model, in batches on every core.
     on_runs(n): called as each batch of n runs is done (a progress bar's update)."""
-    from isorock.analytic.fast import simulate_batch
-    from isorock.analytic.motion import GroundMotion
-    from isorock.analytic.status import Status
     rock = system.with_friction(mu)
     tests = list(accel)
     rows = {}
@@ -183,7 +183,6 @@ def tally(rows, frictions, own_names) -> dict:
 
 def write(result, out: Path) -> None:
     """misses.csv (every test's verdicts) and misses.md (the counts), into `out`."""
-    import csv
     out.mkdir(parents=True, exist_ok=True)
     rows = result["rows"]
     with open(out / "misses.csv", "w", newline="") as f:

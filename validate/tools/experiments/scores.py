@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy.optimize import minimize
+from scipy.stats import rankdata
 
 BOOTSTRAP = 2000  # resamples of the tests
 LEVEL = 0.95
@@ -43,7 +45,6 @@ def roc_auc(y, score) -> float:
     pos, neg = s[y], s[~y]
     if pos.size == 0 or neg.size == 0:
         return math.nan
-    from scipy.stats import rankdata
     r = rankdata(np.concatenate((pos, neg)))
     return float((r[:pos.size].sum() - pos.size * (pos.size + 1) / 2) / (pos.size * neg.size))
 
@@ -145,7 +146,6 @@ def grouped_folds(groups, y, k: int = FOLDS, seed: int = SEED) -> np.ndarray:
 def fit_logistic(y, X) -> dict:
     """A logistic regression of the outcome on the columns of X, standardized on these rows:
     {"mean", "scale", "weights"} (intercept first), what logistic_probability applies."""
-    from scipy.optimize import minimize
     y = np.asarray(y, bool)
     X = np.asarray(X, float)
     mu, sd = X.mean(0), X.std(0)

@@ -34,10 +34,12 @@ import numpy as np
 
 from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
-
+from isorock.analytic.fast import simulate_batch
+from isorock.analytic.motion import GroundMotion
+from isorock.analytic.system import System
+from isorock.validate.core.engines import get_engine
 from isorock.validate.core.scenarios import shared_folder
-
-from . import data, processing, scores, specimen
+from . import asymmetric, data, processing, scores, specimen
 
 #: the shake-table tests (shared/data/vsr, or $ISOROCK_VSR): found as the records are, not
 #: computed from this file's location (which, in a wheel, is site-packages)
@@ -63,7 +65,6 @@ def _motion(tm: data.TableMotion, steps, lowpass_hz):
 def equivalent_block(spec: specimen.Specimen, sign: int):
     """The exact model's System of the specimen's equivalent block forward (sign 1) or
     backward (−1) on a fixed base."""
-    from isorock.analytic.system import System
     d = spec.direction(sign)
     return System.fixed(height=d["block_height"], width=d["block_width"], mass=spec.mass)
 
@@ -71,8 +72,6 @@ def equivalent_block(spec: specimen.Specimen, sign: int):
 def run_block(system, accel: dict, dt: dict) -> dict:
     """{test: (overturned, θmax/α, wall s)} of the exact rigid model (the registry's analytic
     engine) of `system` under each record."""
-    from isorock.analytic.motion import GroundMotion
-    from isorock.validate.core.engines import get_engine
     engine = get_engine("analytic")
     rows = {}
     for test, a in accel.items():
@@ -123,8 +122,6 @@ def run_overturning_scale(spec: specimen.Specimen, accel: dict, dt: dict,
     runs go through the exact model's batch path (fast.simulate_batch: the same kernel and
     verdicts as run_analytic's, without the histories only a verdict does not need, on all
     cores); a test's wall time is its share of each batch it was in."""
-    from isorock.analytic.fast import simulate_batch
-    from isorock.analytic.motion import GroundMotion
     system = equivalent_block(spec, 1)
     first: dict = {t: None for t in accel}
     at_one, wall = {}, dict.fromkeys(accel, 0.0)
@@ -154,7 +151,6 @@ SIGNS = (("+x", 1.0), ("-x", -1.0))
 def run_asymmetric(spec: specimen.Specimen, accel: dict, dt: dict) -> dict:
     """The exact model of the rock's own two edges (asymmetric.py: System.body), the acceleration
     along +x and along −x of the rest pose."""
-    from . import asymmetric
     rock = asymmetric.system(spec)
     out = {}
     for name, sign in SIGNS:
@@ -196,7 +192,6 @@ def run_body(engine: str, spec: specimen.Specimen, accel: dict, dt: dict, progre
     by default); `contact`: the engine's contact keywords (friction, and MuJoCo's dampratio
     or PyBullet's restitution), absent for its own defaults. The continuous score: the peak
     tilt over the smaller α."""
-    from isorock.validate.core.engines import get_engine
     simulate_body = SIMULATE_BODY.of(get_engine(engine).spec)
     alpha = min(spec.direction(1)["alpha"], spec.direction(-1)["alpha"])
     out = {}
