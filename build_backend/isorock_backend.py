@@ -8,7 +8,7 @@ the numba, NumPy and SciPy of pip's build environment (pyproject.toml's build-sy
 requirements, the project's own bounds): the compiled modules are stamped with those
 versions, so where pip resolved others for the install they are simply not loaded, and a
 first run builds its kernel as it would have. A failed or stopped build never fails the
-install. ISOROCK_BUILD_KERNELS=0 skips it. A wheel (`pip install .`) carries no kernels: its
+install. ISOROCK_BUILD_KERNELS=0 (or no, false, off) skips it. A wheel (`pip install .`) carries no kernels: its
 first run builds them (or `python -m isorock.analytic.kernel_build`).
 """
 import os
@@ -18,6 +18,8 @@ from setuptools import build_meta as _setuptools
 from setuptools.build_meta import *  # noqa: F401,F403 - every PEP 517/660 hook, as setuptools has them
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+#: ISOROCK_BUILD_KERNELS values that skip the build (any other builds)
+SKIP = ("0", "no", "false", "off")
 
 #: run first in each build process: the checkout's analytic/ importable as isorock.analytic, as
 #: the install maps it (the kernels' caches are named after their modules), without the rest of
@@ -38,7 +40,7 @@ spec.loader.exec_module(module)
 
 def build_kernels() -> bool:
     """analytic.kernel_build.build in pip's build environment; False where it was skipped or failed."""
-    if os.environ.get("ISOROCK_BUILD_KERNELS", "1") == "0":
+    if os.environ.get("ISOROCK_BUILD_KERNELS", "1").strip().lower() in SKIP:
         return False
     # the checkout's package in place of any other of that name, for this call only
     ours = [name for name in sys.modules if name == "isorock" or name.startswith("isorock.")]

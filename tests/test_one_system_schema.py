@@ -28,6 +28,19 @@ def test_the_file_and_the_options_name_the_same_keys():
     assert set(SYSTEM_KEYS) <= options
 
 
+def test_the_files_other_keys_are_validate_options_too():
+    """The motion and run keys of a --config file (motions, their units and format, the scaling, the
+    duration, quick) are validate's options by the same names (`motions` lists what --motion gives
+    one at a time), and its tables are the system, the statue and the engines' settings (--set): a key
+    added to the file and not to the options, or the reverse, fails here."""
+    from isorock.validate.cli.config_file import ConfigFile
+    options = set(vars(build_parser("validate").parse_args(["validate"])))
+    tables = {"system": "height", "statue": "statue", "settings": "set_settings", "motions": "motion"}
+    for key in ConfigFile.model_fields:
+        assert tables.get(key, key) in options, key
+    assert {"motion", "units", "format", "pga", "pgv", "duration"} <= {tables.get(k, k) for k in ConfigFile.model_fields}
+
+
 def test_a_friction_pendulum_is_the_same_system_from_the_file_the_options_and_run(tmp_path):
     direct = System.with_isolator(**BLOCK, isolator=FrictionPendulum(radius=1.0, friction_coefficient=0.05))
     cfg = tmp_path / "fp.toml"

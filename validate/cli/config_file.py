@@ -18,14 +18,12 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, Validat
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import ISOLATOR_KINDS
+from isorock.validate.core.engines import check_settings_table
+from isorock.validate.io.schema import NonNegative, Positive, number as _number, read_toml  # noqa: F401 (shared)
 
 #: ξ of an isolator this command runs: below 1 (underdamped), as `isorock sweep` takes
 #: it; ξ = 1e6 made the report's search for the uplift scale run for ever (issue 24)
 MAX_DAMPING_RATIO = 1.0
-
-
-from isorock.validate.core.engines import check_settings_table
-from isorock.validate.io.schema import NonNegative, Positive, number as _number, read_toml  # noqa: F401 (shared)
 
 
 def _strings(v):
