@@ -259,3 +259,15 @@ def imports_of_top(path: Path) -> list[tuple[int, str]]:
         elif isinstance(node, ast.ImportFrom) and not node.level:
             out += [(node.lineno, f"{node.module}.{a.name}") for a in node.names]
     return out
+
+
+def test_compare_only_compares():
+    """Issue 35: core.compare compares the trajectories it is given and runs nothing; the runs that
+    probe the model's robustness are core.probes'. Its imports and calls are the oracle: no engine
+    registry, no call of anything named simulate."""
+    path = ROOT / "validate" / "core" / "compare.py"
+    assert not [m for _, m in imports(path, "validate.core") if m.startswith("isorock.validate.core.engines")]
+    tree = ast.parse(path.read_text())
+    calls = {n.func.attr if isinstance(n.func, ast.Attribute) else getattr(n.func, "id", "")
+             for n in ast.walk(tree) if isinstance(n, ast.Call)}
+    assert not {c for c in calls if "simulate" in c}

@@ -29,7 +29,8 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import BallInBowl, BilinearIsolator, DoubleFrictionPendulum, FrictionPendulum, System
-from isorock.validate.core.compare import base_history_error, compare, own_horizon, reference_sensitivity
+from isorock.validate.core.compare import base_history_error, compare
+from isorock.validate.core.probes import own_horizon, reference_sensitivity
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.tolerances import tolerance
 

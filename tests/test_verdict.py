@@ -131,8 +131,8 @@ def test_confidence_and_limits_live_in_the_table():
         for metric in ("ensemble_overturn_median", "ensemble_overturn_dispersion", "ensemble_theta_max_diff"):
             assert tolerance(engine, metric).reason
     # the horizon's parting, the robustness and the model's own perturbations too
-    from isorock.validate.core import compare
-    assert (compare.AGREEMENT_FRACTION, compare.SENSITIVITY_SCALE, compare.OWN_HORIZON_SCALE) == tuple(
+    from isorock.validate.core import compare, probes
+    assert (compare.AGREEMENT_FRACTION, probes.SENSITIVITY_SCALE, probes.OWN_HORIZON_SCALE) == tuple(
         LIMITS[k].limit for k in ("horizon_parting", "robust_perturbation", "own_horizon_perturbation"))
     assert all(LIMITS[k].reason for k in ("horizon_parting", "robust_perturbation", "own_horizon_perturbation",
                                           "verdict_disagreement_rate", "verdict_min_cases"))
@@ -144,7 +144,7 @@ def test_own_horizon_is_the_whole_run_unperturbed_and_shorter_under_a_large_chan
     from the horizon (× p, and the reference's impacts counted before it)."""
     from isorock.analytic.motion import load_motion
     from isorock.analytic.system import paper_system
-    from isorock.validate.core.compare import own_horizon
+    from isorock.validate.core.probes import own_horizon
     from isorock.validate.core.engines import get_engine
     system, motion = paper_system(fixed_base=True), load_motion("ricker:amp=0.5,freq=1")
     ref = get_engine("analytic").simulate(system, motion, duration=6.0)

@@ -1,10 +1,10 @@
 """Where a contact engine's base history can be held to the analytic model's on a stiff bilinear
 bearing (issue 34), as quoted in docs/isolators.md ("Where a single history is a test").
 
-For each case: the exact model's own horizon (core.compare.own_horizon: how long it agrees with
+For each case: the exact model's own horizon (core.probes.own_horizon: how long it agrees with
 itself under a 0.5% change of the motion's amplitude, with the counted impacts before it), then
 each engine's max |Δu|/u_max against the model up to that horizon and over the whole run, and
-its θmax/α beside the model's ensemble (the motion scaled by 1 ± 1%, core.compare.reference_sensitivity): the verdict that
+its θmax/α beside the model's ensemble (the motion scaled by 1 ± 1%, core.probes.reference_sensitivity): the verdict that
 still means something once single histories have parted.
 
     python docs/scripts/bilinear_horizon.py [--engines mujoco,bullet]
@@ -15,7 +15,8 @@ from pathlib import Path
 
 from isorock.analytic.motion import load_motion
 from isorock.analytic.system import BilinearIsolator, System
-from isorock.validate.core.compare import base_history_error, compare, own_horizon, reference_sensitivity
+from isorock.validate.core.compare import base_history_error, compare
+from isorock.validate.core.probes import own_horizon, reference_sensitivity
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.tolerances import tolerance
 

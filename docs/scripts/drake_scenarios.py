@@ -24,7 +24,8 @@ import sys
 import time
 
 from isorock.analytic.motion import load_motion
-from isorock.validate.core.compare import compare, reference_sensitivity
+from isorock.validate.core.compare import compare
+from isorock.validate.core.probes import reference_sensitivity
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.scenarios import paper_bases
 from isorock.validate.tools.report_run import BETA_MIN_AMPLITUDE, DEFAULT_MOTIONS, FULL

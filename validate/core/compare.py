@@ -14,7 +14,6 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.integrate import quad
 
-from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import Trajectory
 from isorock.validate.core.measure import REST_FRACTION, beta_errors, mode_sequence, slide_onset
@@ -24,8 +23,6 @@ from isorock.validate.core.tolerances import limit
 AGREEMENT_FRACTION = limit("horizon_parting")
 #: Common grid (s) both histories are resampled onto before differencing.
 COMPARE_DT = 1e-3
-#: Relative PGA perturbation used to tell whether a reference history is robust (the table's).
-SENSITIVITY_SCALE = limit("robust_perturbation")
 
 
 @dataclass(frozen=True)
@@ -208,46 +205,11 @@ def exact_first_impact_time(system: System, theta0: float) -> float:
     return value
 
 
-def reference_sensitivity(system: System, motion: GroundMotion, *, duration: float,
-                          scale: float = SENSITIVITY_SCALE, settings=None) -> dict:
-    """θmax/α and overturning of the analytic model with the motion scaled by 1 ± scale.
-    A history whose θmax/α moves a lot under a 1% change of PGA is chaotic there, and
-    single-history agreement with it is no test of an engine (model.md)."""
-    from isorock.validate.core.engines import REFERENCE, get_engine
-    simulate = get_engine(REFERENCE).simulate
-    values, over = [], []
-    for f in (1 - scale, 1.0, 1 + scale):
-        tr = simulate(system, motion.scaled(f), duration=duration, settings=settings)
-        values.append(tr.theta_max_over_alpha)
-        over.append(tr.overturned)
-    return {"scales": [1 - scale, 1.0, 1 + scale], "theta_max_over_alpha": values,
-            "overturned": over, "spread": max(values) - min(values),
-            "overturn_flips": len(set(over)) > 1}
-
-
-#: The analytic model's own horizon (issue 20): the motion scaled by 1 ± this, a
-#: record's accuracy (the tolerance table's, with its reason).
-OWN_HORIZON_SCALE = limit("own_horizon_perturbation")
-
-
 def horizon_units(horizon: float, ref: Trajectory, system: System) -> dict:
     """A horizon (s) in the units of the physics: times 1/p (p = √(3g/4R), the block's
     frequency parameter) and in the reference's counted impacts before it."""
     return {"s": float(horizon), "p_units": float(horizon * system.p),
             "impacts": int(sum(1 for i in ref.counted_impacts if i.t < horizon))}
-
-
-def own_horizon(system: System, motion: GroundMotion, ref: Trajectory, *, duration: float,
-                scale: float = OWN_HORIZON_SCALE) -> dict:
-    """How long the analytic model agrees with itself (|Δθ| ≤ AGREEMENT_FRACTION·α) when
-    the motion is scaled by 1 ± scale: the most any engine can be asked to hold. An
-    engine whose horizon reaches this one has done all that physics allows."""
-    from isorock.validate.core.engines import REFERENCE, get_engine
-    simulate = get_engine(REFERENCE).simulate
-    runs = [agreement(simulate(system, motion.scaled(f), duration=duration), ref)
-            for f in (1 - scale, 1 + scale)]
-    horizon = min(r[0] for r in runs)
-    return dict(horizon_units(horizon, ref, system), parted=any(r[1] for r in runs), scale=scale)
 
 
 def base_history_error(traj: Trajectory, ref: Trajectory, until: float | None = None, *, dt: float = 0.002) -> float:

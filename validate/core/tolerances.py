@@ -450,7 +450,7 @@ LIMITS: dict[str, Tolerance] = {
               "±1% of PGA flipping overturning near the threshold"),
     "own_horizon_perturbation": Tolerance(
         0.005, "relative change of the motion under which the analytic model's own horizon is taken "
-               "(core.compare.own_horizon): a 0.5% error of amplitude is well inside a strong-motion "
+               "(core.probes.own_horizon): a 0.5% error of amplitude is well inside a strong-motion "
                "instrument's calibration, so no engine can be asked to hold longer than the model does then"),
     "stress_energy_residual": Tolerance(
         1e-6, "the analytic energy balance residual over the input energy, as for the report "

@@ -31,8 +31,8 @@ from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
 from isorock.analytic.trajectory import SLIDING_FRACTION
 from isorock.validate.core.chunks import worker_pool
-from isorock.validate.core.compare import (Comparison, compare, exact_first_impact_time, horizon_units, own_horizon,
-                                           reference_sensitivity)
+from isorock.validate.core.compare import Comparison, compare, exact_first_impact_time, horizon_units
+from isorock.validate.core.probes import own_horizon, reference_sensitivity
 from isorock.validate.core.engines import (ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine, resolve, runs_here,
                                            settings_used, table_overrides)
 from isorock.validate.core.executor import Executor, default_workers
@@ -543,7 +543,7 @@ def _executor(config: ReportConfig, engines):
 
 
 def _robust(sc: HistoryRuns, scale: float) -> bool:
-    """Is the reference's θmax/α at this scale robust (as a history's, compare.reference_sensitivity)?
+    """Is the reference's θmax/α at this scale robust (as a history's, probes.reference_sensitivity)?
     The compiled reference makes the two extra runs per case cheap."""
     s = reference_sensitivity(sc.system, sc.motion.scaled(float(scale)), duration=sc.duration)
     return bool(s["spread"] < ROBUST_SPREAD and not s["overturn_flips"])

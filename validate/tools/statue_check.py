@@ -6,7 +6,7 @@ The pulse follows the statue (a similarity law of the exact model): frequency 2�
 amplitude k·g·tanα of its weaker edge. `amplitude_for` finds the k at which the exact model's
 θmax/α is a target, so that a case rocks clearly without overturning. A case is judged history
 by history only where the exact model's own history is robust, by the report's rule
-(core.compare.reference_sensitivity: θmax/α moves by less than ROBUST_SPREAD under ±1% of the
+(core.probes.reference_sensitivity: θmax/α moves by less than ROBUST_SPREAD under ±1% of the
 amplitude, overturning unflipped): a single pulse's peak climbs steeply towards overturning,
 so a target near it makes a chaotic reference that tests no engine (model.md).
 
@@ -26,7 +26,7 @@ from isorock.analytic import shape
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.errors import require
 from isorock.analytic.system import FrictionPendulum, PlanarBody, System
-from isorock.validate.core.compare import reference_sensitivity
+from isorock.validate.core.probes import reference_sensitivity
 from isorock.validate.core.engines import REFERENCE, get_engine
 from isorock.validate.core.measure import beta_errors
 from isorock.validate.core.tolerances import ROBUST_SPREAD
