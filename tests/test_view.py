@@ -107,3 +107,14 @@ def test_the_viewer_replays_a_run_in_its_frames(monkeypatch):
     assert len(shown) == expected > 1
     with pytest.raises(view.InputError, match="frames"):  # bounded before the window opens
         view.replay_in_viewer(traj, speed=1e-9)
+
+
+def test_the_view_command_imports_mujoco_only_after_choosing_its_renderer():
+    """mujoco reads MUJOCO_GL when it is first imported, and `isorock view` sets it to the offscreen
+    backend it found before rendering: loading the command (its module and its tool's) must not
+    import mujoco first, or the backend it chose is ignored. The oracle: a new process's modules."""
+    code = ("import sys\nimport isorock.validate.cli.view, isorock.validate.tools.view\n"
+            "print('mujoco' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "False"
