@@ -7,7 +7,7 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.limits import check_workers
 from isorock.analytic.system import paper_system
 from isorock.validate.cli.options import (ENGINE_OPTIONS, SYSTEM_KEYS, add_engine_options, add_system_options,
-                                          whole_number)
+                                          announce_cost, engine_settings_from_args, system_from_options, whole_number)
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.executor import default_workers
 from isorock.validate.io.output import Outputs, to_json
@@ -82,7 +82,6 @@ def add_parser(sub) -> None:
 
 
 def cmd_calibrate(a) -> int:
-    from isorock.validate.cli.options import SYSTEM_KEYS, announce_cost, engine_settings_from_args, system_from_options
     engine = get_engine(a.engine)
     if TUNING.of(engine.spec) is None:
         raise InputError(f"engine = {a.engine!r}: has no contact parameters to calibrate")

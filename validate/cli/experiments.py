@@ -118,7 +118,6 @@ def fit_or_predict(a) -> int:
         with Outputs() as outputs:
             out = outputs.file("out", DEFAULT_MODEL if a.out == DEFAULT_OUT else a.out, exclusive=True)
             model = fitted.fit(a.fit, tests=tests, steps=steps, lowpass_hz=a.lowpass_hz)
-            from isorock.validate.io.output import to_json
             from isorock.validate.io.provenance import provenance
             model["provenance"] = provenance()
             model["fit"]["data"] = str(a.fit)
@@ -138,7 +137,6 @@ def fit_or_predict(a) -> int:
         out = outputs.folder("out", a.out)
         result = fitted.predict(a.predict, model, tests=tests)
         result["model"] = str(a.model)
-        from isorock.validate.io.output import to_json
         from isorock.validate.io.provenance import provenance
         result["provenance"] = provenance()
 
@@ -247,7 +245,6 @@ def main(a) -> int:
             contact.setdefault(engine, {})[name] = value
     with Outputs() as outputs:
         out = outputs.folder("out", a.out)  # refused before the runs, not after
-        from isorock.validate.cli.options import announce_cost
 
         def announce(simulated):  # the hull engines' cost, before their minutes (issue 34)
             announce_cost("experiments", simulated, budget_s=0, speeds=study.HULL_SPEEDS,

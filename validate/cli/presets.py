@@ -8,7 +8,7 @@ import sys
 import textwrap
 
 from isorock.analytic.errors import InputError
-from isorock.validate.core.engines import DISTINCT_ENGINES
+from isorock.validate.core.engines import ALIASES, DISTINCT_ENGINES, get_engine, presets_of
 from isorock.validate.io.output import to_json
 
 
@@ -58,7 +58,6 @@ def listing(table: dict) -> str:
 
 
 def cmd_presets(a) -> int:
-    from isorock.validate.core.engines import ALIASES, DISTINCT_ENGINES, get_engine, presets_of
     if a.engine is not None:
         get_engine(a.engine)  # an unknown name: one line, exit 2
         table = {ALIASES.get(a.engine, a.engine): presets_of(a.engine)}

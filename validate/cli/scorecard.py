@@ -40,8 +40,8 @@ from isorock.validate.io.output import Outputs, to_json
 from isorock.validate.io.progress import Progress
 from isorock.validate.io.provenance import provenance
 from isorock.validate.tools.atlas import RUN_BUDGET, Grid, build as atlas_build, distinct, reference
-from isorock.validate.tools.bench import BATCH_RUNS
-from isorock.validate.tools.experiments import data, study
+from isorock.validate.tools.bench import BATCH_RUNS, BATCH_THREADS, speed_goals
+from isorock.validate.tools.experiments import data, processing, study
 from isorock.validate.tools.report_run import ReportConfig, build as report_build
 from isorock.validate.tools.stress import NOT_CARRIED, NOT_FAILED, engine_agreement, run_stress as stress_run
 
@@ -318,7 +318,6 @@ def per_engine_estimate(measure: str, name: str, effort: Effort) -> tuple[float,
         recheck = 0.0 if name == "analytic" else STRESS_RECHECK_S
         return OVERHEAD["stress"] * sum(c.scenario.duration for c in cases) / speed + recheck, ""
     if measure == "experiments":
-        from isorock.validate.tools.experiments import study
         if name not in study.ENGINES:
             return 0.0, (f"not run: the shake-table study has no model of the rock for {name} (its hull engines: "
                          f"{', '.join(study.HULL_ENGINES)}; the simulate_body facet)")
@@ -344,7 +343,6 @@ def experiment_tests(effort: Effort) -> list[int]:
 def experiment_hull_seconds(effort: Effort) -> float:
     """Simulated seconds one hull engine runs on the scorecard's tests (study.hull_seconds)."""
     if effort.name not in _HULL_SECONDS:
-        from isorock.validate.tools.experiments import processing, study
         _, testlist, _, accel, dts, _, _ = study.read(study.default_data(), experiment_tests(effort),
                                                       processing.DEFAULT_STEPS, processing.LOWPASS_HZ)
         _HULL_SECONDS[effort.name] = study.hull_seconds(accel, dts, ("mujoco",))["mujoco"]
@@ -522,7 +520,6 @@ def run_stress(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 
 def run_speed(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from isorock.validate.tools.bench import BATCH_RUNS, BATCH_THREADS, speed_goals
     if not KOBE.is_file():
         return {("speed", label): {"not_run": f"not run: the Kobe record is not here ({KOBE})"} for label in labels}
     rows = speed_goals(repeats=effort.speed_repeats, progress=not quiet, labels=labels)
@@ -544,7 +541,6 @@ def run_speed(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 
 def run_experiments(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from isorock.validate.tools.experiments import study
     tests = experiment_tests(effort)
     out = {"experiment_tests": {"stride": effort.experiment_stride, "tests": len(tests)}}
     for label in labels:

@@ -10,7 +10,7 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.limits import BudgetExceeded
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.cli.options import (add_budget_option, add_engine_options, add_motion_options, add_system_options,
-                                          motion_from_args, run_budget, system_from_args)
+                                          announce_cost, budget_stopped, motion_from_args, run_budget, system_from_args)
 from isorock.validate.cli.run import load_engines, parse_engines
 from isorock.validate.core.engines import settings_used
 from isorock.validate.tools import view as tool
@@ -78,7 +78,6 @@ def run(a) -> int:
         os.environ["MUJOCO_GL"] = backend  # read when mujoco is first imported, which is below
     label, engine, settings = load_engines(specs, a)[0]
     # the run's budget, and its cost said first when it is long (as `run`)
-    from isorock.validate.cli.options import announce_cost, budget_stopped, run_budget
     budget = run_budget(a)
     theta0 = a.theta0_over_alpha * system.alpha
     _, duration = run_inputs(system, motion, a.duration, theta0, DEFAULT_IMPACT_THRESHOLD,

@@ -191,7 +191,6 @@ class Engine:
         read only as summaries (campaign rows, ensembles): the summary is the same.
         checked=True: the inputs come from a Plan (core.plan.make_plan), which checked that this
         engine carries them; they are not checked again here."""
-        from dataclasses import replace
 
         from isorock.analytic.overturning import PAST_ALPHA
         from isorock.analytic.trajectory import RawHistory

@@ -38,7 +38,7 @@ from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERI
 from isorock.validate.core.cases import block_system
 from isorock.validate.core.chunks import worker_pool
 from isorock.validate.core.compare import exact_first_impact_time
-from isorock.validate.core.engines import REFERENCE, get_engine, resolve
+from isorock.validate.core.engines import REFERENCE, campaign_engines, get_engine, resolve
 from isorock.validate.core.executor import default_workers
 from isorock.validate.core.measure import beta_errors
 from isorock.validate.core.runner import Task
@@ -370,7 +370,6 @@ COLUMNS = ("engine", "engine_name", "preset", "slenderness", "mass_ratio", "heig
 def default_engines() -> list[str]:
     """Every preset of every contact engine fast enough for grids (MuJoCo, PyBullet);
     slower ones (Drake) only by name."""
-    from isorock.validate.core.engines import campaign_engines, get_engine
     out = []
     for name in campaign_engines():
         engine = get_engine(name)
@@ -453,7 +452,6 @@ def slide_tilts(labels, grid: Grid, overrides: dict | None = None) -> list[dict]
     (sustained_push), against slide_theta_max_diff's limit. The atlas's answer to where an
     engine cannot follow a sliding statue, and why (issue 33: MuJoCo's soft contact lets the
     leading corners sink, the more the nearer μ_s is to tanα)."""
-    from isorock.validate.core.engines import REFERENCE, get_engine, resolve
     out = []
     cells = [c for c in grid.cells() if c.mass_ratio == 0 and c.friction is not None
              and c.friction < 1.0 / c.slenderness]

@@ -18,14 +18,14 @@ import time
 
 import numpy as np
 
-from isorock.analytic import limits
+from isorock.analytic import limits, paper_system
 from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
 from isorock.analytic.fast import compare_on_grid, simulate_fast
 from isorock.analytic.hybrid import AnalyticSettings, simulate as reference_simulate
 from isorock.analytic.motion import load_motion
 from isorock.validate.core.compare import compare
-from isorock.validate.core.engines import campaign_engines, canonical, get_engine, resolve
+from isorock.validate.core.engines import campaign_engines, canonical, get_engine, resolve, settings_used
 from isorock.validate.core.scenarios import KOBE, Scenario, bench_scenarios
 from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
 
@@ -152,9 +152,6 @@ def speed_goals(engines=None, *, repeats: int = 3, progress=True, labels=None) -
     scorecard's rows): the batch where the engine has a batch path (its simulate_many facet;
     None otherwise, as it would only run them one by one), the step's limit where it has a
     step cost, θ judged where the table has its theta_max_diff tolerance (None otherwise)."""
-    from isorock.analytic import limits, paper_system
-    from isorock.validate.core.engines import get_engine, resolve, settings_used
-    from isorock.validate.core.scenarios import KOBE
     if not KOBE.is_file():
         return []
     if labels is None:

@@ -224,7 +224,6 @@ def run_one(engine_name: str, case: StressCase, scale: float = 1.0) -> dict:
     """One case's measurements (a worker of the executor's Pool runs it), its motion scaled
     by `scale` (a disagreement's check of the engine's own robustness)."""
     try:
-        from isorock.validate.core.engines import get_engine
         engine = get_engine(engine_name)
         sc = case.scenario
         system, motion = sc.system, sc.ground_motion()

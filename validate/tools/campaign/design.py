@@ -38,7 +38,7 @@ from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDUL
                                      BallInCone, FrictionPendulum, PlanarBody, System)
 from isorock.validate.core.cases import Case, _LazyScaled, record_factor
 from isorock.validate.core.chunks import run_cases
-from isorock.validate.core.engines import choose, get_engine
+from isorock.validate.core.engines import ALL_ENGINES, check_carries, choose, get_engine
 from isorock.validate.core.fragility import fit_counts
 from isorock.validate.core.summary import case_inputs, row_of_batch
 from isorock.validate.core.tolerances import has_tolerance, tolerance
@@ -830,7 +830,6 @@ def check_points(d: Design, target: float, max_stroke: float | None, runs: int) 
 def contact_engines(names, *, named=str) -> list[str]:
     """The contact engines a check names, each once, each installed; one line naming the first
     that is not (`named`: the keyword, or the command's option)."""
-    from isorock.validate.core.engines import ALL_ENGINES, choose
     contact = [e for e in ALL_ENGINES if not e.startswith("analytic")]
     names = list(names)
     for name in names:
@@ -849,7 +848,6 @@ def check_engines_carry(statue: Statue, family, hazard: Hazard, engines, tail: f
     the check may pick (the fixed base and every isolator of the family, for the longest
     record): the isolator kind, the engine's own bounds, its steps (core.engines.check_carries,
     as a campaign asks of its grid). It was asked after the whole design, or never."""
-    from isorock.validate.core.engines import check_carries, choose
     systems = [statue.fixed()] + [family.system(statue, x, y) for y in family.y_values for x in family.x_values]
     longest = max(r.end_time for r in hazard.records.values()) + tail
     for name in engines:

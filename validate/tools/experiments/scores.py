@@ -70,7 +70,6 @@ def bootstrap(y, pred, score=None, *, n=BOOTSTRAP, level=LEVEL, seed=SEED) -> di
         draws = dict(accuracy=(tp + tn) / y.size, precision=tp / (tp + fp), recall=tp / (tp + fn),
                      f1=2 * tp / (2 * tp + fp + fn))
         if score is not None:
-            from scipy.stats import rankdata
             ss = score[idx]
             ranks = rankdata(ss, axis=1)
             npos, nneg = yy.sum(1), (~yy).sum(1)
