@@ -340,22 +340,17 @@ def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
     g.add_argument("--motion", default=default, metavar="SPEC",
                    help="a record file, a pulse 'sine:amp=A,freq=F,cycles=N', 'cosine:…', "
                         "'ricker:amp=A,freq=F' (A in g, F in Hz), or 'none' (default: %(default)s)")
-    g.add_argument("--format", choices=("at2", "jma", "csv"),
-                   help="record format: at2 (PEER, g), jma (gal), csv (two columns t, a); "
-                        "guessed from the file when omitted")
+    add_key_option(g, keys.MOTION["format"])
     add_units_option(g)
     g.add_argument("--vertical", metavar="SPEC",
                    help="the vertical component üv (up positive): a record file (its pair, e.g. the UP of a suite) or "
                         "a pulse as --motion takes it; the base carries it rigidly (docs/sliding.md). --scale, --pga "
                         "and --pgv scale both components by the same factor (set by the horizontal one)")
-    g.add_argument("--vertical-units", choices=("m/s2", "g", "gal", "cm/s2"),
+    g.add_argument("--vertical-units", choices=keys.UNITS,
                    help="units of the --vertical record when it does not state them (default: --units)")
     g.add_argument("--scale", type=number, default=1.0, help="factor applied to the motion (default: 1)")
-    g.add_argument("--pga", type=number, metavar="G",
-                   help="scale the motion to this peak ground acceleration, g (instead of --scale)")
-    g.add_argument("--pgv", type=number, metavar="V",
-                   help="scale the motion to this peak ground velocity, m/s (its samples integrated from rest; "
-                        "instead of --scale)")
+    add_key_option(g, keys.MOTION["pga"])
+    add_key_option(g, keys.MOTION["pgv"])
 
 
 def add_transverse_options(p: argparse.ArgumentParser) -> None:
@@ -366,7 +361,7 @@ def add_transverse_options(p: argparse.ArgumentParser) -> None:
                         "file or a pulse as --motion takes it. --scale, --pga and --pgv scale both components by one "
                         "factor (set by --motion's). Runs on MuJoCo (the default engine then), on a fixed base or a "
                         "linear isolator (the same k and c along x and y)")
-    g.add_argument("--transverse-units", choices=("m/s2", "g", "gal", "cm/s2"),
+    g.add_argument("--transverse-units", choices=keys.UNITS,
                    help="units of the --motion-transverse record when it does not state them (default: --units)")
     g.add_argument("--pair", metavar="SUITE:ID",
                    help="a record pair instead of --motion and --motion-transverse: 'fema-p695:FF05' (component a "
@@ -408,10 +403,7 @@ def _with_transverse(a, m):
 
 
 def add_units_option(g) -> None:
-    g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
-                   help="units of a record: required for a two-column (csv) file unless the file states them "
-                        "('# units: g', or a header 't [s], a [g]'); for an AT2 or JMA file, which state "
-                        "theirs, it must agree")
+    add_key_option(g, keys.MOTION["units"])
 
 
 def motion_from_args(a):

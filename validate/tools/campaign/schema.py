@@ -22,6 +22,7 @@ from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, StrictBool,
 
 from isorock.analytic.errors import InputError
 from isorock.validate.core.engines import ALL_ENGINES, check_settings_table
+from isorock.validate.io import keys
 from isorock.validate.io.schema import number as _number
 
 #: the block-to-base mass ratio μ = m/m_b a campaign may ask for: μ = 1e-300 made a
@@ -173,7 +174,7 @@ class Motions(_Strict):
     cycles: Positive | None = None
     suite: Literal["fema-p695"] | None = None
     folder: StrictStr | None = Field(None, min_length=1)
-    units: Literal["m/s2", "g", "gal", "cm/s2"] | None = None
+    units: Literal[keys.UNITS] | None = None
     scale_by: Literal["pga", "pgv"] | None = None
     levels: Grid = None
     limit: StrictInt | None = Field(None, ge=0)
