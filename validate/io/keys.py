@@ -29,10 +29,12 @@ FORMATS = ("at2", "jma", "csv")
 
 @dataclass(frozen=True)
 class Key:
+    """One key: `name` is the System's field, the argparse dest and the TOML key; `kind` one
+    of KINDS (a choice's words in `choices`); `help` the option's text, as --help prints it."""
     name: str
     kind: str
     help: str
-    #: the SI unit of its value, as its help text states it (None: a ratio, a word or a switch)
+    #: the unit of its value, as its help text states it (None: a ratio, a word or a switch)
     unit: str | None = None
     choices: tuple[str, ...] = ()
     #: the option's other spellings (--damping for --damping-ratio)
@@ -42,6 +44,7 @@ class Key:
     required: bool = False
 
     def __post_init__(self):
+        # a misspelt kind would otherwise surface as a KeyError where a surface is made
         assert self.kind in KINDS, self.kind
         assert (self.kind == CHOICE) == bool(self.choices), self.name
 
