@@ -12,14 +12,14 @@ the key as the user wrote it, the value, and what is allowed:
 """
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import Annotated
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, ValidationError, field_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, ValidationError, create_model, field_validator
 
 from isorock.analytic.errors import InputError
-from isorock.analytic.system import ISOLATOR_KINDS
 from isorock.validate.core.engines import check_settings_table
-from isorock.validate.io.schema import NonNegative, Positive, number as _number, read_toml  # noqa: F401 (shared)
+from isorock.validate.io import keys
+from isorock.validate.io.schema import Positive, field_type, read_toml
 
 #: ξ of an isolator this command runs: below 1 (underdamped), as `isorock sweep` takes
 #: it; ξ = 1e6 made the report's search for the uplift scale run for ever (issue 24)
@@ -47,40 +47,18 @@ class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", strict=True, frozen=True)
 
 
-class SystemTable(_Strict):
-    height: Positive | None = None
-    width: Positive | None = None
-    mass: Positive | None = None
-    base_mass: Positive | None = None
-    period: Positive | None = None
-    damping_ratio: NonNegative | None = None
-    stiffness: Positive | None = None
-    dashpot: NonNegative | None = None
-    fixed_base: StrictBool | None = None
-    #: the statue's friction on its base, μ_s and μ_k (docs/sliding.md)
-    statue_friction: Positive | None = None
-    kinetic_friction: Positive | None = None
-    #: a non-linear isolator and its parameters, as --isolator and its options name them
-    #: (docs/isolators.md; which keys each kind takes is checked where the System is made,
-    #: options.system_from_args, so the file and the options are refused in the same words)
-    isolator: Literal[ISOLATOR_KINDS] | None = None
-    radius: Positive | None = None
-    friction_coefficient: NonNegative | None = None
-    friction_max: NonNegative | None = None
-    friction_rate: NonNegative | None = None
-    post_yield_ratio: NonNegative | None = None
-    yield_displacement: Positive | None = None
-    slope: Positive | None = None
-    rolling_resistance: NonNegative | None = None
-    radius_2: Positive | None = None
-    friction_coefficient_2: NonNegative | None = None
+def _underdamped(cls, v):
+    if v is not None and v >= MAX_DAMPING_RATIO:
+        raise ValueError(f"must be below {MAX_DAMPING_RATIO:g} (an underdamped isolator)")
+    return v
 
-    @field_validator("damping_ratio")
-    @classmethod
-    def _underdamped(cls, v):
-        if v is not None and v >= MAX_DAMPING_RATIO:
-            raise ValueError(f"must be below {MAX_DAMPING_RATIO:g} (an underdamped isolator)")
-        return v
+
+#: the [system] table: the system's and the isolator's keys as io/keys.py declares them (the
+#: options' own), each optional, in the declaration's order (the first bad key is the one named)
+SystemTable = create_model(
+    "SystemTable", __base__=_Strict, __module__=__name__,
+    __validators__={"_underdamped": field_validator("damping_ratio")(classmethod(_underdamped))},
+    **{key.name: (field_type(key), None) for key in (*keys.SYSTEM.values(), *keys.ISOLATOR.values())})
 
 
 class StatueTable(_Strict):
@@ -100,12 +78,14 @@ class ConfigFile(_Strict):
     engines: Strings | None = None
     motions: Strings | None = None
     settings: dict[str, dict[str, object]] | None = None
-    units: Literal["m/s2", "g", "gal", "cm/s2"] | None = None
-    format: Literal["at2", "jma", "csv"] | None = None
+    # a record's units and format, and the peak every motion is scaled to: --units, --format,
+    # --pga (g) and --pgv (m/s), as io/keys.MOTION declares them
+    units: field_type(keys.MOTION["units"]) = None
+    format: field_type(keys.MOTION["format"]) = None
     quick: StrictBool | None = None
     duration: Positive | None = None
-    pga: Positive | None = None   # g: every motion scaled to this peak ground acceleration (as --pga)
-    pgv: Positive | None = None   # m/s: … or to this peak ground velocity (as --pgv)
+    pga: field_type(keys.MOTION["pga"]) = None
+    pgv: field_type(keys.MOTION["pgv"]) = None
 
     @field_validator("pgv")
     @classmethod

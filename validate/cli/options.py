@@ -8,6 +8,7 @@ import argparse
 import re
 
 from isorock.analytic.errors import InputError
+from isorock.validate.io import keys
 
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
@@ -78,34 +79,34 @@ def given(value) -> bool:
     return value is not None and not isinstance(value, Default)
 
 
+def add_key_option(g, key: keys.Key, **override) -> None:
+    """The option of a declared key (io/keys.py): its flag and aliases, its dest, its help; a
+    number (`number`: the model's checks say what is allowed), a choice, or a switch.
+    `override`: what one command says differently (its help, its default, required)."""
+    kw = dict(dest=key.name, help=key.help)
+    if key.kind == keys.BOOL:
+        kw["action"] = "store_true"
+    elif key.kind == keys.CHOICE:
+        kw["choices"] = key.choices
+    else:
+        kw["type"] = number
+    if key.metavar is not None:
+        kw["metavar"] = key.metavar
+    g.add_argument(key.flag, *key.aliases, **{**kw, **override})
+
+
 def add_system_options(p: argparse.ArgumentParser, *, required=True, defaults=None) -> None:
     d = {k: Default(v) if isinstance(v, (int, float)) and not isinstance(v, bool) else v
          for k, v in (defaults or {}).items()}
     g = p.add_argument_group("system (SI units)")
-    g.add_argument("--height", type=number, required=required and "height" not in d, default=d.get("height"),
-                   help="block height H = 2h, m")
-    g.add_argument("--width", type=number, required=required and "width" not in d, default=d.get("width"),
-                   help="block width B = 2b, m")
-    g.add_argument("--mass", type=number, required=required and "mass" not in d, default=d.get("mass"),
-                   help="block mass m, kg")
-    g.add_argument("--base-mass", type=number, required=required and "base_mass" not in d,
-                   default=d.get("base_mass"), help="base plate mass m_b, kg (μ = m/m_b)")
-    g.add_argument("--period", type=number, help="isolation period T = 2π√(M/k), s")
-    g.add_argument("--damping-ratio", "--damping", dest="damping_ratio", type=number,
-                   help="isolator damping ratio ξ = c/(2Mω), dimensionless (--damping is an alias)")
-    g.add_argument("--stiffness", type=number, help="isolator stiffness k, N/m (instead of --period)")
-    g.add_argument("--dashpot", type=number, help="isolator dashpot c, N·s/m (with --stiffness)")
-    g.add_argument("--fixed-base", action="store_true", help="fixed (non-isolated) base: μ = 0")
-    g.add_argument("--statue-friction", type=number, metavar="MU",
-                   help="Coulomb friction μ_s between the statue and its base (static): the statue may then slide, "
-                        "rock or slide and rock (docs/sliding.md); omitted: it cannot slip (model.md)")
-    g.add_argument("--kinetic-friction", type=number, metavar="MU_K",
-                   help="μ_k while the statue slips, at most --statue-friction (default: --statue-friction)")
+    for key in keys.SYSTEM.values():
+        # the block's own keys are required unless the command has a default block (`defaults`)
+        block = dict(required=required and key.name not in d, default=d.get(key.name)) if key.required else {}
+        add_key_option(g, key, **block)
 
 
 #: the options of a non-linear isolator (add_isolator_options), argparse dests
-ISOLATOR_KEYS = ("radius", "friction_coefficient", "friction_max", "friction_rate", "post_yield_ratio",
-                 "yield_displacement", "slope", "rolling_resistance", "radius_2", "friction_coefficient_2")
+ISOLATOR_KEYS = tuple(k for k in keys.ISOLATOR if k != "isolator")
 
 
 def add_isolator_options(p: argparse.ArgumentParser, *, in_file: bool = False) -> None:
@@ -114,29 +115,11 @@ def add_isolator_options(p: argparse.ArgumentParser, *, in_file: bool = False) -
     stiffness and dashpot from them (--stiffness/--dashpot or --period/--damping-ratio).
     in_file: a --config file's [system] table may give them too (validate), so --isolator
     has no default of its own here, and an option given wins over the file's key."""
-    from isorock.analytic.system import ISOLATOR_KINDS, LINEAR
+    from isorock.analytic.system import LINEAR
     g = p.add_argument_group("isolator (docs/isolators.md)")
-    g.add_argument("--isolator", choices=ISOLATOR_KINDS, default=None if in_file else LINEAR,
-                   help="the isolator under the base (default: %(default)s; bilinear: --stiffness/--period set its "
-                        "initial stiffness)")
-    g.add_argument("--radius", type=number, help="friction-pendulum: radius of curvature R_fp, m; ball-in-bowl: "
-                                                 "its effective radius R_eff; double-friction-pendulum: R1, surface 1's")
-    g.add_argument("--friction-coefficient", type=number,
-                   help="friction-pendulum: the slider's friction coefficient μ_f (not --friction, the block–base "
-                        "contact's); with --friction-rate, μ_min, its value at rest")
-    g.add_argument("--friction-max", type=number,
-                   help="friction-pendulum: μ_max of a velocity-dependent friction "
-                        "μ_f(v) = μ_max − (μ_max − μ_min)·exp(−a|v|) (with --friction-rate)")
-    g.add_argument("--friction-rate", type=number,
-                   help="friction-pendulum: a, s/m, of that velocity-dependent friction (with --friction-max)")
-    g.add_argument("--post-yield-ratio", type=number, help="bilinear: post-yield over initial stiffness, in [0, 1)")
-    g.add_argument("--yield-displacement", type=number, help="bilinear: yield displacement u_y, m")
-    g.add_argument("--slope", type=number, help="ball-in-cone: the cone's slope tanφ (rise over run), in (0, 1]")
-    g.add_argument("--rolling-resistance", type=number,
-                   help="ball-in-cone, ball-in-bowl: the rolling resistance μ_r (a Coulomb friction μ_r·M·g)")
-    g.add_argument("--radius-2", type=number, help="double-friction-pendulum: R2, surface 2's radius, m")
-    g.add_argument("--friction-coefficient-2", type=number,
-                   help="double-friction-pendulum: μ2, surface 2's friction (--friction-coefficient is μ1)")
+    add_key_option(g, keys.ISOLATOR["isolator"], default=None if in_file else LINEAR)
+    for name in ISOLATOR_KEYS:
+        add_key_option(g, keys.ISOLATOR[name])
 
 
 def _isolator_from_args(a, common):
@@ -308,9 +291,8 @@ def _linear_from_args(a, common, *, default_isolator=None):
 #: The options of a statue's mesh (add_statue_options), as argparse names them.
 STATUE_KEYS = ("statue", "statue_example", "unit", "density", "azimuth")
 
-#: The system options, as argparse names them (and a TOML [system] table does).
-SYSTEM_KEYS = ("height", "width", "mass", "base_mass", "period", "damping_ratio", "stiffness", "dashpot",
-               "fixed_base", "statue_friction", "kinetic_friction", "isolator", *ISOLATOR_KEYS)
+#: The system options, as argparse names them (and a TOML [system] table does): io/keys.py's.
+SYSTEM_KEYS = (*keys.SYSTEM, *keys.ISOLATOR)
 
 
 def system_from_options(a, defaults: dict | None = None, statue: dict | None = None):
@@ -358,22 +340,17 @@ def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:
     g.add_argument("--motion", default=default, metavar="SPEC",
                    help="a record file, a pulse 'sine:amp=A,freq=F,cycles=N', 'cosine:…', "
                         "'ricker:amp=A,freq=F' (A in g, F in Hz), or 'none' (default: %(default)s)")
-    g.add_argument("--format", choices=("at2", "jma", "csv"),
-                   help="record format: at2 (PEER, g), jma (gal), csv (two columns t, a); "
-                        "guessed from the file when omitted")
+    add_key_option(g, keys.MOTION["format"])
     add_units_option(g)
     g.add_argument("--vertical", metavar="SPEC",
                    help="the vertical component üv (up positive): a record file (its pair, e.g. the UP of a suite) or "
                         "a pulse as --motion takes it; the base carries it rigidly (docs/sliding.md). --scale, --pga "
                         "and --pgv scale both components by the same factor (set by the horizontal one)")
-    g.add_argument("--vertical-units", choices=("m/s2", "g", "gal", "cm/s2"),
+    g.add_argument("--vertical-units", choices=keys.UNITS,
                    help="units of the --vertical record when it does not state them (default: --units)")
     g.add_argument("--scale", type=number, default=1.0, help="factor applied to the motion (default: 1)")
-    g.add_argument("--pga", type=number, metavar="G",
-                   help="scale the motion to this peak ground acceleration, g (instead of --scale)")
-    g.add_argument("--pgv", type=number, metavar="V",
-                   help="scale the motion to this peak ground velocity, m/s (its samples integrated from rest; "
-                        "instead of --scale)")
+    add_key_option(g, keys.MOTION["pga"])
+    add_key_option(g, keys.MOTION["pgv"])
 
 
 def add_transverse_options(p: argparse.ArgumentParser) -> None:
@@ -384,7 +361,7 @@ def add_transverse_options(p: argparse.ArgumentParser) -> None:
                         "file or a pulse as --motion takes it. --scale, --pga and --pgv scale both components by one "
                         "factor (set by --motion's). Runs on MuJoCo (the default engine then), on a fixed base or a "
                         "linear isolator (the same k and c along x and y)")
-    g.add_argument("--transverse-units", choices=("m/s2", "g", "gal", "cm/s2"),
+    g.add_argument("--transverse-units", choices=keys.UNITS,
                    help="units of the --motion-transverse record when it does not state them (default: --units)")
     g.add_argument("--pair", metavar="SUITE:ID",
                    help="a record pair instead of --motion and --motion-transverse: 'fema-p695:FF05' (component a "
@@ -426,10 +403,7 @@ def _with_transverse(a, m):
 
 
 def add_units_option(g) -> None:
-    g.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
-                   help="units of a record: required for a two-column (csv) file unless the file states them "
-                        "('# units: g', or a header 't [s], a [g]'); for an AT2 or JMA file, which state "
-                        "theirs, it must agree")
+    add_key_option(g, keys.MOTION["units"])
 
 
 def motion_from_args(a):

@@ -12,12 +12,13 @@ import sys
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from isorock.validate.cli.config_file import check_damping_ratio, read_config
-from isorock.validate.cli.options import (add_engine_options, add_isolator_options, add_statue_options,
+from isorock.validate.cli.options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
                                           add_system_options, add_units_option, check_tables_run, engine_tables, number,
                                           system_from_options)
 from isorock.validate.cli.run import engine_labels
 from isorock.validate.core.engines import ENGINE_NAMES, resolve
 from isorock.validate.core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
+from isorock.validate.io import keys
 from isorock.validate.io.output import check_folder
 from isorock.validate.io.progress import Progress
 from isorock.validate.tools.report_run import build
@@ -45,13 +46,13 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="a record file or a pulse 'sine:amp=A,freq=F,cycles=N', 'cosine:…', "
                         "'ricker:amp=A,freq=F' (A in g, F in Hz); repeat for several "
                         f"(default: {' and '.join(DEFAULT_MOTIONS)})")
-    p.add_argument("--format", choices=("at2", "jma", "csv"),
-                   help="record format; guessed from the file when omitted")
+    # the motion keys a --config file gives too (io/keys.MOTION), said of every motion
+    add_key_option(p, keys.MOTION["format"], help="record format; guessed from the file when omitted")
     add_units_option(p)
-    p.add_argument("--pga", type=number, metavar="G",
-                   help="scale every motion to this peak ground acceleration, g (the ensembles scale from there)")
-    p.add_argument("--pgv", type=number, metavar="V",
-                   help="scale every motion to this peak ground velocity, m/s (instead of --pga)")
+    add_key_option(p, keys.MOTION["pga"], help="scale every motion to this peak ground acceleration, g (the "
+                   "ensembles scale from there)")
+    add_key_option(p, keys.MOTION["pgv"], help="scale every motion to this peak ground velocity, m/s (instead of "
+                   "--pga)")
     p.add_argument("--out", default=DEFAULT_OUT, metavar="DIR",
                    help="report folder: a new or empty folder, or one an earlier isorock run wrote (replaced "
                         "whole when the report is done); any other folder is refused (default: %(default)s)")

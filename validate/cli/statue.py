@@ -15,6 +15,7 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.motion import load_motion
 from isorock.analytic.shape import EXAMPLES, UNITS
 from isorock.validate.cli.options import number
+from isorock.validate.io import keys
 from isorock.validate.io.output import Outputs, to_json
 
 #: directions on the polar figure and in the JSON's table, one per degree
@@ -37,8 +38,8 @@ def add_parser(sub) -> None:
                    "it, scaled in every direction (one every 10°) to PGA levels from 0.05 to 3.2 g (9%% apart), the "
                    "exact model of the statue's two edges along each on a fixed base: the lowest PGA that overturns it "
                    "per direction, and the worst direction")
-    p.add_argument("--format", choices=("at2", "jma", "csv"), help="--motion's record format (guessed when omitted)")
-    p.add_argument("--units", choices=("m/s2", "g", "gal", "cm/s2"),
+    p.add_argument("--format", choices=keys.FORMATS, help="--motion's record format (guessed when omitted)")
+    p.add_argument("--units", choices=keys.UNITS,
                    help="units of a two-column --motion record that does not state them")
     p.add_argument("--json", metavar="FILE", help="every number as JSON ('-': standard output)")
     p.add_argument("--plot", metavar="FILE.png", help="the uplift acceleration over every direction, polar (and, "

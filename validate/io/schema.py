@@ -8,11 +8,12 @@ from __future__ import annotations
 import math
 import re
 import tomllib
-from typing import Annotated
+from typing import Annotated, Literal
 
-from pydantic import BeforeValidator
+from pydantic import BeforeValidator, StrictBool
 
 from isorock.analytic.errors import InputError
+from isorock.validate.io import keys
 
 # --- the file, bounded before it is parsed ---------------------------------------------------
 # tomllib is recursive and trusts its input: 100,000 nested arrays are a RecursionError, a
@@ -129,5 +130,12 @@ Positive = Annotated[float, BeforeValidator(number)]
 NonNegative = Annotated[float, BeforeValidator(lambda v: number(v, positive=False))]
 
 
-__all__ = ["number", "Positive", "NonNegative", "parse_toml", "read_toml", "MAX_TOML_BYTES", "MAX_TOML_DEPTH",
-           "MAX_KEY_PARTS", "MAX_TOML_WORD"]
+def field_type(key: keys.Key):
+    """The type a file's key of this declaration is read as (io/keys.py), absent allowed."""
+    if key.kind == keys.CHOICE:
+        return Literal[key.choices] | None
+    return {keys.POSITIVE: Positive, keys.NON_NEGATIVE: NonNegative, keys.BOOL: StrictBool}[key.kind] | None
+
+
+__all__ = ["number", "Positive", "NonNegative", "field_type", "parse_toml", "read_toml", "MAX_TOML_BYTES",
+           "MAX_TOML_DEPTH", "MAX_KEY_PARTS", "MAX_TOML_WORD"]

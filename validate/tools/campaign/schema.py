@@ -22,7 +22,8 @@ from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, StrictBool,
 
 from isorock.analytic.errors import InputError
 from isorock.validate.core.engines import ALL_ENGINES, check_settings_table
-from isorock.validate.io.schema import number as _number
+from isorock.validate.io import keys
+from isorock.validate.io.schema import NonNegative, Positive, number as _number
 
 #: the block-to-base mass ratio μ = m/m_b a campaign may ask for: μ = 1e-300 made a
 #: base of 1e303 kg whose derived stiffness overflowed (the error named `stiffness =
@@ -83,8 +84,13 @@ def _words(allowed):
 
 Grid = Annotated[Any, _grid()]
 GridZero = Annotated[Any, _grid(zero=True)]
-Positive = Annotated[float, BeforeValidator(_number)]
-NonNegative = Annotated[float, BeforeValidator(lambda v: _number(v, positive=False))]
+
+
+def _axis(name: str):
+    """The check of a grid axis that is a System key (io/keys.py): each of its values as the
+    key's kind, as a --config file's [system] table checks its one value (0 only where the key
+    may be 0)."""
+    return _grid(zero={keys.POSITIVE: False, keys.NON_NEGATIVE: True}[keys.SYSTEM[name].kind])
 
 
 class _Strict(BaseModel):
@@ -117,17 +123,19 @@ class Systems(_Strict):
     slenderness: Grid = None
     alpha: Grid = None
     size: Grid = None
-    height: Grid = None
-    width: Grid = None
-    mass: Grid = None
+    # the axes that are System keys (io/keys.py) are checked as the declaration says; the others
+    # (slenderness, alpha, size, mass_ratio, base) are the campaign's own ways to span a grid
+    height: Annotated[Any, _axis("height")] = None
+    width: Annotated[Any, _axis("width")] = None
+    mass: Annotated[Any, _axis("mass")] = None
     base: Annotated[Any, _words(("fixed", "isolated"))] = None
     mass_ratio: Grid = None
     #: the base's mass, kg: instead of mass_ratio, for one who knows the plinth (μ = mass/base_mass)
-    base_mass: Grid = None
-    period: Grid = None
-    damping_ratio: GridZero = None
+    base_mass: Annotated[Any, _axis("base_mass")] = None
+    period: Annotated[Any, _axis("period")] = None
+    damping_ratio: Annotated[Any, _axis("damping_ratio")] = None
     #: the statue's friction on its base, μ_s (docs/sliding.md): an axis of its own; absent: no slip
-    friction: Grid = None
+    friction: Annotated[Any, _axis("statue_friction")] = None
 
     @model_validator(mode="after")
     def _a_statue_is_its_own_shape(self):
@@ -173,7 +181,7 @@ class Motions(_Strict):
     cycles: Positive | None = None
     suite: Literal["fema-p695"] | None = None
     folder: StrictStr | None = Field(None, min_length=1)
-    units: Literal["m/s2", "g", "gal", "cm/s2"] | None = None
+    units: Literal[keys.UNITS] | None = None
     scale_by: Literal["pga", "pgv"] | None = None
     levels: Grid = None
     limit: StrictInt | None = Field(None, ge=0)
