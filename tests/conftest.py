@@ -83,10 +83,49 @@ def char_device(tmp_path):
 BACKGROUND_BUILD_FROM = 200
 
 
+#: the suite's longest tests (pytest --durations, 8–50 s each on the 2 shared cores), started
+#: first: pytest-xdist hands tests out in order, and one of these drawn last kept one worker
+#: busy for its whole length after the other had finished. Only the order: a name that goes
+#: stale runs in its place. (test_plugins' are left in place: their module's fixture, a pip
+#: install, would be made twice.)
+LONGEST_FIRST = (
+    "test_stress.py::test_quick_edges_and_draws_pass_on_every_grid_engine",
+    "test_experiments_fit.py::test_a_model_fitted_on_some_records_predicts",
+    "test_scorecard.py::test_a_quick_scorecard_of_the_fast_engines",
+    "test_mjx.py::test_a_batch_is_its_runs_alone",
+    "test_sliding_kernel.py::test_kernel_is_the_reference_on_random_sliding_cases",
+    "test_two_components_dart.py::test_turning_the_pair_and_the_statue_by_one_angle",
+    "test_api.py::test_a_report_from_a_script_without_a_main_guard",
+    "test_engines.py::test_free_rocking_protocol[mjx]",
+    "test_scheduler_address.py::test_a_server_that_is_not_dask_is_refused_in_bounded_time",
+    "test_mjx.py::test_mjx_steps_the_scene_as_mujoco_c_does",
+    "test_verdict.py::test_the_rule_recomputed_on_the_papers_record",
+    "test_two_components_drake.py::test_turning_the_pair_and_the_statue_by_one_angle",
+    "test_statue_dart.py::test_the_bust_at_a_quarter_of_its_size",
+    "test_statue_engines.py::test_a_statues_report_names_the_statue",
+    "test_light_install.py::test_validate_runs_without_any_extra",
+    "test_fast.py::test_random_pulses_summary_matches_reference",
+    "test_experiments.py::test_command_runs_bullet_on_a_real_test",
+    "test_campaign.py::test_fragility_comparison_and_agreement_map",
+)
+
+
+def _place(item) -> tuple[int, int]:
+    """Longest first (in LONGEST_FIRST's order), the isolator_kernel tests last: on a fresh
+    checkout without built kernels they would wait for the kernel's background build with this
+    process idle."""
+    if item.get_closest_marker("isolator_kernel") is not None:
+        return (2, 0)
+    node = item.nodeid.rpartition("/")[2]
+    for k, name in enumerate(LONGEST_FIRST):
+        if node.startswith(name):
+            return (0, k)
+    return (1, 0)
+
+
 def pytest_collection_modifyitems(items):
-    """Tests marked isolator_kernel run last (their order otherwise kept): on a fresh
-    checkout they would wait for the kernel's background build with this process idle."""
-    items.sort(key=lambda item: item.get_closest_marker("isolator_kernel") is not None)
+    """The order the tests are handed out in (_place; otherwise the order collected)."""
+    items.sort(key=_place)
 
 
 def _build_in_background(session):
