@@ -30,7 +30,7 @@ from isorock.analytic.errors import InputError, path_value
 def _parser(command: str) -> argparse.ArgumentParser:
     """The command's own parser, raising InputError (the command's one line) instead of
     printing it and exiting."""
-    from isorock.validate.cli.main import build_parser
+    from .main import build_parser
 
     def refuse(status=0, message=None):
         text = (message or "").strip().split(": error: ", 1)[-1].replace(f" (see isorock {command} --help)", "")
@@ -114,7 +114,7 @@ def run(**options):
     fixed_base, motion, units, scale, pga, pgv, duration, theta0_over_alpha, timestep, …),
     without its output options (json, csv, plot: the Trajectory has to_dataframe() and
     to_csv())."""
-    from isorock.validate.cli.run import engine_asked, parse_engines, plan_runs, simulate_plan
+    from .run import engine_asked, parse_engines, plan_runs, simulate_plan
     for key in ("json", "csv", "csv_dt", "plot", "quiet"):
         if key in options:
             raise InputError(f"{key}: an output of the command; isorock.run returns the Trajectory "
@@ -124,7 +124,7 @@ def run(**options):
         plan, _ = plan_runs(a, parse_engines(engine_asked(a)))
     except InputError as e:
         raise InputError(_keywords(str(e))) from None
-    from isorock.validate.cli.options import run_budget
+    from .options import run_budget
     runs, _ = simulate_plan(plan, a, budget=run_budget(a))  # each run within --budget, as the command's
     return next(iter(runs.values())) if len(runs) == 1 else runs
 
@@ -151,11 +151,11 @@ def report(*, out: str | None = None, progress: bool = False, **options) -> Vali
     folder `out` too where one is given (the command's rules: a new or empty folder, or
     an earlier report's). Keywords: `isorock validate`'s options (config, motion (a list),
     engines (a list), quick, duration, pga, pgv, system and engine options)."""
-    from isorock.validate.cli.report import report_config
-    from isorock.validate.io.output import check_folder
-    from isorock.validate.io.progress import Progress
-    from isorock.validate.tools.report_render import metrics, verdict, write_report
-    from isorock.validate.tools.report_run import build
+    from .report import report_config
+    from ..io.output import check_folder
+    from ..io.progress import Progress
+    from ..tools.report_render import metrics, verdict, write_report
+    from ..tools.report_run import build
     if "motion" in options and isinstance(options["motion"], str):
         options["motion"] = [options["motion"]]
     out, progress = _path("out", out), _flag("progress", progress)
@@ -187,8 +187,8 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
     starts a local Dask cluster of N processes, which a script must call under
     `if __name__ == "__main__":` (said in one line where it is not)."""
     from isorock.analytic.limits import check_workers
-    from isorock.validate.tools.campaign.run import run_campaign
-    from isorock.validate.tools.campaign.spec import load_spec
+    from ..tools.campaign.run import run_campaign
+    from ..tools.campaign.spec import load_spec
     spec, out = _path("spec", spec, optional=False), _path("out", out)
     products, progress = _flag("products", products), _flag("progress", progress)
     check_workers("workers", workers, serial=True)
@@ -197,7 +197,7 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
     if workers > 0 or scheduler:
         # in a Dask worker rerunning a script's unguarded top level: stop it quietly; the
         # cluster then fails to start, and the except below says what to do in one line
-        from isorock.validate.core.executor import exit_if_bootstrapping
+        from ..core.executor import exit_if_bootstrapping
         exit_if_bootstrapping()
     try:
         return run_campaign(load_spec(spec), out, workers=workers, scheduler=scheduler, products=products,

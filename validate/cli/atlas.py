@@ -4,13 +4,13 @@ from __future__ import annotations
 import math
 
 from isorock.analytic.errors import InputError
-from isorock.validate.cli.run import engine_labels
-from isorock.validate.core.engines import get_engine
-from isorock.validate.io.output import check_folder
-from isorock.validate.io.progress import Progress
-from isorock.validate.tools import atlas as tool
-from isorock.validate.tools.atlas import (AXES, FULL, QUICK, QUICK_HEIGHTS, QUICK_MASS_RATIOS, QUICK_SLENDERNESS,
-                                          RUN_BUDGET, build, default_engines, user_grid, verdict_lines, write)
+from .run import engine_labels
+from ..core.engines import get_engine
+from ..io.output import check_folder
+from ..io.progress import Progress
+from ..tools import atlas as tool
+from ..tools.atlas import (AXES, FULL, QUICK, QUICK_HEIGHTS, QUICK_MASS_RATIOS, QUICK_SLENDERNESS,
+                           RUN_BUDGET, build, default_engines, user_grid, verdict_lines, write)
 
 DEFAULT_OUT = "isorock-atlas"
 

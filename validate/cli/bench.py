@@ -6,11 +6,11 @@ import io
 import time
 from pathlib import Path
 
-from isorock.validate.cli.run import engine_labels
-from isorock.validate.core.engines import ALL_ENGINES
-from isorock.validate.io.output import check_folder, to_json, write_folder_atomic
-from isorock.validate.tools import bench as tool
-from isorock.validate.tools.bench import COLUMNS, markdown, plot, run_bench
+from .run import engine_labels
+from ..core.engines import ALL_ENGINES
+from ..io.output import check_folder, to_json, write_folder_atomic
+from ..tools import bench as tool
+from ..tools.bench import COLUMNS, markdown, plot, run_bench
 
 
 def _engine_names():

@@ -6,15 +6,15 @@ import sys
 from isorock.analytic.errors import InputError
 from isorock.analytic.limits import check_workers
 from isorock.analytic.system import paper_system
-from isorock.validate.cli.options import (ENGINE_OPTIONS, SYSTEM_KEYS, add_engine_options, add_system_options,
-                                          announce_cost, engine_settings_from_args, system_from_options, whole_number)
-from isorock.validate.core.engines import get_engine
-from isorock.validate.core.executor import default_workers
-from isorock.validate.io.output import Outputs, to_json
-from isorock.validate.io.progress import Progress
-from isorock.validate.tools import calibrate as tool
-from isorock.validate.tools.calibrate import (DEFAULT_TILTS, TILT_RANGE, TUNING, preset_worthy, report_lines,
-                                              result_json, settings_toml)
+from .options import (ENGINE_OPTIONS, SYSTEM_KEYS, add_engine_options, add_system_options,
+                      announce_cost, engine_settings_from_args, system_from_options, whole_number)
+from ..core.engines import get_engine
+from ..core.executor import default_workers
+from ..io.output import Outputs, to_json
+from ..io.progress import Progress
+from ..tools import calibrate as tool
+from ..tools.calibrate import (DEFAULT_TILTS, TILT_RANGE, TUNING, preset_worthy, report_lines,
+                               result_json, settings_toml)
 
 
 def _options(a, keys) -> list[str]:

@@ -17,9 +17,9 @@ from typing import Annotated
 from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, ValidationError, create_model, field_validator
 
 from isorock.analytic.errors import InputError
-from isorock.validate.core.engines import check_settings_table
-from isorock.validate.io import keys
-from isorock.validate.io.schema import Positive, field_type, read_toml
+from ..core.engines import check_settings_table
+from ..io import keys
+from ..io.schema import Positive, field_type, read_toml
 
 #: ξ of an isolator this command runs: below 1 (underdamped), as `isorock sweep` takes
 #: it; ξ = 1e6 made the report's search for the uplift scale run for ever (issue 24)

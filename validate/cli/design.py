@@ -11,17 +11,17 @@ from pathlib import Path
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, System
-from isorock.validate.cli.config_file import read_config
-from isorock.validate.cli.options import ISOLATOR_KEYS, add_statue_options, number, statue_body
-from isorock.validate.io import keys
-from isorock.validate.io.output import Outputs
-from isorock.validate.io.progress import Progress
-from isorock.validate.tools.campaign.design import (DEFAULT_GRIDS, DEFAULT_LEVELS, DIRECTIONS, FAMILIES, Hazard, Statue,
-                                                    check_axis, check_decision, check_engines_carry, check_family_runs,
-                                                    check_points, check_size, check_with, contact_engines, estimate_s,
-                                                    even_grid, run_design, simulated_seconds, worst_direction)
-from isorock.validate.tools.campaign.design_report import write_design
-from isorock.validate.tools.campaign.records import load_suite, suite_spec
+from .config_file import read_config
+from .options import ISOLATOR_KEYS, add_statue_options, number, statue_body
+from ..io import keys
+from ..io.output import Outputs
+from ..io.progress import Progress
+from ..tools.campaign.design import (DEFAULT_GRIDS, DEFAULT_LEVELS, DIRECTIONS, FAMILIES, Hazard, Statue,
+                                     check_axis, check_decision, check_engines_carry, check_family_runs,
+                                     check_points, check_size, check_with, contact_engines, estimate_s,
+                                     even_grid, run_design, simulated_seconds, worst_direction)
+from ..tools.campaign.design_report import write_design
+from ..tools.campaign.records import load_suite, suite_spec
 
 DEFAULT_OUT = "isorock-design"
 
@@ -278,7 +278,7 @@ def check_engines(given) -> list[str]:
 def _check(d, engine: str, picks, hazard, cores: int, quiet: bool) -> dict:
     """The picked runs again with one contact engine (its estimate first, then its progress)."""
     if not quiet:
-        from isorock.validate.core.estimate import estimate_s
+        from ..core.estimate import estimate_s
         sim = sum(hazard.records[name].end_time + d.tail for _, name, _ in picks)
         print(f"isorock design: checking {len(picks)} runs with {engine} ({sim:.0f} simulated s, estimated "
               f"≈ {estimate_s({engine: sim}, workers=cores):.0f} s)", file=sys.stderr, flush=True)

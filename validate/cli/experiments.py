@@ -10,11 +10,11 @@ import csv
 import math
 
 from isorock.analytic.errors import InputError
-from isorock.validate.cli.options import announce_cost
-from isorock.validate.io.output import Outputs, to_json
-from isorock.validate.io.progress import Progress
-from isorock.validate.tools.experiments import data, fitted, misses, processing, study
-from isorock.validate.tools.experiments.figures import error_figure
+from .options import announce_cost
+from ..io.output import Outputs, to_json
+from ..io.progress import Progress
+from ..tools.experiments import data, fitted, misses, processing, study
+from ..tools.experiments.figures import error_figure
 
 DEFAULT_OUT = "isorock-experiments"
 DEFAULT_MODEL = "isorock-model.json"
@@ -118,7 +118,7 @@ def fit_or_predict(a) -> int:
         with Outputs() as outputs:
             out = outputs.file("out", DEFAULT_MODEL if a.out == DEFAULT_OUT else a.out, exclusive=True)
             model = fitted.fit(a.fit, tests=tests, steps=steps, lowpass_hz=a.lowpass_hz)
-            from isorock.validate.io.provenance import provenance
+            from ..io.provenance import provenance
             model["provenance"] = provenance()
             model["fit"]["data"] = str(a.fit)
             out.write_text(to_json(model) + "\n")
@@ -137,7 +137,7 @@ def fit_or_predict(a) -> int:
         out = outputs.folder("out", a.out)
         result = fitted.predict(a.predict, model, tests=tests)
         result["model"] = str(a.model)
-        from isorock.validate.io.provenance import provenance
+        from ..io.provenance import provenance
         result["provenance"] = provenance()
 
         def fill(folder):
@@ -252,7 +252,7 @@ def main(a) -> int:
         result = study.build(a.data, engines=engines, steps=steps, lowpass_hz=a.lowpass_hz, tests=tests,
                              sensitivity=a.sensitivity, contact=contact, overturning_scale=a.overturning_scale,
                              announce=announce)
-        from isorock.validate.io.provenance import provenance
+        from ..io.provenance import provenance
         result["provenance"] = provenance()
         out.write(lambda folder: write(result, folder))
         outputs.commit()

@@ -30,9 +30,9 @@ import sys
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
-from isorock.validate.cli.options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,
-                                          add_motion_options, add_statue_options, add_system_options,
-                                          add_transverse_options, engine_settings_from_args, number, system_from_args)
+from .options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,
+                      add_motion_options, add_statue_options, add_system_options,
+                      add_transverse_options, engine_settings_from_args, number, system_from_args)
 
 #: Subcommands that live in their own modules (each has add_parser(subparsers)), with
 #: their one-line help. Only the module of the command being run is imported, so a
@@ -168,8 +168,8 @@ def cmd_beta(a) -> int:
 
 
 def cmd_scene(a) -> int:
-    from isorock.validate.core.engines import get_engine
-    from isorock.validate.io.output import Outputs
+    from ..core.engines import get_engine
+    from ..io.output import Outputs
     with Outputs() as outputs:
         # a model file is kept and edited: a file of that name is not replaced (as calibrate's
         # preset); standard output, a device or a pipe are written as streams
@@ -193,12 +193,12 @@ def cmd_scene(a) -> int:
 
 
 def _registered():
-    from isorock.validate.core.engines import ALL_ENGINES
+    from ..core.engines import ALL_ENGINES
     return ALL_ENGINES
 
 
 def _engines_with_scenes():
-    from isorock.validate.core.engines import ALL_ENGINES, get_engine
+    from ..core.engines import ALL_ENGINES, get_engine
     out = []
     for name in ALL_ENGINES:
         try:
@@ -259,7 +259,7 @@ def _signalled(name: str, signum: int, error: BaseException | None) -> str:
 def main(argv=None) -> int:
     import signal
 
-    from isorock.validate.io.output import Terminated, signal_received, signals_end_cleanly
+    from ..io.output import Terminated, signal_received, signals_end_cleanly
     argv_given = argv
     argv = sys.argv[1:] if argv is None else list(argv)
     command = next((x for x in argv if not x.startswith("-")), None)

@@ -8,7 +8,7 @@ import argparse
 import re
 
 from isorock.analytic.errors import InputError
-from isorock.validate.io import keys
+from ..io import keys
 
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
@@ -386,7 +386,7 @@ def _with_transverse(a, m):
     if pair is not None:
         if spec is not None or (a.motion or "none").strip().lower() != "none":
             raise InputError(f"--pair = {pair!r}: names both components; leave --motion and --motion-transverse out")
-        from isorock.validate.tools.campaign.records import fema_pair
+        from ..tools.campaign.records import fema_pair
         first, second = fema_pair(pair)
         return first.with_transverse(second)
     if spec is None:
@@ -453,7 +453,7 @@ def announce_cost(command: str, simulated: dict[str, float], budget_s: float | N
     """The cost estimate of a long command on stderr, before its work (core.estimate)."""
     import sys
 
-    from isorock.validate.core.estimate import estimate_line
+    from ..core.estimate import estimate_line
     line = estimate_line(simulated, workers=workers, command=command, budget_s=budget_s, speeds=speeds, basis=basis)
     if line and not quiet:
         print(line, file=sys.stderr, flush=True)
@@ -509,7 +509,7 @@ def setting_assignment(text: str) -> tuple[str, str, object]:
     (core.engines.check_settings_table), as a --config file's tables are."""
     import tomllib
 
-    from isorock.validate.core.engines import check_settings_table
+    from ..core.engines import check_settings_table
     target, eq, raw = text.partition("=")
     table, dot, key = target.strip().rpartition(".")
     table, key = (table if dot else "*"), key.strip()
@@ -549,7 +549,7 @@ def check_tables_run(tables: dict, labels) -> None:
 def engine_settings_from_args(engine, a):
     """The engine's default settings with the engine options given (core.engines.choose,
     strict: an option the engine does not have is named); a bad value is named as its option."""
-    from isorock.validate.core.engines import choose, table_overrides
+    from ..core.engines import choose, table_overrides
     tables = engine_tables(a)
     check_tables_run(tables, [engine.name])
     try:
@@ -562,7 +562,7 @@ def settings_dict(settings, system=None, duration=None):
     """Every setting the run used, with those derived from them (e.g. PyBullet's control
     step, and the step and contact that follow the system): a timestep given alone brings
     other settings along, and the JSON says which (core.engines.describe_settings)."""
-    from isorock.validate.core.engines import describe_settings
+    from ..core.engines import describe_settings
     return describe_settings(settings, system, duration)
 
 

@@ -8,8 +8,8 @@ import sys
 import textwrap
 
 from isorock.analytic.errors import InputError
-from isorock.validate.core.engines import ALIASES, DISTINCT_ENGINES, get_engine, presets_of
-from isorock.validate.io.output import to_json
+from ..core.engines import ALIASES, DISTINCT_ENGINES, get_engine, presets_of
+from ..io.output import to_json
 
 
 def add_parser(sub) -> None:

@@ -11,17 +11,17 @@ import sys
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
-from isorock.validate.cli.config_file import check_damping_ratio, read_config
-from isorock.validate.cli.options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
-                                          add_system_options, add_units_option, check_tables_run, engine_tables, number,
-                                          system_from_options)
-from isorock.validate.cli.run import engine_labels
-from isorock.validate.core.engines import ENGINE_NAMES, resolve
-from isorock.validate.core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
-from isorock.validate.io import keys
-from isorock.validate.io.output import check_folder
-from isorock.validate.io.progress import Progress
-from isorock.validate.tools.report_run import build
+from .config_file import check_damping_ratio, read_config
+from .options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
+                      add_system_options, add_units_option, check_tables_run, engine_tables, number,
+                      system_from_options)
+from .run import engine_labels
+from ..core.engines import ENGINE_NAMES, resolve
+from ..core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
+from ..io import keys
+from ..io.output import check_folder
+from ..io.progress import Progress
+from ..tools.report_run import build
 
 DEFAULT_OUT = "isorock-report"
 #: ensemble bounds: steps each run every engine on every motion; a factor of 100 turns
@@ -105,7 +105,7 @@ def _read_config(path) -> dict:
 def report_config(args):
     """The validate options `args` (the parser's namespace) and the --config file they name,
     checked and merged into the report's ReportConfig, before any run."""
-    from isorock.validate.tools.report_run import DEFAULT_MOTIONS, ReportConfig
+    from ..tools.report_run import DEFAULT_MOTIONS, ReportConfig
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
     overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
@@ -136,7 +136,7 @@ def report_config(args):
 
 
 def run(args) -> int:
-    from isorock.validate.tools.report_render import verdict, write_report
+    from ..tools.report_render import verdict, write_report
     check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     report = report_config(args)
     bars = []  # made by the report once it knows how many runs it makes

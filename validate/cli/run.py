@@ -23,15 +23,15 @@ import numpy as np
 from isorock.analytic.errors import InputError
 from isorock.analytic.limits import BudgetExceeded, check_resample
 from isorock.analytic.system import LINEAR
-from isorock.validate.cli.options import (announce_cost, budget_stopped, check_tables_run, engine_tables,
-                                          motion_from_args, run_budget, settings_dict, statue_azimuth, statue_body,
-                                          system_from_args, transverse_asked)
-from isorock.validate.core.biaxial import box_body
-from isorock.validate.core.compare import compare
-from isorock.validate.core.engines import choose, get_engine, resolve, table_overrides
-from isorock.validate.core.plan import EngineRun, make_plan, run_plan
-from isorock.validate.io.naming import cell
-from isorock.validate.io.output import Outputs, to_json
+from .options import (announce_cost, budget_stopped, check_tables_run, engine_tables,
+                      motion_from_args, run_budget, settings_dict, statue_azimuth, statue_body,
+                      system_from_args, transverse_asked)
+from ..core.biaxial import box_body
+from ..core.compare import compare
+from ..core.engines import choose, get_engine, resolve, table_overrides
+from ..core.plan import EngineRun, make_plan, run_plan
+from ..io.naming import cell
+from ..io.output import Outputs, to_json
 
 
 def parse_engines(text: str) -> list[tuple[str, str | None]]:
@@ -236,10 +236,10 @@ def cmd_run(a) -> int:
         comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
         two = None
         if shaken is not None:  # two components: the 3-D measures, the planar runs beside (issue 36)
-            from isorock.validate.core.biaxial import two_components
+            from ..core.biaxial import two_components
             two = two_components(runs, system, motion, *shaken, duration)
         if several:
-            from isorock.validate.io.naming import describe_motion
+            from ..io.naming import describe_motion
             report = {
                 "reference": ref_label, "system": system.describe(),
                 "motion": dict(motion.describe(), description=describe_motion(motion)),
@@ -254,18 +254,18 @@ def cmd_run(a) -> int:
         if two is not None:  # first: its verdict is the run's (the fields above are the planar projection on x)
             report = dict(two_components=two[ref_label] if not several else two, **report)
         if json_out:
-            from isorock.validate.io.provenance import provenance
+            from ..io.provenance import provenance
             json_out.write_text(to_json(dict(report, provenance=provenance(record_paths=[a.motion]))) + "\n")
         for label, out in csv_outs.items():
             tr = runs[label]
             out.write((tr.resample(a.csv_dt) if a.csv_dt else tr).to_csv)
         if plot_out:
-            from isorock.validate.io.run_plot import plot_runs
+            from ..io.run_plot import plot_runs
             plot_out.write(lambda tmp: plot_runs(runs, motion, tmp, format=plot_kind))
         outputs.commit()
     if not a.quiet and "-" not in (a.json, a.csv):
         if two is not None:
-            from isorock.validate.core.biaxial import render
+            from ..core.biaxial import render
             for label, one in two.items():
                 print(render(one, label))
         if several:

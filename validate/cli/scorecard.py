@@ -31,19 +31,19 @@ from shlex import quote
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.limits import check_workers
-from isorock.validate.cli.atlas import expand
-from isorock.validate.core.engines import DISTINCT_ENGINES, engine_label, get_engine, presets_of
-from isorock.validate.core.estimate import SPEEDS
-from isorock.validate.core.scenarios import KOBE
-from isorock.validate.io.naming import markdown_cell
-from isorock.validate.io.output import Outputs, to_json
-from isorock.validate.io.progress import Progress
-from isorock.validate.io.provenance import provenance
-from isorock.validate.tools.atlas import RUN_BUDGET, Grid, build as atlas_build, distinct, reference
-from isorock.validate.tools.bench import BATCH_RUNS, BATCH_THREADS, speed_goals
-from isorock.validate.tools.experiments import data, processing, study
-from isorock.validate.tools.report_run import ReportConfig, build as report_build
-from isorock.validate.tools.stress import NOT_CARRIED, NOT_FAILED, engine_agreement, run_stress as stress_run
+from .atlas import expand
+from ..core.engines import DISTINCT_ENGINES, engine_label, get_engine, presets_of
+from ..core.estimate import SPEEDS
+from ..core.scenarios import KOBE
+from ..io.naming import markdown_cell
+from ..io.output import Outputs, to_json
+from ..io.progress import Progress
+from ..io.provenance import provenance
+from ..tools.atlas import RUN_BUDGET, Grid, build as atlas_build, distinct, reference
+from ..tools.bench import BATCH_RUNS, BATCH_THREADS, speed_goals
+from ..tools.experiments import data, processing, study
+from ..tools.report_run import ReportConfig, build as report_build
+from ..tools.stress import NOT_CARRIED, NOT_FAILED, engine_agreement, run_stress as stress_run
 
 DEFAULT_OUT = "docs/engines.md"
 #: s: what the whole command may take by default (CI's suite must stay under ~5 min on 2 cores:
@@ -312,8 +312,8 @@ def per_engine_estimate(measure: str, name: str, effort: Effort) -> tuple[float,
         sim = VALIDATE_SIMULATED_S[None if effort.validate_motions is None else len(effort.validate_motions)]
         return OVERHEAD["validate"] * sim / speed * (0 if name == "analytic" else 1) + 1.0, ""
     if measure == "stress":
-        from isorock.validate.core.engines import ENGINE_NAMES
-        from isorock.validate.tools.stress import drawn_cases, edge_cases
+        from ..core.engines import ENGINE_NAMES
+        from ..tools.stress import drawn_cases, edge_cases
         cases = edge_cases(True) + (drawn_cases(effort.stress_drawn) if name in ENGINE_NAMES else [])
         recheck = 0.0 if name == "analytic" else STRESS_RECHECK_S
         return OVERHEAD["stress"] * sum(c.scenario.duration for c in cases) / speed + recheck, ""
@@ -474,7 +474,7 @@ def run_atlas(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 
 def run_validate(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from isorock.validate.tools.report_render import engine_verdicts
+    from ..tools.report_render import engine_verdicts
     names = [label.partition(":")[0] for label in labels]
     engines = ("analytic",) + tuple(n for n in names if n != "analytic")
     kwargs = {} if effort.validate_motions is None else {"motions": effort.validate_motions}

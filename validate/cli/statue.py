@@ -14,9 +14,9 @@ from isorock.analytic import shape
 from isorock.analytic.errors import InputError
 from isorock.analytic.motion import load_motion
 from isorock.analytic.shape import EXAMPLES, UNITS
-from isorock.validate.cli.options import number
-from isorock.validate.io import keys
-from isorock.validate.io.output import Outputs, to_json
+from .options import number
+from ..io import keys
+from ..io.output import Outputs, to_json
 
 #: directions on the polar figure and in the JSON's table, one per degree
 N_AZIMUTHS = 360

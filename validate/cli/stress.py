@@ -8,12 +8,12 @@ from pathlib import Path
 
 from isorock.analytic.errors import InputError
 from isorock.analytic.limits import check_workers
-from isorock.validate.core.engines import get_engine
-from isorock.validate.io.output import check_folder, to_json, write_folder_atomic
-from isorock.validate.io.progress import Progress
-from isorock.validate.tools import stress as tool
-from isorock.validate.tools.stress import (COLUMNS, DRAWN_FULL, DRAWN_QUICK, failed, failures, markdown, run_stress,
-                                           stress_verdict)
+from ..core.engines import get_engine
+from ..io.output import check_folder, to_json, write_folder_atomic
+from ..io.progress import Progress
+from ..tools import stress as tool
+from ..tools.stress import (COLUMNS, DRAWN_FULL, DRAWN_QUICK, failed, failures, markdown, run_stress,
+                            stress_verdict)
 
 
 def add_parser(sub) -> None:

@@ -8,9 +8,9 @@ import sys
 from pathlib import Path
 
 from isorock.analytic.limits import available_cores
-from isorock.validate.io.output import Terminated, signal_received
-from isorock.validate.tools.campaign.run import run_campaign
-from isorock.validate.tools.campaign.spec import load_spec
+from ..io.output import Terminated, signal_received
+from ..tools.campaign.run import run_campaign
+from ..tools.campaign.spec import load_spec
 
 
 def add_parser(subparsers) -> None:

@@ -9,13 +9,13 @@ from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_input
 from isorock.analytic.errors import InputError
 from isorock.analytic.limits import BudgetExceeded
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
-from isorock.validate.cli.options import (add_budget_option, add_engine_options, add_motion_options, add_system_options,
-                                          announce_cost, budget_stopped, motion_from_args, run_budget, system_from_args)
-from isorock.validate.cli.run import load_engines, parse_engines
-from isorock.validate.core.engines import settings_used
-from isorock.validate.tools import view as tool
-from isorock.validate.tools.view import (DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_BACKENDS, PAPER, _size,
-                                         replay_in_viewer, write_gif)
+from .options import (add_budget_option, add_engine_options, add_motion_options, add_system_options,
+                      announce_cost, budget_stopped, motion_from_args, run_budget, system_from_args)
+from .run import load_engines, parse_engines
+from ..core.engines import settings_used
+from ..tools import view as tool
+from ..tools.view import (DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_BACKENDS, PAPER, _size,
+                          replay_in_viewer, write_gif)
 
 
 def add_parser(sub) -> None:

@@ -136,7 +136,7 @@ def planar_systems(system, body: shape.RestingBody | None, azimuth: float):
 def planar_runs(system, motion, body: shape.RestingBody | None, azimuth: float, *, duration: float,
                 engine: str = "analytic") -> dict:
     """The exact model along each component alone: {'x': Trajectory, 'y': Trajectory}."""
-    from isorock.validate.core.engines import get_engine
+    from .engines import get_engine
     exact = get_engine(engine)
     along_x, along_y = planar_systems(system, body, azimuth)
     return {"x": exact.simulate(along_x, motion.with_transverse(None), duration=duration),

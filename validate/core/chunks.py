@@ -41,7 +41,7 @@ CONTACT_CHUNK = 4
 def runs_as_batch(engine: str) -> bool:
     """Does the engine run many cases in one call (its capabilities say so: the compiled
     analytic kernel's `simulate_batch`)? The registry answers; no engine is named here."""
-    from isorock.validate.core.engines import get_engine
+    from .engines import get_engine
     return get_engine(engine).capabilities.batch
 
 
@@ -128,7 +128,7 @@ def _run_contact(task: Chunk, threads: int | None) -> list[dict]:
     """A contact engine's chunk: its batch path (MuJoCo's: one scene per system, `threads`
     runs side by side) or one run after another; each row what the run alone gives.
     Impacts are counted, not mapped to effective β: no column reads it."""
-    from isorock.validate.core.engines import get_engine
+    from .engines import get_engine
     engine = get_engine(task.setting.engine)
     start = time.perf_counter()
     results = engine.simulate_many([(c.system, motion_of(c), c.duration, c.theta0) for c in task.cases],
@@ -204,7 +204,7 @@ def ready_kernel() -> None:
     --quick` timed out on every analytic case). One tiny run here builds it once, said on
     stderr; with the cache in place it costs milliseconds."""
     from isorock.analytic.system import paper_system
-    from isorock.validate.core.engines import get_engine
+    from .engines import get_engine
     try:
         engine = get_engine("analytic")
     except ImportError:  # no compiled kernel here (numba missing): nothing to ready

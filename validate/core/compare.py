@@ -16,8 +16,8 @@ from scipy.integrate import quad
 
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import Trajectory
-from isorock.validate.core.measure import REST_FRACTION, beta_errors, mode_sequence, slide_onset
-from isorock.validate.core.tolerances import limit
+from .measure import REST_FRACTION, beta_errors, mode_sequence, slide_onset
+from .tolerances import limit
 
 #: Histories have parted once |Δθ| exceeds this fraction of α (the tolerance table's, with its reason).
 AGREEMENT_FRACTION = limit("horizon_parting")

@@ -194,7 +194,7 @@ class Engine:
 
         from isorock.analytic.overturning import PAST_ALPHA
         from isorock.analytic.trajectory import RawHistory
-        from isorock.validate.core import measure
+        from . import measure
         if not checked:
             self.check_run(system, motion)
         if settings is None:
@@ -234,7 +234,7 @@ class Engine:
         together, each exactly as alone; any other runs them one by one."""
         from isorock.analytic.motion import GroundMotion
         from isorock.analytic.overturning import PAST_ALPHA
-        from isorock.validate.core import measure
+        from . import measure
         runs = list(runs)
         if budget_s is not None:
             from isorock.analytic.limits import check_budget

@@ -12,9 +12,9 @@ from __future__ import annotations
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import Trajectory
-from isorock.validate.core.compare import agreement, horizon_units
-from isorock.validate.core.engines import REFERENCE, get_engine
-from isorock.validate.core.tolerances import limit
+from .compare import agreement, horizon_units
+from .engines import REFERENCE, get_engine
+from .tolerances import limit
 
 #: Relative PGA perturbation used to tell whether a reference history is robust (the table's).
 SENSITIVITY_SCALE = limit("robust_perturbation")

@@ -63,7 +63,7 @@ import math
 from dataclasses import asdict, dataclass
 
 from isorock.analytic.errors import InputError
-from isorock.validate.core.verdict import AGREES, DISAGREES
+from .verdict import AGREES, DISAGREES
 
 
 @dataclass(frozen=True)
@@ -519,7 +519,7 @@ def _plugin_tolerance(engine: str, metric: str) -> Tolerance | None:
     """An engine a package registers (core.engines.PLUGINS) brings its own limits, each with its
     reason (EngineSpec.tolerances: metric → Tolerance): the table's rows for it, read where the
     table has none of its own."""
-    from isorock.validate.core.engines import PLUGINS, get_engine
+    from .engines import PLUGINS, get_engine
     if engine not in PLUGINS:
         return None
     try:

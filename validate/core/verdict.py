@@ -26,7 +26,7 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from isorock.validate.core.fragility import fit_counts
+from .fragility import fit_counts
 
 AGREES, DISAGREES, INCONCLUSIVE = "agrees", "disagrees", "inconclusive"
 #: resamples per interval (as the campaigns' fragility bands): each is a maximum-likelihood

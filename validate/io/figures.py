@@ -15,8 +15,8 @@ from matplotlib.figure import Figure
 
 from isorock.analytic.coefficients import beta, beta2, beta_housner
 from isorock.analytic.system import STANDARD_GRAVITY
-from isorock.validate.core.compare import COMPARE_DT
-from isorock.validate.core.engines import ALL_ENGINES, REFERENCE, engine_label
+from ..core.compare import COMPARE_DT
+from ..core.engines import ALL_ENGINES, REFERENCE, engine_label
 
 #: The reference is drawn black and solid; the other engines take these in registry order.
 PALETTE = (("tab:blue", "--", "s"), ("tab:red", ":", "^"), ("tab:green", "-.", "v"), ("tab:purple", "--", "D"),

@@ -11,9 +11,9 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from isorock.analytic.system import STANDARD_GRAVITY
-from isorock.validate.core.compare import COMPARE_DT
-from isorock.validate.io.figures import DPI, style
-from isorock.validate.io.naming import describe_motion, describe_system
+from ..core.compare import COMPARE_DT
+from .figures import DPI, style
+from .naming import describe_motion, describe_system
 
 
 def _style(name: str, index: int) -> dict:

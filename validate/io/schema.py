@@ -13,7 +13,7 @@ from typing import Annotated, Literal
 from pydantic import BeforeValidator, StrictBool
 
 from isorock.analytic.errors import InputError
-from isorock.validate.io import keys
+from . import keys
 
 # --- the file, bounded before it is parsed ---------------------------------------------------
 # tomllib is recursive and trusts its input: 100,000 nested arrays are a RecursionError, a

@@ -35,21 +35,21 @@ from isorock.analytic.coefficients import beta
 from isorock.analytic.errors import InputError
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, System, paper_system
-from isorock.validate.core.cases import block_system
-from isorock.validate.core.chunks import worker_pool
-from isorock.validate.core.compare import exact_first_impact_time
-from isorock.validate.core.engines import REFERENCE, campaign_engines, get_engine, resolve
-from isorock.validate.core.executor import default_workers
-from isorock.validate.core.measure import beta_errors
-from isorock.validate.core.runner import Task
-from isorock.validate.core.scenarios import FREE_THETA0_OVER_ALPHA
-from isorock.validate.core.summary import row_of_trajectory
-from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
-from isorock.validate.core.verdict import rate_verdict
-from isorock.validate.io.output import to_json, write_folder_atomic
-from isorock.validate.io.progress import bar_of
-from isorock.validate.io.provenance import provenance
-from isorock.validate.tools.report_run import beta_impacts
+from ..core.cases import block_system
+from ..core.chunks import worker_pool
+from ..core.compare import exact_first_impact_time
+from ..core.engines import REFERENCE, campaign_engines, get_engine, resolve
+from ..core.executor import default_workers
+from ..core.measure import beta_errors
+from ..core.runner import Task
+from ..core.scenarios import FREE_THETA0_OVER_ALPHA
+from ..core.summary import row_of_trajectory
+from ..core.tolerances import has_tolerance, limit, tolerance
+from ..core.verdict import rate_verdict
+from ..io.output import to_json, write_folder_atomic
+from ..io.progress import bar_of
+from ..io.provenance import provenance
+from .report_run import beta_impacts
 
 #: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's
 #: (λ 1.5–10, μ 0 and 0.25–4, H 0.2–5 m) with issue 19's sizes from 0.1 to 10 m.
@@ -769,7 +769,7 @@ def file_stem(label: str) -> str:
 def write(atlas: dict, out: str, *, quick: bool) -> None:
     """The whole folder, or nothing (validate.io.output)."""
 
-    from isorock.validate.tools.atlas_figures import error_map, pareto
+    from .atlas_figures import error_map, pareto
 
     def fill(tmp):
         (tmp / "atlas.md").write_text(markdown(atlas, quick=quick), encoding="utf-8")

@@ -16,7 +16,7 @@ from matplotlib.colors import SymLogNorm
 from matplotlib.figure import Figure
 from matplotlib.text import Text
 
-from isorock.validate.io.figures import _save, style
+from ..io.figures import _save, style
 
 #: Both maps share one colour scale, in %, so that two presets' maps compare by eye: a
 #: diverging map, white at 0, linear within ±LINEAR_PCT, saturating at ±SATURATE_PCT

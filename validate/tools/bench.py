@@ -24,10 +24,10 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.fast import compare_on_grid, simulate_fast
 from isorock.analytic.hybrid import AnalyticSettings, simulate as reference_simulate
 from isorock.analytic.motion import load_motion
-from isorock.validate.core.compare import compare
-from isorock.validate.core.engines import campaign_engines, canonical, get_engine, resolve, settings_used
-from isorock.validate.core.scenarios import KOBE, Scenario, bench_scenarios
-from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
+from ..core.compare import compare
+from ..core.engines import campaign_engines, canonical, get_engine, resolve, settings_used
+from ..core.scenarios import KOBE, Scenario, bench_scenarios
+from ..core.tolerances import has_tolerance, limit, tolerance
 
 #: the reference path's settings the bench measures errors against (tighter than the
 #: engine's defaults); core.engines.REFERENCE is the reference engine's name

@@ -41,13 +41,13 @@ from isorock.analytic import limits
 from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
-from isorock.validate.core.cases import Case as _Case
-from isorock.validate.core.chunks import worker_pool
-from isorock.validate.core.engines import get_engine
-from isorock.validate.core.executor import Executor
-from isorock.validate.core.measure import beta_errors
-from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
-from isorock.validate.io.progress import bar_of
+from ..core.cases import Case as _Case
+from ..core.chunks import worker_pool
+from ..core.engines import get_engine
+from ..core.executor import Executor
+from ..core.measure import beta_errors
+from ..core.tolerances import has_tolerance, limit, tolerance
+from ..io.progress import bar_of
 
 #: Free-rocking tilts, fractions of α: `tilts` fitted tilts spread evenly over this range,
 #: held out on the `tilts − 1` halfway between them (the same regime, never the same runs).

@@ -13,9 +13,9 @@ import numpy as np
 
 from isorock.analytic.errors import InputError, require
 from isorock.analytic.system import System
-from isorock.validate.core.cases import Case
-from isorock.validate.core.chunks import run_cases
-from isorock.validate.core.engines import REFERENCE, choose as engine_setting
+from ..core.cases import Case
+from ..core.chunks import run_cases
+from ..core.engines import REFERENCE, choose as engine_setting
 
 DEFAULT_SCALES = (0.25, 1.5, 21)  # first, last factor of the motion's PGA, number of steps
 #: θmax/α above which a case counts as rocking (model.md's impact threshold).

@@ -5,7 +5,7 @@ numerical example"). Only the report reads it.
 from __future__ import annotations
 
 from isorock.analytic.motion import GroundMotion
-from isorock.validate.core.engines import REFERENCE
+from ..core.engines import REFERENCE
 
 #: The paper's θmax/α for the Kobe JMA N-S record (Figure 5).
 PAPER_FIGURE5 = {"fixed base": 0.95, "isolated base": 0.64}

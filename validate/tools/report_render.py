@@ -16,16 +16,16 @@ from dataclasses import fields
 from pathlib import Path
 
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD
-from isorock.validate.core.engines import REFERENCE, describe_settings
-from isorock.validate.core.measure import mode_sequence, slide_onset
-from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
-from isorock.validate.core.verdict import TOO_FEW_CASES
-from isorock.validate.io import figures
-from isorock.validate.io.naming import describe_motion, markdown_cell
-from isorock.validate.io.output import write_folder_atomic, write_json
-from isorock.validate.io.provenance import provenance
-from isorock.validate.tools.paper import PAPER_FIGURE5, is_kobe, paper_blocks
-from isorock.validate.tools.report_run import OWN, PAPER_SLENDERNESS, Results
+from ..core.engines import REFERENCE, describe_settings
+from ..core.measure import mode_sequence, slide_onset
+from ..core.tolerances import has_tolerance, limit, tolerance
+from ..core.verdict import TOO_FEW_CASES
+from ..io import figures
+from ..io.naming import describe_motion, markdown_cell
+from ..io.output import write_folder_atomic, write_json
+from ..io.provenance import provenance
+from .paper import PAPER_FIGURE5, is_kobe, paper_blocks
+from .report_run import OWN, PAPER_SLENDERNESS, Results
 
 #: The families of checks the scorecard shows, in order: (title, metrics).
 FAMILIES = (

@@ -30,22 +30,22 @@ from isorock.analytic.limits import check_settings
 from isorock.analytic.motion import GroundMotion, load_motion
 from isorock.analytic.system import System, paper_system
 from isorock.analytic.trajectory import SLIDING_FRACTION
-from isorock.validate.core.chunks import worker_pool
-from isorock.validate.core.compare import Comparison, compare, exact_first_impact_time, horizon_units
-from isorock.validate.core.probes import own_horizon, reference_sensitivity
-from isorock.validate.core.engines import (ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine, resolve, runs_here,
-                                           settings_used, table_overrides)
-from isorock.validate.core.executor import Executor, default_workers
-from isorock.validate.core.measure import beta_errors, impact_closed_forms
-from isorock.validate.core.runner import Task, run_tasks
-from isorock.validate.core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
-                                             free_rocking_grid, paper_bases)
-from isorock.validate.core.tolerances import (ROBUST_SPREAD, Check, check, has_tolerance, judged, limit, not_exercised,
-                                              skipped, tolerance, unjudged)
-from isorock.validate.core.verdict import overturn_verdicts, quantile_verdict
-from isorock.validate.io.naming import describe_motion
-from isorock.validate.io.progress import bar_of
-from isorock.validate.tools.ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
+from ..core.chunks import worker_pool
+from ..core.compare import Comparison, compare, exact_first_impact_time, horizon_units
+from ..core.probes import own_horizon, reference_sensitivity
+from ..core.engines import (ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine, resolve, runs_here,
+                            settings_used, table_overrides)
+from ..core.executor import Executor, default_workers
+from ..core.measure import beta_errors, impact_closed_forms
+from ..core.runner import Task, run_tasks
+from ..core.scenarios import (FREE_THETA0_OVER_ALPHA, RECORD_WINDOW, REPORT_MOTIONS, Scenario,
+                              free_rocking_grid, paper_bases)
+from ..core.tolerances import (ROBUST_SPREAD, Check, check, has_tolerance, judged, limit, not_exercised,
+                               skipped, tolerance, unjudged)
+from ..core.verdict import overturn_verdicts, quantile_verdict
+from ..io.naming import describe_motion
+from ..io.progress import bar_of
+from .ensemble import ROCKING, Ensemble, run_ensembles, scale_factors
 
 #: Built-in pulses of the default report, chosen with the analytic model so that the
 #: paper's block rocks on both bases without overturning, and (the sine) robustly:
@@ -385,7 +385,7 @@ def build(config: ReportConfig, *, progress=None) -> Results:
     for t in tasks:  # the work bounds before any run (the steps each run will take): in a worker they were a traceback
         check_settings(settings_used(settings[t.engine], t.system, t.duration), t.duration)
     if progress is not None:  # a long report says so before it starts (core.estimate)
-        from isorock.validate.core.estimate import estimate_line
+        from ..core.estimate import estimate_line
         simulated = {name: sum(t.duration for t in tasks if t.engine == name)
                      + sum(len(s) * sc.duration for s, sc in zip(scales, histories)) for name in engines}
         line = estimate_line(simulated, workers=config.workers or 2)

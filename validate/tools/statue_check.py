@@ -26,10 +26,10 @@ from isorock.analytic import shape
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.errors import require
 from isorock.analytic.system import FrictionPendulum, PlanarBody, System
-from isorock.validate.core.probes import reference_sensitivity
-from isorock.validate.core.engines import REFERENCE, get_engine
-from isorock.validate.core.measure import beta_errors
-from isorock.validate.core.tolerances import ROBUST_SPREAD
+from ..core.probes import reference_sensitivity
+from ..core.engines import REFERENCE, get_engine
+from ..core.measure import beta_errors
+from ..core.tolerances import ROBUST_SPREAD
 
 #: the example statues' stone, kg/m³ (granite and marble: 2,600–2,800)
 DENSITY = 2600.0

@@ -40,15 +40,15 @@ import numpy as np
 from isorock.analytic.coefficients import no_bounce_slenderness
 from isorock.analytic.errors import InputError
 from isorock.analytic.kinematics import LYING
-from isorock.validate.core.cases import with_vertical_spec
-from isorock.validate.core.chunks import worker_pool
-from isorock.validate.core.engines import ENGINE_NAMES, REFERENCE, campaign_engines, get_engine
-from isorock.validate.core.scenarios import Scenario, block
-from isorock.validate.core.summary import row_of_trajectory
-from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
-from isorock.validate.core.verdict import DISAGREES, rate_verdict
-from isorock.validate.io.naming import cell
-from isorock.validate.io.progress import bar_of
+from ..core.cases import with_vertical_spec
+from ..core.chunks import worker_pool
+from ..core.engines import ENGINE_NAMES, REFERENCE, campaign_engines, get_engine
+from ..core.scenarios import Scenario, block
+from ..core.summary import row_of_trajectory
+from ..core.tolerances import has_tolerance, limit, tolerance
+from ..core.verdict import DISAGREES, rate_verdict
+from ..io.naming import cell
+from ..io.progress import bar_of
 
 #: The stress grid's limits, with their reasons, are in the one tolerance table.
 ENERGY_TOLERANCE = limit("stress_energy_residual")

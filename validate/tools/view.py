@@ -26,9 +26,9 @@ from PIL import Image, ImageDraw
 from isorock.analytic.engine_protocol import declare_facet
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK
-from isorock.validate.core.engines import get_engine
-from isorock.validate.core.scenarios import ROBUST_SINE
-from isorock.validate.io.output import write_atomic
+from ..core.engines import get_engine
+from ..core.scenarios import ROBUST_SINE
+from ..io.output import write_atomic
 
 #: Tried in this order when MUJOCO_GL is not set.
 OFFSCREEN_BACKENDS = ("egl", "osmesa")

@@ -36,14 +36,14 @@ from isorock.analytic.rest_scales import rest_phases
 from isorock.analytic.shape import along_directions, weakest_direction
 from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, BallInBowl,
                                      BallInCone, FrictionPendulum, PlanarBody, System)
-from isorock.validate.core.cases import Case, _LazyScaled, record_factor
-from isorock.validate.core.chunks import run_cases
-from isorock.validate.core.engines import ALL_ENGINES, check_carries, choose, get_engine
-from isorock.validate.core.fragility import fit_counts
-from isorock.validate.core.summary import case_inputs, row_of_batch
-from isorock.validate.core.tolerances import has_tolerance, tolerance
-from isorock.validate.io.output import Outputs
-from isorock.validate.tools.campaign.records import load_suite, suite_spec
+from ...core.cases import Case, _LazyScaled, record_factor
+from ...core.chunks import run_cases
+from ...core.engines import ALL_ENGINES, check_carries, choose, get_engine
+from ...core.fragility import fit_counts
+from ...core.summary import case_inputs, row_of_batch
+from ...core.tolerances import has_tolerance, tolerance
+from ...io.output import Outputs
+from .records import load_suite, suite_spec
 
 #: The engine that answers the design question (the compiled kernel).
 ENGINE = "analytic"
@@ -418,7 +418,7 @@ class Design:
         most P(1 − P): the binomial interval is then at least as wide as it needs to be."""
         key = ("p_interval", confidence)
         if key not in self._memo:  # asked by the verdict, each P in words and every row: computed once
-            from isorock.validate.core.verdict import rate_interval
+            from ...core.verdict import rate_interval
             p, n = self.p_hazard(), self.records_answered()
             self._memo[key] = np.array([rate_interval(pi * ni, int(ni), confidence) if ni > 0 and math.isfinite(pi)
                                         else (math.nan, math.nan) for pi, ni in zip(p, n)])
@@ -603,7 +603,7 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     if settled:
         import pyarrow as pa
 
-        from isorock.validate.core.summary import rows_to_table, sort_table
+        from ...core.summary import rows_to_table, sort_table
         parts = [rows_to_table(settled)] + ([table] if table is not None else [])
         table = sort_table(pa.concat_tables(parts))
     wall = time.perf_counter() - start

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.validate.io.output import to_json
-from isorock.validate.io.provenance import provenance
+from ...io.output import to_json
+from ...io.provenance import provenance
 from .design import ANSWERED, Design, _pct, hazard_text, target_judgement, verdict
 
 #: P(overturn) bands of the chart's colours: the decisions an engineer makes sit at 1–10 %

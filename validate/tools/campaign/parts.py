@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from isorock.validate.core.summary import COLUMNS, rows_to_table, schema, sort_table
-from isorock.validate.io.output import write_atomic
+from ...core.summary import COLUMNS, rows_to_table, schema, sort_table
+from ...io.output import write_atomic
 
 
 def write_part(path: Path, rows: list[dict]) -> None:

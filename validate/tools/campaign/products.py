@@ -12,12 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.validate.core.chunks import runs_as_batch
-from isorock.validate.core.fragility import fit_fragility
-from isorock.validate.core.tolerances import has_tolerance, limit, tolerance
-from isorock.validate.core.verdict import overturn_verdicts, quantile_verdict, rate_verdict
-from isorock.validate.io.naming import cell
-from isorock.validate.io.output import write_text
+from ...core.chunks import runs_as_batch
+from ...core.fragility import fit_fragility
+from ...core.tolerances import has_tolerance, limit, tolerance
+from ...core.verdict import overturn_verdicts, quantile_verdict, rate_verdict
+from ...io.naming import cell
+from ...io.output import write_text
 from .spec import AXES
 
 #: θmax/α departure for an agreement map when the tolerance table has no entry for the

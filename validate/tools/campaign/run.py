@@ -15,11 +15,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from isorock.analytic.errors import InputError, import_extra
-from isorock.validate.core.chunks import chunk_weight, expected_cost, make_tasks, run_cases, run_chunk
-from isorock.validate.core.executor import client_for, close_client, execute
-from isorock.validate.core.summary import rows_to_table, sort_table
-from isorock.validate.io.output import write_atomic, write_text
-from isorock.validate.io.progress import bar_of, logged
+from ...core.chunks import chunk_weight, expected_cost, make_tasks, run_cases, run_chunk
+from ...core.executor import client_for, close_client, execute
+from ...core.summary import rows_to_table, sort_table
+from ...io.output import write_atomic, write_text
+from ...io.progress import bar_of, logged
 from .parts import part_problem, read_parts, write_part
 from .spec import CampaignSpec, load_spec
 
@@ -118,7 +118,7 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
                                                  "fingerprint": spec.fingerprint()}) + "\n")
         if progress and todo:  # a campaign lasts hours: its cost is said before its first chunk,
             # once every input is checked (a refusal is one line, not a line after an estimate)
-            from isorock.validate.core.estimate import estimate_line
+            from ...core.estimate import estimate_line
             simulated: dict[str, float] = {}
             for t in todo:
                 simulated[t.setting.engine] = simulated.get(t.setting.engine, 0.0) + sum(c.duration for c in t.cases)

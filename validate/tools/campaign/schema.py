@@ -21,9 +21,9 @@ from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, StrictBool,
                       model_validator)
 
 from isorock.analytic.errors import InputError
-from isorock.validate.core.engines import ALL_ENGINES, check_settings_table
-from isorock.validate.io import keys
-from isorock.validate.io.schema import NonNegative, Positive, number as _number
+from ...core.engines import ALL_ENGINES, check_settings_table
+from ...io import keys
+from ...io.schema import NonNegative, Positive, number as _number
 
 #: the block-to-base mass ratio μ = m/m_b a campaign may ask for: μ = 1e-300 made a
 #: base of 1e303 kg whose derived stiffness overflowed (the error named `stiffness =

@@ -23,10 +23,10 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.limits import check_duration, check_isolator
 from isorock.analytic.motion import PULSES
 from isorock.analytic.system import MAX_STATUE_FRICTION, PlanarBody, System
-from isorock.validate.core.cases import Case, build_case, build_system, pulse_for
-from isorock.validate.core.chunks import ANALYTIC_CHUNK, CONTACT_CHUNK
-from isorock.validate.core.engines import ALL_ENGINES, EngineChoice, check_carries, choose, get_engine
-from isorock.validate.io.schema import read_toml
+from ...core.cases import Case, build_case, build_system, pulse_for
+from ...core.chunks import ANALYTIC_CHUNK, CONTACT_CHUNK
+from ...core.engines import ALL_ENGINES, EngineChoice, check_carries, choose, get_engine
+from ...io.schema import read_toml
 from .schema import check_campaign
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).

@@ -14,7 +14,7 @@ import numpy as np
 
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import PlanarBody, System
-from isorock.validate.core.engines import get_engine
+from ...core.engines import get_engine
 
 
 def system(spec) -> System:

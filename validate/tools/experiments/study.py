@@ -37,8 +37,8 @@ from isorock.analytic.errors import InputError
 from isorock.analytic.fast import simulate_batch
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
-from isorock.validate.core.engines import get_engine
-from isorock.validate.core.scenarios import shared_folder
+from ...core.engines import get_engine
+from ...core.scenarios import shared_folder
 from . import asymmetric, data, processing, scores, specimen
 
 #: the shake-table tests (shared/data/vsr, or $ISOROCK_VSR): found as the records are, not
