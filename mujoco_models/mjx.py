@@ -9,12 +9,17 @@ where JAX finds one (never required). Measured against MuJoCo's C engine and the
 docs/mjx.md."""
 from __future__ import annotations
 
+import contextlib
 import functools
+import os
+import sys
 import time
+import warnings
 
 import numpy as np
 
 from isorock.analytic.errors import import_extra
+from isorock.analytic.kernel_cache import writable_cache_dir
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import RawHistory
@@ -25,6 +30,9 @@ from .batch import ISOLATORS
 from .scene import SCENE_FORMAT, check_representable, scene_text
 from .settings import Settings, settings_for
 
+#: a compilation shorter than this (s) is not kept on disk (JAX's persistent cache; _keep_compiled)
+KEEP_COMPILED_FROM_S = 1.0
+
 #: steps per compiled chunk: one compilation serves every run of a scene layout whatever its
 #: duration (the chunk's length is static to XLA), and a run ends within a chunk of its end
 CHUNK_STEPS = 2000
@@ -33,7 +41,6 @@ CHUNK_STEPS = 2000
 def _jax():
     """(jax, mjx), float64 on: MJX's default float32 puts the pivot's contact force, and so β, off
     by its rounding (the scene's contact depth is ~1e-6 of the block)."""
-    import contextlib
     import io
     jax = import_extra("jax", "mjx", "the MJX engine")
     jax.config.update("jax_enable_x64", True)
@@ -41,7 +48,50 @@ def _jax():
     # backend, not used here) is absent: it would land in `--json -`'s output
     with contextlib.redirect_stdout(io.StringIO()):
         mjx = import_extra("mujoco.mjx", "mjx", "the MJX engine")
+    _keep_compiled(jax)
     return jax, mjx
+
+
+def _keep_compiled(jax) -> None:
+    """XLA's compiled chunk kept on disk by JAX's persistent compilation cache, in the project's
+    cache folder (analytic.kernel_cache.writable_cache_dir, as the analytic kernels'), so that a
+    later process does not compile a scene layout again: a first run of a 3 s pulse on the
+    paper's system took 11.7 s, 5.8 s with the cache (docs/mjx.md). JAX keys each entry by the
+    computation, its versions and the machine, and recompiles where an entry cannot be read. A
+    cache folder the user gave JAX (JAX_COMPILATION_CACHE_DIR) is kept; none writable: no cache."""
+    global _OWN_CACHE
+    if jax.config.jax_compilation_cache_dir:
+        return
+    folder = writable_cache_dir()
+    if folder is None:
+        return
+    _OWN_CACHE = os.path.join(folder, "mjx")
+    jax.config.update("jax_compilation_cache_dir", _OWN_CACHE)
+    jax.config.update("jax_persistent_cache_min_compile_time_secs", KEEP_COMPILED_FROM_S)
+
+
+#: the cache folder _keep_compiled gave JAX (None: none, or the user's own)
+_OWN_CACHE: str | None = None
+#: what JAX warns where an entry of its cache cannot be read (it compiles again, and would on every run)
+_DAMAGED = "Error reading persistent compilation cache entry"
+
+
+def _mend_damaged_cache(caught) -> None:
+    """A damaged entry of our cache folder (JAX compiled again, and would warn and compile on every
+    later run, since it does not replace the entry): the folder is emptied, with one line, so that
+    the next run keeps a sound one. Every other warning is passed on as it came."""
+    damaged = False
+    for w in caught:
+        if _DAMAGED in str(w.message) and _OWN_CACHE is not None:
+            damaged = True
+        else:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    if damaged:  # its entries, not the folder: JAX goes on writing into it
+        for entry in os.scandir(_OWN_CACHE):
+            with contextlib.suppress(OSError):
+                os.remove(entry.path)
+        print(f"isorock: the MJX compilation cache {_OWN_CACHE} was damaged: emptied, and compiled again",
+              file=sys.stderr, flush=True)
 
 
 @functools.cache
@@ -104,12 +154,15 @@ def simulate_batch(system: System, motions, *, settings: Settings | None = None,
         def step(d, f):
             return batched(mx, d, f)
     qpos, qvel = [], []
-    for c in range(n_chunks):
-        data, qp, qv = step(data, jnp.asarray(forces[:, c * CHUNK_STEPS:(c + 1) * CHUNK_STEPS]))
-        qpos.append(np.asarray(qp))
-        qvel.append(np.asarray(qv))
-        if progress is not None:
-            progress(min(duration, (c + 1) * CHUNK_STEPS * dt), duration)
+    with warnings.catch_warnings(record=True) as caught:  # the first chunk compiles, or reads the cache
+        warnings.simplefilter("always")
+        for c in range(n_chunks):
+            data, qp, qv = step(data, jnp.asarray(forces[:, c * CHUNK_STEPS:(c + 1) * CHUNK_STEPS]))
+            qpos.append(np.asarray(qp))
+            qvel.append(np.asarray(qv))
+            if progress is not None:
+                progress(min(duration, (c + 1) * CHUNK_STEPS * dt), duration)
+    _mend_damaged_cache(caught)
     qpos = np.concatenate(qpos, axis=1)[:, :nstep]
     qvel = np.concatenate(qvel, axis=1)[:, :nstep]
     runtime = (time.perf_counter() - start) / len(b.motions)

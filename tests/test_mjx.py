@@ -65,3 +65,65 @@ def test_what_mjx_cannot_carry_is_refused_in_one_line():
     with pytest.raises(InputError, match="impact_timestep"):
         get_engine("mjx").simulate(paper_system(), None, duration=0.5,
                                    settings=Settings(impact_timestep=2.5e-4, timestep=3e-3))
+
+
+# --- the compiled chunk kept on disk (JAX's persistent compilation cache) ----------------------
+
+_CACHED = """
+import json, sys, warnings
+import jax, jax.numpy as jnp, numpy as np  # np.asarray: the values read without a second computation
+from isorock.mujoco_models import mjx as engine
+engine.writable_cache_dir = lambda: sys.argv[1]     # the test's folder, not the checkout's
+engine.KEEP_COMPILED_FROM_S = 0.0                   # keep even this small computation
+hits = []
+jax.monitoring.register_event_listener(lambda event, **kw: hits.append(event))
+engine._jax()
+with warnings.catch_warnings(record=True) as caught:
+    warnings.simplefilter("always")
+    y = jax.jit(lambda x: jnp.cumsum(x * 2.0 + 1.0))(jnp.arange(4.0))
+engine._mend_damaged_cache(caught)
+print(json.dumps({"y": np.asarray(y).tolist(), "hits": hits.count("/jax/compilation_cache/cache_hits"),
+                  "folder": jax.config.jax_compilation_cache_dir}))
+"""
+
+
+def _cached_run(folder):
+    import json
+    import subprocess
+    import sys
+    done = subprocess.run([sys.executable, "-c", _CACHED, str(folder)], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-2000:]
+    return json.loads(done.stdout.strip().splitlines()[-1]), done.stderr
+
+
+def test_a_compiled_chunk_is_kept_for_the_next_process_and_a_damaged_one_is_replaced(tmp_path):
+    """The oracles: JAX's own cache-hit event in a second process (it compiled nothing), the
+    computation's values by hand (cumsum of 2x + 1 over 0..3), and the entry on disk."""
+    first, _ = _cached_run(tmp_path)
+    assert first["folder"] == str(tmp_path / "mjx") and first["hits"] == 0
+    assert first["y"] == [1.0, 4.0, 9.0, 16.0]
+    entries = list((tmp_path / "mjx").iterdir())
+    assert entries, "nothing kept"
+    second, _ = _cached_run(tmp_path)
+    assert second["hits"] >= 1 and second["y"] == first["y"]
+    for entry in entries:  # damaged: JAX would warn and compile again on every run, the entry left as it is
+        entry.write_bytes(b"not a compiled computation")
+    third, err = _cached_run(tmp_path)
+    assert third["y"] == first["y"] and third["hits"] == 0
+    lines = [x for x in err.splitlines() if x.strip()]
+    assert len(lines) == 1 and "MJX compilation cache" in lines[0] and "damaged" in lines[0], err
+    # emptied: the next process compiles afresh and keeps a sound entry, as the first did
+    assert not any(e.read_bytes() == b"not a compiled computation" for e in (tmp_path / "mjx").iterdir())
+
+
+def test_a_cache_folder_the_user_gave_jax_is_kept(tmp_path):
+    import os
+    import subprocess
+    import sys
+    mine = tmp_path / "my-jax-cache"
+    code = ("import jax\nfrom isorock.mujoco_models import mjx as engine\nengine._jax()\n"
+            "print(jax.config.jax_compilation_cache_dir, engine._OWN_CACHE)")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300,
+                          env={**os.environ, "JAX_COMPILATION_CACHE_DIR": str(mine)})
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.split() == [str(mine), "None"]
