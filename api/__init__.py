@@ -25,7 +25,7 @@ from __future__ import annotations
 #: (isorock.validate.core, …) and cannot also be a function; `design` takes Python values
 #: (Statue's numbers, sequences, GroundMotions) and parses no command line
 API = {"run": "isorock.validate.cli.api", "report": "isorock.validate.cli.api", "sweep": "isorock.validate.cli.api",
-       "design": "isorock.validate.tools.campaign.design",
+       "design": "isorock.validate.tools.campaign.answer",
        # typed, from Python values: one run of any engine, and the values it takes
        "simulate": "isorock.validate.core.plan", "System": "isorock.analytic.system",
        "GroundMotion": "isorock.analytic.motion", "load_motion": "isorock.analytic.motion"}

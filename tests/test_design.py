@@ -401,7 +401,7 @@ def test_design_from_python_counts_what_the_kernel_runs_and_writes_what_the_comm
 ])
 def test_design_from_python_refuses_bad_values_naming_the_keyword(kwargs, field, tmp_path):
     from isorock.analytic.errors import InputError
-    from isorock.validate.tools.campaign.design import design
+    from isorock.validate.tools.campaign.answer import design
     with pytest.raises(InputError) as e:
         design(**{"records": RECORDS, "pga": [0.2], "out": tmp_path / "never", **kwargs})
     assert str(e.value).startswith(field) and "\n" not in str(e.value)
