@@ -79,6 +79,10 @@ class Capabilities:
     #: joints, is refused such a motion in one line (check_transverse),
     #: never runs the first component alone in its place
     transverse: bool = False
+    #: the isolator kinds it carries under two horizontal components: the linear one (the same
+    #: k and c along x and y) unless its scene builds another's friction in the plane (MuJoCo:
+    #: the pendulums', mujoco_models/scene.py PAIR_ISOLATORS); any other is refused in one line
+    transverse_isolators: tuple[str, ...] = ("linear",)
 
 
 @dataclass(frozen=True)
@@ -206,7 +210,8 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
                impact_threshold: float, *, theta_dot0: float = 0.0, u0: float = 0.0,
                u_dot0: float = 0.0, settings=None, isolators: tuple[str, ...] = ("linear",),
                kinetic_friction: bool = True, two_edges: bool = False,
-               transverse: bool = False) -> tuple[GroundMotion, float]:
+               transverse: bool = False, transverse_isolators: tuple[str, ...] = ("linear",)
+               ) -> tuple[GroundMotion, float]:
     """What every engine's `simulate` takes, checked in one place so that all engines
     accept and refuse the same inputs with the same messages: (motion, duration) after the
     shared checks: `none` motion is zero ground
@@ -220,7 +225,8 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     is below its static one is refused too (check_friction); `two_edges`
     (Capabilities.two_edges) False: a statue of two different edges is refused (check_body);
     `transverse` (Capabilities.transverse) False: a motion of two horizontal components is
-    refused (check_transverse)."""
+    refused (check_transverse), and so is one on an isolator not in `transverse_isolators`
+    (Capabilities.transverse_isolators)."""
     from .errors import InputError, real_number, require, require_positive_finite
     from .limits import check_acceleration, check_duration, check_isolator, check_settings
     from .motion import GroundMotion
@@ -238,7 +244,7 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
     if motion.vertical is not None:  # the vertical component is bounded as the horizontal is
         check_acceleration("vertical", motion.vertical.pga_g, f" ({motion.vertical.name or 'its peak'})")
-    check_transverse(system, motion, transverse)
+    check_transverse(system, motion, transverse, isolators=transverse_isolators)
     given = duration is not None
     if not given:
         duration = FREE_DURATION if motion.is_zero else motion.last_time + TAIL_AFTER_MOTION
@@ -272,22 +278,25 @@ def check_isolator_kind(system: "System", isolators: tuple[str, ...], engine: st
                          f"{kind} one (engine 'analytic-reference' carries it; docs/isolators.md)")
 
 
-def check_transverse(system: "System", motion: "GroundMotion", transverse: bool, engine: str = "this engine") -> None:
+def check_transverse(system: "System", motion: "GroundMotion", transverse: bool, engine: str = "this engine",
+                     isolators: tuple[str, ...] = ("linear",)) -> None:
     """One line refusing a second horizontal component (GroundMotion.transverse) for an engine
-    that does not carry it, and for an isolator whose two directions it does not know: the
-    isolator is isotropic only as the linear one is (the same k and c along x and y); a
-    friction pendulum's or a bearing's coupled 2-D friction is not built (issue 36)."""
+    that does not carry it, and for an isolator whose two directions its scene does not build
+    (`isolators`, Capabilities.transverse_isolators): the linear one is isotropic with the same
+    k and c along x and y; a pendulum's dry friction in the plane only where the scene makes it
+    isotropic (MuJoCo's); a bearing's coupled 2-D yielding is not built (issue 36)."""
     from .errors import InputError
     from .limits import check_acceleration
-    from .system import LINEAR
     if motion.transverse is None:
         return
     if not transverse:
         raise InputError(f"transverse = {motion.transverse.name or 'a second component'}: {engine} runs one "
                          "horizontal component only (engines 'mujoco', 'bullet', 'drake' and 'dart' carry two)")
-    if not system.fixed_base and system.isolator_kind != LINEAR:
-        raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be linear "
-                         "(isotropic: the same k and c along x and y) or a fixed base")
+    if not system.fixed_base and system.isolator_kind not in isolators:
+        others = (" (engine 'mujoco' carries the friction pendulum and the ball in a bowl too)"
+                  if isolators == ("linear",) else "")
+        raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be "
+                         f"{' or '.join(isolators)} or a fixed base{others}")
     check_acceleration("transverse", motion.transverse.pga_g, f" ({motion.transverse.name or 'its peak'})")
 
 

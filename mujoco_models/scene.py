@@ -18,7 +18,7 @@ from isorock.analytic import kinematics
 from isorock.analytic.engine_protocol import contact_friction
 from isorock.analytic.errors import require
 from isorock.analytic.isolator_parts import isolator_parts
-from isorock.analytic.system import LINEAR, System
+from isorock.analytic.system import BALL_IN_BOWL, FRICTION_PENDULUM, LINEAR, System
 
 from .settings import Settings
 
@@ -45,14 +45,15 @@ def _fmt(*values) -> str:
 def scene_text(system: System, settings: Settings | None = None, *, transverse: bool = False) -> str:
     """The MJCF of this system with these settings (what `simulate` compiles). `transverse`:
     the scene of two horizontal components (GroundMotion.transverse): the base on a second
-    slide joint along y with the same stiffness and damping (the linear isolator is isotropic),
-    the body on the free joint; without it the scene is the one-component scene, unchanged."""
+    slide joint along y with the same stiffness and damping (the linear isolator is isotropic;
+    a pendulum's friction made isotropic too, _pair_pendulum), the body on the free joint;
+    without it the scene is the one-component scene, unchanged."""
     settings = settings or Settings()
     if transverse:
         require(settings.joint == "free", "joint", settings.joint,
                 "free with two horizontal components (the body must be free to leave the plane)")
-        require(system.fixed_base or system.isolator_kind == LINEAR, "isolator", system.isolator_kind,
-                "linear or a fixed base with two horizontal components")
+        require(system.fixed_base or system.isolator_kind in PAIR_ISOLATORS, "isolator", system.isolator_kind,
+                f"{', '.join(PAIR_ISOLATORS)} or a fixed base with two horizontal components")
     # keep the template's comments: they explain the scene to whoever opens the file
     parser = ET.XMLParser(target=ET.TreeBuilder(insert_comments=True))
     root = ET.parse(TEMPLATE, parser=parser).getroot()
@@ -85,6 +86,8 @@ def scene_text(system: System, settings: Settings | None = None, *, transverse: 
             named["base"].insert(list(named["base"]).index(slide) + 1, ET.Element(
                 "joint", name="base_slide_y", type="slide", axis="0 1 0", stiffness=repr(system.stiffness),
                 damping=repr(system.damping)))
+    elif transverse:
+        _pair_pendulum(root, named, system, settings)
     else:
         _isolator_element(root, named, system, settings)
 
@@ -198,6 +201,57 @@ def _isolator_element(root, named, system, settings):
                           damping=repr(2 * SLIDER_DAMPING * k_e / omega), springlength="0")
     ET.SubElement(fixed, "joint", joint="base_slide", coef="1")
     ET.SubElement(fixed, "joint", joint="slider_slide", coef="-1")
+
+
+#: the isolators a scene of two horizontal components builds (Capabilities.transverse_isolators):
+#: the linear one (the same k and c along x and y) and the pendulums whose only friction is
+#: the base's own (the friction pendulum, the ball in a bowl), whose dry friction in the plane
+#: is isotropic (_pair_pendulum); not a Jenkins element's (the bearing, a double pendulum)
+PAIR_ISOLATORS = (LINEAR, FRICTION_PENDULUM, BALL_IN_BOWL)
+#: the friction puck of a pendulum under a pair (_pair_pendulum): its mass as a share of the
+#: base's (taken from the base body, so the base still moves m_b) and its half size, m
+PUCK_MASS_SHARE = 1e-3
+PUCK_HALF = 0.02
+
+
+def _pair_pendulum(root, named, system, settings) -> None:
+    """A pendulum isolator under two horizontal components (issue 36): its restoring spring
+    k = W/R and dashpot along x and along y (base_slide, base_slide_y), and its dry friction
+    μ·W in the plane, isotropic: |F| ≤ μ·W whichever way the base slides. A joint's
+    `frictionloss` holds each axis apart (a square: √2·μ·W along a diagonal), so the friction is
+    a contact instead: a light puck under the base (a child body on its own vertical slide
+    joint `puck_z`, moving with the base in x and y) pressed by a held force onto a floor with
+    friction coefficient F_b/W on MuJoCo's elliptic cone (Settings.cone), so that its normal
+    force is the model's W = M·g (state.Layout.forces holds it) and the friction's limit F_b =
+    μ·W in every direction. Its time constants are the joint friction's (FRICTION_TIMECONST_STEPS,
+    FRICTION_SOLIMP), so that it sticks as tightly."""
+    require(settings.cone == "elliptic", "cone", settings.cone,
+            "elliptic with two horizontal components on a pendulum isolator (a pyramid's friction is not isotropic)")
+    parts = isolator_parts(system)
+    base, slide = named["base"], named["base_slide"]
+    slide.set("stiffness", repr(parts.stiffness))
+    slide.set("damping", repr(parts.damping))
+    base.insert(list(base).index(slide) + 1, ET.Element(
+        "joint", name="base_slide_y", type="slide", axis="0 1 0", stiffness=repr(parts.stiffness),
+        damping=repr(parts.damping)))
+    if parts.base_friction <= 0.0:
+        return
+    load = (system.mass + system.base_mass) * system.gravity
+    puck_mass = PUCK_MASS_SHARE * system.base_mass
+    base.find("inertial").set("mass", repr(system.base_mass - puck_mass))
+    puck = ET.SubElement(base, "body", name="isolator_puck", pos=_fmt(0, 0, -BASE_HALF_THICKNESS - PUCK_HALF))
+    ET.SubElement(puck, "joint", name="puck_z", type="slide", axis="0 0 1")
+    ET.SubElement(puck, "inertial", pos="0 0 0", mass=repr(puck_mass), diaginertia=_fmt(*(puck_mass * PUCK_HALF**2,) * 3))
+    ET.SubElement(puck, "geom", name="puck_geom", type="box", size=_fmt(PUCK_HALF, PUCK_HALF, PUCK_HALF),
+                  rgba="0.3 0.3 0.35 1")
+    floor_z = -2 * BASE_HALF_THICKNESS - 2 * PUCK_HALF
+    ET.SubElement(root.find("worldbody"), "geom", name="isolator_floor", type="plane", size="0 0 1",
+                  pos=_fmt(0, 0, floor_z), rgba="0.4 0.4 0.4 1")
+    mu = parts.base_friction / load
+    tau = FRICTION_TIMECONST_STEPS * settings.timestep
+    ET.SubElement(root.find("contact"), "pair", name="isolator_friction", geom1="puck_geom", geom2="isolator_floor",
+                  condim="3", friction=_fmt(mu, mu, 0, 0, 0), solref=_fmt(tau, 1.0), solreffriction=_fmt(tau, 1.0),
+                  solimp=_fmt(*FRICTION_SOLIMP))
 
 
 def _statue(root, named, body, settings) -> None:

@@ -41,6 +41,12 @@ class Layout:
         self.slider_v = None if slider < 0 else model.jnt_dofadr[slider]
         self.slider_q = None if slider < 0 else model.jnt_qposadr[slider]
         self.slider_mass = 0.0 if slider < 0 else float(model.body_mass[model.jnt_bodyid[slider]])
+        # a pendulum's friction puck under a pair (scene._pair_pendulum): held down so that the
+        # floor pushes it up by the model's W = M·g, its own weight included
+        puck = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "puck_z")
+        self.puck_v = None if puck < 0 else model.jnt_dofadr[puck]
+        self.puck_load = 0.0 if puck < 0 else -((system.mass + system.base_mass) * system.gravity
+                                                - float(model.body_mass[model.jnt_bodyid[puck]]) * system.gravity)
         if self.free:
             jid = model.joint("block_free").id
             self.bq, self.bv = model.jnt_qposadr[jid], model.jnt_dofadr[jid]
@@ -83,6 +89,8 @@ class Layout:
             f[:, self.base_v] = -system.base_mass * xg
         if self.slider_v is not None:
             f[:, self.slider_v] = -self.slider_mass * xg
+        if self.puck_v is not None:
+            f[:, self.puck_v] = self.puck_load
         return f
 
     def histories(self, system: System, states: np.ndarray) -> dict:

@@ -40,7 +40,7 @@ from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
-from .scene import build_model
+from .scene import PAIR_ISOLATORS, build_model
 from . import phases
 from .settings import Settings
 from .state import (Layout, StepRecord, fresh_data, raw_history, stop_in, vertical_at, vertical_record,
@@ -150,7 +150,8 @@ def _inputs(given: Settings, system: System, motion, duration, theta0):
     step a whole divisor of it, so the run ends on it)."""
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
                                   settings=given.for_system(system), isolators=CONTACT_ISOLATORS,
-                                  kinetic_friction=False, two_edges=True, transverse=True)
+                                  kinetic_friction=False, two_edges=True, transverse=True,
+                                  transverse_isolators=PAIR_ISOLATORS)
     check_contact_isolator(system, "mujoco")
     if motion.transverse is not None:
         # two components: the body on the free joint (the block's planar joints cannot leave

@@ -167,11 +167,10 @@ def plan_runs(a, specs):
     system, motion = system_from_args(a, statue=statue), motion_from_args(a)
     # two components: the body shaken and its direction for the 3-D measures, its isolator checked
     # first; an engine that runs one component named as the option names it
-    shaken = None if motion.transverse is None else shaken_body(a, system, statue)
     for r in runs:
-        if motion.transverse is not None and not getattr(r.engine.capabilities, "transverse", False):
-            raise InputError(f"--engine = {r.label!r}: runs one horizontal component only; with two "
-                             "(--motion-transverse, --pair) the engine is mujoco, bullet, drake or dart")
+        if motion.transverse is not None:
+            check_pair_engine(r, system)
+    shaken = None if motion.transverse is None else shaken_body(a, system, statue)
     if not (abs(a.theta0_over_alpha) < 1):
         raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
     # a fraction of the α of the edge it tilts onto (a statue's two edges differ)
@@ -181,14 +180,26 @@ def plan_runs(a, specs):
     return plan, shaken
 
 
+def check_pair_engine(r, system) -> None:
+    """One line, before any work, for an engine that does not run two horizontal components, or
+    not on this isolator (Capabilities.transverse_isolators: the linear one, and in MuJoCo the
+    pendulums, whose friction in the plane its scene makes isotropic)."""
+    caps = r.engine.capabilities
+    if not getattr(caps, "transverse", False):
+        raise InputError(f"--engine = {r.label!r}: runs one horizontal component only; with two "
+                         "(--motion-transverse, --pair) the engine is mujoco, bullet, drake or dart")
+    kinds = getattr(caps, "transverse_isolators", (LINEAR,))
+    if not system.fixed_base and system.isolator_kind not in kinds:
+        raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
+                         f"--pair) engine {r.label!r} carries {' or '.join(kinds)} (the same k and c along x and y"
+                         f"{'' if kinds == (LINEAR,) else '; a pendulum with its friction the same in every direction'}"
+                         "), or give --fixed-base")
+
+
 def shaken_body(a, system, statue) -> tuple:
     """(the body at rest, the azimuth in rad) of a run with two components: the statue's mesh
     (`statue`, statue_body's (resting, body), along --azimuth or the direction it tips first), or
-    the block H × B × D of MuJoCo's scene along 0. Refuses, before any work, an isolator other than
-    the linear one."""
-    if not system.fixed_base and system.isolator_kind != LINEAR:
-        raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
-                         "--pair) must be linear (the same k and c along x and y), or give --fixed-base")
+    the block H × B × D of MuJoCo's scene along 0."""
     # the contact scenes' block stands on a square footprint (MuJoCo's and Drake's DEPTH_FRACTION 1, PyBullet's
     # 2b × 2b box, DART's DEPTH_RATIO 1)
     if system.body is None:

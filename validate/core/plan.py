@@ -100,7 +100,9 @@ def make_plan(system, motion, runs, *, duration: float | None = None, theta0: fl
                                  settings=settings_used(r.settings, system),
                                  isolators=r.engine.capabilities.isolators,
                                  two_edges=getattr(r.engine.capabilities, "two_edges", False),
-                                 transverse=getattr(r.engine.capabilities, "transverse", False))
+                                 transverse=getattr(r.engine.capabilities, "transverse", False),
+                                 transverse_isolators=getattr(r.engine.capabilities, "transverse_isolators",
+                                                              ("linear",)))
     if first_run:
         runs = [_first_run(r, system, cut, length) for r in runs]
     return Plan(tuple(runs), system, cut, length, theta0, impact_threshold, overturn_rule)
