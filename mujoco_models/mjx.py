@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import importlib.util
 import os
 import sys
 import time
@@ -32,6 +33,10 @@ from .settings import Settings, settings_for
 
 #: a compilation shorter than this (s) is not kept on disk (JAX's persistent cache; _keep_compiled)
 KEEP_COMPILED_FROM_S = 1.0
+#: the most that cache holds (bytes; a chunk is ~0.5 MB): JAX evicts the least recently used
+#: past it, and with a bound it locks each read and write (filelock), so that processes
+#: compiling one scene at once never read each other's half-written entry
+KEEP_COMPILED_BYTES = 256 << 20
 
 #: steps per compiled chunk: one compilation serves every run of a scene layout whatever its
 #: duration (the chunk's length is static to XLA), and a run ends within a chunk of its end
@@ -54,8 +59,8 @@ def _jax():
 
 def _keep_compiled(jax) -> None:
     """XLA's compiled chunk kept on disk by JAX's persistent compilation cache, in the project's
-    cache folder (analytic.kernel_cache.writable_cache_dir, as the analytic kernels'), so that a
-    later process does not compile a scene layout again: a first run of a 3 s pulse on the
+    cache folder (analytic.kernel_cache.writable_cache_dir, as the analytic kernels'), at most
+    KEEP_COMPILED_BYTES, so that a later process does not compile a scene layout again: a first run of a 3 s pulse on the
     paper's system took 11.7 s, 5.8 s with the cache (docs/mjx.md). JAX keys each entry by the
     computation, its versions and the machine, and recompiles where an entry cannot be read. A
     cache folder the user gave JAX (JAX_COMPILATION_CACHE_DIR) is kept; none writable: no cache."""
@@ -68,6 +73,8 @@ def _keep_compiled(jax) -> None:
     _OWN_CACHE = os.path.join(folder, "mjx")
     jax.config.update("jax_compilation_cache_dir", _OWN_CACHE)
     jax.config.update("jax_persistent_cache_min_compile_time_secs", KEEP_COMPILED_FROM_S)
+    if importlib.util.find_spec("filelock") is not None:  # the mjx extra's; JAX refuses a bound without it
+        jax.config.update("jax_compilation_cache_max_size", KEEP_COMPILED_BYTES)
 
 
 #: the cache folder _keep_compiled gave JAX (None: none, or the user's own)
@@ -86,10 +93,11 @@ def _mend_damaged_cache(caught) -> None:
             damaged = True
         else:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
-    if damaged:  # its entries, not the folder: JAX goes on writing into it
+    if damaged:  # its entries, not the folder (JAX goes on writing into it) nor the lock file
         for entry in os.scandir(_OWN_CACHE):
-            with contextlib.suppress(OSError):
-                os.remove(entry.path)
+            if entry.name != ".lockfile":
+                with contextlib.suppress(OSError):
+                    os.remove(entry.path)
         print(f"isorock: the MJX compilation cache {_OWN_CACHE} was damaged: emptied, and compiled again",
               file=sys.stderr, flush=True)
 
