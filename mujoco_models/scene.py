@@ -240,6 +240,9 @@ def _pair_pendulum(root, named, system, settings) -> None:
     puck_mass = PUCK_MASS_SHARE * system.base_mass
     base.find("inertial").set("mass", repr(system.base_mass - puck_mass))
     puck = ET.SubElement(base, "body", name="isolator_puck", pos=_fmt(0, 0, -BASE_HALF_THICKNESS - PUCK_HALF))
+    puck.append(ET.Comment(f" the pendulum's dry friction, the same in every direction: to reproduce a run, hold "
+                           f"this puck down by applying {-(load - puck_mass * system.gravity):.6g} N to puck_z "
+                           f"(qfrc_applied) at every step, so that the floor pushes it up by W = {load:.6g} N "))
     ET.SubElement(puck, "joint", name="puck_z", type="slide", axis="0 0 1")
     ET.SubElement(puck, "inertial", pos="0 0 0", mass=repr(puck_mass), diaginertia=_fmt(*(puck_mass * PUCK_HALF**2,) * 3))
     ET.SubElement(puck, "geom", name="puck_geom", type="box", size=_fmt(PUCK_HALF, PUCK_HALF, PUCK_HALF),
