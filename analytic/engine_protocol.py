@@ -80,8 +80,8 @@ class Capabilities:
     #: never runs the first component alone in its place
     transverse: bool = False
     #: the isolator kinds it carries under two horizontal components: the linear one (the same
-    #: k and c along x and y) unless its scene builds another's friction in the plane (MuJoCo:
-    #: the pendulums', mujoco_models/scene.py PAIR_ISOLATORS); any other is refused in one line
+    #: k and c along x and y) unless its scene builds another's friction in the plane (MuJoCo's
+    #: and PyBullet's: the pendulums', isolator_parts.PLANE_ISOLATORS); any other is refused in one line
     transverse_isolators: tuple[str, ...] = ("linear",)
 
 
@@ -293,7 +293,7 @@ def check_transverse(system: "System", motion: "GroundMotion", transverse: bool,
         raise InputError(f"transverse = {motion.transverse.name or 'a second component'}: {engine} runs one "
                          "horizontal component only (engines 'mujoco', 'bullet', 'drake' and 'dart' carry two)")
     if not system.fixed_base and system.isolator_kind not in isolators:
-        others = (" (engine 'mujoco' carries the friction pendulum and the ball in a bowl too)"
+        others = (" (engines 'mujoco' and 'bullet' carry the friction pendulum and the ball in a bowl too)"
                   if isolators == ("linear",) else "")
         raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be "
                          f"{' or '.join(isolators)} or a fixed base{others}")

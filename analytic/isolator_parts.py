@@ -19,6 +19,16 @@ from .system import BALL_IN_BOWL, BILINEAR, DOUBLE_PENDULUM, FRICTION_PENDULUM, 
 #: dashpot, a dry-friction joint, a fixed tendon or a held force). Not the ball in a cone: its
 #: restoring force M·g·tanφ·sgn(u) is none of these (docs/isolators.md, "Who carries what")
 CONTACT_ISOLATORS = (LINEAR, BILINEAR, FRICTION_PENDULUM, BALL_IN_BOWL, DOUBLE_PENDULUM)
+#: the isolators a contact engine builds in both horizontal directions (two components): the
+#: linear one (the same k and c along x and y) and the pendulums whose only friction is the
+#: base's own (the friction pendulum, the ball in a bowl), its limit μ·W the same in every
+#: direction as a contact of a puck held down by W (MuJoCo's and PyBullet's scenes); not a
+#: Jenkins element's yielding (the bearing, a double pendulum)
+PLANE_ISOLATORS = (LINEAR, FRICTION_PENDULUM, BALL_IN_BOWL)
+#: that puck: its mass as a share of the base's (taken from the base, which still moves m_b)
+#: and its half size (m)
+PUCK_MASS_SHARE = 1e-3
+PUCK_HALF = 0.02
 
 
 @dataclass(frozen=True)
@@ -82,4 +92,4 @@ def check_contact_isolator(system, engine: str) -> None:
                          "and 'analytic-reference'; docs/isolators.md)")
 
 
-__all__ = ["CONTACT_ISOLATORS", "IsolatorParts", "isolator_parts", "check_contact_isolator"]
+__all__ = ["CONTACT_ISOLATORS", "PLANE_ISOLATORS", "PUCK_MASS_SHARE", "PUCK_HALF", "IsolatorParts", "isolator_parts", "check_contact_isolator"]

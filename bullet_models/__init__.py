@@ -6,7 +6,7 @@ import math
 from dataclasses import replace
 
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS
+from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
 
 from .scene import SCENE_FORMAT, build, connect, scene_text
 from .settings import Settings, settings_for, settings_for_timestep
@@ -41,7 +41,8 @@ ENGINE = EngineSpec(
     name="bullet", label="PyBullet", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
                               isolators=CONTACT_ISOLATORS, kinetic_friction=False,
-                              two_edges=TWO_EDGES, transverse=TRANSVERSE),
+                              two_edges=TWO_EDGES, transverse=TRANSVERSE,
+                              transverse_isolators=PLANE_ISOLATORS),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, simulate_body=_simulate_body,
     presets={
         "default": Preset("the measured default, its step following the block (docs/bullet.md, \"Settings that follow "

@@ -59,7 +59,7 @@ with _c_output_silenced(fds=(1, 2)):
 
 from isorock.analytic.errors import InputError
 from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.isolator_parts import isolator_parts
+from isorock.analytic.isolator_parts import PLANE_ISOLATORS, PUCK_HALF, PUCK_MASS_SHARE, isolator_parts
 from isorock.analytic.system import LINEAR, System
 
 from . import statue
@@ -83,6 +83,10 @@ class Scene:
     #: a statue's own shape (statue.py): its inertial frame's orientation in its own frame, which
     #: Bullet's poses are of (statue.link_orientation turns them back); None for the block
     frame: tuple | None = None
+    #: a pendulum's friction puck under a pair (_pendulum_puck): the base's link 2, on its own
+    #: vertical joint, and the force (N, on that joint) that holds it down; None otherwise
+    puck_link: int | None = None
+    puck_load: float = 0.0
 
     def pose(self):
         """(position, orientation) of the block's or statue's own frame (x, y, z, w)."""
@@ -131,6 +135,7 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
     c.setGravity(0.0, 0.0, -system.gravity)
     plate = c.createCollisionShape(p.GEOM_BOX, halfExtents=_plate_half_extents(system))
     top = [0.0, 0.0, -0.5 * PLATE_THICKNESS]  # the plate's top face is z = 0
+    puck_link, puck_load = None, 0.0
     if system.fixed_base:
         base = c.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=plate, basePosition=top)
         plate_link = -1
@@ -147,17 +152,33 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
     else:
         # two joints in series: a massless, shapeless carriage on x (link 0), the plate on y on it
         # (link 1): the plate's mass m_b moves along both (the x joint's articulated inertia is the
-        # plate's, carried by the carriage), and u, u_y are the two joints' positions
+        # plate's, carried by the carriage), and u, u_y are the two joints' positions; a pendulum's
+        # friction puck on the plate (link 2) where it has one (_pendulum_puck)
+        puck = _pendulum_puck(c, system)
+        links = [dict(mass=0.0, shape=-1, pos=[0, 0, 0], axis=[1, 0, 0]),
+                 dict(mass=system.base_mass - (puck["mass"] if puck else 0.0), shape=plate, pos=top, axis=[0, 1, 0])]
+        if puck:
+            links.append(dict(mass=puck["mass"], shape=puck["shape"], pos=puck["pos"], axis=[0, 0, 1]))
         base = c.createMultiBody(
             baseMass=0.0, baseCollisionShapeIndex=-1, basePosition=[0.0, 0.0, 0.0],
-            linkMasses=[0.0, system.base_mass], linkCollisionShapeIndices=[-1, plate],
-            linkVisualShapeIndices=[-1, -1], linkPositions=[[0, 0, 0], top],
-            linkOrientations=[[0, 0, 0, 1]] * 2, linkInertialFramePositions=[[0, 0, 0]] * 2,
-            linkInertialFrameOrientations=[[0, 0, 0, 1]] * 2, linkParentIndices=[0, 1],
-            linkJointTypes=[p.JOINT_PRISMATIC] * 2, linkJointAxis=[[1, 0, 0], [0, 1, 0]])
+            linkMasses=[x["mass"] for x in links], linkCollisionShapeIndices=[x["shape"] for x in links],
+            linkVisualShapeIndices=[-1] * len(links), linkPositions=[x["pos"] for x in links],
+            linkOrientations=[[0, 0, 0, 1]] * len(links), linkInertialFramePositions=[[0, 0, 0]] * len(links),
+            linkInertialFrameOrientations=[[0, 0, 0, 1]] * len(links), linkParentIndices=list(range(len(links))),
+            linkJointTypes=[p.JOINT_PRISMATIC] * len(links), linkJointAxis=[x["axis"] for x in links])
         plate_link = 1
-        for joint in (0, 1):  # the joints' default velocity motors would hold the base still
+        for joint in range(len(links)):  # the joints' default velocity motors would hold the base still
             c.setJointMotorControl2(base, joint, p.VELOCITY_CONTROL, targetVelocity=0.0, force=0.0)
+        if puck:
+            floor = c.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=c.createCollisionShape(
+                p.GEOM_PLANE, planeNormal=[0, 0, 1]), basePosition=[0.0, 0.0, puck["floor_z"]])
+            # (no activationState in this call: with it PyBullet left the link's friction at its default;
+            # the base's sleeping is switched off with its plate, below)
+            c.changeDynamics(base, 2, lateralFriction=puck["mu"], restitution=0.0)
+            c.changeDynamics(floor, -1, lateralFriction=1.0, restitution=0.0)  # Bullet takes the product
+            for link in (-1, 0, 1):  # the floor meets the puck alone (the plate is 4 cm above it)
+                c.setCollisionFilterPair(base, floor, link, -1, 0)
+            puck_link, puck_load = 2, puck["load"]
     frame = None
     if hull_contact.has_solid(system):  # its own shape in the block's place (statue.py)
         block, frame = statue.build(c, p, system, theta0)
@@ -174,7 +195,28 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
                          linearDamping=settings.linear_damping, angularDamping=settings.angular_damping,
                          activationState=p.ACTIVATION_STATE_DISABLE_SLEEPING,
                          contactProcessingThreshold=settings.contact_processing_threshold)
-    return Scene(client=c, block=block, base=base, plate_link=plate_link, frame=frame)
+    return Scene(client=c, block=block, base=base, plate_link=plate_link, frame=frame, puck_link=puck_link,
+                 puck_load=puck_load)
+
+
+def _pendulum_puck(c, system) -> dict | None:
+    """A pendulum's dry friction under a pair, the same in every direction (as MuJoCo's,
+    mujoco_models/scene._pair_pendulum): the base's motors hold each axis apart (a square, √2·μ·W
+    along a diagonal), so the friction is a contact, a light puck under the plate on its own
+    vertical joint, held down (Scene.puck_load, a force on that joint, stepping.py) so that a floor
+    pushes it up by the model's W = M·g, the contact's friction coefficient F_b/W (Bullet's
+    friction cone). None on another isolator, or a pendulum without friction."""
+    if system.isolator_kind not in PLANE_ISOLATORS or system.isolator_kind == LINEAR:
+        return None
+    parts = isolator_parts(system)
+    if parts.base_friction <= 0.0:
+        return None
+    load = (system.mass + system.base_mass) * system.gravity
+    mass = PUCK_MASS_SHARE * system.base_mass
+    pos = [0.0, 0.0, -0.5 * PLATE_THICKNESS - PUCK_HALF]  # below the plate, in the plate's frame
+    return dict(mass=mass, shape=c.createCollisionShape(p.GEOM_BOX, halfExtents=[PUCK_HALF] * 3), pos=pos,
+                floor_z=-PLATE_THICKNESS - 2 * PUCK_HALF, mu=parts.base_friction / load,
+                load=-(load - mass * system.gravity))
 
 
 def connect() -> BulletClient:

@@ -27,7 +27,7 @@ import numpy as np
 from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator, isolator_parts
+from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS, check_contact_isolator, isolator_parts
 from isorock.analytic.rest_phase import stepped_throughout
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
@@ -58,7 +58,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
                                   isolators=CONTACT_ISOLATORS, kinetic_friction=False, two_edges=TWO_EDGES,
-                                  transverse=TRANSVERSE)
+                                  transverse=TRANSVERSE, transverse_isolators=PLANE_ISOLATORS)
     transverse = motion.transverse is not None
     if transverse:
         # stepped throughout, as MuJoCo's pair is: the rest phase carries the body on the base
@@ -121,7 +121,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         checked = 0  # rows already looked at by the stop rules
         why = stepped_throughout(system, motion)
         rest = None if why is not None else _rest(system, settings, theta0, xg, dt, lead)
-        if element is not None:
+        puck = scene.puck_link  # a pendulum's friction under a pair: its puck's contact, not the joints' motors
+        if element is not None and puck is None:
             element.start(c, base, settings.substeps)
         rest_end = n_steps - (1 if last else 0)  # the shorter last step is stepped by Bullet
         resumed = False  # the state of step i came from a rest phase (already in rows)
@@ -180,7 +181,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                 m = math.ceil(last / settings.timestep - 1e-9)
                 c.setPhysicsEngineParameter(fixedTimeStep=last, numSubSteps=m)
                 lead = (m - 1) / (2 * m) * last
-                if element is not None:
+                if element is not None and puck is None:
                     element.start(c, base, m)  # the friction's impulse per sub-step follows the step
             a, ay, az = xg[i], gy[i], gz[i]
             if a != a_set or ay != gy_set or az != gz_set:  # gravity persists in Bullet: set it only when it changes
@@ -204,6 +205,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                         uddy = (udy - udy_prev) / dt
                     udy_prev, side_y_prev = udy, side_y
                     motor(base, 1, torque, force=-(k * (uy + lead * udy) + c_dash * (udy + lead * uddy)))
+                if puck is not None:  # held down, so that the floor pushes it up by W
+                    motor(base, puck, torque, force=scene.puck_load)
             step()
             i += 1
         runtime = time.perf_counter() - start

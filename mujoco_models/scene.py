@@ -17,8 +17,8 @@ import mujoco
 from isorock.analytic import kinematics
 from isorock.analytic.engine_protocol import contact_friction
 from isorock.analytic.errors import require
-from isorock.analytic.isolator_parts import isolator_parts
-from isorock.analytic.system import BALL_IN_BOWL, FRICTION_PENDULUM, LINEAR, System
+from isorock.analytic.isolator_parts import PLANE_ISOLATORS, PUCK_HALF, PUCK_MASS_SHARE, isolator_parts
+from isorock.analytic.system import LINEAR, System
 
 from .settings import Settings
 
@@ -203,15 +203,9 @@ def _isolator_element(root, named, system, settings):
     ET.SubElement(fixed, "joint", joint="slider_slide", coef="-1")
 
 
-#: the isolators a scene of two horizontal components builds (Capabilities.transverse_isolators):
-#: the linear one (the same k and c along x and y) and the pendulums whose only friction is
-#: the base's own (the friction pendulum, the ball in a bowl), whose dry friction in the plane
-#: is isotropic (_pair_pendulum); not a Jenkins element's (the bearing, a double pendulum)
-PAIR_ISOLATORS = (LINEAR, FRICTION_PENDULUM, BALL_IN_BOWL)
-#: the friction puck of a pendulum under a pair (_pair_pendulum): its mass as a share of the
-#: base's (taken from the base body, so the base still moves m_b) and its half size, m
-PUCK_MASS_SHARE = 1e-3
-PUCK_HALF = 0.02
+#: the isolators a scene of two horizontal components builds (Capabilities.transverse_isolators;
+#: the pendulums' friction in the plane: _pair_pendulum)
+PAIR_ISOLATORS = PLANE_ISOLATORS
 
 
 def _pair_pendulum(root, named, system, settings) -> None:
