@@ -284,7 +284,7 @@ def check_transverse(system: "System", motion: "GroundMotion", transverse: bool,
     that does not carry it, and for an isolator whose two directions its scene does not build
     (`isolators`, Capabilities.transverse_isolators): the linear one is isotropic with the same
     k and c along x and y; a pendulum's dry friction in the plane only where the scene makes it
-    isotropic (MuJoCo's); a bearing's coupled 2-D yielding is not built (issue 36)."""
+    isotropic (MuJoCo's and PyBullet's); a bearing's coupled 2-D yielding is not built (issue 36)."""
     from .errors import InputError
     from .limits import check_acceleration
     if motion.transverse is None:

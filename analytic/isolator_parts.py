@@ -32,6 +32,35 @@ PUCK_HALF = 0.02
 
 
 @dataclass(frozen=True)
+class PendulumPuck:
+    """A pendulum's dry friction under two horizontal components, the same in every direction
+    (MuJoCo's mujoco_models/scene._pair_pendulum, PyBullet's bullet_models/scene._pendulum_puck):
+    a light puck under the base, on its own vertical joint, held down by `hold` (N, on that
+    joint, negative: down) so that a floor pushes it up by `load` W = M·g, its own weight
+    included; the contact's friction coefficient `friction` = F_b/W, so that its limit is the
+    model's F_b = μ·W whichever way the base slides. Its `mass` (kg) is taken from the base's."""
+
+    mass: float
+    load: float
+    friction: float
+    hold: float
+
+
+def pendulum_puck(system) -> PendulumPuck | None:
+    """The puck of `system`'s pendulum under a pair; None where the base has no dry friction of
+    its own to build (a linear isolator, a pendulum without friction, a fixed base)."""
+    if system.fixed_base or system.isolator_kind not in PLANE_ISOLATORS or system.isolator_kind == LINEAR:
+        return None
+    parts = isolator_parts(system)
+    if parts.base_friction <= 0.0:
+        return None
+    load = (system.mass + system.base_mass) * system.gravity
+    mass = PUCK_MASS_SHARE * system.base_mass
+    return PendulumPuck(mass=mass, load=load, friction=parts.base_friction / load,
+                        hold=-(load - mass * system.gravity))
+
+
+@dataclass(frozen=True)
 class IsolatorParts:
     """kind: System.isolator_kind; stiffness k and damping c: the spring and dashpot in
     parallel with the rest (N/m, N·s/m); base_friction F_b (N): the base's own dry friction,
@@ -92,4 +121,4 @@ def check_contact_isolator(system, engine: str) -> None:
                          "and 'analytic-reference'; docs/isolators.md)")
 
 
-__all__ = ["CONTACT_ISOLATORS", "PLANE_ISOLATORS", "PUCK_MASS_SHARE", "PUCK_HALF", "IsolatorParts", "isolator_parts", "check_contact_isolator"]
+__all__ = ["CONTACT_ISOLATORS", "PLANE_ISOLATORS", "PUCK_MASS_SHARE", "PUCK_HALF", "PendulumPuck", "pendulum_puck", "IsolatorParts", "isolator_parts", "check_contact_isolator"]

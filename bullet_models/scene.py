@@ -59,7 +59,7 @@ with _c_output_silenced(fds=(1, 2)):
 
 from isorock.analytic.errors import InputError
 from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.isolator_parts import PLANE_ISOLATORS, PUCK_HALF, PUCK_MASS_SHARE, isolator_parts
+from isorock.analytic.isolator_parts import PUCK_HALF, isolator_parts, pendulum_puck
 from isorock.analytic.system import LINEAR, System
 
 from . import statue
@@ -201,22 +201,17 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
 
 def _pendulum_puck(c, system) -> dict | None:
     """A pendulum's dry friction under a pair, the same in every direction (as MuJoCo's,
-    mujoco_models/scene._pair_pendulum): the base's motors hold each axis apart (a square, √2·μ·W
-    along a diagonal), so the friction is a contact, a light puck under the plate on its own
-    vertical joint, held down (Scene.puck_load, a force on that joint, stepping.py) so that a floor
-    pushes it up by the model's W = M·g, the contact's friction coefficient F_b/W (Bullet's
-    friction cone). None on another isolator, or a pendulum without friction."""
-    if system.isolator_kind not in PLANE_ISOLATORS or system.isolator_kind == LINEAR:
+    mujoco_models/scene._pair_pendulum; its numbers analytic.isolator_parts.pendulum_puck): the
+    base's motors hold each axis apart (a square, √2·μ·W along a diagonal), so the friction is a
+    contact, a light puck under the plate on its own vertical joint, held down (Scene.puck_load,
+    a force on that joint, stepping.py) so that a floor pushes it up by W, on Bullet's friction
+    cone. None on another isolator, or a pendulum without friction."""
+    held = pendulum_puck(system)
+    if held is None:
         return None
-    parts = isolator_parts(system)
-    if parts.base_friction <= 0.0:
-        return None
-    load = (system.mass + system.base_mass) * system.gravity
-    mass = PUCK_MASS_SHARE * system.base_mass
     pos = [0.0, 0.0, -0.5 * PLATE_THICKNESS - PUCK_HALF]  # below the plate, in the plate's frame
-    return dict(mass=mass, shape=c.createCollisionShape(p.GEOM_BOX, halfExtents=[PUCK_HALF] * 3), pos=pos,
-                floor_z=-PLATE_THICKNESS - 2 * PUCK_HALF, mu=parts.base_friction / load,
-                load=-(load - mass * system.gravity))
+    return dict(mass=held.mass, shape=c.createCollisionShape(p.GEOM_BOX, halfExtents=[PUCK_HALF] * 3), pos=pos,
+                floor_z=-PLATE_THICKNESS - 2 * PUCK_HALF, mu=held.friction, load=held.hold)
 
 
 def connect() -> BulletClient:

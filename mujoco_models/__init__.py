@@ -7,9 +7,9 @@ import math
 from dataclasses import replace
 
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS
+from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
 
-from .scene import PAIR_ISOLATORS, SCENE_FORMAT, build_model, check_representable, scene_text
+from .scene import SCENE_FORMAT, build_model, check_representable, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep
 from .stepping import run_model, simulate, simulate_many, step_cost
 
@@ -68,7 +68,7 @@ ENGINE = EngineSpec(
     name="mujoco", label="MuJoCo", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
                               isolators=CONTACT_ISOLATORS, kinetic_friction=False, two_edges=True,
-                              transverse=True, transverse_isolators=PAIR_ISOLATORS),
+                              transverse=True, transverse_isolators=PLANE_ISOLATORS),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, replay_scene=_replay_scene,
     simulate_body=_simulate_body,
     presets={

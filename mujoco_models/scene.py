@@ -17,7 +17,7 @@ import mujoco
 from isorock.analytic import kinematics
 from isorock.analytic.engine_protocol import contact_friction
 from isorock.analytic.errors import require
-from isorock.analytic.isolator_parts import PLANE_ISOLATORS, PUCK_HALF, PUCK_MASS_SHARE, isolator_parts
+from isorock.analytic.isolator_parts import PLANE_ISOLATORS, PUCK_HALF, isolator_parts, pendulum_puck
 from isorock.analytic.system import LINEAR, System
 
 from .settings import Settings
@@ -52,8 +52,8 @@ def scene_text(system: System, settings: Settings | None = None, *, transverse: 
     if transverse:
         require(settings.joint == "free", "joint", settings.joint,
                 "free with two horizontal components (the body must be free to leave the plane)")
-        require(system.fixed_base or system.isolator_kind in PAIR_ISOLATORS, "isolator", system.isolator_kind,
-                f"{', '.join(PAIR_ISOLATORS)} or a fixed base with two horizontal components")
+        require(system.fixed_base or system.isolator_kind in PLANE_ISOLATORS, "isolator", system.isolator_kind,
+                f"{', '.join(PLANE_ISOLATORS)} or a fixed base with two horizontal components")
     # keep the template's comments: they explain the scene to whoever opens the file
     parser = ET.XMLParser(target=ET.TreeBuilder(insert_comments=True))
     root = ET.parse(TEMPLATE, parser=parser).getroot()
@@ -203,11 +203,6 @@ def _isolator_element(root, named, system, settings):
     ET.SubElement(fixed, "joint", joint="slider_slide", coef="-1")
 
 
-#: the isolators a scene of two horizontal components builds (Capabilities.transverse_isolators;
-#: the pendulums' friction in the plane: _pair_pendulum)
-PAIR_ISOLATORS = PLANE_ISOLATORS
-
-
 def _pair_pendulum(root, named, system, settings) -> None:
     """A pendulum isolator under two horizontal components (issue 36): its restoring spring
     k = W/R and dashpot along x and along y (base_slide, base_slide_y), and its dry friction
@@ -217,7 +212,7 @@ def _pair_pendulum(root, named, system, settings) -> None:
     joint `puck_z`, moving with the base in x and y) pressed by a held force onto a floor with
     friction coefficient F_b/W on MuJoCo's elliptic cone (Settings.cone), so that its normal
     force is the model's W = M·g (state.Layout.forces holds it) and the friction's limit F_b =
-    μ·W in every direction. Its time constants are the joint friction's (FRICTION_TIMECONST_STEPS,
+    μ·W in every direction (analytic.isolator_parts.pendulum_puck). Its time constants are the joint friction's (FRICTION_TIMECONST_STEPS,
     FRICTION_SOLIMP), so that it sticks as tightly."""
     require(settings.cone == "elliptic", "cone", settings.cone,
             "elliptic with two horizontal components on a pendulum isolator (a pyramid's friction is not isotropic)")
@@ -228,23 +223,22 @@ def _pair_pendulum(root, named, system, settings) -> None:
     base.insert(list(base).index(slide) + 1, ET.Element(
         "joint", name="base_slide_y", type="slide", axis="0 1 0", stiffness=repr(parts.stiffness),
         damping=repr(parts.damping)))
-    if parts.base_friction <= 0.0:
+    held = pendulum_puck(system)
+    if held is None:
         return
-    load = (system.mass + system.base_mass) * system.gravity
-    puck_mass = PUCK_MASS_SHARE * system.base_mass
-    base.find("inertial").set("mass", repr(system.base_mass - puck_mass))
+    base.find("inertial").set("mass", repr(system.base_mass - held.mass))
     puck = ET.SubElement(base, "body", name="isolator_puck", pos=_fmt(0, 0, -BASE_HALF_THICKNESS - PUCK_HALF))
     puck.append(ET.Comment(f" the pendulum's dry friction, the same in every direction: to reproduce a run, hold "
-                           f"this puck down by applying {-(load - puck_mass * system.gravity):.6g} N to puck_z "
-                           f"(qfrc_applied) at every step, so that the floor pushes it up by W = {load:.6g} N "))
+                           f"this puck down by applying {held.hold:.6g} N to puck_z "
+                           f"(qfrc_applied) at every step, so that the floor pushes it up by W = {held.load:.6g} N "))
     ET.SubElement(puck, "joint", name="puck_z", type="slide", axis="0 0 1")
-    ET.SubElement(puck, "inertial", pos="0 0 0", mass=repr(puck_mass), diaginertia=_fmt(*(puck_mass * PUCK_HALF**2,) * 3))
+    ET.SubElement(puck, "inertial", pos="0 0 0", mass=repr(held.mass), diaginertia=_fmt(*(held.mass * PUCK_HALF**2,) * 3))
     ET.SubElement(puck, "geom", name="puck_geom", type="box", size=_fmt(PUCK_HALF, PUCK_HALF, PUCK_HALF),
                   rgba="0.3 0.3 0.35 1")
     floor_z = -2 * BASE_HALF_THICKNESS - 2 * PUCK_HALF
     ET.SubElement(root.find("worldbody"), "geom", name="isolator_floor", type="plane", size="0 0 1",
                   pos=_fmt(0, 0, floor_z), rgba="0.4 0.4 0.4 1")
-    mu = parts.base_friction / load
+    mu = held.friction
     tau = FRICTION_TIMECONST_STEPS * settings.timestep
     ET.SubElement(root.find("contact"), "pair", name="isolator_friction", geom1="puck_geom", geom2="isolator_floor",
                   condim="3", friction=_fmt(mu, mu, 0, 0, 0), solref=_fmt(tau, 1.0), solreffriction=_fmt(tau, 1.0),

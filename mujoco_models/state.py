@@ -14,6 +14,7 @@ import numpy as np
 
 from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
+from isorock.analytic.isolator_parts import pendulum_puck
 from isorock.analytic.rest_phase import BLOCK
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import RawHistory
@@ -45,8 +46,7 @@ class Layout:
         # floor pushes it up by the model's W = M·g, its own weight included
         puck = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "puck_z")
         self.puck_v = None if puck < 0 else model.jnt_dofadr[puck]
-        self.puck_load = 0.0 if puck < 0 else -((system.mass + system.base_mass) * system.gravity
-                                                - float(model.body_mass[model.jnt_bodyid[puck]]) * system.gravity)
+        self.puck_load = 0.0 if puck < 0 else pendulum_puck(system).hold
         if self.free:
             jid = model.joint("block_free").id
             self.bq, self.bv = model.jnt_qposadr[jid], model.jnt_dofadr[jid]

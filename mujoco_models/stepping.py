@@ -33,14 +33,14 @@ from isorock.analytic import kinematics
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import run_inputs
 from isorock.analytic.errors import require
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, check_contact_isolator
+from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS, check_contact_isolator
 from isorock.analytic.limits import RunBudget
 from isorock.analytic.rest_phase import stepped_throughout
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
-from .scene import PAIR_ISOLATORS, build_model
+from .scene import build_model
 from . import phases
 from .settings import Settings
 from .state import (Layout, StepRecord, fresh_data, raw_history, stop_in, vertical_at, vertical_record,
@@ -151,7 +151,7 @@ def _inputs(given: Settings, system: System, motion, duration, theta0):
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD,
                                   settings=given.for_system(system), isolators=CONTACT_ISOLATORS,
                                   kinetic_friction=False, two_edges=True, transverse=True,
-                                  transverse_isolators=PAIR_ISOLATORS)
+                                  transverse_isolators=PLANE_ISOLATORS)
     check_contact_isolator(system, "mujoco")
     if motion.transverse is not None:
         # two components: the body on the free joint (the block's planar joints cannot leave
