@@ -24,7 +24,7 @@ import argparse
 import re
 from dataclasses import dataclass
 
-from isorock.analytic.errors import InputError, path_value
+from isorock.analytic.errors import InputError, import_extra, path_value
 
 
 def _parser(command: str) -> argparse.ArgumentParser:
@@ -141,7 +141,6 @@ class Validation:
     results: object
 
     def checks(self):
-        from isorock.analytic.errors import import_extra
         pd = import_extra("pandas", "notebook", "Validation.checks")
         return pd.DataFrame(self.metrics["checks"])
 

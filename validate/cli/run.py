@@ -26,11 +26,11 @@ from isorock.analytic.system import LINEAR
 from .options import (announce_cost, budget_stopped, check_tables_run, engine_tables,
                       motion_from_args, run_budget, settings_dict, statue_azimuth, statue_body,
                       system_from_args, transverse_asked)
-from ..core.biaxial import box_body
+from ..core.biaxial import box_body, render, two_components
 from ..core.compare import compare
 from ..core.engines import choose, get_engine, resolve, table_overrides
 from ..core.plan import EngineRun, make_plan, run_plan
-from ..io.naming import cell
+from ..io.naming import cell, describe_motion
 from ..io.output import Outputs, to_json
 
 
@@ -247,10 +247,8 @@ def cmd_run(a) -> int:
         comparisons = {label: compare(tr, ref) for label, tr in runs.items() if label != ref_label}
         two = None
         if shaken is not None:  # two components: the 3-D measures, the planar runs beside (issue 36)
-            from ..core.biaxial import two_components
             two = two_components(runs, system, motion, *shaken, duration)
         if several:
-            from ..io.naming import describe_motion
             report = {
                 "reference": ref_label, "system": system.describe(),
                 "motion": dict(motion.describe(), description=describe_motion(motion)),
@@ -276,7 +274,6 @@ def cmd_run(a) -> int:
         outputs.commit()
     if not a.quiet and "-" not in (a.json, a.csv):
         if two is not None:
-            from ..core.biaxial import render
             for label, one in two.items():
                 print(render(one, label))
         if several:

@@ -32,7 +32,7 @@ from shlex import quote
 from isorock.analytic.errors import InputError
 from isorock.analytic.limits import check_workers
 from .atlas import expand
-from ..core.engines import DISTINCT_ENGINES, engine_label, get_engine, presets_of
+from ..core.engines import DISTINCT_ENGINES, ENGINE_NAMES, engine_label, get_engine, presets_of
 from ..core.estimate import SPEEDS
 from ..core.scenarios import KOBE
 from ..io.naming import markdown_cell
@@ -43,7 +43,7 @@ from ..tools.atlas import RUN_BUDGET, Grid, build as atlas_build, distinct, refe
 from ..tools.bench import BATCH_RUNS, BATCH_THREADS, speed_goals
 from ..tools.experiments import data, processing, study
 from ..tools.report_run import ReportConfig, build as report_build
-from ..tools.stress import NOT_CARRIED, NOT_FAILED, engine_agreement, run_stress as stress_run
+from ..tools.stress import NOT_CARRIED, NOT_FAILED, drawn_cases, edge_cases, engine_agreement, run_stress as stress_run
 
 DEFAULT_OUT = "docs/engines.md"
 #: s: what the whole command may take by default (CI's suite must stay under ~5 min on 2 cores:
@@ -312,8 +312,6 @@ def per_engine_estimate(measure: str, name: str, effort: Effort) -> tuple[float,
         sim = VALIDATE_SIMULATED_S[None if effort.validate_motions is None else len(effort.validate_motions)]
         return OVERHEAD["validate"] * sim / speed * (0 if name == "analytic" else 1) + 1.0, ""
     if measure == "stress":
-        from ..core.engines import ENGINE_NAMES
-        from ..tools.stress import drawn_cases, edge_cases
         cases = edge_cases(True) + (drawn_cases(effort.stress_drawn) if name in ENGINE_NAMES else [])
         recheck = 0.0 if name == "analytic" else STRESS_RECHECK_S
         return OVERHEAD["stress"] * sum(c.scenario.duration for c in cases) / speed + recheck, ""

@@ -7,7 +7,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from isorock.analytic.limits import available_cores
+from isorock.analytic.limits import available_cores, check_workers
 from ..io.output import Terminated, signal_received
 from ..tools.campaign.run import run_campaign
 from ..tools.campaign.spec import load_spec
@@ -31,7 +31,6 @@ def add_parser(subparsers) -> None:
 
 def run(a) -> int:
     if a.workers is not None:
-        from isorock.analytic.limits import check_workers
         check_workers("--workers", a.workers, serial=True)
     spec = load_spec(a.spec)
     out = Path(a.out) if a.out else Path(f"sweep-{Path(a.spec).stem}")

@@ -20,15 +20,15 @@ from __future__ import annotations
 import hashlib
 import json
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from isorock.analytic import limits
 from isorock.analytic.limits import available_cores
 
-from .cases import Case, motion_of
-from .engines import EngineChoice
+from .cases import Case, motion_of, record_digest
+from .engines import EngineChoice, choose, get_engine, runs_here
 from .executor import Executor, Pool, _borrowed, execute
 from .summary import case_inputs, row_of_batch, row_of_failure, row_of_trajectory, rows_to_table, sort_table
 
@@ -41,7 +41,6 @@ CONTACT_CHUNK = 4
 def runs_as_batch(engine: str) -> bool:
     """Does the engine run many cases in one call (its capabilities say so: the compiled
     analytic kernel's `simulate_batch`)? The registry answers; no engine is named here."""
-    from .engines import get_engine
     return get_engine(engine).capabilities.batch
 
 
@@ -67,7 +66,6 @@ def chunk_id(setting: EngineChoice, cases, overturn_rule: str | None = None) -> 
         head.append(["overturn_rule", overturn_rule])
     # a record's content joins its case's inputs (a pulse's inputs define it whole, so its
     # ids stay as they were)
-    from .cases import record_digest
     inputs = []
     for c in cases:
         row, digest = case_inputs(c), record_digest(c)
@@ -107,7 +105,6 @@ def run_chunk(task: Chunk, threads: int | None = 1) -> list[dict]:
 
 
 def _run_batch(task: Chunk, threads) -> list[dict]:
-    from dataclasses import replace
 
     from isorock.analytic.fast import simulate_batch
     settings = task.setting.settings()
@@ -128,7 +125,6 @@ def _run_contact(task: Chunk, threads: int | None) -> list[dict]:
     """A contact engine's chunk: its batch path (MuJoCo's: one scene per system, `threads`
     runs side by side) or one run after another; each row what the run alone gives.
     Impacts are counted, not mapped to effective β: no column reads it."""
-    from .engines import get_engine
     engine = get_engine(task.setting.engine)
     start = time.perf_counter()
     results = engine.simulate_many([(c.system, motion_of(c), c.duration, c.theta0) for c in task.cases],
@@ -178,7 +174,6 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, executor: "Execu
     processes, the analytic chunks (engines.runs_here) still run in this process (where
     the kernel is loaded; they take milliseconds) while they run the contact engines'.
     progress: an object with update(n, work) (io.progress.Progress), or None."""
-    from .engines import choose
     choices = []
     for e in engines:
         choice = e if isinstance(e, EngineChoice) else choose(*((e, {}) if isinstance(e, str) else e), strict=True)
@@ -187,7 +182,6 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, executor: "Execu
     tasks = make_tasks(list(cases), choices, analytic_chunk=analytic_chunk, contact_chunk=contact_chunk,
                        overturn_rule=overturn_rule)
     rows = []
-    from .engines import runs_here
     here = (lambda task: runs_here(task.setting.engine)) if batch_here else None
     with (Executor.on(client, workers) if executor is None else _borrowed(executor)) as where:
         execute(tasks, executor=where, threads=threads, on_done=lambda t, r: rows.extend(r), progress=progress,
@@ -204,7 +198,6 @@ def ready_kernel() -> None:
     --quick` timed out on every analytic case). One tiny run here builds it once, said on
     stderr; with the cache in place it costs milliseconds."""
     from isorock.analytic.system import paper_system
-    from .engines import get_engine
     try:
         engine = get_engine("analytic")
     except ImportError:  # no compiled kernel here (numba missing): nothing to ready

@@ -11,11 +11,12 @@ loads a physics engine.
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import MISSING, asdict, dataclass, field, fields, is_dataclass, replace
 
 from typing import TYPE_CHECKING
 
-from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, EngineSpec, declare_facet
+from isorock.analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, EngineSpec, check_body, check_friction,
+                                              check_isolator_kind, declare_facet)
 from isorock.analytic.errors import InputError
 
 if TYPE_CHECKING:
@@ -154,7 +155,6 @@ class Engine:
         isolator it does not build (docs/isolators.md), or a statue whose kinetic friction is
         below its static one, where the engine has one friction coefficient (MuJoCo, PyBullet:
         Capabilities.kinetic_friction)."""
-        from isorock.analytic.engine_protocol import check_body, check_friction, check_isolator_kind
         check_isolator_kind(system, self.capabilities.isolators, f"engine {self.name!r}")
         check_body(system, getattr(self.capabilities, "two_edges", False), f"engine {self.name!r}")
         check_friction(system, self.capabilities.kinetic_friction, f"engine {self.name!r}",
@@ -285,7 +285,6 @@ def setting_value_problem(settings_type, key: str, value) -> str | None:
     value: a --config [settings.ENGINE] table, a campaign's [[engines]] settings and the command
     line's --set all ask it (an engine's own Settings checks ranges when it is made)."""
     import math
-    from dataclasses import MISSING
     f = next((f for f in fields(settings_type) if f.name == key), None)
     if f is None:
         return None
@@ -529,7 +528,6 @@ def presets_of(name: str) -> dict:
     setting's value, "differs": the names of those that differ from the engine's default}.
     An engine whose package cannot be imported here (an optional extra not installed) is an
     InputError saying what to install."""
-    from dataclasses import asdict
     try:
         engine = get_engine(name)
     except EngineUnavailable:
@@ -593,7 +591,6 @@ def describe_settings(settings, system=None, duration: float | None = None) -> d
     (`for_system`: MuJoCo's and PyBullet's step and contact), the numbers derived for
     `system` (and a run of `duration` s: MuJoCo's step divides it), which is what the run
     used."""
-    from dataclasses import asdict, is_dataclass
     if system is not None:
         settings = settings_used(settings, system, duration)
     out = asdict(settings) if is_dataclass(settings) else {}

@@ -39,7 +39,7 @@ from ...core.cases import Case, _LazyScaled, record_factor
 from ...core.chunks import run_cases
 from ...core.engines import ALL_ENGINES, check_carries, choose, get_engine
 from ...core.fragility import fit_counts
-from ...core.summary import case_inputs, row_of_batch
+from ...core.summary import case_inputs, row_of_batch, rows_to_table, sort_table
 from ...core.tolerances import has_tolerance, tolerance
 
 #: The engine that answers the design question (the compiled kernel).
@@ -600,7 +600,6 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     if settled:
         import pyarrow as pa
 
-        from ...core.summary import rows_to_table, sort_table
         parts = [rows_to_table(settled)] + ([table] if table is not None else [])
         table = sort_table(pa.concat_tables(parts))
     wall = time.perf_counter() - start

@@ -21,7 +21,7 @@ from ...core.summary import rows_to_table, sort_table
 from ...io.output import write_atomic, write_text
 from ...io.progress import bar_of, logged
 from .parts import part_problem, read_parts, write_part
-from .spec import CampaignSpec, load_spec
+from .spec import CampaignSpec, check_limits, load_spec
 
 #: The file that marks a folder as written by `isorock sweep`: a sweep fills a new or
 #: empty folder, or one holding this marker, and refuses any other.
@@ -78,7 +78,6 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
     if spec.motions["type"] == "records":
         from .records import load_suite
         records = load_suite(spec.motions)
-        from .spec import check_limits
         check_limits(spec, max((r.end_time for r in records.values()), default=0.0))
     cases = spec.cases(records)
     tasks = make_tasks(cases, spec.engines, analytic_chunk=spec.analytic_chunk,

@@ -20,14 +20,14 @@ import numpy as np
 
 from isorock.analytic import shape
 from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_duration, check_isolator
-from isorock.analytic.motion import PULSES
+from isorock.analytic.limits import check_acceleration, check_duration, check_isolator
+from isorock.analytic.motion import PULSES, UNITS
 from isorock.analytic.system import MAX_STATUE_FRICTION, PlanarBody, System
 from ...core.cases import Case, build_case, build_system, pulse_for
 from ...core.chunks import ANALYTIC_CHUNK, CONTACT_CHUNK
 from ...core.engines import ALL_ENGINES, EngineChoice, check_carries, choose, get_engine
 from ...io.schema import read_toml
-from .schema import check_campaign
+from .schema import MASS_RATIO_RANGE, check_campaign
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).
 AXES = ("frequency_ratio", "amplitude_ratio", "intensity", "slenderness", "alpha", "size", "height",
@@ -309,7 +309,6 @@ def _systems(t, source: Path = Path("campaign.toml")) -> dict:
         if "base_mass" in t:
             # the base's mass as given (kg); each system's μ = mass/base_mass, within the range
             # a mass ratio may take (schema.MASS_RATIO_RANGE)
-            from .schema import MASS_RATIO_RANGE
             out["base_mass"] = _grid("systems.base_mass", t["base_mass"])
             lo, hi = MASS_RATIO_RANGE
             for m, mb in itertools.product(out["mass"], out["base_mass"]):
@@ -357,7 +356,6 @@ def _motions(t, source: Path) -> dict:
                 raise _where("motions.folder", str(t["folder"]), f"a folder of records (looked in {folder})")
             out["folder"] = str(folder)
         units = t.get("units")  # None: each file states its own (AT2, JMA, a two-column header)
-        from isorock.analytic.motion import UNITS
         if units is not None and units not in UNITS:
             raise _where("motions.units", units, f"one of {', '.join(UNITS)} (for two-column files)")
         out["units"] = units
@@ -491,7 +489,6 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
             raise InputError(f"systems.period: {str(e).replace(' (stiffness nan N/m)', '')}") from None
     systems = [build_system(g) for g in spec.system_grid()]
     if spec.motions["type"] == "pulse":  # a pulse's peak is amplitude_ratio·g·tanα (a record's: record_factor)
-        from isorock.analytic.limits import check_acceleration
         steepest = max(math.tan(system.alpha) for system in systems)
         check_acceleration("motions.amplitude_ratio", max(spec.motions["amplitude_ratio"]) * steepest,
                            f" (its largest × tanα = {steepest:.3g} of the squattest block)")
