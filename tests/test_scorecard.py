@@ -230,3 +230,103 @@ def test_a_refused_output_leaves_the_earlier_scorecard_whole(tmp_path, capsys):
     assert err.count("\n") == 1 and "json = " in err and "folder" in err
     assert out.read_text() == "an earlier scorecard\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a-folder", "engines.md"]  # nothing staged left
+
+
+# --- --check: the committed scorecard made again and compared (what CI runs) -------------------
+
+def _committed() -> dict:
+    return json.loads((ROOT / "docs" / "engines.json").read_text(encoding="utf-8"))
+
+
+def _measured_row(data: dict, measure: str) -> dict:
+    return next(r for r in data["rows"] if r["engine"] != "analytic" and "not_run" not in r[measure])
+
+
+def test_drift_names_each_cell_a_reader_would_see_change_and_nothing_else():
+    """The oracle is the edit made here by hand to a copy of the committed scorecard: each changed
+    cell is named once, a change below the 3 significant digits the scorecard shows and a speed are
+    not, and a measure made in one of the two only, for the budget or an engine not installed in
+    both places, is listed apart, not drift."""
+    import copy
+    old = _committed()
+    assert sc.drift(old, copy.deepcopy(old)) == ([], [], len(old["rows"]) * len(sc.CHECKED_COLUMNS))
+
+    new = copy.deepcopy(old)
+    atlas_row = _measured_row(new, "atlas")
+    atlas_row["atlas"]["worst_beta_error"] *= 1.1  # seen: the scorecard shows 3 significant digits
+    speed_row = _measured_row(new, "speed")
+    speed_row["speed"]["alone_isolated"] *= 3.0  # the machine's, never compared
+    validate_row = _measured_row(new, "validate")
+    validate_row["validate"]["failed"] += 1
+    drifted, unmeasured, _ = sc.drift(old, new)
+    assert len(drifted) == 2 and not unmeasured, drifted
+    assert drifted[0].startswith(f"{atlas_row['label']}, atlas: worst β") or drifted[1].startswith(
+        f"{atlas_row['label']}, atlas: worst β")
+    assert any(d.startswith(f"{validate_row['label']}, validate") for d in drifted)
+
+    new = copy.deepcopy(old)
+    _measured_row(new, "atlas")["atlas"]["worst_beta_error"] *= 1 + 1e-6  # below what is shown
+    assert sc.drift(old, new)[0] == []
+
+    new = copy.deepcopy(old)
+    row = _measured_row(new, "stress")
+    row["stress"] = {"not_run": "not run: estimated 46 s, 12 s of the --budget of 1200 s left when its turn came"}
+    assert sc.drift(old, new)[0] and not sc.drift(old, new)[1]  # an admitted measure cut: drift
+    row["stress"] = {"not_run": "not run: estimated 46 s, over the --budget of 1200 s with the work before it"}
+    drifted, one_only, compared = sc.drift(old, new)
+    assert not drifted and len(one_only) == 1 and row["label"] in one_only[0]
+    assert compared == len(old["rows"]) * len(sc.CHECKED_COLUMNS) - 1
+    assert sc.drift(new, old)[:2] == ([], one_only)  # measured now, over the budget in the file: the same
+    row["stress"] = {"not_run": "not run: the engine cannot be loaded here (No module named 'warp')"}
+    assert sc.drift(old, new)[0] == [] and len(sc.drift(old, new)[1]) == 1  # an optional engine not installed
+
+    new = copy.deepcopy(old)  # the numbers of a 'not run' reason (an estimate) are not the engine's
+    not_run = next(r for r in new["rows"] if "estimated" in r["atlas"].get("not_run", ""))
+    not_run["atlas"]["not_run"] = not_run["atlas"]["not_run"].replace("1", "2")
+    assert sc.drift(old, new)[0] == []
+    new["rows"].pop()
+    assert sc.drift(old, new)[0] == [f"{old['rows'][-1]['label']}: a row only in the file"]
+
+
+def test_check_makes_the_files_scorecard_again_and_exits_1_on_drift(tmp_path, monkeypatch, capsys):
+    """--check takes its engines, effort and budget from the file, writes nothing unless asked,
+    and exits 1 naming the cell that drifted (the build is the file itself here, or a copy with one
+    cell changed: what the engines make is the committed scorecard's own test above)."""
+    import copy
+    old = _committed()
+    path = tmp_path / "engines.json"
+    path.write_text(json.dumps(old), encoding="utf-8")
+    calls = []
+
+    def build(labels, effort, *, budget, workers, quiet, command):
+        calls.append((labels, effort.name, budget, command))
+        return made
+    monkeypatch.setattr(sc, "build", build)
+    monkeypatch.chdir(tmp_path)  # the default --out (docs/engines.md) would be here: it must not be written
+    made = copy.deepcopy(old)
+    assert main(["scorecard", "--check", str(path), "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert calls == [([r["label"] for r in old["rows"]], old["effort"], old["budget_s"], old["command"])]
+    assert "0 drifted" in out and "wrote nothing" in out
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["engines.json"]
+
+    made = copy.deepcopy(old)
+    row = _measured_row(made, "atlas")
+    row["atlas"]["impacts_lost"] += 1
+    md = tmp_path / "again.md"
+    assert main(["scorecard", "--check", str(path), "--quiet", "--out", str(md)]) == 1
+    out = capsys.readouterr().out
+    assert f"drifted: {row['label']}, atlas" in out and "1 drifted" in out
+    assert md.read_text(encoding="utf-8") == sc.markdown(made)  # what was named is written, whole
+    assert json.loads(path.read_text(encoding="utf-8")) == old  # the file checked is never touched
+
+
+@pytest.mark.parametrize("args, named", [
+    (["--quick"], "--quick = True"),
+    (["--budget", "600"], "--budget = 600.0"),
+    (["--engines", "mujoco"], "--engines = ['mujoco']"),
+])
+def test_check_refuses_what_the_file_decides_in_one_line(tmp_path, capsys, args, named):
+    assert main(["scorecard", "--check", str(ROOT / "docs" / "engines.json"), *args]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and named in err, err

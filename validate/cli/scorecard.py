@@ -23,6 +23,7 @@ import json
 import math
 import os
 import platform
+import re
 import sys
 import time
 from dataclasses import dataclass
@@ -121,17 +122,21 @@ def add_parser(sub) -> None:
                    help=f"small grids: atlas λ {_axis(QUICK.slenderness)} × μ {_axis(QUICK.mass_ratios)} × H "
                         f"{_axis(QUICK.heights)} m, validate on one pulse, stress's quick edge cases, every "
                         f"{QUICK.experiment_stride}th shake-table test, one repeat of each speed run")
-    p.add_argument("--budget", type=float, default=DEFAULT_BUDGET, metavar="SECONDS",
+    p.add_argument("--budget", type=float, metavar="SECONDS",
                    help="wall seconds the whole command may take: work estimated not to fit is not run, and says "
-                        "so in its row (default: %(default)g)")
-    p.add_argument("--out", default=DEFAULT_OUT, metavar="FILE.md",
-                   help="the scorecard (default: %(default)s; replaced whole when done)")
+                        f"so in its row (default: {DEFAULT_BUDGET:g}, or --check's file's)")
+    p.add_argument("--out", metavar="FILE.md",
+                   help=f"the scorecard (default: {DEFAULT_OUT}, or nothing with --check; replaced whole when done)")
     p.add_argument("--json", metavar="FILE", help="also write every row, and how it was made, as JSON")
     p.add_argument("--readme", metavar="FILE",
                    help="also rewrite the engine table between the scorecard's marker lines in FILE (the "
                         "project's README.md); a file without both markers is refused before any work")
     p.add_argument("--workers", type=int, metavar="N", help="worker processes for the atlas, validate and stress "
                                                           "runs (default: 2, or the cores there are)")
+    p.add_argument("--check", metavar="FILE.json",
+                   help="make the scorecard of FILE (a --json of this command: its engines, effort and budget) "
+                        "again and compare every measured cell but the speeds with it: exit 1, naming each cell "
+                        "that drifted; writes --out and --json only where named (CI runs it on docs/engines.json)")
     p.add_argument("--quiet", action="store_true", help="no plan and no progress on stderr")
     p.set_defaults(func=cmd_scorecard)
 
@@ -173,31 +178,72 @@ def readme_block(text: str) -> str:
 
 
 def cmd_scorecard(a) -> int:
-    budget = check_budget(a.budget)
+    checked = None
+    if a.check is not None:  # FILE's own engines, effort and budget, read before any work
+        checked = checked_file(a.check)
+        for flag, given in (("--engines", a.engines or None), ("--quick", True if a.quick else None),
+                            ("--budget", a.budget)):
+            if given is not None:
+                raise InputError(f"{flag} = {given!r}: not with --check, which makes the scorecard of "
+                                 f"{a.check} with its own engines, effort and budget")
+    engines = a.engines if checked is None else [r["label"] for r in checked["rows"]]
+    effort = QUICK if (a.quick if checked is None else checked["effort"] == QUICK.name) else FULL
+    budget = check_budget(checked["budget_s"] if checked is not None else DEFAULT_BUDGET if a.budget is None
+                          else a.budget)
     if a.workers is not None:
         check_workers("workers", a.workers)
-    labels = labels_of(a.engines)
-    effort = QUICK if a.quick else FULL
+    labels = labels_of(engines)
+    out = a.out if a.out is not None or checked is not None else DEFAULT_OUT
     with Outputs() as outputs:  # every path refused here, before any work
-        md = outputs.file("out", a.out)
+        md = outputs.file("out", out) if out is not None else None
         js = outputs.file("json", a.json) if a.json is not None else None
         readme = None
         if a.readme is not None:
             readme = outputs.file("readme", a.readme)
             old_readme = readme_text(a.readme)
-        command = command_of(a)
+        command = checked["command"] if checked is not None else command_of(a)
         data = build(labels, effort, budget=budget, workers=a.workers, quiet=a.quiet, command=command)
         data = json.loads(to_json(data))  # rendered as the JSON holds it: the files agree, and can be re-rendered
-        md.write_text(markdown(data))
+        if md is not None:
+            md.write_text(markdown(data))
         if js is not None:
             js.write_text(to_json(data) + "\n")
         if readme is not None:
             readme.write_text(with_table(old_readme, readme_table(data)))
         outputs.commit()
     print("\n".join(summary_lines(data)))
-    print(f"scorecard: {len(data['rows'])} rows in {data['wall_s']:.0f} s of a {budget:g} s budget; wrote {a.out}"
-          + (f", {a.json}" if a.json else "") + (f", the table in {a.readme}" if a.readme else ""))
-    return 0
+    wrote = [x for x in (out, a.json) if x is not None] + ([f"the table in {a.readme}"] if a.readme else [])
+    print(f"scorecard: {len(data['rows'])} rows in {data['wall_s']:.0f} s of a {budget:g} s budget; "
+          + (f"wrote {', '.join(wrote)}" if wrote else "wrote nothing"))
+    if checked is None:
+        return 0
+    drifted, one_only, compared = drift(checked, data)
+    for line in one_only:
+        print(f"  measured in one of the two only: {line}")
+    for line in drifted:
+        print(f"  drifted: {line}")
+    print(f"scorecard --check {a.check}: {compared} cells compared, {len(drifted)} drifted, {len(one_only)} "
+          "measured in one of the two only (the budget as the clock ran, or an engine not installed in both places)"
+          + ("" if drifted else "; the file is what the command makes (the speeds apart)"))
+    return 1 if drifted else 0
+
+
+def checked_file(path) -> dict:
+    """A scorecard's JSON (what --json wrote) for --check: its rows, effort and budget (InputError
+    otherwise, naming what is wrong)."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except (OSError, UnicodeDecodeError, ValueError) as e:
+        raise InputError(f"check = {str(path)!r}: cannot be read as JSON ({type(e).__name__}: {e})") from None
+    ok = (isinstance(data, dict) and isinstance(data.get("rows"), list) and data["rows"]
+          and all(isinstance(r, dict) and isinstance(r.get("label"), str) for r in data["rows"])
+          and data.get("effort") in (FULL.name, QUICK.name) and isinstance(data.get("budget_s"), (int, float))
+          and isinstance(data.get("command"), str))
+    if not ok:
+        raise InputError(f"check = {str(path)!r}: not a scorecard's JSON (rows with labels, effort "
+                         f"{FULL.name!r} or {QUICK.name!r}, budget_s and command, as --json writes them)")
+    return data
 
 
 def command_of(a) -> str:
@@ -205,7 +251,7 @@ def command_of(a) -> str:
     parts = ["isorock", "scorecard"] + (["--quick"] if a.quick else [])
     if a.engines:
         parts += ["--engines", *a.engines]
-    parts += ["--budget", f"{a.budget:g}"]
+    parts += ["--budget", f"{DEFAULT_BUDGET if a.budget is None else a.budget:g}"]
     for flag, value in (("--out", a.out if a.out != DEFAULT_OUT else None), ("--json", a.json),
                         ("--readme", a.readme), ("--workers", a.workers)):
         if value is not None:
@@ -641,6 +687,42 @@ COLUMNS = (("engine:preset", lambda r: r["label"]),
            ("per CPU s / the step floor, isolated / fixed", lambda r: floor_cell(r["speed"])))
 
 
+#: The columns --check compares: what a reader sees of each measure, but the speeds (the
+#: machine's and its load's, not the engine's)
+CHECKED_COLUMNS = tuple(c for c in COLUMNS[1:] if not c[0].startswith(("speed", "per CPU s")))
+#: Why a measure may be made in one of two scorecards of the same command and not in the other,
+#: without anything drifting: the budget as the clock ran (a measure left out by the plan runs
+#: afterwards where the time left allows), or an optional engine installed in one place only
+_MAY_BE_APART = ("over the --budget of", "cannot be loaded here")
+
+
+def drift(old: dict, new: dict) -> tuple[list[str], list[str], int]:
+    """(cells that differ, cells measured in one scorecard only for a reason of _MAY_BE_APART,
+    cells compared) between two scorecards of the same command: each row's checked columns as the
+    scorecard shows them (CHECKED_COLUMNS, 3 significant digits), a 'not run' reason with its
+    numbers (estimates, seconds left) masked. A row in one and not the other differs."""
+    def masked(text: str) -> str:
+        return re.sub(r"\d+(\.\d+)?", "#", text) if text.startswith("not run") else text
+
+    def apart(text: str) -> bool:
+        return text.startswith("not run") and any(why in text for why in _MAY_BE_APART)
+
+    old_rows, new_rows = {r["label"]: r for r in old["rows"]}, {r["label"]: r for r in new["rows"]}
+    drifted, one_only, compared = [], [], 0
+    for label in sorted(set(old_rows) ^ set(new_rows)):
+        drifted.append(f"{label}: a row only in the {'file' if label in old_rows else 'new scorecard'}")
+    for label in (x for x in old_rows if x in new_rows):
+        for name, cell in CHECKED_COLUMNS:
+            was, now = cell(old_rows[label]), cell(new_rows[label])
+            if was.startswith("not run") != now.startswith("not run") and (apart(was) or apart(now)):
+                one_only.append(f"{label}, {name}: {was if apart(was) else now}")
+                continue
+            compared += 1
+            if masked(was) != masked(now):
+                drifted.append(f"{label}, {name}: {was!r} in the file, {now!r} now")
+    return drifted, one_only, compared
+
+
 def table_lines(data: dict) -> list[str]:
     lines = ["| " + " | ".join(name for name, _ in COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     for r in data["rows"]:
@@ -764,7 +846,10 @@ def markdown(data: dict) -> str:
               f"- date: {data['date']}; load (1, 5, 15 min) before {load(data['load_before'])}, after "
               f"{load(data['load_after'])}; {data['cores']} cores visible",
               "- speeds were measured on a shared machine with whatever else ran there: compare rows of one "
-              "scorecard, not scorecards."]
+              "scorecard, not scorecards.",
+              "- CI makes it again with the same command and holds every cell but the speeds to the JSON it "
+              "was rendered from: `isorock scorecard --check FILE.json` (for this file, docs/engines.json), exit "
+              "1 naming each cell that drifted."]
     return "\n".join(lines) + "\n"
 
 
