@@ -29,7 +29,7 @@ from isorock.analytic.limits import available_cores
 
 from .cases import Case, motion_of, record_digest
 from .engines import EngineChoice, choose, get_engine, runs_here
-from .executor import Executor, Pool, _borrowed, execute
+from .executor import Executor, Pool, borrowed, execute
 from .summary import case_inputs, row_of_batch, row_of_failure, row_of_trajectory, rows_to_table, sort_table
 
 
@@ -183,7 +183,7 @@ def run_cases(cases, engines, *, client=None, workers: int = 0, executor: "Execu
                        overturn_rule=overturn_rule)
     rows = []
     here = (lambda task: runs_here(task.setting.engine)) if batch_here else None
-    with (Executor.on(client, workers) if executor is None else _borrowed(executor)) as where:
+    with (Executor.on(client, workers) if executor is None else borrowed(executor)) as where:
         execute(tasks, executor=where, threads=threads, on_done=lambda t, r: rows.extend(r), progress=progress,
                 here=here, run=run_chunk, weight=chunk_weight, cost=expected_cost)
     return sort_table(rows_to_table(rows))

@@ -43,6 +43,7 @@ from isorock.analytic.kinematics import LYING
 from ..core.cases import with_vertical_spec
 from ..core.chunks import worker_pool
 from ..core.engines import ENGINE_NAMES, REFERENCE, campaign_engines, get_engine
+from ..core.executor import borrowed
 from ..core.scenarios import Scenario, block
 from ..core.summary import row_of_trajectory
 from ..core.tolerances import has_tolerance, limit, tolerance
@@ -263,12 +264,15 @@ def run_case(engine: str, case: StressCase, time_limit: float) -> dict:
     return run_cases([(engine, case)], time_limit, workers=1)[0]
 
 
-def run_cases(todo, time_limit: float, *, workers: int = 2, bar=None) -> list[dict]:
+def run_cases(todo, time_limit: float, *, workers: int = 2, bar=None, executor=None) -> list[dict]:
     """Every (engine, case) of `todo` on the one executor's worker processes
     (core.executor.Executor), `workers` at a time, each stopped and reported as 'timeout'
     past time_limit s of wall time; results in the order of `todo`. `bar`: the progress
-    bar (io.progress) the executor updates as each run ends, noting its case."""
-    with worker_pool(max(1, min(workers, len(todo) or 1))) as executor:
+    bar (io.progress) the executor updates as each run ends, noting its case. `executor`: a
+    pool the caller keeps for several calls (its workers' imports paid once), else one of
+    its own."""
+    pool = borrowed(executor) if executor is not None else worker_pool(max(1, min(workers, len(todo) or 1)))
+    with pool as executor:
         outcomes = executor.map(run_one, todo, budget=time_limit, progress=bar, note=lambda item: item[1].name[:30])
     return [_finish(outcome, item, time_limit) for outcome, item in zip(outcomes, todo)]
 
@@ -352,7 +356,8 @@ def compare_engines(results: list[dict]) -> None:
             r["cross"] = "agree"
 
 
-def recheck_disagreements(results: list[dict], cases: dict, time_limit: float, *, workers: int = 2) -> None:
+def recheck_disagreements(results: list[dict], cases: dict, time_limit: float, *, workers: int = 2,
+                          executor=None) -> None:
     """A disagreement is robust only if the reference's outcome holds on a finer step and
     the engine's outcome does too (in place). First the reference is rerun at every
     ROBUST_STEP within ±ROBUST_SCALE (`reference_flips`): where it flips, `cross` becomes
@@ -365,7 +370,8 @@ def recheck_disagreements(results: list[dict], cases: dict, time_limit: float, *
     suspects = [r for r in results if r.get("cross") == "DISAGREE"]
     if not suspects:
         return
-    flips = reference_flips(results, {r["case"] for r in suspects}, cases, time_limit, workers=workers)
+    flips = reference_flips(results, {r["case"] for r in suspects}, cases, time_limit, workers=workers,
+                            executor=executor)
     for r in suspects:
         if r["case"] in flips:
             r["cross"] = "chaotic"
@@ -376,7 +382,7 @@ def recheck_disagreements(results: list[dict], cases: dict, time_limit: float, *
         return
     scales = (1 - ROBUST_SCALE, 1 + ROBUST_SCALE)
     todo = [(r["engine"], cases[r["case"]], f) for r in suspects for f in scales]
-    again = run_cases(todo, time_limit, workers=workers)
+    again = run_cases(todo, time_limit, workers=workers, executor=executor)
     for k, r in enumerate(suspects):
         mine = again[2 * k:2 * k + 2]
         agreeing = [f for f, x in zip(scales, mine) if x.get("verdict") == "pass" and x.get("overturned") != r["overturned"]]
@@ -387,7 +393,7 @@ def recheck_disagreements(results: list[dict], cases: dict, time_limit: float, *
                          f"{', '.join(f'{f:g}' for f in agreeing)} × the motion")
 
 
-def reference_flips(results, names, cases, time_limit: float, *, workers: int = 2) -> dict:
+def reference_flips(results, names, cases, time_limit: float, *, workers: int = 2, executor=None) -> dict:
     """{case name: the first scale of the motion at which the reference's overturning flips}
     for the cases `names` (those with a disagreement), rerun at 1 ± k·ROBUST_STEP inside
     ±ROBUST_SCALE, nearest first, a case leaving the rounds at its first flip. The ±3% check
@@ -401,7 +407,8 @@ def reference_flips(results, names, cases, time_limit: float, *, workers: int = 
         if not left:
             break
         scales = (1 - k * ROBUST_STEP, 1 + k * ROBUST_STEP)
-        again = run_cases([(REFERENCE, cases[name], f) for name in left for f in scales], time_limit, workers=workers)
+        again = run_cases([(REFERENCE, cases[name], f) for name in left for f in scales], time_limit, workers=workers,
+                          executor=executor)
         for j, name in enumerate(left):
             for f, x in zip(scales, again[2 * j:2 * j + 2]):
                 if x.get("verdict") == "pass" and x.get("overturned") != refs[name]["overturned"]:
@@ -437,12 +444,15 @@ def run_stress(*, quick=False, engines=None, time_limit=None, progress=None, dra
         why = _not_carried(get_engine(e), c)
         (refused if why else carried).append((e, c, why))
     bar = bar_of(progress, len(carried))
-    results = run_cases([(e, c) for e, c, _ in carried], time_limit, workers=workers, bar=bar)
-    bar.close()
-    results += [dict(engine=e, case=c.name, what=c.what, duration=c.scenario.duration, status="not-carried",
-                     error=why, verdict=NOT_CARRIED) for e, c, why in refused]
-    compare_engines(results)
-    recheck_disagreements(results, {c.name: c for c in edges + draws}, time_limit, workers=workers)
+    # one pool for the grid and its robustness reruns (up to a dozen rounds of two runs each)
+    with worker_pool(max(1, min(workers, len(carried) or 1))) as executor:
+        results = run_cases([(e, c) for e, c, _ in carried], time_limit, workers=workers, bar=bar, executor=executor)
+        bar.close()
+        results += [dict(engine=e, case=c.name, what=c.what, duration=c.scenario.duration, status="not-carried",
+                         error=why, verdict=NOT_CARRIED) for e, c, why in refused]
+        compare_engines(results)
+        recheck_disagreements(results, {c.name: c for c in edges + draws}, time_limit, workers=workers,
+                              executor=executor)
     return results
 
 
