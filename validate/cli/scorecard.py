@@ -687,13 +687,15 @@ COLUMNS = (("engine:preset", lambda r: r["label"]),
            ("per CPU s / the step floor, isolated / fixed", lambda r: floor_cell(r["speed"])))
 
 
-#: The columns --check compares: what a reader sees of each measure, but the speeds (the
-#: machine's and its load's, not the engine's)
-CHECKED_COLUMNS = tuple(c for c in COLUMNS[1:] if not c[0].startswith(("speed", "per CPU s")))
+#: The columns --check compares, each with the measure it shows: what a reader sees of each
+#: measure, but the speeds (the machine's and its load's, not the engine's)
+CHECKED_COLUMNS = tuple((name, measure, cell) for (name, cell), measure in zip(COLUMNS[1:], (
+    "atlas", "atlas", "validate", "stress", "experiments", "speed", "speed")) if measure != "speed")
 #: Why a measure may be made in one of two scorecards of the same command and not in the other,
 #: without anything drifting: the budget as the clock ran (a measure left out by the plan runs
-#: afterwards where the time left allows), or an optional engine installed in one place only
-_MAY_BE_APART = ("over the --budget of", "cannot be loaded here")
+#: afterwards where the time left allows; on a slower or busier machine one the plan admitted may
+#: find too little left when its turn comes), or an optional engine installed in one place only
+_MAY_BE_APART = ("over the --budget of", "left when its turn came", "cannot be loaded here")
 
 
 def drift(old: dict, new: dict) -> tuple[list[str], list[str], int]:
@@ -704,18 +706,21 @@ def drift(old: dict, new: dict) -> tuple[list[str], list[str], int]:
     def masked(text: str) -> str:
         return re.sub(r"\d+(\.\d+)?", "#", text) if text.startswith("not run") else text
 
-    def apart(text: str) -> bool:
-        return text.startswith("not run") and any(why in text for why in _MAY_BE_APART)
+    def apart(row: dict, measure: str) -> str:
+        """Why `measure` of `row` was not made, where that is no drift ('' otherwise)."""
+        why = row[measure].get("not_run", "") if isinstance(row[measure], dict) else ""
+        return why if any(reason in why for reason in _MAY_BE_APART) else ""
 
     old_rows, new_rows = {r["label"]: r for r in old["rows"]}, {r["label"]: r for r in new["rows"]}
     drifted, one_only, compared = [], [], 0
     for label in sorted(set(old_rows) ^ set(new_rows)):
         drifted.append(f"{label}: a row only in the {'file' if label in old_rows else 'new scorecard'}")
     for label in (x for x in old_rows if x in new_rows):
-        for name, cell in CHECKED_COLUMNS:
+        for name, measure, cell in CHECKED_COLUMNS:
             was, now = cell(old_rows[label]), cell(new_rows[label])
-            if was.startswith("not run") != now.startswith("not run") and (apart(was) or apart(now)):
-                one_only.append(f"{label}, {name}: {was if apart(was) else now}")
+            why = apart(old_rows[label], measure) or apart(new_rows[label], measure)
+            if was.startswith("not run") != now.startswith("not run") and why:
+                one_only.append(f"{label}, {name}: {why}")
                 continue
             compared += 1
             if masked(was) != masked(now):
