@@ -8,7 +8,7 @@ from dataclasses import replace
 
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
 
-from .scene import (PRESETS, SCENE_FORMAT, TRANSVERSE, TWO_EDGES, Settings, check_system, preset, scene_text,
+from .scene import (ISOLATORS, PRESETS, SCENE_FORMAT, TRANSVERSE, TWO_EDGES, Settings, check_system, preset, scene_text,
                     settings_for, settings_for_timestep, simulate, sphere_geometry_beta,
                     sphere_geometry_first_impact_time)
 
@@ -50,7 +50,8 @@ def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=N
 ENGINE = EngineSpec(
     name="drake", label="Drake", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
-                              campaigns=False, two_edges=TWO_EDGES, transverse=TRANSVERSE),
+                              campaigns=False, two_edges=TWO_EDGES, transverse=TRANSVERSE,
+                              isolators=ISOLATORS, transverse_isolators=ISOLATORS),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, simulate_body=_simulate_body,
     presets={"default": Preset("the continuous plant's, as \"continuous\"", Settings),
              **{name: Preset(PRESET_REASONS[name], lambda s=s: s) for name, s in PRESETS.items()}},
