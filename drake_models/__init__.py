@@ -1,6 +1,8 @@
 """The block on its base in Drake (pydrake): the third contact engine, an independent
 point-contact formulation for free rocking, pulses and single records, not campaigns of
-thousands of runs (a run costs ~100× MuJoCo's). `scene.py` holds the SDFormat scene,
+thousands of runs (a run costs ~100× MuJoCo's). It carries the linear isolator, the friction
+pendulum and the ball in a bowl (a held puck's contact: docs/drake.md), on one component and
+under a pair. `scene.py` holds the SDFormat scene,
 the settings and presets, and the stepping; `statue.py` a statue's own shape (its hull's
 vertices on a free body) in the block's place; measurements in docs/drake.md and docs/statues.md."""
 import math

@@ -21,7 +21,11 @@ same text, so what a user opens is what ran):
   with `contact="hydroelastic"` the whole block is a compliant-hydroelastic box instead;
 - base: a plate (top face z = 0) on a `PrismaticJoint` along x with a
   `PrismaticSpring` (k) and joint damping (c) — the isolator; welded to the world on a
-  fixed base.
+  fixed base. A friction pendulum or a ball in a bowl (k = W/R, c: isolator_parts) adds its
+  dry friction μ·W as a contact (_pendulum_puck): a light puck under the plate on its own
+  vertical joint, held down by a constant force on that joint onto a floor welded to the world,
+  its friction F_b/W, the same in every direction; its stiction tolerance
+  `isolator_stiction_tolerance` (docs/drake.md, "Pendulum isolators: a held puck").
 - ground motion: generalized forces −m ẍg on the block's x and −m_b ẍg on the base
   (exact for a translating ground), from a first-order-hold trajectory source into the
   plant's applied-generalized-force port; the stepping runs in C++ (Simulator.AdvanceTo
@@ -29,8 +33,8 @@ same text, so what a user opens is what ran):
 - two horizontal components (GroundMotion.transverse, issue 36; `scene_text(transverse=True)`):
   the second, ÿg along the world's y, is applied as the first: −m ÿg on the body's world y
   and, on the linear isolator, −m_b ÿg on a second prismatic joint of the base along y
-  ("isolator_y", the same spring k and damping c: the isolator is isotropic) under a
-  massless carriage on the x joint. The block leaves its planar joint for a free body
+  ("isolator_y", the same spring k and damping c: the isolator is isotropic; a pendulum's puck
+  under the plate, its friction isotropic) under a massless carriage on the x joint. The block leaves its planar joint for a free body
   (its four bottom corner spheres; a statue's own shape is a free body already); a fixed
   base and the plate (square already) are as before. Without a second component the
   scene is the one-component scene, unchanged.
@@ -174,6 +178,9 @@ class Settings:
     stiction_tolerance: the continuous plant's stiction tolerance (m/s: below it a stuck contact
         creeps, Stribeck's regularisation) for a statue with friction (System.friction); without
         friction the plant keeps Drake's default, as always (STICTION_SHARE).
+    isolator_stiction_tolerance: the continuous plant's stiction tolerance (m/s) on a friction
+        pendulum or a ball in a bowl (its puck's friction; the block's contact meets it too): a
+        stuck base creeps at v_s·F/(μ·W); ISOLATOR_STICTION, measured in docs/drake.md.
     hull: a statue's own shape only (System.body.solid; drake_models.statue): "vertices", a
         sphere of corner_radius on each vertex of its hull, or "convex", the hull as Drake's
         Convex in point contact (one point per pair: for comparison only).
@@ -869,7 +876,9 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
 
 
 def check_system(system: System, settings: Settings) -> None:
-    """What this scene refuses before any work (EngineSpec.check_system): corner spheres too
+    """What this scene refuses before any work (EngineSpec.check_system): a friction pendulum of
+    velocity-dependent friction (check_contact_isolator), a statue's own shape on a pendulum (the
+    puck is measured under the box block only), corner spheres too
     large for the block, and a statue whose kinetic friction is below its static one on a
     discrete plant, whose contact solvers (SAP, TAMSI, Lagged) use the dynamic coefficient alone.
     The continuous plant's regularised Stribeck friction carries both (measured:
