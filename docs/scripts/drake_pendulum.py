@@ -12,7 +12,10 @@ cases of docs/drake.md, "Pendulum isolators: a held puck":
 - "Kobe, at the threshold": the paper's block on R 0.5 m, μ 0.2 under the same Kobe window;
 - "bowl, at rest": the 2 m block on a ball in a bowl R 1.5 m, μ_r 0.03, the pulse, 4 s.
 
-    python docs/scripts/drake_pendulum.py [--stiction V] [--accuracy A] [CASE ...]
+    python docs/scripts/drake_pendulum.py [--stiction V] [--accuracy A] [--height H] [CASE ...]
+
+--height: every case's block H m tall (width 0.35·H, the 2 m block's slenderness), the stiction
+tolerance and the contact following it (Settings.for_system).
 """
 from __future__ import annotations
 
@@ -36,8 +39,12 @@ def _kobe(seconds: float = 12.0) -> GroundMotion:
     return GroundMotion.from_array(np.asarray(m.acceleration)[:int(round(seconds / m.dt))], dt=m.dt, name="kobe-12s")
 
 
+HEIGHT = [2.0]
+
+
 def _block(mass, isolator):
-    return System.with_isolator(height=2.0, width=0.7, mass=mass, base_mass=mass, isolator=isolator)
+    h = HEIGHT[0]
+    return System.with_isolator(height=h, width=0.35 * h, mass=mass, base_mass=mass, isolator=isolator)
 
 
 CASES = {
@@ -68,7 +75,9 @@ def main() -> None:
     ap.add_argument("cases", nargs="*", help=f"of {', '.join(CASES)} (default: every case)")
     ap.add_argument("--stiction", type=float, default=None, help="isolator_stiction_tolerance (m/s)")
     ap.add_argument("--accuracy", type=float, default=None)
+    ap.add_argument("--height", type=float, default=2.0, help="the block's height (m)")
     a = ap.parse_args()
+    HEIGHT[0] = a.height
     unknown = [c for c in a.cases if c not in CASES]
     if unknown:
         ap.error(f"unknown case {', '.join(unknown)}: one of {', '.join(CASES)}")
