@@ -12,7 +12,7 @@ cases of docs/drake.md, "Pendulum isolators: a held puck":
 - "Kobe, at the threshold": the paper's block on R 0.5 m, μ 0.2 under the same Kobe window;
 - "bowl, at rest": the 2 m block on a ball in a bowl R 1.5 m, μ_r 0.03, the pulse, 4 s.
 
-    python docs/scripts/drake_pendulum.py [--stiction V] [--accuracy A] [--height H] [CASE ...]
+    python docs/scripts/drake_pendulum.py [--stiction V] [--accuracy A] [--stiffness K] [--height H] [CASE ...]
 
 --height: every case's block H m tall (width 0.35·H, the 2 m block's slenderness), the stiction
 tolerance and the contact following it (Settings.for_system).
@@ -75,13 +75,15 @@ def main() -> None:
     ap.add_argument("cases", nargs="*", help=f"of {', '.join(CASES)} (default: every case)")
     ap.add_argument("--stiction", type=float, default=None, help="isolator_stiction_tolerance (m/s)")
     ap.add_argument("--accuracy", type=float, default=None)
+    ap.add_argument("--stiffness", type=float, default=None, help="the point contact's (N/m on the paper's block)")
     ap.add_argument("--height", type=float, default=2.0, help="the block's height (m)")
     a = ap.parse_args()
     HEIGHT[0] = a.height
     unknown = [c for c in a.cases if c not in CASES]
     if unknown:
         ap.error(f"unknown case {', '.join(unknown)}: one of {', '.join(CASES)}")
-    kw = {k: v for k, v in (("isolator_stiction_tolerance", a.stiction), ("accuracy", a.accuracy)) if v}
+    kw = {k: v for k, v in (("isolator_stiction_tolerance", a.stiction), ("accuracy", a.accuracy),
+                            ("stiffness", a.stiffness)) if v}
     print("| case | u_max rel err | max |Δu|/u_max | u end (exact) m | θmax/α (exact) | impacts (exact) | CPU s |")
     print("|---|---|---|---|---|---|---|")
     for name in a.cases or CASES:
