@@ -50,7 +50,8 @@ class Capabilities:
     events of the rigid model, not measured from a contact history; campaigns: it is fast
     enough for grids of thousands of runs (bench and stress run it unless told otherwise);
     isolators: the isolator kinds it carries (System.isolator_kind; every engine the
-    linear one, both analytic paths every kind: docs/isolators.md). Any other is
+    linear one, both analytic paths every kind, MuJoCo and PyBullet all but the cone, Drake the
+    pendulums: docs/isolators.md). Any other is
     refused with one line, never run as linear. kinetic_friction: it carries a statue whose
     kinetic friction is below its static one (System.kinetic_friction < friction); an engine
     with one friction coefficient refuses such a System with one line (check_friction),
@@ -80,8 +81,8 @@ class Capabilities:
     #: never runs the first component alone in its place
     transverse: bool = False
     #: the isolator kinds it carries under two horizontal components: the linear one (the same
-    #: k and c along x and y) unless its scene builds another's friction in the plane (MuJoCo's
-    #: and PyBullet's: the pendulums', isolator_parts.PLANE_ISOLATORS); any other is refused in one line
+    #: k and c along x and y) unless its scene builds another's friction in the plane (MuJoCo's,
+    #: PyBullet's and Drake's: the pendulums', isolator_parts.PLANE_ISOLATORS); any other is refused in one line
     transverse_isolators: tuple[str, ...] = ("linear",)
 
 
@@ -293,7 +294,7 @@ def check_transverse(system: "System", motion: "GroundMotion", transverse: bool,
         raise InputError(f"transverse = {motion.transverse.name or 'a second component'}: {engine} runs one "
                          "horizontal component only (engines 'mujoco', 'bullet', 'drake' and 'dart' carry two)")
     if not system.fixed_base and system.isolator_kind not in isolators:
-        others = (" (engines 'mujoco' and 'bullet' carry the friction pendulum and the ball in a bowl too)"
+        others = (" (engines 'mujoco', 'bullet' and 'drake' carry the friction pendulum and the ball in a bowl too)"
                   if isolators == ("linear",) else "")
         raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be "
                          f"{' or '.join(isolators)} or a fixed base{others}")

@@ -22,7 +22,8 @@ CONTACT_ISOLATORS = (LINEAR, BILINEAR, FRICTION_PENDULUM, BALL_IN_BOWL, DOUBLE_P
 #: the isolators a contact engine builds in both horizontal directions (two components): the
 #: linear one (the same k and c along x and y) and the pendulums whose only friction is the
 #: base's own (the friction pendulum, the ball in a bowl), its limit μ·W the same in every
-#: direction as a contact of a puck held down by W (MuJoCo's and PyBullet's scenes); not a
+#: direction as a contact of a puck held down by W (MuJoCo's, PyBullet's and Drake's scenes; Drake
+#: builds the puck on one component too, having no joint dry friction); not a
 #: Jenkins element's yielding (the bearing, a double pendulum)
 PLANE_ISOLATORS = (LINEAR, FRICTION_PENDULUM, BALL_IN_BOWL)
 #: that puck: its mass as a share of the base's (taken from the base, which still moves m_b)
@@ -34,7 +35,8 @@ PUCK_HALF = 0.02
 @dataclass(frozen=True)
 class PendulumPuck:
     """A pendulum's dry friction under two horizontal components, the same in every direction
-    (MuJoCo's mujoco_models/scene._pair_pendulum, PyBullet's bullet_models/scene._pendulum_puck):
+    (MuJoCo's mujoco_models/scene._pair_pendulum, PyBullet's bullet_models/scene._pendulum_puck,
+    Drake's drake_models/scene._pendulum_puck, on one component too):
     a light puck under the base, on its own vertical joint, held down by `hold` (N, on that
     joint, negative: down) so that a floor pushes it up by `load` W = M·g, its own weight
     included; the contact's friction coefficient `friction` = F_b/W, so that its limit is the

@@ -1,6 +1,8 @@
 """The block on its base in Drake (pydrake): the third contact engine, an independent
 point-contact formulation for free rocking, pulses and single records, not campaigns of
-thousands of runs (a run costs ~100× MuJoCo's). `scene.py` holds the SDFormat scene,
+thousands of runs (a run costs ~100× MuJoCo's). It carries the linear isolator, the friction
+pendulum and the ball in a bowl (a held puck's contact: docs/drake.md), on one component and
+under a pair. `scene.py` holds the SDFormat scene,
 the settings and presets, and the stepping; `statue.py` a statue's own shape (its hull's
 vertices on a free body) in the block's place; measurements in docs/drake.md and docs/statues.md."""
 import math
@@ -8,7 +10,7 @@ from dataclasses import replace
 
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
 
-from .scene import (PRESETS, SCENE_FORMAT, TRANSVERSE, TWO_EDGES, Settings, check_system, preset, scene_text,
+from .scene import (ISOLATORS, PRESETS, SCENE_FORMAT, TRANSVERSE, TWO_EDGES, Settings, check_system, preset, scene_text,
                     settings_for, settings_for_timestep, simulate, sphere_geometry_beta,
                     sphere_geometry_first_impact_time)
 
@@ -50,7 +52,8 @@ def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=N
 ENGINE = EngineSpec(
     name="drake", label="Drake", settings_type=Settings, simulate=simulate,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False,
-                              campaigns=False, two_edges=TWO_EDGES, transverse=TRANSVERSE),
+                              campaigns=False, two_edges=TWO_EDGES, transverse=TRANSVERSE,
+                              isolators=ISOLATORS, transverse_isolators=ISOLATORS),
     settings_for=settings_for, scene_text=scene_text, scene_format=SCENE_FORMAT, simulate_body=_simulate_body,
     presets={"default": Preset("the continuous plant's, as \"continuous\"", Settings),
              **{name: Preset(PRESET_REASONS[name], lambda s=s: s) for name, s in PRESETS.items()}},

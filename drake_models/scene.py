@@ -21,7 +21,11 @@ same text, so what a user opens is what ran):
   with `contact="hydroelastic"` the whole block is a compliant-hydroelastic box instead;
 - base: a plate (top face z = 0) on a `PrismaticJoint` along x with a
   `PrismaticSpring` (k) and joint damping (c) — the isolator; welded to the world on a
-  fixed base.
+  fixed base. A friction pendulum or a ball in a bowl (k = W/R, c: isolator_parts) adds its
+  dry friction μ·W as a contact (_pendulum_puck): a light puck under the plate on its own
+  vertical joint, held down by a constant force on that joint onto a floor welded to the world,
+  its friction F_b/W, the same in every direction; its stiction tolerance
+  `isolator_stiction_tolerance` (docs/drake.md, "Pendulum isolators: a held puck").
 - ground motion: generalized forces −m ẍg on the block's x and −m_b ẍg on the base
   (exact for a translating ground), from a first-order-hold trajectory source into the
   plant's applied-generalized-force port; the stepping runs in C++ (Simulator.AdvanceTo
@@ -29,8 +33,8 @@ same text, so what a user opens is what ran):
 - two horizontal components (GroundMotion.transverse, issue 36; `scene_text(transverse=True)`):
   the second, ÿg along the world's y, is applied as the first: −m ÿg on the body's world y
   and, on the linear isolator, −m_b ÿg on a second prismatic joint of the base along y
-  ("isolator_y", the same spring k and damping c: the isolator is isotropic) under a
-  massless carriage on the x joint. The block leaves its planar joint for a free body
+  ("isolator_y", the same spring k and damping c: the isolator is isotropic; a pendulum's puck
+  under the plate, its friction isotropic) under a massless carriage on the x joint. The block leaves its planar joint for a free body
   (its four bottom corner spheres; a statue's own shape is a free body already); a fixed
   base and the plate (square already) are as before. Without a second component the
   scene is the one-component scene, unchanged.
@@ -85,6 +89,8 @@ from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.errors import InputError, require, require_positive_finite
 from isorock.analytic.motion import GroundMotion
 from isorock.analytic.engine_protocol import check_friction, contact_friction, run_inputs
+from isorock.analytic.isolator_parts import (PLANE_ISOLATORS, PUCK_HALF, check_contact_isolator, isolator_parts,
+                                             pendulum_puck)
 from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System, paper_system
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
@@ -134,6 +140,19 @@ TWO_EDGES = True
 #: and the linear isolator: what Capabilities.transverse says, judged in docs/statues.md ("Two
 #: horizontal components", Drake) by tests/test_two_components_drake.py
 TRANSVERSE = True
+#: The isolators Drake carries (Capabilities.isolators), on one component and under a pair
+#: (Capabilities.transverse_isolators, the same three): the linear one, and the friction pendulum and
+#: the ball in a bowl, whose dry friction is a held puck's contact (_pendulum_puck). Not the bilinear
+#: bearing, the ball in a cone or the double pendulum (refused in one line): a Jenkins element's
+#: slider, or a restoring force none of the plant's parts is
+ISOLATORS = PLANE_ISOLATORS
+#: The continuous plant's stiction tolerance v_s (m/s) on a pendulum (its puck's friction), on the
+#: paper's block (∝ R·p with follow_system): a stuck base creeps at v_s·F/(μ·W)
+ISOLATOR_STICTION = 3e-5
+#: The pendulum's floor (m): a box of the plate's thickness, its top face 2·PUCK_HALF below the
+#: plate's bottom, this wide (a half-space warns of deformable contact at every run), wider than any
+#: pendulum's travel
+FLOOR_WIDTH = 200.0
 
 
 @dataclass(frozen=True)
@@ -159,6 +178,9 @@ class Settings:
     stiction_tolerance: the continuous plant's stiction tolerance (m/s: below it a stuck contact
         creeps, Stribeck's regularisation) for a statue with friction (System.friction); without
         friction the plant keeps Drake's default, as always (STICTION_SHARE).
+    isolator_stiction_tolerance: the continuous plant's stiction tolerance (m/s) on a friction
+        pendulum or a ball in a bowl (its puck's friction; the block's contact meets it too): a
+        stuck base creeps at v_s·F/(μ·W); ISOLATOR_STICTION, measured in docs/drake.md.
     hull: a statue's own shape only (System.body.solid; drake_models.statue): "vertices", a
         sphere of corner_radius on each vertex of its hull, or "convex", the hull as Drake's
         Convex in point contact (one point per pair: for comparison only).
@@ -181,6 +203,8 @@ class Settings:
     sample_interval: float = 1e-3
     #: m/s on the paper's block (∝ R·p with follow_system): STICTION_SHARE·R·p
     stiction_tolerance: float = STICTION_SHARE * _PAPER.R * _PAPER.p
+    #: m/s on the paper's block (∝ R·p with follow_system): a pendulum isolator's puck (ISOLATOR_STICTION)
+    isolator_stiction_tolerance: float = ISOLATOR_STICTION
     hull: str = "vertices"
     follow_system: bool = True
 
@@ -204,6 +228,7 @@ class Settings:
                        corner_radius=self.corner_radius * length, timestep=step, sample_interval=sample,
                        relaxation_time=self.relaxation_time * slow,
                        stiction_tolerance=self.stiction_tolerance * length / slow,
+                       isolator_stiction_tolerance=self.isolator_stiction_tolerance * length / slow,
                        hydroelastic_modulus=self.hydroelastic_modulus * weight / length ** 2, follow_system=False)
 
     def __post_init__(self):
@@ -222,7 +247,7 @@ class Settings:
         acc = require_positive_finite("accuracy", self.accuracy)
         require(acc < 1, "accuracy", self.accuracy, "below 1 (a relative accuracy)")
         for name in ("stiffness", "dissipation", "relaxation_time", "hydroelastic_modulus", "friction",
-                     "stiction_tolerance", "corner_radius"):
+                     "stiction_tolerance", "isolator_stiction_tolerance", "corner_radius"):
             object.__setattr__(self, name, require_positive_finite(name, getattr(self, name)))
         object.__setattr__(self, "accuracy", acc)
         si = require_positive_finite("sample_interval", self.sample_interval)
@@ -453,6 +478,65 @@ _BOX = """      <collision name="block">
       </collision>"""
 
 
+#: a pendulum's dry friction (the friction pendulum's, the ball in a bowl's), the same in every
+#: direction: a light puck under the plate on its own vertical joint, held down by a constant force
+#: on that joint so that a floor welded to the world pushes it up by W (_pendulum_puck)
+_PUCK = """    <!-- the pendulum's dry friction, the same in every direction: to reproduce a run, apply {hold!r} N
+         to puck_z (applied generalized force) at all times, so that the floor pushes the puck up by
+         W = {load!r} N; its friction {mu!r} (both sides) makes the limit mu*W = {limit!r} N -->
+    <link name="isolator_puck">
+      <pose>0 0 {z!r} 0 0 0</pose>
+      <inertial><mass>{m!r}</mass>
+        <inertia><ixx>{i!r}</ixx><iyy>{i!r}</iyy><izz>{i!r}</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia>
+      </inertial>
+      <collision name="puck">
+        <geometry><sphere><radius>{r!r}</radius></sphere></geometry>
+        <drake:proximity_properties>
+{props}
+        </drake:proximity_properties>
+      </collision>
+    </link>
+{joint}
+    <link name="isolator_floor">
+      <collision name="floor">
+        <pose>0 0 {floor_c!r} 0 0 0</pose>
+        <geometry><box><size>{floor_w!r} {floor_w!r} {t!r}</size></box></geometry>
+        <drake:proximity_properties>
+{props}
+        </drake:proximity_properties>
+      </collision>
+    </link>
+    <joint name="floor_weld" type="fixed"><parent>world</parent><child>isolator_floor</child></joint>
+    <!-- the floor meets the puck alone -->
+    <drake:collision_filter_group name="isolator_floor_group">
+      <drake:member>isolator_floor</drake:member>
+      <drake:ignored_collision_filter_group>scene_group</drake:ignored_collision_filter_group>
+    </drake:collision_filter_group>
+    <drake:collision_filter_group name="scene_group">
+      <drake:member>base</drake:member>
+      <drake:member>block</drake:member>
+      <drake:ignored_collision_filter_group>isolator_floor_group</drake:ignored_collision_filter_group>
+    </drake:collision_filter_group>"""
+
+
+def _pendulum_puck(system: System, settings: Settings, puck) -> str:
+    """A pendulum's dry friction F_b = μ·W, the same in every direction (as MuJoCo's
+    mujoco_models/scene._pair_pendulum and PyBullet's bullet_models/scene._pendulum_puck; its numbers
+    analytic.isolator_parts.pendulum_puck): MultibodyPlant has no joint dry friction, so it is a
+    contact: a sphere of radius PUCK_HALF (the puck, its mass taken from the base's) on its own
+    vertical prismatic joint `puck_z` under the plate, held down by `hold` on that joint (a constant
+    row of the ground-force source, _Built) onto a half-space welded to the world, friction
+    coefficient F_b/W on both (Drake combines two equal μ to themselves), the point contact's
+    stiffness and dissipation the block's. On one component and on a pair alike."""
+    t = PLATE_THICKNESS
+    mu = (puck.friction, puck.friction)
+    joint = _PRISMATIC.format(name="puck_z", parent="base", child="isolator_puck", axis="0 0 1", k=0.0, c=0.0)
+    return _PUCK.format(hold=puck.hold, load=puck.load, mu=puck.friction, limit=puck.friction * puck.load,
+                        z=-t - PUCK_HALF, m=puck.mass, i=0.4 * puck.mass * PUCK_HALF ** 2, r=PUCK_HALF,
+                        props=_props(settings, mu), joint=joint, floor_c=-1.5 * t - 2 * PUCK_HALF, t=t,
+                        floor_w=FLOOR_WIDTH)
+
+
 def frictions(system: System, settings: Settings) -> tuple[float, float]:
     """(static, dynamic) friction of the block–base contact: the statue's μ_s and μ_k
     (System.friction, kinetic_friction) when it has them, else Settings.friction for both."""
@@ -504,8 +588,8 @@ def scene_text(system: System, settings: Settings | None = None, *, transverse: 
     statue_shape = hull_contact.has_solid(system)
     free_block = transverse and not statue_shape
     if transverse:
-        require(system.fixed_base or system.isolator_kind == LINEAR, "isolator", system.isolator_kind,
-                "linear or a fixed base with two horizontal components")
+        require(system.fixed_base or system.isolator_kind in PLANE_ISOLATORS, "isolator", system.isolator_kind,
+                f"{' or '.join(PLANE_ISOLATORS)} or a fixed base with two horizontal components")
         require(not hydro, "contact", settings.contact, "point with two horizontal components (the corner spheres)")
     if statue_shape:  # its own shape in the block's place, on a free body (drake_models.statue)
         require(not hydro, "contact", settings.contact, "point for a statue's own shape (its hull's vertices)")
@@ -521,15 +605,23 @@ def scene_text(system: System, settings: Settings | None = None, *, transverse: 
     else:  # the two bottom corners of the rocking plane, in link coordinates (up is −y)
         collisions = "\n".join(_SPHERE.format(name=name, x=sx * (b - r), y=h - r, r=r, props=_props(settings, mu))
                                for name, sx in (("corner_pos", 1.0), ("corner_neg", -1.0)))
+    # the isolator's spring and dashpot (a pendulum's k = W/R and c: isolator_parts), and a pendulum's
+    # dry friction as a held puck on a floor (_pendulum_puck; None on the linear isolator)
+    k, c = (system.stiffness, system.damping) if system.fixed_base or system.isolator_kind == LINEAR else (
+        (lambda parts: (parts.stiffness, parts.damping))(isolator_parts(system)))
+    puck = None if system.fixed_base else pendulum_puck(system)
     if system.fixed_base:
         base_joint = _WELD
     elif transverse:
         base_joint = _CARRIAGE + "\n".join(
-            _PRISMATIC.format(name=name, parent=parent, child=child, axis=axis, k=system.stiffness, c=system.damping)
+            _PRISMATIC.format(name=name, parent=parent, child=child, axis=axis, k=k, c=c)
             for name, parent, child, axis in (("isolator", "world", "carriage", "1 0 0"),
                                               ("isolator_y", "carriage", "base", "0 1 0")))
     else:
-        base_joint = _ISOLATOR.format(k=system.stiffness, c=system.damping)
+        base_joint = _ISOLATOR.format(k=k, c=c)
+    if puck is not None:
+        mb = mb - puck.mass  # the puck's mass is taken from the base's: the joints still move m_b
+        base_joint += "\n" + _pendulum_puck(system, settings, puck)
     listed = ", ".join(f"{f.name} = {getattr(settings, f.name)!r}" for f in fields(settings))
     if statue_shape:
         body = statue.link(system, settings, _props(settings, mu))
@@ -542,8 +634,9 @@ def scene_text(system: System, settings: Settings | None = None, *, transverse: 
             ixx=m * (h * h + d * d) / 3, iyy=m * (b * b + d * d) / 3, izz=m * (b * b + h * h) / 3,
             block_collisions=collisions)
     return _SDF.format(
-        base_kind="a fixed" if system.fixed_base else
-        f"an isolated (k = {system.stiffness:.6g} N/m, c = {system.damping:.6g} N s/m)",
+        base_kind="a fixed" if system.fixed_base else f"an isolated (k = {k:.6g} N/m, c = {c:.6g} N s/m)"
+        if puck is None else f"a {system.isolator_kind} (k = {k:.6g} N/m, c = {c:.6g} N s/m, its dry friction "
+        f"a puck held down on a floor: {puck.friction:.6g} x W = {puck.load:.6g} N)",
         H=system.height, B=system.width, D=2 * d, m=m, mb=mb, h=h, rot=repr(-math.pi / 2),
         plant=_plant_description(settings), settings=listed,
         plate_z=-t / 2, W=w, T=t, bixx=mb * (w * w + t * t) / 12, biyy=mb * (w * w + t * t) / 12,
@@ -582,7 +675,11 @@ class _Built:
         else:
             pd.Parser(plant).AddModelsFromString(text, "sdf")
         plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -system.gravity])
-        if system.friction is not None and settings.continuous:
+        #: a pendulum's friction puck (_pendulum_puck), or None
+        self.puck = None if system.fixed_base else pendulum_puck(system)
+        if settings.continuous and self.puck is not None:
+            plant.set_stiction_tolerance(settings.isolator_stiction_tolerance)
+        elif system.friction is not None and settings.continuous:
             plant.set_stiction_tolerance(settings.stiction_tolerance)
         plant.Finalize()
         self.plant = plant
@@ -604,6 +701,10 @@ class _Built:
         if self.transverse and not system.fixed_base:
             iso_y = plant.GetJointByName("isolator_y")
             self.uyq, self.uyv = iso_y.position_start(), iso_y.velocity_start()
+        self.puckq = self.puckv = None
+        if self.puck is not None:
+            held = plant.GetJointByName("puck_z")
+            self.puckq, self.puckv = held.position_start(), held.velocity_start()
 
         # ground motion as generalized forces, linear between knots
         knots = _force_knots(motion, duration)
@@ -627,6 +728,8 @@ class _Built:
                 forces[self.yv] = vertical
             else:
                 forces[self.statue.zv] = -vertical
+        if self.puckv is not None:  # the puck held down, so that the floor pushes it up by W
+            forces[self.puckv] = self.puck.hold
         source = builder.AddSystem(pd.TrajectorySource(pd.PiecewisePolynomial.FirstOrderHold(knots, forces)))
         builder.Connect(source.get_output_port(), plant.get_applied_generalized_force_input_port())
         self.logger = pd.LogVectorOutput(plant.get_state_output_port(), builder, settings.sample_interval)
@@ -696,7 +799,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     a second."""
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
-                                  two_edges=TWO_EDGES, transverse=TRANSVERSE)
+                                  two_edges=TWO_EDGES, transverse=TRANSVERSE, isolators=ISOLATORS,
+                                  transverse_isolators=PLANE_ISOLATORS)
     check_system(system, settings)
     # two components: the 'falling' rule reads θ, the tilt's projection on xz, and a body leaning
     # on a diagonal past the x edge's α may still stand; it is planar, so it never stops a 3-D run
@@ -718,6 +822,8 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
         q0 = statue.initial_positions(built.plant, built.statue, built.nq, system, settings, theta0)
     else:
         q0 = _free_block_positions(built, system, settings, theta0)
+    if built.puckq is not None:  # the puck pressed into the floor by W/k: at rest from the start
+        q0[built.puckq] = -built.puck.load / settings.stiffness
     built.plant.SetPositions(plant_context, q0)
     built.plant.SetVelocities(plant_context, np.zeros(built.nv))
 
@@ -770,12 +876,20 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
 
 
 def check_system(system: System, settings: Settings) -> None:
-    """What this scene refuses before any work (EngineSpec.check_system): corner spheres too
+    """What this scene refuses before any work (EngineSpec.check_system): a friction pendulum of
+    velocity-dependent friction (check_contact_isolator), a statue's own shape on a pendulum (the
+    puck is measured under the box block only), corner spheres too
     large for the block, and a statue whose kinetic friction is below its static one on a
     discrete plant, whose contact solvers (SAP, TAMSI, Lagged) use the dynamic coefficient alone.
     The continuous plant's regularised Stribeck friction carries both (measured:
     docs/sliding_engines.md)."""
     settings = settings.for_system(system)
+    check_contact_isolator(system, ENGINE)
+    if hull_contact.has_solid(system) and not system.fixed_base and system.isolator_kind != LINEAR:
+        # the puck is built and measured under the box block only (docs/drake.md)
+        raise InputError(f"isolator = {system.isolator_kind}: engine 'drake' carries a statue's own shape on the "
+                         "linear isolator or a fixed base only (its pendulums are measured under the box block; "
+                         "engines 'mujoco' and 'bullet' carry it)")
     hull_contact.check_shape(system, "Drake")
     _check_radius(system, settings.corner_radius)
     check_friction(system, settings.continuous, "Drake's discrete plant (timestep > 0)")

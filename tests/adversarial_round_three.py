@@ -293,7 +293,7 @@ def round_three(Case) -> list:
             ("--check mujoco --check warp", ["--check", "mujoco", "--check", "warp"]),
             ("--check mujoco, ball-in-cone", ["--isolator", "ball-in-cone", "--check", "mujoco"]),
             ("--check bullet, ball-in-cone", ["--isolator", "ball-in-cone", "--check", "bullet"]),
-            ("--check drake, friction-pendulum", ["--isolator", "friction-pendulum", "--check", "drake"]),
+            ("--check drake, ball-in-cone", ["--isolator", "ball-in-cone", "--check", "drake"]),
             ("--check mujoco, a 1e-30 kg statue", ["--mass", "1e-30", "--base-mass", "1e-30", "--check", "mujoco"]),
             ("--check bullet, mass ratio 5000", ["--base-mass", "0.02", "--check", "bullet"]),
             ("--check bullet, period 0.001 s", ["--periods", "0.001", "--check", "bullet"]),

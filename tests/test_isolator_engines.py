@@ -319,7 +319,7 @@ def test_a_stiff_bearing_is_held_to_the_models_history_to_its_own_horizon_then_j
 @pytest.mark.parametrize("engine", [*ENGINES, "drake"])
 def test_velocity_dependent_friction_and_drake_refuse_with_one_line(engine):
     """μ_f(v) cannot be built from a constant dry friction (isolator_parts.check_contact_isolator);
-    Drake carries no non-linear isolator (docs/drake.md)."""
+    Drake carries the pendulums with Coulomb friction only, not the bearing (docs/drake.md)."""
     system = System.with_isolator(**BLOCK, isolator=FrictionPendulum(
         radius=1.0, friction_coefficient=0.05, friction_max=0.1, friction_rate=20.0))
     with pytest.raises(InputError, match="friction_rate|isolator") as e:
@@ -334,7 +334,7 @@ def test_the_engines_declare_the_devices():
     for engine in ENGINES:
         assert set(get_engine(engine).capabilities.isolators) == {
             "linear", "bilinear", "friction-pendulum", "ball-in-bowl", "double-friction-pendulum"}
-    assert get_engine("drake").capabilities.isolators == ("linear",)
+    assert get_engine("drake").capabilities.isolators == ("linear", "friction-pendulum", "ball-in-bowl")
 
 
 @pytest.mark.parametrize("system, pulse", [
