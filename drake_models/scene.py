@@ -525,7 +525,7 @@ def _pendulum_puck(system: System, settings: Settings, puck) -> str:
     analytic.isolator_parts.pendulum_puck): MultibodyPlant has no joint dry friction, so it is a
     contact: a sphere of radius PUCK_HALF (the puck, its mass taken from the base's) on its own
     vertical prismatic joint `puck_z` under the plate, held down by `hold` on that joint (a constant
-    row of the ground-force source, _Built) onto a half-space welded to the world, friction
+    row of the ground-force source, _Built) onto a floor welded to the world (a box FLOOR_WIDTH wide), friction
     coefficient F_b/W on both (Drake combines two equal μ to themselves), the point contact's
     stiffness and dissipation the block's. On one component and on a pair alike."""
     t = PLATE_THICKNESS
