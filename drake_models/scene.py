@@ -34,9 +34,9 @@ same text, so what a user opens is what ran):
   the second, ÿg along the world's y, is applied as the first: −m ÿg on the body's world y
   and, on the linear isolator, −m_b ÿg on a second prismatic joint of the base along y
   ("isolator_y", the same spring k and damping c: the isolator is isotropic; a pendulum's puck
-  under the plate, its friction isotropic) under a massless carriage on the x joint. The block leaves its planar joint for a free body
-  (its four bottom corner spheres; a statue's own shape is a free body already); a fixed
-  base and the plate (square already) are as before. Without a second component the
+  under the plate, its friction isotropic) under a massless carriage on the x joint. The
+  block leaves its planar joint for a free body (its four bottom corner spheres; a statue's
+  own shape is a free body already); a fixed base and the plate (square already) are as before. Without a second component the
   scene is the one-component scene, unchanged.
 
 Outputs follow model.md: u (m) is the base's joint position, θ the planar joint's angle;
