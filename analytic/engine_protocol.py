@@ -15,8 +15,8 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Protocol
 
+from . import limits  # its checks read through the module: a test stubs limits.check_acceleration
 from .errors import InputError, real_number, require, require_positive_finite
-from .limits import check_acceleration, check_duration, check_isolator, check_settings
 from .system import System
 
 #: model.md's counting rule: an impact counts when its half-cycle's peak |θ| exceeds this
@@ -241,17 +241,17 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     check_friction(system, kinetic_friction)
     check_body(system, two_edges)
     motion = motion or GroundMotion.zero()
-    check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
+    limits.check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
     if motion.vertical is not None:  # the vertical component is bounded as the horizontal is
-        check_acceleration("vertical", motion.vertical.pga_g, f" ({motion.vertical.name or 'its peak'})")
+        limits.check_acceleration("vertical", motion.vertical.pga_g, f" ({motion.vertical.name or 'its peak'})")
     check_transverse(system, motion, transverse, isolators=transverse_isolators)
     given = duration is not None
     if not given:
         duration = FREE_DURATION if motion.is_zero else motion.last_time + TAIL_AFTER_MOTION
     duration = require_positive_finite("duration", duration)
-    check_duration("duration", duration, "" if given else f" (the motion's end + {TAIL_AFTER_MOTION:g} s)")
-    check_isolator(system, duration)
-    check_settings(settings, duration)
+    limits.check_duration("duration", duration, "" if given else f" (the motion's end + {TAIL_AFTER_MOTION:g} s)")
+    limits.check_isolator(system, duration)
+    limits.check_settings(settings, duration)
     side_alpha = system.edge_alpha(1 if theta0 >= 0 else -1) if math.isfinite(theta0) else system.alpha
     require(math.isfinite(theta0) and abs(theta0) < side_alpha, "theta0", theta0,
             f"a finite tilt smaller than α = {side_alpha:.6g} rad in magnitude (of the edge it tilts onto)")
@@ -294,7 +294,7 @@ def check_transverse(system: "System", motion: "GroundMotion", transverse: bool,
                   if isolators == ("linear",) else "")
         raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be "
                          f"{' or '.join(isolators)} or a fixed base{others}")
-    check_acceleration("transverse", motion.transverse.pga_g, f" ({motion.transverse.name or 'its peak'})")
+    limits.check_acceleration("transverse", motion.transverse.pga_g, f" ({motion.transverse.name or 'its peak'})")
 
 
 def check_body(system: "System", two_edges: bool, engine: str = "this engine") -> None:
