@@ -15,6 +15,10 @@ from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Callable, Mapping, Protocol
 
+from . import limits  # its checks read through the module: a test stubs limits.check_acceleration
+from .errors import InputError, real_number, require, require_positive_finite
+from .system import System
+
 #: model.md's counting rule: an impact counts when its half-cycle's peak |θ| exceeds this
 #: fraction of α. Here, in the light module every engine and the registry load, so that it
 #: has one home.
@@ -32,7 +36,6 @@ def contact_scale(system: "System", time: float, share: float) -> float:
 
 if TYPE_CHECKING:  # the registry loads this module for every command: keep it light
     from .motion import GroundMotion
-    from .system import System
     from .trajectory import RawHistory, Trajectory
 
 
@@ -228,10 +231,7 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     `transverse` (Capabilities.transverse) False: a motion of two horizontal components is
     refused (check_transverse), and so is one on an isolator not in `transverse_isolators`
     (Capabilities.transverse_isolators)."""
-    from .errors import InputError, real_number, require, require_positive_finite
-    from .limits import check_acceleration, check_duration, check_isolator, check_settings
-    from .motion import GroundMotion
-    from .system import System
+    from .motion import GroundMotion  # lazy: motion loads NumPy, and every command loads this module
     require(isinstance(system, System), "system", system, "a System")
     # the initial state and the counting threshold as numbers first: a str, None or a list
     # given from Python met math.isfinite below as a TypeError
@@ -242,17 +242,17 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
     check_friction(system, kinetic_friction)
     check_body(system, two_edges)
     motion = motion or GroundMotion.zero()
-    check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
+    limits.check_acceleration("motion", motion.pga_g, f" ({motion.name or 'its peak'})")
     if motion.vertical is not None:  # the vertical component is bounded as the horizontal is
-        check_acceleration("vertical", motion.vertical.pga_g, f" ({motion.vertical.name or 'its peak'})")
+        limits.check_acceleration("vertical", motion.vertical.pga_g, f" ({motion.vertical.name or 'its peak'})")
     check_transverse(system, motion, transverse, isolators=transverse_isolators)
     given = duration is not None
     if not given:
         duration = FREE_DURATION if motion.is_zero else motion.last_time + TAIL_AFTER_MOTION
     duration = require_positive_finite("duration", duration)
-    check_duration("duration", duration, "" if given else f" (the motion's end + {TAIL_AFTER_MOTION:g} s)")
-    check_isolator(system, duration)
-    check_settings(settings, duration)
+    limits.check_duration("duration", duration, "" if given else f" (the motion's end + {TAIL_AFTER_MOTION:g} s)")
+    limits.check_isolator(system, duration)
+    limits.check_settings(settings, duration)
     side_alpha = system.edge_alpha(1 if theta0 >= 0 else -1) if math.isfinite(theta0) else system.alpha
     require(math.isfinite(theta0) and abs(theta0) < side_alpha, "theta0", theta0,
             f"a finite tilt smaller than α = {side_alpha:.6g} rad in magnitude (of the edge it tilts onto)")
@@ -272,7 +272,6 @@ def run_inputs(system: "System", motion: "GroundMotion | None", duration: float 
 
 def check_isolator_kind(system: "System", isolators: tuple[str, ...], engine: str = "this engine") -> None:
     """One line refusing a System whose isolator `engine` does not carry (Capabilities.isolators)."""
-    from .errors import InputError
     kind = system.isolator_kind
     if kind not in isolators:
         raise InputError(f"isolator = {kind}: {engine} carries the {', '.join(isolators)} isolator only, not a "
@@ -286,8 +285,6 @@ def check_transverse(system: "System", motion: "GroundMotion", transverse: bool,
     (`isolators`, Capabilities.transverse_isolators): the linear one is isotropic with the same
     k and c along x and y; a pendulum's dry friction in the plane only where the scene makes it
     isotropic (MuJoCo's and PyBullet's); a bearing's coupled 2-D yielding is not built (issue 36)."""
-    from .errors import InputError
-    from .limits import check_acceleration
     if motion.transverse is None:
         return
     if not transverse:
@@ -298,13 +295,12 @@ def check_transverse(system: "System", motion: "GroundMotion", transverse: bool,
                   if isolators == ("linear",) else "")
         raise InputError(f"isolator = {system.isolator_kind}: with two horizontal components must be "
                          f"{' or '.join(isolators)} or a fixed base{others}")
-    check_acceleration("transverse", motion.transverse.pga_g, f" ({motion.transverse.name or 'its peak'})")
+    limits.check_acceleration("transverse", motion.transverse.pga_g, f" ({motion.transverse.name or 'its peak'})")
 
 
 def check_body(system: "System", two_edges: bool, engine: str = "this engine") -> None:
     """One line refusing a statue of two different tipping edges (System.body) for an engine
     that builds the box H × B (Capabilities.two_edges False)."""
-    from .errors import InputError
     if system.body is not None and not two_edges:
         raise InputError(f"body: {engine} builds the symmetric box H × B; a statue of two different edges "
                          f"(b₊ {system.body.lever_forward:.4g} m, b₋ {system.body.lever_backward:.4g} m) runs on the "
@@ -317,7 +313,6 @@ def check_friction(system: "System", kinetic_friction: bool, engine: str = "this
     with one friction coefficient (Capabilities.kinetic_friction False: MuJoCo's and PyBullet's
     contacts; Drake's discrete plant): run at μ_s it would slide too far, at μ_k start too early.
     And a statue that may slip at all, for an engine that carries none (statue_friction False)."""
-    from .errors import InputError
     if not statue_friction and system.friction is not None:
         raise InputError(f"friction = {system.friction!r}: {engine} carries a statue that cannot slip on its base only "
                          "(Capabilities.statue_friction)")

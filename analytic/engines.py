@@ -1,8 +1,14 @@
 """The analytic model's two engines, declared in one place with the same settings and
 presets: "analytic", the compiled kernel (analytic.fast), and "analytic-reference", the
 same model on SciPy's DOP853 (analytic.hybrid), which the kernel is tested against."""
+import numbers
+import os
+
+from . import kernel_cache
 from .engine_protocol import Capabilities, EngineSpec, Preset
+from .motion import GroundMotion
 from .settings import AnalyticSettings as Settings
+from .slide_physics import needs_contact_model
 from .system import ISOLATOR_KINDS
 
 PRESETS = {
@@ -21,22 +27,21 @@ def ladder(quick: bool):
 
 def simulate(system, motion=None, *, progress=None, **kwargs):
     """The compiled kernel: a whole run takes milliseconds, so there is no progress to report."""
-    from .fast import simulate_fast
+    from .fast import simulate_fast  # lazy: the registry loads this spec; numba and the kernels load on a run
     return simulate_fast(system, motion, **kwargs)
 
 
 def simulate_reference(system, motion=None, **kwargs):
-    from .hybrid import simulate as reference
+    from .hybrid import simulate as reference  # lazy: SciPy's integrator only for the reference preset
     return reference(system, motion, **kwargs)
 
 
 def _kernel_of(system, motion):
     """The compiled kernel a run of `system` under `motion` calls: the sliding model's, the
     linear one (fixed base, linear isolator) or the non-linear isolators'."""
-    from . import fast
-    from .slide_physics import needs_contact_model
+    from . import fast  # lazy: numba and the kernels load on a run, not with the spec
     if needs_contact_model(system, motion):
-        from . import slide_fast
+        from . import slide_fast  # lazy: numba and the kernels load on a run, not with the spec
         return slide_fast._run
     return fast._integrate if system.fixed_base or system.isolator is None else fast._integrate_iso
 
@@ -49,18 +54,15 @@ _KERNEL_SERVES = {"_integrate": "the fixed base's and the linear isolator's", "_
 def kernel_ready(system, motion=None) -> bool:
     """Whether the compiled kernel a run of `system` under `motion` needs runs without being
     compiled first (kernel_cache.is_ready)."""
-    from .kernel_cache import is_ready
-    from .motion import GroundMotion
-    return is_ready(_kernel_of(system, GroundMotion.zero() if motion is None else motion))
+    return kernel_cache.is_ready(_kernel_of(system, GroundMotion.zero() if motion is None else motion))
 
 
 def unbuilt_kernels(systems) -> list[str]:
     """What building the compiled kernels that runs of `systems` (horizontal motion) need, and
     are not built yet, will cost, one phrase per kernel: a long command's estimate adds it."""
-    from .kernel_cache import BUILD_ESTIMATE, is_ready
-    from .motion import GroundMotion
     kernels = dict.fromkeys(_kernel_of(system, GroundMotion.zero()) for system in systems)
-    return [f"{_KERNEL_SERVES[k.__name__]} kernel ({BUILD_ESTIMATE[k.__name__]})" for k in kernels if not is_ready(k)]
+    return [f"{_KERNEL_SERVES[k.__name__]} kernel ({kernel_cache.BUILD_ESTIMATE[k.__name__]})" for k in kernels
+            if not kernel_cache.is_ready(k)]
 
 
 #: the longest run (simulated s) that a first run takes on the reference while the kernel it
@@ -77,21 +79,16 @@ def first_run_reference(system, motion, duration: float) -> str | None:
     same model, tested against the kernel to ~1e-10 rad), or None: its kernel is not
     built yet and the run is short enough that the reference ends before the build would
     (issue 34: a first run that starts at once). ISOROCK_FIRST_RUN=kernel builds it instead."""
-    import numbers
-    import os
-
-    from .kernel_cache import BUILD_ESTIMATE, is_ready
-    from .motion import GroundMotion
     # only a run of a positive duration within the bound: anything else (None, text, a negative
     # or NaN duration) is no reason to swap engines, and the run's own checks refuse it
     if (os.environ.get("ISOROCK_FIRST_RUN", "reference") == "kernel" or isinstance(duration, bool)
             or not isinstance(duration, numbers.Real) or not 0 < duration <= FIRST_RUN_REFERENCE_S):
         return None
     kernel = _kernel_of(system, GroundMotion.zero() if motion is None else motion)
-    if is_ready(kernel):
+    if kernel_cache.is_ready(kernel):
         return None
     name = kernel.__name__
-    return (f"{_KERNEL_SERVES[name]} compiled kernel is not built yet (once per install, {BUILD_ESTIMATE[name]}): "
+    return (f"{_KERNEL_SERVES[name]} compiled kernel is not built yet (once per install, {kernel_cache.BUILD_ESTIMATE[name]}): "
             "this run takes the same model on SciPy (analytic-reference), which needs no build; design, sweep "
             "and validate build the kernel, and ISOROCK_FIRST_RUN=kernel builds it now")
 

@@ -1,4 +1,6 @@
 """The one error type for bad input, so the CLI can turn it into exit code 2."""
+import importlib
+import os
 
 
 class InputError(ValueError):
@@ -51,7 +53,6 @@ def import_extra(module: str, extra: str, needed_for: str):
     naming the optional extra that brings it: the light install (`pip install -e .`)
     leaves out what only one command needs, and that command says so instead of a
     traceback."""
-    import importlib
     try:
         return importlib.import_module(module)
     except ModuleNotFoundError as e:
@@ -64,7 +65,6 @@ def import_extra(module: str, extra: str, needed_for: str):
 def path_value(key: str, value, *, optional: bool = True):
     """A path given from Python: a str or an os.PathLike (a number would name a folder '123',
     None a campaign file 'None'); None where `optional`."""
-    import os
     if value is None and optional:
         return None
     if isinstance(value, (str, os.PathLike)) and str(value).strip():

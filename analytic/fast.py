@@ -64,14 +64,17 @@ numba's JIT needs to start; the JIT kernel is the fallback where no C compiler i
 """
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 import threading
 import time
 import types
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
+from numba import types as nt
 
 try:
     from numba import njit
@@ -104,11 +107,10 @@ ENGINE = "analytic"
 def _dop853_coefficients():
     """SciPy's DOP853 tableau module, loaded from its file: importing it by name would
     first import all of scipy.integrate (~0.3 s of a new process's start)."""
-    import importlib.util
     spec = importlib.util.find_spec("scipy")
     path = os.path.join(os.path.dirname(spec.origin), "integrate", "_ivp", "dop853_coefficients.py")
     if not os.path.exists(path):  # pragma: no cover - a SciPy that moved it
-        from scipy.integrate._ivp import dop853_coefficients
+        from scipy.integrate._ivp import dop853_coefficients  # lazy: only where SciPy moved the file read above
         return dop853_coefficients
     spec = importlib.util.spec_from_file_location("_isorock_dop853_coefficients", path)
     module = importlib.util.module_from_spec(spec)
@@ -211,7 +213,7 @@ def _borrowed(typingctx, a):
         return None
 
     def codegen(context, builder, sig, args):
-        from numba.np.arrayobj import make_array, populate_array
+        from numba.np.arrayobj import make_array, populate_array  # lazy: compile time only
         src = make_array(a)(context, builder, value=args[0])
         dst = make_array(a)(context, builder)
         populate_array(dst, data=src.data, shape=src.shape, strides=src.strides,
@@ -882,7 +884,6 @@ def _integrate_signature():
     """_integrate's argument types, for its ahead-of-time build (kernel_cache.ahead_of_time;
     numba infers what it returns): every array C-contiguous float64, which call_kernel
     makes them (a copy of one that is not, or is read-only)."""
-    from numba import types as nt
     f8, i8, b1, vec = nt.float64, nt.int64, nt.boolean, nt.float64[::1]
     return (vec, vec, vec, vec, f8, vec, f8, f8, f8, i8, f8, b1, i8, f8, b1, f8, vec)
 
@@ -1699,7 +1700,7 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
                                   impact_threshold)
     odt = settings.output_dt if output_dt is None else require_positive_finite("output_dt", output_dt)
     if needs_contact_model(system, motion):  # the statue may slip, or the ground heaves: docs/sliding.md
-        from . import slide_fast
+        from . import slide_fast  # here, not at the top: slide_fast imports this one
         return slide_fast.simulate(system, motion, replace(settings, output_dt=odt), duration, theta0, theta_dot0,
                                    u0, u_dot0, impact_threshold, ENGINE)
     kernel, sp, ip, n_y = _kernel_for(system, settings)
@@ -1875,8 +1876,7 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
 
 def _contact_rows(systems, motions, case_sys, case_mot, T, th0, cases, impact_threshold, settings, workers):
     """(case, row) of the cases that need the sliding model, on threads over its GIL-free kernel."""
-    from concurrent.futures import ThreadPoolExecutor
-    from . import slide_fast
+    from . import slide_fast  # here, not at the top: slide_fast imports this one
 
     def one(c):
         i, j = int(case_sys[c]), int(case_mot[c])
@@ -1999,7 +1999,6 @@ def _run_cases(args, lo, hi, failures):
 def _batch_pool(args, workers, failures):
     """Python threads over the GIL-free kernel, cases handed out in small chunks (runs
     differ in cost by orders of magnitude: Zeno tails, overturning)."""
-    from concurrent.futures import ThreadPoolExecutor
     n = args[6].size
     bounds = np.linspace(0, n, min(n, workers * 16) + 1).astype(int)
     pool = ThreadPoolExecutor(max_workers=workers)

@@ -219,7 +219,7 @@ def image_after_impact(system, motion, t_cross: float, u_cross: float, u_dot_pre
     forward run returns to θ = 0 first: the θ̇⁺ so small that the block falls back). `phase_pre`,
     `u_p`: the slider's phase before the impact and the element's slider at it: a base that goes
     on its way keeps its phase (a double pendulum's regime), as hybrid's slider_after_velocity."""
-    from scipy.optimize import brentq
+    from scipy.optimize import brentq  # lazy: scipy.optimize only for an impact on a moving slider
 
     def miss(theta_dot_post):
         u_dot_post = base_velocity_after(system, u_dot_pre, theta_dot_pre, theta_dot_post)

@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .errors import InputError
+from .physics import C_DAMP, I_FSLIP, I_KEL, I_UY, K, isolator_params, rigid_slider
 from .system import BALL_IN_BOWL, BILINEAR, DOUBLE_PENDULUM, FRICTION_PENDULUM, LINEAR
 
 #: the isolator kinds a contact engine can build from its own parts (a joint spring, a
@@ -96,7 +97,6 @@ class IsolatorParts:
 
 def isolator_parts(system) -> IsolatorParts:
     """The parts of `system`'s isolator (an isolated base: a fixed base has none)."""
-    from .physics import C_DAMP, I_FSLIP, I_KEL, I_UY, K, isolator_params, rigid_slider
     kind = system.isolator_kind
     if kind not in CONTACT_ISOLATORS:
         raise InputError(f"isolator = {kind}: no contact-engine parts (docs/isolators.md, 'Who carries what')")

@@ -17,6 +17,9 @@ import subprocess
 import sys
 import time
 
+from . import kernel_cache
+from .system import FrictionPendulum, System, paper_system
+
 #: the kernels, by the name kernel_cache and its estimates use, in the two groups `build` runs side by side
 GROUPS = (("_integrate_iso",), ("_integrate", "_run", "_rest_pass"))
 KERNELS = tuple(name for group in GROUPS for name in group)
@@ -27,18 +30,17 @@ BUDGET_S = 900.0
 
 def dispatcher(name: str):
     """The compiled function named `name` (one of KERNELS)."""
-    from . import fast, rest_scales, slide_fast
+    from . import fast, rest_scales, slide_fast  # lazy: numba and the kernels, loaded in the build process only
     return {"_integrate": fast._integrate, "_integrate_iso": fast._integrate_iso, "_run": slide_fast._run,
             "_rest_pass": rest_scales._rest_pass}[name]
 
 
 def _warm(name: str) -> None:
     """Make one call that needs kernel `name`, as a command makes it (it builds the kernel)."""
-    import numpy as np
+    import numpy as np  # lazy: the build process's warm-up only
 
     from .fast import simulate_fast
     from .motion import GroundMotion, load_motion
-    from .system import FrictionPendulum, System, paper_system
     record = GroundMotion.from_array(np.array([0.0, 0.5, -0.5, 0.0]), dt=0.02, units="g")
     if name == "_rest_pass":
         from .rest_scales import rest_phases
@@ -53,8 +55,7 @@ def _warm(name: str) -> None:
 
 def unbuilt(names=KERNELS) -> list[str]:
     """The kernels of `names` that a run in a new process would have to build first."""
-    from .kernel_cache import is_ready
-    return [name for name in names if not is_ready(dispatcher(name))]
+    return [name for name in names if not kernel_cache.is_ready(dispatcher(name))]
 
 
 def build_here(names=KERNELS) -> dict[str, float]:

@@ -21,12 +21,18 @@ stamps a cache with the source file of the jitted function only. Here:
 from __future__ import annotations
 
 import contextlib
+import hashlib
+import importlib.machinery
+import importlib.util
 import os
 import pickle
+import platform
+import shutil
 import sys
 import tempfile
 import threading
 import time
+import warnings
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 #: the sources compiled into the kernel: a change to any of them invalidates the cache
@@ -84,7 +90,7 @@ def writable_cache_dir() -> str | None:
 
 
 def _locator_class():
-    from numba.core.caching import _CacheLocator, _hash_source_file
+    from numba.core.caching import _CacheLocator, _hash_source_file  # lazy: numba, for the JIT cache only
 
     class CacheLocator(_CacheLocator):
         """numba cache locator for the kernel's functions only (see the module's doc)."""
@@ -129,7 +135,7 @@ def install_locator() -> None:
     global _installed
     if _installed:
         return
-    from numba.core.caching import CacheImpl
+    from numba.core.caching import CacheImpl  # lazy: numba, where a kernel is compiled or its cache looked up
     CacheImpl._locator_classes = [_locator_class(), *CacheImpl._locator_classes]
     _installed = True
 
@@ -137,7 +143,7 @@ def install_locator() -> None:
 def cached_jit(**options):
     """numba.njit(cache=True, **options), or without a cache (said once on stderr) when no
     cache folder is writable."""
-    from numba import njit
+    from numba import njit  # lazy: numba, where a kernel is compiled
     install_locator()
 
     def wrap(func):
@@ -244,10 +250,7 @@ def ahead_of_time(signature):
 
 
 def _stamp(dispatcher) -> str:
-    import hashlib
-    import platform
-
-    import llvmlite.binding as llvm
+    import llvmlite.binding as llvm  # lazy: the cache stamp only; a cache check loads no numba
     import numba
     import numpy
     h = hashlib.sha256()
@@ -267,7 +270,6 @@ def _module_name(dispatcher) -> str:
 
 def _find_modules(name: str) -> list[str]:
     """Every cached copy of `name`'s module, most preferred folder first."""
-    import importlib.machinery
     return [path for folder in cache_dirs() for suffix in importlib.machinery.EXTENSION_SUFFIXES
             if os.path.isfile(path := os.path.join(folder, name + suffix))]
 
@@ -290,7 +292,6 @@ def clear_leftovers(folder: str) -> None:
         pid = entry.split("-")[1] if entry.count("-") >= 2 else ""
         if pid.isdigit() and _alive(int(pid)):
             continue
-        import shutil
         shutil.rmtree(os.path.join(folder, entry), ignore_errors=True)
 
 
@@ -305,7 +306,6 @@ def _alive(pid: int) -> bool:
 
 
 def _load_module(name: str, path: str):
-    import importlib.util
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
@@ -318,7 +318,6 @@ def _pycc():
     it and no supported ahead-of-time compiler for numba code is released (docs/floors.md:
     the cold start with and without it, measured). A numba without it raises
     ImportError here, before any build is announced, and the JIT kernel serves."""
-    import warnings
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # numba.pycc's pending-deprecation notice
         from numba.pycc import CC
@@ -330,10 +329,7 @@ def _build_module(dispatcher, name: str) -> str:
     """Compile dispatcher's Python function with numba.pycc into `name`'s extension module,
     in a temporary folder renamed into the first writable cache folder: whole or absent,
     and two processes building at once each leave a whole file."""
-    import shutil
-    import warnings
-
-    from numba.core import compiler as numba_compiler
+    from numba.core import compiler as numba_compiler  # lazy: numba, for an ahead-of-time build only
     CC, pycc_compiler = _pycc()
     folder = writable_cache_dir()
     if folder is None:
@@ -484,7 +480,7 @@ def _build_lock(folder: str | None, name: str):
     its holder dies. Where there is none (no fcntl, an unwritable folder) builds may run
     side by side, each leaving a whole file (_build_module)."""
     try:
-        import fcntl
+        import fcntl  # here, not at the top: POSIX only
         handle = open(os.path.join(folder, f".{name}.lock"), "a")  # noqa: SIM115 - held across the yield
     except (ImportError, OSError, TypeError):
         yield
@@ -523,7 +519,7 @@ def _try_lock(fcntl, handle) -> bool:
 def c_writable(a):
     """a, or a C-contiguous writable copy of an array that is not: the one flavour of array every
     kernel is compiled for."""
-    import numpy as np
+    import numpy as np  # lazy: this module is loaded to check a cache, which needs no NumPy
     if isinstance(a, np.ndarray):
         if a.flags.c_contiguous and a.flags.writeable:
             return a

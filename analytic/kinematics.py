@@ -14,6 +14,7 @@ import time
 
 import numpy as np
 
+from .slide_physics import needs_contact_model
 from .system import System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, counted_sign_changes
 
@@ -106,7 +107,6 @@ def slide_history(system: System, motion, *, x_centroid, x_centroid_dot, theta, 
     velocities), where the run needs the model of a contact that may slip
     (slide_physics.needs_contact_model: a statue with friction, or a vertical motion);
     (None, None) otherwise, so that a history of the no-slip model carries nothing new."""
-    from .slide_physics import needs_contact_model
     if not needs_contact_model(system, motion):
         return None, None
     return (pivot_slip(system, x_centroid, theta, u),

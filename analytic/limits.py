@@ -15,7 +15,7 @@ import math
 import os
 import time
 
-from .errors import InputError
+from .errors import InputError, real_number
 
 #: longest simulated time (s): an hour, ten times the longest earthquake records
 MAX_DURATION = 3600.0
@@ -96,7 +96,6 @@ class BudgetExceeded(RuntimeError):
 def check_budget(seconds, field: str = "budget_s") -> float:
     """A run's wall-clock budget: a positive finite number of seconds (a negative, NaN or text
     budget was taken as given from Python, and stopped nothing or everything)."""
-    from .errors import real_number
     x = real_number(field, seconds, "a positive finite number of seconds")
     if not (x > 0 and math.isfinite(x)):
         raise InputError(f"{field} = {seconds!r}: must be a positive finite number of seconds")

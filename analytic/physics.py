@@ -17,6 +17,9 @@ import math
 
 import numpy as np
 
+from .coefficients import beta, beta2, beta3, edge_impact
+from .system import STANDARD_GRAVITY
+
 # --- packed system parameters -------------------------------------------------------
 (M_BLOCK, M_TOTAL, H, B_HALF, G, K, C_DAMP, FIXED, ALPHA, J, THR, BETA, BETA2, BETA3, REST,
  INV_M, INV_J, M_BASE, INERTIA, B_NEG, ALPHA_NEG, J_NEG, INV_J_NEG, THR_NEG, BETA_NEG, BETA2_NEG, N_SP) = range(27)
@@ -45,7 +48,6 @@ SIDE_ANGLE = 0.5 * math.pi  # |θ| at which the block lies on its side
 def system_params(system, rest_velocity: float) -> np.ndarray:
     """A System packed for the functions below (rest_velocity: the dimensionless floor
     of AnalyticSettings, stored as rest_velocity·p·α in rad/s)."""
-    from .coefficients import beta, beta2, beta3, edge_impact
     lam, mu, h = system.slenderness, system.mu, system.h
     sp = np.zeros(N_SP)
     sp[M_BLOCK] = system.mass
@@ -85,7 +87,6 @@ def edge(sp, s, forward, backward):
 
 def motion_params(motion):
     """(parameters, samples) of a GroundMotion: pulses in closed form, records as samples."""
-    from .system import STANDARD_GRAVITY
     mp = np.zeros(N_MP)
     if motion.pulse is not None:
         p = motion.pulse

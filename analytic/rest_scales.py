@@ -23,16 +23,20 @@ of measure zero.
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 from . import physics
+from .errors import InputError
 from .kernel_cache import c_writable, cached_jit, call_kernel
+from .limits import available_cores
 from .settings import AnalyticSettings
 
 # the kernel's compiled physics (analytic.fast), the same functions its closed-form
 # translation pieces call
 from .fast import _P, _breaks, _mp_tuple, _sp_tuple  # noqa: E402
+from .system import LINEAR
 
 _record_piece = _P["record_piece"]
 _xgp = _P["piece_acceleration"]
@@ -125,11 +129,6 @@ def rest_phases(systems, records, factors, durations, settings: AnalyticSettings
     the pass having stopped at the last uplift). Threads over the GIL-free pass
     (`workers`: default, the cores this process may use); on_system(): called here, in the
     calling thread, as each system's passes are done (a progress bar's update)."""
-    from concurrent.futures import ThreadPoolExecutor
-
-    from .errors import InputError
-    from .limits import available_cores
-    from .system import LINEAR
     for system in systems:
         if system.fixed_base or system.isolator_kind != LINEAR:
             raise InputError("rest_phases: needs linear isolators on an isolated base (their rest phase is linear "

@@ -30,7 +30,7 @@ import numpy as np
 from scipy.spatial import ConvexHull
 
 from .errors import InputError, import_extra, python_number
-from .system import STANDARD_GRAVITY
+from .system import PlanarBody, STANDARD_GRAVITY, System
 
 #: Hull faces whose planes agree to this (unit normal, and offset in m) are one face.
 FACE_TOLERANCE = 1e-6
@@ -316,7 +316,6 @@ def weakest_direction(body: RestingBody) -> tuple[float, float]:
 def along_directions(body: RestingBody, azimuths) -> list:
     """The exact model's System of the statue's two edges along each shaking direction (rad), on
     a fixed base (System.of_body)."""
-    from .system import PlanarBody, System
     return [System.of_body(PlanarBody.from_resting(body.along(a)), mass=body.mass) for a in azimuths]
 
 
@@ -335,7 +334,7 @@ def overturning_by_azimuth(body: RestingBody, motion, *, azimuths: int = SWEEP_A
     (None: none up to the last). Rocking is not monotone in amplitude: the lowest level that
     overturns, not a boundary above which all do. One batch of the compiled kernel
     (fast.simulate_batch). {azimuth_deg, overturning_pga_g, worst: (azimuth_deg, pga_g)}."""
-    from .fast import simulate_batch
+    from .fast import simulate_batch  # lazy: numba and the kernel, for the overturning scan only
     angles = [2.0 * math.pi * k / azimuths for k in range(azimuths)]
     systems = along_directions(body, angles)
     motions = [motion.scaled_to_pga(level) for level in levels]

@@ -32,7 +32,10 @@ from . import physics
 from . import slide_physics as sl
 from .kernel_cache import cached_jit, call_kernel
 from .fast import _A, _B, _C, _D, _E3, _E5
+from .limits import energy_balance_failure
+from .overturning import describe, theta_max_over_alpha
 from .status import Status
+from .trajectory import EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
 # --- analytic.physics and analytic.slide_physics, compiled ----------------------------------
 
@@ -1123,7 +1126,6 @@ def run(system, motion, settings, duration, y0, history: bool):
 
 def _balance_failure(r):
     """limits.energy_balance_failure of a run r (its energy balance read at its stored points), or None."""
-    from .limits import energy_balance_failure
     held, n_rec, rec = r[24:27]
     rows = np.concatenate([rec[:n_rec], rec[-1:]])
     return energy_balance_failure(rows[:, 0], rows[:, 1], held)
@@ -1140,8 +1142,7 @@ def _message(system, settings, r):
 
 
 def _ending(system, settings, r):
-    from .overturning import describe
-    from .slide_hybrid import _WHY
+    from .slide_hybrid import _WHY  # lazy: slide_hybrid loads SciPy, for a run that failed only
     status, why, t, t_alpha, verdict, pz, theta_end, events = r[:8]
     if why == STOP_INTEGRATION:
         return Status.FAILED, f"integration failed at t = {t:.6g} s: Required step size is less than spacing between numbers."
@@ -1160,7 +1161,6 @@ def _ending(system, settings, r):
 
 def simulate(system, motion, settings, duration, theta0, theta_dot0, u0, u_dot0, impact_threshold, engine):
     """The Trajectory of analytic.slide_hybrid.simulate (inputs checked by the caller), compiled."""
-    from .trajectory import EnergyLog, Impact, Trajectory, cumulative_impact_loss
     start = time.perf_counter()
     r = run(system, motion, settings, duration, [u0, u_dot0, theta0, theta_dot0], True)
     status, message = _message(system, settings, r)
@@ -1203,7 +1203,6 @@ def simulate(system, motion, settings, duration, theta0, theta_dot0, u0, u_dot0,
 
 def summary(system, motion, settings, duration, theta0, impact_threshold) -> dict:
     """The batch row of one run (analytic.fast.simulate_batch's fields, and the slide's)."""
-    from .overturning import theta_max_over_alpha
     r = run(system, motion, settings, duration, [0.0, 0.0, theta0, 0.0], False)
     status, message = _message(system, settings, r)
     n_imp, imp, n_upl = r[15], r[16], r[17]

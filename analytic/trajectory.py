@@ -12,6 +12,9 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from .engine_protocol import DEFAULT_IMPACT_THRESHOLD  # one home (the counting rule); re-exported
+from .errors import import_extra
+from .limits import energy_balance_failure
+from .overturning import PAST_ALPHA, THETA_MAX_DEFINITION, theta_max_over_alpha
 from .status import Status
 from .system import System
 
@@ -90,7 +93,6 @@ class EnergyLog:
     def failure(self, t: np.ndarray) -> str | None:
         """limits.energy_balance_failure of this balance, sampled at the times t: its message
         where the relative residual exceeds ENERGY_BALANCE_LIMIT, else None."""
-        from .limits import energy_balance_failure
         return energy_balance_failure(t, self.residual.tolist(), self.input_energy)
 
 
@@ -156,7 +158,6 @@ class Trajectory:
     @property
     def theta_max_over_alpha(self) -> float:
         """overturning.THETA_MAX_DEFINITION under the run's rule."""
-        from .overturning import PAST_ALPHA, theta_max_over_alpha
         if not self.theta.size:
             return 0.0
         theta_max = float(np.max(np.abs(self.theta)))
@@ -176,7 +177,6 @@ class Trajectory:
                    max(-float(np.min(self.theta)), 0.0) / sy.edge_alpha(-1))
 
     def _theta_max_definition(self) -> str:
-        from .overturning import PAST_ALPHA, THETA_MAX_DEFINITION
         return THETA_MAX_DEFINITION.get(self.extras.get("overturn_rule", PAST_ALPHA), "")
 
     @property
@@ -296,7 +296,6 @@ class Trajectory:
         u (m), u_dot (m/s), theta (rad), theta_dot (rad/s), theta_over_alpha and mode (0
         translation, ±1 rocking); `.attrs` holds the engine and the summary() metrics.
         Needs pandas (`pip install 'isorock[notebook]'`)."""
-        from .errors import import_extra
         pd = import_extra("pandas", "notebook", "Trajectory.to_dataframe")
         keep = self._one_row_per_time()
         frame = pd.DataFrame({"t": self.t[keep], "u": self.u[keep], "u_dot": self.u_dot[keep],

@@ -20,6 +20,8 @@ command line), isorock.validate.tools.campaign (sweeps), isorock.validate.tools.
 """
 from __future__ import annotations
 
+import importlib
+
 #: the entry points → the module holding the function of the same name: the command
 #: `isorock validate` is `isorock.report(...)` here, since `isorock.validate` is the subpackage
 #: (isorock.validate.core, …) and cannot also be a function; `design` takes Python values
@@ -33,7 +35,6 @@ API = {"run": "isorock.validate.cli.api", "report": "isorock.validate.cli.api", 
 
 def __getattr__(name: str):
     if name in API:
-        import importlib
         return getattr(importlib.import_module(API[name]), name)
     raise AttributeError(f"module 'isorock' has no attribute {name!r}")
 

@@ -11,6 +11,7 @@ from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
 from .scene import SCENE_FORMAT, build, connect, scene_text
 from .settings import Settings, settings_for, settings_for_timestep
 from .stepping import TRANSVERSE, TWO_EDGES, simulate, step_cost
+from . import mesh_scene  # the rock's hull as a free body, for measured shake-table tests
 
 
 def ladder(quick: bool):
@@ -32,7 +33,6 @@ TUNING = Tuning(
 
 
 def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=None, friction=None, restitution=None):
-    from . import mesh_scene  # the rock's hull as a free body, for measured shake-table tests
     contact = {k: v for k, v in (("friction", friction), ("restitution", restitution)) if v is not None}
     return mesh_scene.simulate(vertices, com, inertia, mass, acceleration, dt, duration=duration, **contact)
 

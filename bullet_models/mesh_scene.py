@@ -48,7 +48,7 @@ def principal_frame(inertia) -> tuple[np.ndarray, np.ndarray]:
 
 def _quat(Q) -> list[float]:
     """(x, y, z, w) of the rotation matrix Q."""
-    from scipy.spatial.transform import Rotation
+    from scipy.spatial.transform import Rotation  # lazy: scipy.spatial, for a hull scene only
     return Rotation.from_matrix(Q).as_quat().tolist()
 
 

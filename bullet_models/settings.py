@@ -14,6 +14,7 @@ import numpy as np
 
 from isorock.analytic.engine_protocol import contact_scale
 from isorock.analytic.errors import require, require_nonnegative_finite, require_positive_finite
+from isorock.analytic.isolator_parts import isolator_parts
 from isorock.analytic.system import LINEAR
 
 #: s; the control step (ground motion, isolator force, output) a timestep given alone keeps:
@@ -131,7 +132,6 @@ class Settings:
         if system.isolator_kind != LINEAR:
             # the explicit step follows the stiffest branch: k + k_e while the element is elastic
             # (the bearing's k0; the double pendulum's regime I, W/R_lo, stiffer than its W/(R1 + R2))
-            from isorock.analytic.isolator_parts import isolator_parts
             period = 2 * math.pi * math.sqrt(system.total_mass / isolator_parts(system).initial_stiffness)
         require(period >= shortest, "period", round(period, 6),
                 f"at least {shortest:.3g} s for PyBullet with a control step of {self.control_step:g} s "

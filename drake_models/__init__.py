@@ -13,6 +13,7 @@ from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, T
 from .scene import (ISOLATORS, PRESETS, SCENE_FORMAT, TRANSVERSE, TWO_EDGES, Settings, check_system, preset, scene_text,
                     settings_for, settings_for_timestep, simulate, sphere_geometry_beta,
                     sphere_geometry_first_impact_time)
+from . import mesh_scene  # the rock's hull as a free body; after .scene, whose import says how to install pydrake
 
 
 def ladder(quick: bool):
@@ -44,7 +45,6 @@ PRESET_REASONS = {
 
 
 def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=None, friction=None):
-    from . import mesh_scene  # the rock's hull as a free body, for measured shake-table tests
     contact = {} if friction is None else {"friction": friction}
     return mesh_scene.simulate(vertices, com, inertia, mass, acceleration, dt, duration=duration, **contact)
 

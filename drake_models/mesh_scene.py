@@ -19,6 +19,7 @@ import tempfile
 import time
 
 import numpy as np
+import pydrake.all as pd
 
 from isorock.analytic.engine_protocol import BODY_OVERTURN_TILT as OVERTURN_TILT  # every hull scene's rule
 
@@ -32,7 +33,7 @@ TABLE = (20.0, 20.0, 1.0)  # m: wide enough for any slide or fall here
 
 def _hull_obj(vertices) -> str:
     """An OBJ text of the convex hull of `vertices` (faces outward)."""
-    from scipy.spatial import ConvexHull
+    from scipy.spatial import ConvexHull  # lazy: scipy.spatial, for a hull scene only
     v = np.asarray(vertices, float)
     hull = ConvexHull(v)
     c = v[hull.vertices].mean(0)
@@ -48,7 +49,6 @@ def _hull_obj(vertices) -> str:
 def simulate(vertices, com, inertia, mass, acceleration, dt: float, *, duration=None, settle: float = 0.5,
              friction=FRICTION, timestep=TIMESTEP) -> dict:
     """The same returns as mujoco_models.mesh_scene.simulate."""
-    import pydrake.all as pd
     a = np.asarray(acceleration, float)
     end = (a.size - 1) * dt if duration is None else duration
     com = np.asarray(com, float)

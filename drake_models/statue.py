@@ -39,6 +39,8 @@ from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.system import System
 from isorock.analytic.trajectory import RawHistory
 
+from .mesh_scene import _hull_obj  # the shake-table scene's writer: one for both
+
 #: the OBJ the "convex" hull's SDF names, written beside it by `simulate`
 HULL_FILE = "statue_hull.obj"
 #: the SDF header's account of the statue's coordinates (scene._SDF)
@@ -49,7 +51,6 @@ COORDS = """The statue (link "block") has no joint: Drake's quaternion floating
 
 def hull_obj(system: System) -> str:
     """The hull as OBJ text (faces wound outwards), for Drake's Convex."""
-    from .mesh_scene import _hull_obj  # the shake-table scene's writer: one for both
     return _hull_obj(np.asarray(system.body.solid.vertices, dtype=float))
 
 

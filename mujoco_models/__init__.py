@@ -12,6 +12,7 @@ from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
 from .scene import SCENE_FORMAT, build_model, check_representable, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep
 from .stepping import run_model, simulate, simulate_many, step_cost
+from . import mesh_scene  # the rock's hull on a free joint, for measured shake-table tests
 
 
 def ladder(quick: bool):
@@ -52,12 +53,11 @@ TUNING = Tuning(
 
 
 def _replay_scene(system):
-    from .replay import replay_scene  # loads MuJoCo's model only when a replay is asked for
+    from .replay import replay_scene  # here, not at the top: replay imports this package's build_model
     return replay_scene(system)
 
 
 def _simulate_body(vertices, com, inertia, mass, acceleration, dt, *, duration=None, friction=None, dampratio=None):
-    from . import mesh_scene  # the rock's hull on a free joint, for measured shake-table tests
     solref = (mesh_scene.SOLREF[0], mesh_scene.SOLREF[1] if dampratio is None else dampratio)
     xml = mesh_scene.scene_xml(vertices, com, inertia, mass, solref=solref,
                                friction=mesh_scene.FRICTION if friction is None else friction)

@@ -7,6 +7,9 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
+import sys
+import tempfile
 from dataclasses import dataclass, replace
 
 import mujoco
@@ -117,9 +120,6 @@ def without_native_line(dropped: bytes):
     temporary file while the block runs, then written back without the lines starting with
     `dropped`: everything else a batched engine's native library says still reaches the user
     (mjwarp.NO_DRIVER: Warp's line on a machine without an NVIDIA driver)."""
-    import os
-    import sys
-    import tempfile
     sys.stderr.flush()
     saved = os.dup(2)
     with tempfile.TemporaryFile() as held:

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 import time
 
+import mujoco
 import numpy as np
 
 FRICTION = 0.5
@@ -59,7 +60,6 @@ def simulate(xml: str, acceleration, dt: float, *, duration=None, settle: float 
     equilibrium), then the record. Returns the peak tilt (rad, angle of the rock's z axis
     from its resting direction), the final tilt, overturned (tilt passed OVERTURN_TILT),
     the peak slide (m) and the wall time."""
-    import mujoco
     model = mujoco.MjModel.from_xml_string(xml)
     data = mujoco.MjData(model)
     a = np.asarray(acceleration, float)

@@ -18,6 +18,7 @@ import importlib.util
 import io
 import time
 
+import mujoco
 import numpy as np
 
 from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset
@@ -96,7 +97,6 @@ def _kernels():
 def _model(model):
     """The scene as MuJoCo Warp takes it: MuJoCo C's auto-reset (off in the scene, so that a run
     that blows up fails instead of restarting) is not a flag Warp has, nor a thing it does."""
-    import mujoco
     model.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_AUTORESET)
     return model
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import importlib.util
+import io
 import os
 import sys
 import time
@@ -46,7 +47,6 @@ CHUNK_STEPS = 2000
 def _jax():
     """(jax, mjx), float64 on: MJX's default float32 puts the pivot's contact force, and so β, off
     by its rounding (the scene's contact depth is ~1e-6 of the block)."""
-    import io
     jax = import_extra("jax", "mjx", "the MJX engine")
     jax.config.update("jax_enable_x64", True)
     # mujoco.mjx prints "Failed to import warp" on standard output where MuJoCo Warp (its other
@@ -137,7 +137,7 @@ def simulate_batch(system: System, motions, *, settings: Settings | None = None,
     """Runs of one system, one per motion (and θ0), stepped together by jax.vmap: one scene, so
     one compiled chunk. Each history is the run's own, as `simulate` makes it alone."""
     jax, mjx = _jax()
-    import jax.numpy as jnp
+    import jax.numpy as jnp  # lazy: an optional extra
     start = time.perf_counter()
     b = batch.prepare(system, motions, settings, duration, theta0, "MJX")
     model, duration, dt, nstep = b.model, b.duration, b.dt, b.nstep

@@ -6,14 +6,15 @@ from __future__ import annotations
 from isorock.analytic import kinematics
 from isorock.analytic.system import System
 
+from . import build_model
+from .settings import Settings
+from .state import Layout
+
 
 def replay_scene(system: System):
     """(model, pose): MuJoCo's scene of the system with the planar block joints, and
     pose(u, θ) → the joint positions of the rigid model at base displacement u (m) and
     tilt θ (rad)."""
-    from . import build_model
-    from .settings import Settings
-    from .state import Layout
     model = build_model(system, Settings(joint="planar"))
     layout = Layout(model, system, "planar")
 

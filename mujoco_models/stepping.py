@@ -40,6 +40,7 @@ from isorock.analytic.status import Status
 from isorock.analytic.system import LINEAR, System
 from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
+from .event_resolved import run_event_resolved
 from .scene import build_model
 from . import phases
 from .settings import Settings
@@ -85,7 +86,6 @@ def _run(model, system, motion, settings, duration, theta0, progress, chunk_step
     dt = model.opt.timestep
     nstep = int(math.floor(duration / dt + 1e-9))
     if settings.impact_timestep is not None:
-        from .event_resolved import run_event_resolved
         return run_event_resolved(model, system, motion, settings, lay, nstep, theta0, progress, start,
                                   duration, warnings)
 

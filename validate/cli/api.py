@@ -21,17 +21,22 @@ imports it.
 from __future__ import annotations
 
 import argparse
+import numbers
 import re
 from dataclasses import dataclass
 
 from isorock.analytic.errors import InputError, import_extra, path_value
+from isorock.analytic.limits import check_workers
+from ..core.executor import exit_if_bootstrapping
+from ..io.output import check_folder
+from ..io.progress import Progress
+from .main import build_parser
+from .options import run_budget
 
 
 def _parser(command: str) -> argparse.ArgumentParser:
     """The command's own parser, raising InputError (the command's one line) instead of
     printing it and exiting."""
-    from .main import build_parser
-
     def refuse(status=0, message=None):
         text = (message or "").strip().split(": error: ", 1)[-1].replace(f" (see isorock {command} --help)", "")
         # the options as the keywords they are here: --base-mass → base_mass
@@ -76,7 +81,6 @@ def _text(value) -> str:
     """A keyword's value as the command line would spell it. Any real number (NumPy's,
     a Fraction, a Decimal) as its float's repr, exact and parseable: NumPy 2's own repr,
     np.float64(0.6), was refused as 'not a number'; a 0-d array as its item."""
-    import numbers
     if hasattr(value, "ndim") and getattr(value, "ndim", None) == 0:
         value = value.item()
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
@@ -114,7 +118,7 @@ def run(**options):
     fixed_base, motion, units, scale, pga, pgv, duration, theta0_over_alpha, timestep, …),
     without its output options (json, csv, plot: the Trajectory has to_dataframe() and
     to_csv())."""
-    from .run import engine_asked, parse_engines, plan_runs, simulate_plan
+    from .run import engine_asked, parse_engines, plan_runs, simulate_plan  # lazy: each entry point its own modules
     for key in ("json", "csv", "csv_dt", "plot", "quiet"):
         if key in options:
             raise InputError(f"{key}: an output of the command; isorock.run returns the Trajectory "
@@ -124,7 +128,6 @@ def run(**options):
         plan, _ = plan_runs(a, parse_engines(engine_asked(a)))
     except InputError as e:
         raise InputError(_keywords(str(e))) from None
-    from .options import run_budget
     runs, _ = simulate_plan(plan, a, budget=run_budget(a))  # each run within --budget, as the command's
     return next(iter(runs.values())) if len(runs) == 1 else runs
 
@@ -150,9 +153,7 @@ def report(*, out: str | None = None, progress: bool = False, **options) -> Vali
     folder `out` too where one is given (the command's rules: a new or empty folder, or
     an earlier report's). Keywords: `isorock validate`'s options (config, motion (a list),
     engines (a list), quick, duration, pga, pgv, system and engine options)."""
-    from .report import report_config
-    from ..io.output import check_folder
-    from ..io.progress import Progress
+    from .report import report_config  # lazy: each entry point loads its own command's modules (matplotlib here)
     from ..tools.report_render import metrics, verdict, write_report
     from ..tools.report_run import build
     if "motion" in options and isinstance(options["motion"], str):
@@ -185,8 +186,7 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
     serially in this process (the default here: a notebook needs nothing more); N > 0
     starts a local Dask cluster of N processes, which a script must call under
     `if __name__ == "__main__":` (said in one line where it is not)."""
-    from isorock.analytic.limits import check_workers
-    from ..tools.campaign.run import run_campaign
+    from ..tools.campaign.run import run_campaign  # lazy: each entry point its own modules
     from ..tools.campaign.spec import load_spec
     spec, out = _path("spec", spec, optional=False), _path("out", out)
     products, progress = _flag("products", products), _flag("progress", progress)
@@ -196,7 +196,6 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
     if workers > 0 or scheduler:
         # in a Dask worker rerunning a script's unguarded top level: stop it quietly; the
         # cluster then fails to start, and the except below says what to do in one line
-        from ..core.executor import exit_if_bootstrapping
         exit_if_bootstrapping()
     try:
         return run_campaign(load_spec(spec), out, workers=workers, scheduler=scheduler, products=products,

@@ -4,6 +4,7 @@ from __future__ import annotations
 import math
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.limits import check_workers
 from .run import engine_labels
 from ..core.engines import get_engine
 from ..io.output import check_folder
@@ -63,7 +64,6 @@ def expand(items) -> list[str]:
 def cmd_atlas(a) -> int:
     engines = expand(a.engines) if a.engines else default_engines()
     if a.workers is not None:
-        from isorock.analytic.limits import check_workers
         check_workers("workers", a.workers)
     if not (a.run_budget > 0 and math.isfinite(a.run_budget)):
         raise InputError(f"run-budget = {a.run_budget!r}: must be a positive number of seconds")

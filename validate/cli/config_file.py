@@ -12,6 +12,7 @@ the key as the user wrote it, the value, and what is allowed:
 """
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Annotated
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, ValidationError, create_model, field_validator
@@ -142,7 +143,6 @@ def read_config(path) -> dict:
     if "system" in out:
         out["system"] = {k: v for k, v in out["system"].items()}
     if out.get("statue", {}).get("mesh") is not None:  # a mesh beside the file, wherever it is run from
-        from pathlib import Path
         out["statue"]["mesh"] = str(Path(path).parent / out["statue"]["mesh"])
     return out
 

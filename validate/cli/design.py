@@ -9,8 +9,11 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
+from isorock.analytic.engines import unbuilt_kernels
 from isorock.analytic.errors import InputError
+from isorock.analytic.limits import available_cores
 from isorock.analytic.system import BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, System
+from ..core.estimate import estimate_s as estimate_run_s
 from .config_file import read_config
 from .options import ISOLATOR_KEYS, add_statue_options, number, statue_body
 from ..io import keys
@@ -278,10 +281,9 @@ def check_engines(given) -> list[str]:
 def _check(d, engine: str, picks, hazard, cores: int, quiet: bool) -> dict:
     """The picked runs again with one contact engine (its estimate first, then its progress)."""
     if not quiet:
-        from ..core.estimate import estimate_s
         sim = sum(hazard.records[name].end_time + d.tail for _, name, _ in picks)
         print(f"isorock design: checking {len(picks)} runs with {engine} ({sim:.0f} simulated s, estimated "
-              f"≈ {estimate_s({engine: sim}, workers=cores):.0f} s)", file=sys.stderr, flush=True)
+              f"≈ {estimate_run_s({engine: sim}, workers=cores):.0f} s)", file=sys.stderr, flush=True)
     bar = None if quiet else Progress(len(picks), f"check {engine}", enabled=True)
     try:
         return check_with(d, engine, picks, progress=bar)
@@ -306,11 +308,9 @@ def cmd_design(a) -> int:
             statue = along_worst_direction(a, statue, mesh[0], hazard)
         n_runs = check_size(family, hazard, a.tail)
         check_engines_carry(statue, family, hazard, checks, a.tail)  # each --check engine, before any work
-        from isorock.analytic.limits import available_cores
         cores = available_cores()
         simulated = simulated_seconds(hazard, 1 + len(family.x_values) * len(family.y_values), a.tail)
         if not a.quiet:
-            from isorock.analytic.engines import unbuilt_kernels
             builds = unbuilt_kernels([statue.fixed(), family.system(statue, family.x_values[0],
                                                                            family.y_values[0])])
             print(f"isorock design: {n_runs:,} runs ({len(family.x_values)} × {len(family.y_values)} isolators and the "

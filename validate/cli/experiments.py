@@ -10,6 +10,7 @@ import csv
 import math
 
 from isorock.analytic.errors import InputError
+from ..io.provenance import provenance
 from .options import announce_cost
 from ..io.output import Outputs, to_json
 from ..io.progress import Progress
@@ -118,7 +119,6 @@ def fit_or_predict(a) -> int:
         with Outputs() as outputs:
             out = outputs.file("out", DEFAULT_MODEL if a.out == DEFAULT_OUT else a.out, exclusive=True)
             model = fitted.fit(a.fit, tests=tests, steps=steps, lowpass_hz=a.lowpass_hz)
-            from ..io.provenance import provenance
             model["provenance"] = provenance()
             model["fit"]["data"] = str(a.fit)
             out.write_text(to_json(model) + "\n")
@@ -137,7 +137,6 @@ def fit_or_predict(a) -> int:
         out = outputs.folder("out", a.out)
         result = fitted.predict(a.predict, model, tests=tests)
         result["model"] = str(a.model)
-        from ..io.provenance import provenance
         result["provenance"] = provenance()
 
         def fill(folder):
@@ -252,7 +251,6 @@ def main(a) -> int:
         result = study.build(a.data, engines=engines, steps=steps, lowpass_hz=a.lowpass_hz, tests=tests,
                              sensitivity=a.sensitivity, contact=contact, overturning_scale=a.overturning_scale,
                              announce=announce)
-        from ..io.provenance import provenance
         result["provenance"] = provenance()
         out.write(lambda folder: write(result, folder))
         outputs.commit()

@@ -24,12 +24,18 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import json
+import logging
 import os
+import signal
 import sys
 
+from isorock.analytic import coefficients as co
 from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
+from ..core.engines import ALL_ENGINES, get_engine
+from ..io.output import Outputs, Terminated, signal_received, signals_end_cleanly
 from .options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,
                       add_motion_options, add_statue_options, add_system_options,
                       add_transverse_options, engine_settings_from_args, number, system_from_args)
@@ -143,9 +149,6 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
 
 
 def cmd_beta(a) -> int:
-    import json
-
-    from isorock.analytic import coefficients as co
     h = a.height / 2 if a.height is not None and a.height > 0 else a.height
     if h is None or not h > 0:
         raise InputError(f"height = {a.height!r}: must be a positive finite number")
@@ -168,8 +171,6 @@ def cmd_beta(a) -> int:
 
 
 def cmd_scene(a) -> int:
-    from ..core.engines import get_engine
-    from ..io.output import Outputs
     with Outputs() as outputs:
         # a model file is kept and edited: a file of that name is not replaced (as calibrate's
         # preset); standard output, a device or a pipe are written as streams
@@ -193,12 +194,10 @@ def cmd_scene(a) -> int:
 
 
 def _registered():
-    from ..core.engines import ALL_ENGINES
     return ALL_ENGINES
 
 
 def _engines_with_scenes():
-    from ..core.engines import ALL_ENGINES, get_engine
     out = []
     for name in ALL_ENGINES:
         try:
@@ -226,7 +225,6 @@ def _end_children() -> None:
     started while MuJoCo is imported; a worker) would write after the stopped command's one
     line (its BrokenPipeError traceback, on the stderr it shares) or outlive it. Linux's
     /proc; elsewhere nothing is done."""
-    import signal
     me = os.getpid()
     try:
         entries = [e for e in os.listdir("/proc") if e.isdigit()]
@@ -245,7 +243,6 @@ def _end_children() -> None:
 def _signalled(name: str, signum: int, error: BaseException | None) -> str:
     """The one line of a command a signal ended, with what it left (an `outcome` a command
     attached to the exception on its way up, or one it wraps)."""
-    import signal
     outcome = None
     while error is not None and outcome is None:
         outcome = getattr(error, "outcome", None)
@@ -257,9 +254,6 @@ def _signalled(name: str, signum: int, error: BaseException | None) -> str:
 
 
 def main(argv=None) -> int:
-    import signal
-
-    from ..io.output import Terminated, signal_received, signals_end_cleanly
     argv_given = argv
     argv = sys.argv[1:] if argv is None else list(argv)
     command = next((x for x in argv if not x.startswith("-")), None)
@@ -290,8 +284,6 @@ def main(argv=None) -> int:
             signum = signal.SIGINT  # raised without our handler (a thread, an embedding caller)
         if signum is not None:
             if argv_given is None:
-                import logging
-
                 # a stopped command's one line is its last: what libraries log while their
                 # loops and clusters are torn down (Dask's "Task exception was never
                 # retrieved", a nanny that failed to start) is not for the user (issue 34)

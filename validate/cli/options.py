@@ -6,8 +6,19 @@ from __future__ import annotations
 
 import argparse
 import re
+import sys
+import tomllib
+from dataclasses import replace
+from types import SimpleNamespace
 
 from isorock.analytic.errors import InputError
+from isorock.analytic import limits
+from isorock.analytic.limits import check_period
+from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, BallInBowl, BallInCone, BilinearIsolator,
+                                     DOUBLE_PENDULUM, DoubleFrictionPendulum, FRICTION_PENDULUM, FrictionPendulum,
+                                     ISOLATOR_KINDS, LINEAR, PlanarBody, System)
+from ..core.engines import check_settings_table, choose, describe_settings, table_overrides
+from ..core.estimate import estimate_line
 from ..io import keys
 
 
@@ -115,7 +126,6 @@ def add_isolator_options(p: argparse.ArgumentParser, *, in_file: bool = False) -
     stiffness and dashpot from them (--stiffness/--dashpot or --period/--damping-ratio).
     in_file: a --config file's [system] table may give them too (validate), so --isolator
     has no default of its own here, and an option given wins over the file's key."""
-    from isorock.analytic.system import LINEAR
     g = p.add_argument_group("isolator (docs/isolators.md)")
     add_key_option(g, keys.ISOLATOR["isolator"], default=None if in_file else LINEAR)
     for name in ISOLATOR_KEYS:
@@ -125,9 +135,6 @@ def add_isolator_options(p: argparse.ArgumentParser, *, in_file: bool = False) -
 def _isolator_from_args(a, common):
     """The System of a non-linear --isolator, or None for the linear one (every option of
     another isolator refused with one line naming it)."""
-    from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, DOUBLE_PENDULUM, FRICTION_PENDULUM,
-                                         BallInBowl, BallInCone, BilinearIsolator, DoubleFrictionPendulum,
-                                         FrictionPendulum, ISOLATOR_KINDS, System)
     kind = getattr(a, "isolator", None) or "linear"
     wants = {"linear": (), FRICTION_PENDULUM: ("radius", "friction_coefficient"),
              BILINEAR: ("post_yield_ratio", "yield_displacement"), BALL_IN_CONE: ("slope",),
@@ -209,8 +216,7 @@ def statue_body(a, names: dict = STATUE_OPTIONS, *, slip: str = "statue_friction
     gives the statue's sliding friction μ_s (refused with a mesh: the sliding model takes the block
     alone): run's and validate's --statue-friction, design's --friction (run's --friction is an
     engine's contact coefficient, which a hull takes as the block does)."""
-    from isorock.analytic import shape
-    from isorock.analytic.system import PlanarBody
+    from isorock.analytic import shape  # lazy: NumPy and SciPy; every command loads this module
     path, example = getattr(a, "statue", None), getattr(a, "statue_example", None)
     if path is None and example is None:
         for name in ("unit", "density", "azimuth"):
@@ -232,7 +238,7 @@ def statue_body(a, names: dict = STATUE_OPTIONS, *, slip: str = "statue_friction
 
 def statue_azimuth(a, standing, names: dict = STATUE_OPTIONS) -> float:
     """The shaking direction (rad) of a statue at rest: --azimuth, or the one it tips first."""
-    from isorock.analytic import shape
+    from isorock.analytic import shape  # lazy: NumPy and SciPy; every command loads this module
     return shape.shaking_direction(standing, a.azimuth, names=names)
 
 
@@ -251,7 +257,6 @@ def system_from_args(a, *, default_isolator=None, statue_names: dict = STATUE_OP
     if system is None:
         system = _linear_from_args(a, common, default_isolator=default_isolator)
     if statue is not None:
-        from dataclasses import replace
         return replace(system, body=statue[1])
     mu_s, mu_k = getattr(a, "statue_friction", None), getattr(a, "kinetic_friction", None)
     if mu_k is not None and mu_s is None:
@@ -267,7 +272,6 @@ def system_from_args(a, *, default_isolator=None, statue_names: dict = STATUE_OP
 
 
 def _linear_from_args(a, common, *, default_isolator=None):
-    from isorock.analytic.system import System
     isolation = [x is not None for x in (a.period, a.damping_ratio, a.stiffness, a.dashpot)]
     if a.fixed_base:
         if any(isolation):
@@ -277,7 +281,6 @@ def _linear_from_args(a, common, *, default_isolator=None):
         if a.period is None or a.damping_ratio is None or a.stiffness is not None or a.dashpot is not None:
             raise InputError("isolator: give --period with --damping-ratio, or --stiffness with --dashpot, "
                              "or --fixed-base")
-        from isorock.analytic.limits import check_period
         check_period("period", a.period)  # before its stiffness M·(2π/T)² is computed
         return System.isolated(**common, period=a.period, damping_ratio=a.damping_ratio)
     if a.stiffness is not None:
@@ -300,7 +303,6 @@ def system_from_options(a, defaults: dict | None = None, statue: dict | None = N
     required=False)`), over `defaults` (a TOML [system] table) and `statue` (a TOML [statue]
     table: mesh, example, unit, density, azimuth; the options win); None when none is given,
     for the command's own default system."""
-    from types import SimpleNamespace
     values = {k: (defaults or {}).get(k) for k in SYSTEM_KEYS}
     for k in SYSTEM_KEYS:
         v = getattr(a, k, None)
@@ -375,7 +377,7 @@ def transverse_asked(a) -> bool:
 def _with_transverse(a, m):
     """`m` with the second horizontal component the options name (--motion-transverse or the
     --pair's second), or `m` as it is without them."""
-    from isorock.analytic.motion import load_motion
+    from isorock.analytic.motion import load_motion  # lazy: NumPy; every command loads this module
     spec, pair = getattr(a, "motion_transverse", None), getattr(a, "pair", None)
     if (spec is not None or pair is not None) and getattr(a, "vertical", None) is not None:
         raise InputError(f"--vertical = {a.vertical!r}: with two horizontal components is not built yet (its planar "
@@ -386,7 +388,7 @@ def _with_transverse(a, m):
     if pair is not None:
         if spec is not None or (a.motion or "none").strip().lower() != "none":
             raise InputError(f"--pair = {pair!r}: names both components; leave --motion and --motion-transverse out")
-        from ..tools.campaign.records import fema_pair
+        from ..tools.campaign.records import fema_pair  # lazy: NumPy; every command loads this module
         first, second = fema_pair(pair)
         return first.with_transverse(second)
     if spec is None:
@@ -408,7 +410,7 @@ def add_units_option(g) -> None:
 
 def motion_from_args(a):
     """The motion the options describe: read, then scaled by --scale, or to --pga / --pgv."""
-    from isorock.analytic.motion import load_motion
+    from isorock.analytic.motion import load_motion  # lazy: NumPy; every command loads this module
     targets = [(k, getattr(a, k, None)) for k in ("pga", "pgv") if getattr(a, k, None) is not None]
     if len(targets) > 1 or (targets and a.scale != 1.0):
         given = ", ".join(f"--{k} {v:g}" for k, v in targets) + (f", --scale {a.scale:g}" if a.scale != 1.0 else "")
@@ -435,8 +437,7 @@ def motion_from_args(a):
 def add_budget_option(p: argparse.ArgumentParser) -> None:
     """--budget: the wall-clock seconds one run may take (analytic/limits.RUN_BUDGET_S by
     default), for the commands that run one simulation a user asked for (run, view)."""
-    from isorock.analytic.limits import RUN_BUDGET_S
-    p.add_argument("--budget", type=number, default=RUN_BUDGET_S, metavar="S",
+    p.add_argument("--budget", type=number, default=limits.RUN_BUDGET_S, metavar="S",
                    help="wall-clock seconds each run may take: past it the run stops, nothing is written and "
                         "the command exits 1 (default: %(default)g)")
 
@@ -451,9 +452,6 @@ def run_budget(a) -> float:
 def announce_cost(command: str, simulated: dict[str, float], budget_s: float | None = None, quiet: bool = False, *,
                   workers: int = 1, speeds: dict | None = None, basis: str | None = None) -> None:
     """The cost estimate of a long command on stderr, before its work (core.estimate)."""
-    import sys
-
-    from ..core.estimate import estimate_line
     line = estimate_line(simulated, workers=workers, command=command, budget_s=budget_s, speeds=speeds, basis=basis)
     if line and not quiet:
         print(line, file=sys.stderr, flush=True)
@@ -461,7 +459,6 @@ def announce_cost(command: str, simulated: dict[str, float], budget_s: float | N
 
 def budget_stopped(command: str, label: str, error) -> int:
     """A run stopped at its budget: one line saying so and what to do, exit 1."""
-    import sys
     print(f"isorock {command}: {label}: {error}; nothing written (give --budget S to allow a run longer, or a "
           "shorter --duration)", file=sys.stderr)
     return 1
@@ -507,9 +504,6 @@ def setting_assignment(text: str) -> tuple[str, str, object]:
     """argparse type of --set: "[ENGINE.]KEY=VALUE" → (table, key, value), the table "*" where
     no engine is named; checked by the one schema of engine settings
     (core.engines.check_settings_table), as a --config file's tables are."""
-    import tomllib
-
-    from ..core.engines import check_settings_table
     target, eq, raw = text.partition("=")
     table, dot, key = target.strip().rpartition(".")
     table, key = (table if dot else "*"), key.strip()
@@ -549,7 +543,6 @@ def check_tables_run(tables: dict, labels) -> None:
 def engine_settings_from_args(engine, a):
     """The engine's default settings with the engine options given (core.engines.choose,
     strict: an option the engine does not have is named); a bad value is named as its option."""
-    from ..core.engines import choose, table_overrides
     tables = engine_tables(a)
     check_tables_run(tables, [engine.name])
     try:
@@ -562,7 +555,6 @@ def settings_dict(settings, system=None, duration=None):
     """Every setting the run used, with those derived from them (e.g. PyBullet's control
     step, and the step and contact that follow the system): a timestep given alone brings
     other settings along, and the JSON says which (core.engines.describe_settings)."""
-    from ..core.engines import describe_settings
     return describe_settings(settings, system, duration)
 
 

@@ -10,6 +10,7 @@ import argparse
 import sys
 
 from isorock.analytic.errors import InputError
+from isorock.analytic.limits import check_workers
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from .config_file import check_damping_ratio, read_config
 from .options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
@@ -21,7 +22,7 @@ from ..core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
 from ..io import keys
 from ..io.output import check_folder
 from ..io.progress import Progress
-from ..tools.report_run import build
+from ..tools.report_run import ReportConfig, build
 
 DEFAULT_OUT = "isorock-report"
 #: ensemble bounds: steps each run every engine on every motion; a factor of 100 turns
@@ -105,7 +106,6 @@ def _read_config(path) -> dict:
 def report_config(args):
     """The validate options `args` (the parser's namespace) and the --config file they name,
     checked and merged into the report's ReportConfig, before any run."""
-    from ..tools.report_run import DEFAULT_MOTIONS, ReportConfig
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
     overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
@@ -115,7 +115,6 @@ def report_config(args):
         if values:  # "*": a setting on the command line applies to every engine that has it
             overrides[table] = {**overrides.get(table, {}), **values}
     if args.workers is not None:
-        from isorock.analytic.limits import check_workers
         check_workers("workers", args.workers)
     report = ReportConfig(motions=tuple(args.motion or config.get("motions") or DEFAULT_MOTIONS), engines=engines,
                           quick=args.quick or bool(config.get("quick")),
@@ -136,7 +135,7 @@ def report_config(args):
 
 
 def run(args) -> int:
-    from ..tools.report_render import verdict, write_report
+    from ..tools.report_render import verdict, write_report  # lazy: matplotlib, once the runs are done
     check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     report = report_config(args)
     bars = []  # made by the report once it knows how many runs it makes

@@ -23,6 +23,7 @@ import numpy as np
 from isorock.analytic.errors import InputError
 from isorock.analytic.limits import BudgetExceeded, check_resample
 from isorock.analytic.system import LINEAR
+from ..io.provenance import provenance
 from .options import (announce_cost, budget_stopped, check_tables_run, engine_tables,
                       motion_from_args, run_budget, settings_dict, statue_azimuth, statue_body,
                       system_from_args, transverse_asked)
@@ -96,7 +97,7 @@ def _file_suffix(path, label: str) -> Path:
 
 def plot_format(path) -> str:
     """The image format of --plot FILE, from its suffix (one matplotlib can write)."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.backends.backend_agg import FigureCanvasAgg  # lazy: matplotlib only with --plot
     supported = FigureCanvasAgg.get_supported_filetypes()
     fmt = Path(path).suffix.lower().lstrip(".")
     if fmt not in supported:
@@ -263,13 +264,12 @@ def cmd_run(a) -> int:
         if two is not None:  # first: its verdict is the run's (the fields above are the planar projection on x)
             report = dict(two_components=two[ref_label] if not several else two, **report)
         if json_out:
-            from ..io.provenance import provenance
             json_out.write_text(to_json(dict(report, provenance=provenance(record_paths=[a.motion]))) + "\n")
         for label, out in csv_outs.items():
             tr = runs[label]
             out.write((tr.resample(a.csv_dt) if a.csv_dt else tr).to_csv)
         if plot_out:
-            from ..io.run_plot import plot_runs
+            from ..io.run_plot import plot_runs  # lazy: matplotlib only with --plot
             plot_out.write(lambda tmp: plot_runs(runs, motion, tmp, format=plot_kind))
         outputs.commit()
     if not a.quiet and "-" not in (a.json, a.csv):

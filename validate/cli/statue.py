@@ -110,7 +110,7 @@ def sweep_verdict(d: dict) -> str:
 
 
 def polar_plot(s: dict, label: str, path) -> None:
-    import matplotlib
+    import matplotlib  # lazy: matplotlib only with --plot
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     grid = s["uplift_by_azimuth"]
@@ -157,7 +157,7 @@ def cmd_statue(a) -> int:
         if plot_out:
             plot_out.write(lambda tmp: polar_plot(s, label, tmp))
         if mesh_out:
-            import trimesh
+            import trimesh  # lazy: an optional extra
             mesh = trimesh.Trimesh(vertices, faces, process=False)
             mesh_out.write(lambda tmp: mesh.export(tmp, file_type="stl"))
         outputs.commit()

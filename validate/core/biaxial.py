@@ -21,6 +21,8 @@ import numpy as np
 
 from isorock.analytic import shape
 from isorock.analytic.kinematics import LYING, LYING_SLACK
+from isorock.analytic.system import PlanarBody
+from .engines import get_engine
 
 #: The tilt direction is read only where the total tilt exceeds this fraction of the statue's
 #: least α: below it the direction is set by the contact's micro-motion (a planar rock's
@@ -128,7 +130,6 @@ def planar_systems(system, body: shape.RestingBody | None, azimuth: float):
     block (no `body`) is the same H × B both ways, its footprint square (scene.DEPTH_FRACTION)."""
     if body is None:
         return system, system
-    from isorock.analytic.system import PlanarBody
     across = PlanarBody.from_resting(body.along(azimuth + 0.5 * math.pi))
     return system, replace(system, body=across, **across.box)
 
@@ -136,7 +137,6 @@ def planar_systems(system, body: shape.RestingBody | None, azimuth: float):
 def planar_runs(system, motion, body: shape.RestingBody | None, azimuth: float, *, duration: float,
                 engine: str = "analytic") -> dict:
     """The exact model along each component alone: {'x': Trajectory, 'y': Trajectory}."""
-    from .engines import get_engine
     exact = get_engine(engine)
     along_x, along_y = planar_systems(system, body, azimuth)
     return {"x": exact.simulate(along_x, motion.with_transverse(None), duration=duration),

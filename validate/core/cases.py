@@ -14,6 +14,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from isorock.analytic.errors import InputError
+from isorock.analytic.limits import check_acceleration
 from isorock.analytic.motion import GroundMotion, Pulse, load_motion
 from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, STANDARD_GRAVITY, System
 
@@ -160,10 +162,8 @@ def record_factor(record: GroundMotion, scale_by: str, level: float) -> float:
     """The factor that scales the record to PGA = level (g) or PGV = level (m/s)."""
     peak = record.pga_g if scale_by == "pga" else peak_ground_velocity(record)
     if not peak > 0:
-        from isorock.analytic.errors import InputError
         raise InputError(f"motions.scale_by = {scale_by!r}: record {record.name!r} has a "
                          f"{'PGA' if scale_by == 'pga' else 'PGV'} of 0 and cannot be scaled to a level")
-    from isorock.analytic.limits import check_acceleration
     factor = level / peak
     # a level past any earthquake, or a PGV level that scales a record's PGA past it, before
     # the compiled kernel sees it (issue 34: it spun on such accelerations)

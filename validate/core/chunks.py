@@ -26,6 +26,7 @@ import numpy as np
 
 from isorock.analytic import limits
 from isorock.analytic.limits import available_cores
+from isorock.analytic.system import paper_system
 
 from .cases import Case, motion_of, record_digest
 from .engines import EngineChoice, choose, get_engine, runs_here
@@ -106,7 +107,7 @@ def run_chunk(task: Chunk, threads: int | None = 1) -> list[dict]:
 
 def _run_batch(task: Chunk, threads) -> list[dict]:
 
-    from isorock.analytic.fast import simulate_batch
+    from isorock.analytic.fast import simulate_batch  # lazy: numba and the kernel, in the worker that runs the batch
     settings = task.setting.settings()
     if task.overturn_rule is not None:
         settings = replace(settings, overturn=task.overturn_rule)
@@ -197,7 +198,6 @@ def ready_kernel() -> None:
     mid-build, and the next worker starts it again (a fresh install's `isorock stress
     --quick` timed out on every analytic case). One tiny run here builds it once, said on
     stderr; with the cache in place it costs milliseconds."""
-    from isorock.analytic.system import paper_system
     try:
         engine = get_engine("analytic")
     except ImportError:  # no compiled kernel here (numba missing): nothing to ready

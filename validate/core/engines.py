@@ -10,7 +10,10 @@ loads a physics engine.
 """
 from __future__ import annotations
 
+import dataclasses
 import importlib
+import importlib.metadata
+import math
 from dataclasses import MISSING, asdict, dataclass, field, fields, is_dataclass, replace
 
 from typing import TYPE_CHECKING
@@ -18,6 +21,7 @@ from typing import TYPE_CHECKING
 from isorock.analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, EngineSpec, check_body, check_friction,
                                               check_isolator_kind, declare_facet)
 from isorock.analytic.errors import InputError
+from isorock.analytic.limits import BudgetExceeded, RunBudget, check_budget, check_settings
 
 if TYPE_CHECKING:
     from isorock.analytic.trajectory import Trajectory
@@ -59,9 +63,8 @@ SCENE_FORMAT = declare_facet("scene_format", "isorock scene", "(format name, fil
 def _plugins() -> tuple[dict, dict]:
     """(name → "module:ATTRIBUTE", name → why it is not registered) of the engines installed
     packages declare. A name a built-in engine has is never taken (said, not silently)."""
-    from importlib.metadata import entry_points
     found, refused = {}, {}
-    for ep in entry_points(group=PLUGIN_GROUP):
+    for ep in importlib.metadata.entry_points(group=PLUGIN_GROUP):
         if ep.name in ENGINE_MODULES:
             refused[ep.name] = (f"{ep.value} (from {ep.dist.name if ep.dist else 'a package'}) names the built-in "
                                 f"engine {ep.name!r}: not registered")
@@ -192,7 +195,7 @@ class Engine:
         checked=True: the inputs come from a Plan (core.plan.make_plan), which checked that this
         engine carries them; they are not checked again here."""
 
-        from isorock.analytic.overturning import PAST_ALPHA
+        from isorock.analytic.overturning import PAST_ALPHA  # lazy: NumPy; every command loads the registry
         from isorock.analytic.trajectory import RawHistory
         from . import measure
         if not checked:
@@ -200,7 +203,6 @@ class Engine:
         if settings is None:
             settings = self.settings()
         if budget_s is not None:  # a wall-clock budget (analytic/limits.py): the run stops past it
-            from isorock.analytic.limits import RunBudget
             progress = RunBudget(budget_s, progress)
         if overturn_rule is not None and hasattr(settings, "overturn"):
             settings = replace(settings, overturn=overturn_rule)
@@ -208,7 +210,6 @@ class Engine:
         if self.capabilities.exact_impacts:
             kwargs["impact_threshold"] = impact_threshold
         if self.name in PLUGINS:  # a package's engine: what it raises or hands over is checked here
-            from isorock.analytic.limits import BudgetExceeded
             try:
                 out = self.spec.simulate(system, motion, **kwargs)
             except (InputError, BudgetExceeded):
@@ -220,7 +221,7 @@ class Engine:
         else:
             out = self.spec.simulate(system, motion, **kwargs)
         if isinstance(out, RawHistory):
-            from isorock.analytic.motion import GroundMotion
+            from isorock.analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
             out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
                                   window=contact_window,
                                   overturn_rule=overturn_rule or PAST_ALPHA, effective_beta=effective_beta)
@@ -232,12 +233,11 @@ class Engine:
         Trajectory, or the exception it raised. An engine with a batch path
         (its simulate_many facet, BATCH: MuJoCo's, `threads` runs at a time) runs them
         together, each exactly as alone; any other runs them one by one."""
-        from isorock.analytic.motion import GroundMotion
+        from isorock.analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
         from isorock.analytic.overturning import PAST_ALPHA
         from . import measure
         runs = list(runs)
         if budget_s is not None:
-            from isorock.analytic.limits import check_budget
             check_budget(budget_s)
         for system, *_ in runs:
             self.check_isolator(system)
@@ -284,7 +284,6 @@ def setting_value_problem(settings_type, key: str, value) -> str | None:
     a boolean, a list of numbers for a tuple), or None. The one schema of an engine setting's
     value: a --config [settings.ENGINE] table, a campaign's [[engines]] settings and the command
     line's --set all ask it (an engine's own Settings checks ranges when it is made)."""
-    import math
     f = next((f for f in fields(settings_type) if f.name == key), None)
     if f is None:
         return None
@@ -393,7 +392,6 @@ def get_engine(name: str) -> Engine:
         raise InputError(f"engine = {name!r}: its package's {PLUGINS[name]} must be an EngineSpec named {name!r} "
                          f"(isorock.analytic.engine_protocol; docs/plugins.md), not {type(spec).__name__}"
                          + (f" named {spec.name!r}" if isinstance(spec, EngineSpec) else ""))
-    import dataclasses
     if not (isinstance(spec.settings_type, type) and dataclasses.is_dataclass(spec.settings_type)):
         raise InputError(f"engine = {name!r}: its package's {PLUGINS[name]} has settings_type = "
                          f"{spec.settings_type!r}; must be a frozen dataclass (docs/plugins.md)")
@@ -405,7 +403,7 @@ def check_plugin_run(name: str, out, *, exact_impacts: bool):
     Trajectory, where it declares exact impacts) of at least two rows, its arrays 1-D of one
     length, finite, in increasing time. A PluginError naming the engine otherwise (None, a
     dict, NaN or time running backwards were measured, or a traceback)."""
-    import numpy as np
+    import numpy as np  # lazy: NumPy; every command loads the registry
 
     from isorock.analytic.trajectory import RawHistory, Trajectory
     where = f"engine {name!r} (its package's {PLUGINS.get(name, name)})"
@@ -571,7 +569,6 @@ def check_carries(choice: EngineChoice, systems, duration: float) -> None:
     control step against the isolator), and the steps its settings take on the
     fastest-rocking system (analytic/limits.py). What `run` asks of its one system, asked by a
     campaign of its grid and by `design --check` of every system it may pick."""
-    from isorock.analytic.limits import check_settings
     systems = list(systems)
     engine = get_engine(choice.engine)
     settings = choice.settings()

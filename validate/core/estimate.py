@@ -8,6 +8,8 @@ Each engine's speed is its measured simulated seconds per wall second on a rocki
 """
 from __future__ import annotations
 
+from isorock.analytic import limits
+
 #: simulated seconds per wall second of one run on one core, with the block rocking
 #: (impacts are what is slow), rounded down: free rocking of the paper's block for 10 s from
 #: 0.5α at the defaults (MuJoCo 56–68 and PyBullet 20–40 simulated s per CPU s, load 4; a
@@ -46,8 +48,7 @@ def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = 
     """One line for stderr, or None when the work is short; `budget_s`: each run's budget
     (None: limits.RUN_BUDGET_S; 0: its runs have none); `speeds`: as estimate_s takes them,
     and `basis` what they were measured on (default: SPEEDS', a block rocking throughout)."""
-    from isorock.analytic.limits import RUN_BUDGET_S
-    budget_s = RUN_BUDGET_S if budget_s is None else budget_s
+    budget_s = limits.RUN_BUDGET_S if budget_s is None else budget_s
     speeds = speeds or SPEEDS
     basis = basis or ("with the block rocking throughout; a block that mostly rests runs several times faster, and "
                       "the progress line's ETA follows the runs")

@@ -18,11 +18,16 @@ core.runner) is its caller's.
 """
 from __future__ import annotations
 
+import logging
+import multiprocessing
 import os
 import socket
 import sys
 import time
 from dataclasses import dataclass, field
+from multiprocessing import resource_tracker
+from multiprocessing.connection import wait
+from urllib.parse import urlsplit
 
 from isorock.analytic.errors import InputError
 from isorock.analytic import limits
@@ -79,7 +84,6 @@ def quiet_resource_tracker() -> None:
     starts: a command stopped by a signal ends its workers at once, and the tracker, which
     outlives it, printed 'There appear to be N leaked semaphore objects' after the command's
     one line (issue 34). It still unlinks them; only its warning goes unsaid."""
-    from multiprocessing import resource_tracker
     try:
         saved = os.dup(2)
     except OSError:  # no standard error to keep quiet
@@ -100,9 +104,7 @@ def local_client(workers: int):
     """A LocalCluster of `workers` single-threaded worker processes (the analytic kernel
     and the contact engines each use one core per process), with QUIET_CLUSTER's
     housekeeping (the workers take the configuration they are started with)."""
-    import logging
-
-    import dask
+    import dask  # lazy: Dask (~1 s) only for a cluster
     from dask.distributed import Client, LocalCluster
     # Dask's nanny starts workers with MALLOC_TRIM_THRESHOLD_=65536, so that freed memory
     # goes back to the system at once: for PyBullet's stepping loop (many small Python
@@ -138,8 +140,6 @@ def check_scheduler(address: str, timeout: float = GREETING_TIMEOUT) -> None:
     """Refuse (InputError) an address that is not one, or a TCP server that does not
     greet as a Dask scheduler does, within `timeout` s. Dask's own connect bounds the TCP
     connect alone: an HTTP server, which waits for a request, held it for ever."""
-    from urllib.parse import urlsplit
-
     def refuse(why):
         return InputError(f"--scheduler = {address!r}: must be a running Dask scheduler, e.g. "
                           f"tcp://host:8786 ({why})")
@@ -182,7 +182,6 @@ def close_client(client, *, stopping: bool = False) -> None:
     command is ending on a signal or an error; Dask's and tornado's shutdown chatter (a
     worker's heartbeat to a scheduler already gone, a callback of a loop being torn down,
     each with its traceback) is not for the user, whose one line follows (issue 34)."""
-    import logging
     cluster = getattr(client, "cluster", None)
     level = logging.root.manager.disable
     if stopping:
@@ -201,7 +200,7 @@ def client_for(client=None, workers: int = 0, scheduler: str | None = None):
     if client is not None:
         return client, False
     if scheduler:
-        from dask.distributed import Client
+        from dask.distributed import Client  # lazy: Dask only for a cluster
         check_scheduler(scheduler)
         try:
             return Client(scheduler, timeout="10s"), True
@@ -293,7 +292,7 @@ class _Worker:
 
     def cpu_seconds(self) -> float:
         """CPU time the worker process has used (user + system), s."""
-        import psutil
+        import psutil  # lazy: only where a worker's CPU time is read
         if self._cpu is None:
             self._cpu = psutil.Process(self.process.pid)
         t = self._cpu.cpu_times()
@@ -328,7 +327,6 @@ def exit_if_bootstrapping() -> None:
     quietly (BOOTSTRAP_EXIT); the process that started it then says what to do in one line
     (_refuse_if_never_started; isorock.sweep for its Dask workers). A notebook's code, or
     `python -c`, is not run again in a worker: there is nothing to guard."""
-    import multiprocessing
     # a process started by "spawn" runs the parent's script again as the module __mp_main__
     if multiprocessing.current_process().name != "MainProcess" and "__mp_main__" in sys.modules:
         os._exit(BOOTSTRAP_EXIT)
@@ -346,7 +344,6 @@ def refuse_unrepeatable_main() -> None:
     from its file; a program read from standard input (`python - < script.py`) has none
     ('<stdin>'), and each worker died printing its FileNotFoundError before the one line
     said so (issue 34). Code without a file (`python -c`, a notebook) is not run again."""
-    import multiprocessing
     if multiprocessing.current_process().name != "MainProcess":
         return
     main = sys.modules.get("__main__")
@@ -406,10 +403,9 @@ class Executor:
         self.client, self._close_client = client, close
         self.workers: list[_Worker] = []
         if processes:
-            import multiprocessing as mp
             exit_if_bootstrapping()
             refuse_unrepeatable_main()
-            context = mp.get_context("spawn")
+            context = multiprocessing.get_context("spawn")
             quiet_resource_tracker()
             if prepare is not None:  # e.g. a compiled kernel built here once, not inside each worker's task budget
                 prepare()
@@ -486,7 +482,7 @@ class Executor:
         try:
             self._here(fn, tasks, mine, arrived, state)
             if futures and not state["stopped"]:
-                from dask.distributed import as_completed
+                from dask.distributed import as_completed  # lazy: Dask only for a cluster
                 for fut in as_completed(futures):
                     i = by_key[fut.key]
                     try:
@@ -510,7 +506,6 @@ class Executor:
     def _in_processes(self, fn, tasks, indices, mine, arrived, state, budget, clock) -> None:
         """The workers run `indices`; this process runs `mine` (here(args)) one at a time
         while they work, reading their results and clocks between its own."""
-        from multiprocessing.connection import wait
         pending, busy, local = list(indices)[::-1], {}, list(mine)[::-1]
         while busy or ((pending or local) and not state["stopped"]):
             for w in self.workers:

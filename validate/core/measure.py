@@ -21,6 +21,7 @@ import math
 
 import numpy as np
 
+from isorock.analytic import isolator_map
 from isorock.analytic.coefficients import beta as beta_closed_form, beta2 as beta2_closed_form, edge_impact
 from isorock.analytic.hybrid import map_to_impact
 from isorock.analytic.isolator_map import (MAPPED, PENDULUMS, image_after_impact, pendulum_forward, phase_at,
@@ -241,8 +242,6 @@ def _mapped(system, motion, t, u, u_dot, theta, theta_dot, t_at, *, backward, wi
     if system.isolator_kind == LINEAR:  # a fixed base too
         r = map_to_impact(system, motion, float(t[k]), state, backward=backward, horizon=horizon)
     else:
-        from isorock.analytic import isolator_map
-
         def phase(i):
             j = max(i - 1, 0)
             step = None if slider is None else float(slider[i] - slider[j])

@@ -11,9 +11,13 @@ this process); runs read only as summaries (ensembles) are cases run into rows
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
+from isorock.analytic import limits
 from isorock.analytic.errors import InputError
+from .engines import resolve, runs_here
+from .executor import STUCK_AFTER_S, Executor
 
 
 @dataclass(frozen=True)
@@ -31,12 +35,10 @@ class Task:
 def run_task(task: Task, threads: int | None = None):
     """(key, Trajectory or None, error message or None). `threads` is the executor's
     (core.executor) and means nothing to one run."""
-    from .engines import resolve
     try:
         engine, settings = resolve(task.engine, task.overrides)
-        from isorock.analytic.limits import RUN_BUDGET_S
         traj = engine.simulate(task.system, task.motion, settings=settings, duration=task.duration,
-                               theta0=task.theta0, overturn_rule=task.overturn_rule, budget_s=RUN_BUDGET_S)
+                               theta0=task.theta0, overturn_rule=task.overturn_rule, budget_s=limits.RUN_BUDGET_S)
         return task.key, traj, None
     except InputError:
         raise
@@ -56,10 +58,7 @@ def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, executor=None
     error) (default: run_task, a Trajectory); one that measures its result where it ran
     (a row instead of a history) must be picklable, a module-level function or a
     functools.partial of one."""
-    from functools import partial
-
-    from .chunks import worker_pool
-    from .executor import STUCK_AFTER_S, Executor
+    from .chunks import worker_pool  # lazy: NumPy, for runs in worker processes only
     out = {}
     own = None
     if executor is None:
@@ -104,7 +103,6 @@ def _one(work, task: Task, threads: int | None = None):
 
 
 def _light(task: Task) -> bool:
-    from .engines import runs_here
     return runs_here(task.engine)
 
 

@@ -68,6 +68,7 @@ import math
 from dataclasses import asdict, dataclass
 
 from isorock.analytic.errors import InputError
+from .engines import PLUGINS, get_engine
 from .verdict import AGREES, DISAGREES
 
 
@@ -547,7 +548,6 @@ def _plugin_tolerance(engine: str, metric: str) -> Tolerance | None:
     """An engine a package registers (core.engines.PLUGINS) brings its own limits, each with its
     reason (EngineSpec.tolerances: metric → Tolerance): the table's rows for it, read where the
     table has none of its own."""
-    from .engines import PLUGINS, get_engine
     if engine not in PLUGINS:
         return None
     try:

@@ -25,6 +25,7 @@ import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
+from scipy import stats
 
 from .fragility import fit_counts
 
@@ -219,7 +220,6 @@ def rate_interval(k: float, n: int, confidence: float) -> tuple[float, float]:
     disagreements over a grid of cases says about the engine's rate, not only the count.
     k may lie between whole numbers (the beta quantiles take any k): `rate_verdict` asks
     what a larger ensemble at the same rate would say."""
-    from scipy import stats
     if n <= 0:
         return math.nan, math.nan
     a = 1 - confidence

@@ -9,6 +9,8 @@ no global pyplot state or display is involved.
 """
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
@@ -195,7 +197,6 @@ def beta_per_impact_figure(panels, *, bands: dict | None = None) -> Figure:
                 for sign in (-1, 1):
                     ax.axhline(sign * limit * 100, color=st["color"], lw=1, ls="--", alpha=0.7,
                                label=f"{st['label']} tolerance ±{limit * 100:g}%" if sign > 0 else None)
-        import textwrap
         ax.set(xlabel="counted impact", ylabel="β_eff / β − 1 (%)")
         ax.set_title(title + (f"\n{textwrap.fill(note, 70)}" if note else ""), fontsize=10 if not note else 9)
         ax.xaxis.get_major_locator().set_params(integer=True)
@@ -225,7 +226,6 @@ def scale_axis_label(pga_g: float) -> str:
 def ensemble_figure(ensembles, *, bands: dict | None = None, reference: str = REFERENCE) -> Figure:
     """The figure `ensemble` writes; titles wrapped to their panel's width (long record
     names ran into the neighbouring panel's title)."""
-    import textwrap
     n = max(1, len(ensembles))
     cols = min(n, 2)  # isolated and fixed side by side, one pair of rows per motion
     rows = -(-n // cols)

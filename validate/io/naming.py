@@ -5,6 +5,9 @@ Plain string formatting: loading this module loads nothing numerical.
 """
 from __future__ import annotations
 
+import math
+import numbers
+
 _PULSE_NAMES = {"sine": "sine", "cosine": "cosine"}
 
 
@@ -68,8 +71,6 @@ def cell(value, spec: str = "{:.4g}", missing: str = "–") -> str:
     summary): a real number by `spec` (±inf as "inf"); None or NaN, a value that is not
     there, as `missing` (each table keeps its own spelling: "–", or "" where most cells of
     a column are empty); anything else as str() (an integer, a flag, a word)."""
-    import math
-    import numbers
     if value is None:
         return missing
     if isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral):

@@ -26,6 +26,7 @@ import signal
 import stat
 import sys
 import tempfile
+import threading
 import time
 from contextlib import contextmanager
 from pathlib import Path
@@ -117,7 +118,6 @@ def signals_end_cleanly():
     finalizer), the signal's exception is not printed (the unraisable hook below) and the
     signal is sent again to the main thread until its handler raises where it can end the
     command (issue 34)."""
-    import threading
     owner = os.getpid()
     pending: list[int] = []  # a signal whose exception was swallowed, to be raised again
 

@@ -23,7 +23,7 @@ class Progress:
 
     def __init__(self, total: int, label: str = "", *, unit: str = "runs", work: float | None = None,
                  stream=None, enabled: bool | None = None, every: float = 10.0):
-        from tqdm import tqdm
+        from tqdm import tqdm  # lazy: tqdm only where a bar is drawn
         self.stream = stream if stream is not None else sys.stderr
         self.total, self.label, self.unit, self.done = max(int(total), 0), label, unit, 0
         self.work, self.work_done = work, 0.0

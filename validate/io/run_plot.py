@@ -6,6 +6,8 @@ the base displacement u (not on a fixed base, where u ≡ 0); with several engin
 """
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
@@ -105,7 +107,6 @@ def runs_figure(runs: dict, motion) -> Figure:
         ax.grid(alpha=0.3)
     engines = ", ".join(_name(k, runs[k]) for k in labels)
     what = "rocking response" if not several else "rocking response of each engine and its difference"
-    import textwrap
     title = textwrap.fill(f"{describe_motion(motion, shown=t_end)}: {what} ({engines})", 110)
     fig.suptitle(f"{title}\n{textwrap.fill(describe_system(ref.system), 110)}", fontsize=10)
     FigureCanvasAgg(fig)

@@ -769,7 +769,7 @@ def file_stem(label: str) -> str:
 def write(atlas: dict, out: str, *, quick: bool) -> None:
     """The whole folder, or nothing (validate.io.output)."""
 
-    from .atlas_figures import error_map, pareto
+    from .atlas_figures import error_map, pareto  # lazy: matplotlib, for the figures only
 
     def fill(tmp):
         (tmp / "atlas.md").write_text(markdown(atlas, quick=quick), encoding="utf-8")

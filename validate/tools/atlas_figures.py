@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import math
 
+import matplotlib
 import numpy as np
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import SymLogNorm
 from matplotlib.figure import Figure
 from matplotlib.text import Text
@@ -112,7 +114,6 @@ def _place_labels(fig, ax, items, taken) -> None:
 
 def pareto_figure(summaries: list[dict], levels) -> Figure:
     """The figure `pareto` writes; labels placed where they overlap nothing (_place_labels)."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
     fig = Figure(figsize=(9.5, 6.0))
     FigureCanvasAgg(fig)
     ax = fig.subplots()
@@ -169,7 +170,6 @@ def pareto_figure(summaries: list[dict], levels) -> Figure:
 
 
 def _cmap():
-    import matplotlib
     return matplotlib.colormaps["RdBu_r"].with_extremes(bad="0.82")
 
 

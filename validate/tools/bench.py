@@ -385,7 +385,7 @@ def markdown(rows, extra) -> str:
 
 
 def plot(rows, path) -> None:
-    import matplotlib
+    import matplotlib  # lazy: matplotlib only for the plot
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     floor = 1e-16  # exact agreement cannot sit on a log axis: drawn at the floor

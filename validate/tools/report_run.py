@@ -32,6 +32,7 @@ from isorock.analytic.system import System, paper_system
 from isorock.analytic.trajectory import SLIDING_FRACTION
 from ..core.chunks import worker_pool
 from ..core.compare import Comparison, compare, exact_first_impact_time, horizon_units
+from ..core.estimate import estimate_line
 from ..core.probes import own_horizon, reference_sensitivity
 from ..core.engines import (ENGINE_MODULES, ENGINE_NAMES, REFERENCE, get_engine, resolve, runs_here,
                             settings_used, table_overrides)
@@ -385,7 +386,6 @@ def build(config: ReportConfig, *, progress=None) -> Results:
     for t in tasks:  # the work bounds before any run (the steps each run will take): in a worker they were a traceback
         check_settings(settings_used(settings[t.engine], t.system, t.duration), t.duration)
     if progress is not None:  # a long report says so before it starts (core.estimate)
-        from ..core.estimate import estimate_line
         simulated = {name: sum(t.duration for t in tasks if t.engine == name)
                      + sum(len(s) * sc.duration for s, sc in zip(scales, histories)) for name in engines}
         line = estimate_line(simulated, workers=config.workers or 2)

@@ -41,6 +41,7 @@ from ...core.engines import ALL_ENGINES, check_carries, choose, get_engine
 from ...core.fragility import fit_counts
 from ...core.summary import case_inputs, row_of_batch, rows_to_table, sort_table
 from ...core.tolerances import has_tolerance, tolerance
+from ...core.verdict import rate_interval
 
 #: The engine that answers the design question (the compiled kernel).
 ENGINE = "analytic"
@@ -415,7 +416,6 @@ class Design:
         most P(1 − P): the binomial interval is then at least as wide as it needs to be."""
         key = ("p_interval", confidence)
         if key not in self._memo:  # asked by the verdict, each P in words and every row: computed once
-            from ...core.verdict import rate_interval
             p, n = self.p_hazard(), self.records_answered()
             self._memo[key] = np.array([rate_interval(pi * ni, int(ni), confidence) if ni > 0 and math.isfinite(pi)
                                         else (math.nan, math.nan) for pi, ni in zip(p, n)])
@@ -598,7 +598,7 @@ def run_design(statue: Statue, family, hazard: Hazard, *, tail: float = DEFAULT_
     bar = progress(len(todo), "kernel", "runs") if progress is not None and todo else None
     table = run_cases(todo, [ENGINE], threads=threads, progress=bar) if todo else None
     if settled:
-        import pyarrow as pa
+        import pyarrow as pa  # lazy: pyarrow only where runs were settled
 
         parts = [rows_to_table(settled)] + ([table] if table is not None else [])
         table = sort_table(pa.concat_tables(parts))

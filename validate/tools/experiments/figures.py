@@ -19,7 +19,7 @@ def _predictions(result, s):
 
 
 def error_figure(result, path) -> None:
-    import matplotlib
+    import matplotlib  # lazy: matplotlib, for the figure only
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     tests = result["tests"]
