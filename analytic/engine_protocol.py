@@ -25,7 +25,6 @@ from .system import System
 DEFAULT_IMPACT_THRESHOLD = 0.01
 
 
-
 def contact_scale(system: "System", time: float, share: float) -> float:
     """The factor by which a contact engine multiplies a default `time` of its contact (s: a
     contact time constant, a physics step) so that time·p_eff = `share`: every block then
