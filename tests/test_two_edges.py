@@ -255,7 +255,7 @@ def test_contact_engines_refuse_a_body_in_one_line():
     MuJoCo builds that body as the box on its edges: tests/test_statue_engines.py)."""
     from isorock.validate.core.engines import get_engine
     for engine, says in (("mjx", "two different edges"), ("bullet", "given by its numbers alone"),
-                         ("dart", "")):
+                         ("dart", "given by its numbers alone is not built for DART")):
         try:
             spec = get_engine(engine)
         except ImportError:  # an optional engine not installed here
