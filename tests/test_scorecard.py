@@ -282,6 +282,14 @@ def test_drift_names_each_cell_a_reader_would_see_change_and_nothing_else():
     row["stress"] = {"not_run": "not run: the engine cannot be loaded here (No module named 'warp')"}
     assert sc.drift(old, new)[0] == [] and len(sc.drift(old, new)[1]) == 1  # an optional engine not installed
 
+    new = copy.deepcopy(old)  # not made in either, for another reason in each: apart where one is the engine's absence
+    row = next(r for r in new["rows"] if "no model of the rock" in r["experiments"].get("not_run", ""))
+    row["experiments"] = {"not_run": "not run: the engine cannot be loaded here (No module named 'warp')"}
+    drifted, one_only, _ = sc.drift(old, new)
+    assert not drifted and len(one_only) == 1 and row["label"] in one_only[0]
+    row["experiments"] = {"not_run": "not run: the experiments tool failed (ValueError: the test's)"}
+    assert len(sc.drift(old, new)[0]) == 1  # any other new reason is drift
+
     new = copy.deepcopy(old)  # the similarity column is the atlas's: apart with it
     row = _measured_row(new, "atlas")
     row["atlas"] = {"not_run": "not run: estimated 42 s, over the --budget of 1200 s with the work before it"}

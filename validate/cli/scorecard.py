@@ -699,8 +699,8 @@ _MAY_BE_APART = ("over the --budget of", "left when its turn came", "cannot be l
 
 
 def drift(old: dict, new: dict) -> tuple[list[str], list[str], int]:
-    """(cells that differ, cells measured in one scorecard only for a reason of _MAY_BE_APART,
-    cells compared) between two scorecards of the same command: each row's checked columns as the
+    """(cells that differ, cells that differ where one scorecard did not make the measure for a
+    reason of _MAY_BE_APART, cells compared) between two scorecards of the same command: each row's checked columns as the
     scorecard shows them (CHECKED_COLUMNS, 3 significant digits), a 'not run' reason with its
     numbers (estimates, seconds left) masked. A row in one and not the other differs."""
     def masked(text: str) -> str:
@@ -719,7 +719,7 @@ def drift(old: dict, new: dict) -> tuple[list[str], list[str], int]:
         for name, measure, cell in CHECKED_COLUMNS:
             was, now = cell(old_rows[label]), cell(new_rows[label])
             why = apart(old_rows[label], measure) or apart(new_rows[label], measure)
-            if was.startswith("not run") != now.startswith("not run") and why:
+            if why and masked(was) != masked(now):  # made in one only, or each not made for its own reason
                 one_only.append(f"{label}, {name}: {why}")
                 continue
             compared += 1
