@@ -91,7 +91,9 @@ def measure_pendulum_free(engine, device="pendulum", params=(1.5, 0.01), radius=
     within μ_f·R. The block stays down (0.15 g)."""
     motion = load_motion(FREE_PULSE)
     tr = run(engine, DEVICES[device](*params), FREE_PULSE, 8.0)
-    assert tr.uplifts == 0 and tr.extras["stepping"].startswith("throughout")
+    assert tr.uplifts == 0
+    if engine != "drake":  # Drake's continuous plant has no rest phase to skip: it always steps throughout
+        assert tr.extras["stepping"].startswith("throughout")
     times, peaks = reversals(tr.t, tr.u, tr.u_dot, motion.end_time + 0.05)
     n = int(np.sum(np.abs(peaks) > 2 * mu * radius))  # peaks whose next half cycle still slides
     assert n >= 5 and np.all(np.sign(peaks[1:n]) != np.sign(peaks[:n - 1]))
@@ -101,8 +103,12 @@ def measure_pendulum_free(engine, device="pendulum", params=(1.5, 0.01), radius=
             "isolator_decay_rel_error": float(np.max(np.abs(drops / (2 * mu * radius) - 1)))}
 
 
-@pytest.mark.parametrize("engine", ENGINES)
-@pytest.mark.parametrize("device, params, radius, mu", FREE, ids=[f[0] for f in FREE])
+#: the free swings each engine carries: Drake the friction pendulum and the ball in a bowl (a held
+#: puck's friction, docs/drake.md), not the double pendulum
+FREE_RUNS = [(e, *f) for e in ENGINES for f in FREE] + [("drake", *f) for f in FREE if f[0] != "double"]
+
+
+@pytest.mark.parametrize("engine, device, params, radius, mu", FREE_RUNS, ids=[f"{r[0]}-{r[1]}" for r in FREE_RUNS])
 def test_pendulum_period_and_coulomb_decay(engine, device, params, radius, mu):
     for metric, value in measure_pendulum_free(engine, device, params, radius, mu).items():
         assert value <= limit(engine, metric), metric
@@ -178,7 +184,7 @@ def measure_onset(engine) -> dict:
     return {"isolator_onset_time": abs(onset - t0)}
 
 
-@pytest.mark.parametrize("engine", ENGINES)
+@pytest.mark.parametrize("engine", [*ENGINES, "drake"])
 def test_pendulum_slips_on_time_and_away_from_the_pull(engine):
     for metric, value in measure_onset(engine).items():
         assert value <= limit(engine, metric), metric

@@ -423,6 +423,16 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
                "sticks and slips at the uplift threshold (the block lifts to 0.03α): 3.5e-2 (MuJoCo 2.4e-4; the "
                "model's own u_max moves 1.4e-2 under +1% of the record); the corner contact's compliance: 1.3e-3 "
                "at stiffness 1e11 N/m"),
+    ("drake", "isolator_period_rel_error"): Tolerance(
+        3e-4, "the pendulum's half period against π√(R/g): Radau3 at accuracy 1e-4 with the puck's regularised "
+              "friction, the reversal read from u̇'s zero between 1 ms rows; measured 1.1e-4 (the pendulum), "
+              "3.3e-5 (the bowl)"),
+    ("drake", "isolator_decay_rel_error"): Tolerance(
+        1e-3, "each peak 2μ_f·R below the last: the puck's Stribeck friction is μ·W once it slips faster than "
+              "v_s (3e-5 m/s); measured 8.0e-5 (the pendulum), 1.2e-4 (the bowl)"),
+    ("drake", "isolator_onset_time"): Tolerance(
+        2e-3, "asin(μ_f/A)/ω: rows every sample_interval (1 ms), the onset read to about one; measured 0.61 ms, "
+              "the stuck base creeping 1.0e-6 m before it"),
     ("drake", "isolator_u_history"): Tolerance(
         0.02, "as MuJoCo's: max |Δu| over u_max against the exact model; measured 5.1e-4 and 4.0e-4 at rest (the "
               "sine, Kobe), 9.7e-3 rocking (13 impacts, the base carries the recoil); the stuck base creeps at "
