@@ -877,19 +877,13 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
 
 def check_system(system: System, settings: Settings) -> None:
     """What this scene refuses before any work (EngineSpec.check_system): a friction pendulum of
-    velocity-dependent friction (check_contact_isolator), a statue's own shape on a pendulum (the
-    puck is measured under the box block only), corner spheres too
-    large for the block, and a statue whose kinetic friction is below its static one on a
+    velocity-dependent friction (check_contact_isolator), corner spheres too large for the block,
+    and a statue whose kinetic friction is below its static one on a
     discrete plant, whose contact solvers (SAP, TAMSI, Lagged) use the dynamic coefficient alone.
     The continuous plant's regularised Stribeck friction carries both (measured:
     docs/sliding_engines.md)."""
     settings = settings.for_system(system)
     check_contact_isolator(system, ENGINE)
-    if hull_contact.has_solid(system) and not system.fixed_base and system.isolator_kind != LINEAR:
-        # the puck is built and measured under the box block only (docs/drake.md)
-        raise InputError(f"isolator = {system.isolator_kind}: engine 'drake' carries a statue's own shape on the "
-                         "linear isolator or a fixed base only (its pendulums are measured under the box block; "
-                         "engines 'mujoco' and 'bullet' carry it)")
     hull_contact.check_shape(system, "Drake")
     _check_radius(system, settings.corner_radius)
     check_friction(system, settings.continuous, "Drake's discrete plant (timestep > 0)")
