@@ -186,10 +186,12 @@ def cmd_scorecard(a) -> int:
             if given is not None:
                 raise InputError(f"{flag} = {given!r}: not with --check, which makes the scorecard of "
                                  f"{a.check} with its own engines, effort and budget")
-    engines = a.engines if checked is None else [r["label"] for r in checked["rows"]]
-    effort = QUICK if (a.quick if checked is None else checked["effort"] == QUICK.name) else FULL
-    budget = check_budget(checked["budget_s"] if checked is not None else DEFAULT_BUDGET if a.budget is None
-                          else a.budget)
+        engines, quick, budget = [r["label"] for r in checked["rows"]], checked["effort"] == QUICK.name, \
+            checked["budget_s"]
+    else:
+        engines, quick, budget = a.engines, a.quick, DEFAULT_BUDGET if a.budget is None else a.budget
+    budget = check_budget(budget)
+    effort = QUICK if quick else FULL
     if a.workers is not None:
         check_workers("workers", a.workers)
     labels = labels_of(engines)
@@ -677,20 +679,20 @@ def floor_cell(c: dict) -> str:
     return f"{_num(c['floor_share_isolated'])}× / {_num(c['floor_share_fixed'])}× (step {c['step_us']:.2f} µs)"
 
 
-COLUMNS = (("engine:preset", lambda r: r["label"]),
-           ("atlas: worst β / t₁ error, impacts lost", lambda r: atlas_cell(r["atlas"])),
-           ("similarity: β / t₁ spread over sizes", lambda r: similarity_cell(r["atlas"])),
-           ("validate (paper's block)", lambda r: validate_cell(r["validate"])),
-           ("stress: robust disagreements", lambda r: stress_cell(r["stress"])),
-           ("shake table: held-out accuracy", lambda r: experiments_cell(r["experiments"])),
-           ("speed: Kobe 40 s isolated / fixed, sim s per wall s", lambda r: speed_cell(r["speed"])),
-           ("per CPU s / the step floor, isolated / fixed", lambda r: floor_cell(r["speed"])))
+#: The scorecard's columns: (heading, the row's key it shows, how that key's value is written)
+COLUMNS = (("engine:preset", "label", str),
+           ("atlas: worst β / t₁ error, impacts lost", "atlas", atlas_cell),
+           ("similarity: β / t₁ spread over sizes", "atlas", similarity_cell),
+           ("validate (paper's block)", "validate", validate_cell),
+           ("stress: robust disagreements", "stress", stress_cell),
+           ("shake table: held-out accuracy", "experiments", experiments_cell),
+           ("speed: Kobe 40 s isolated / fixed, sim s per wall s", "speed", speed_cell),
+           ("per CPU s / the step floor, isolated / fixed", "speed", floor_cell))
 
 
-#: The columns --check compares, each with the measure it shows: what a reader sees of each
-#: measure, but the speeds (the machine's and its load's, not the engine's)
-CHECKED_COLUMNS = tuple((name, measure, cell) for (name, cell), measure in zip(COLUMNS[1:], (
-    "atlas", "atlas", "validate", "stress", "experiments", "speed", "speed")) if measure != "speed")
+#: The columns --check compares: what a reader sees of each measure, but the speeds (the
+#: machine's and its load's, not the engine's)
+CHECKED_COLUMNS = tuple(c for c in COLUMNS if c[1] in MEASURES and c[1] != "speed")
 #: Why a measure may be made in one of two scorecards of the same command and not in the other,
 #: without anything drifting: the budget as the clock ran (a measure left out by the plan runs
 #: afterwards where the time left allows; on a slower or busier machine one the plan admitted may
@@ -700,15 +702,16 @@ _MAY_BE_APART = ("over the --budget of", "left when its turn came", "cannot be l
 
 def drift(old: dict, new: dict) -> tuple[list[str], list[str], int]:
     """(cells that differ, cells that differ where one scorecard did not make the measure for a
-    reason of _MAY_BE_APART, cells compared) between two scorecards of the same command: each row's checked columns as the
-    scorecard shows them (CHECKED_COLUMNS, 3 significant digits), a 'not run' reason with its
-    numbers (estimates, seconds left) masked. A row in one and not the other differs."""
+    reason of _MAY_BE_APART, cells compared) between two scorecards of the same command: each
+    row's checked columns as the scorecard shows them (CHECKED_COLUMNS, 3 significant digits), a
+    'not run' reason with its numbers (estimates, seconds left) masked. A row in one and not the
+    other differs."""
     def masked(text: str) -> str:
         return re.sub(r"\d+(\.\d+)?", "#", text) if text.startswith("not run") else text
 
-    def apart(row: dict, measure: str) -> str:
-        """Why `measure` of `row` was not made, where that is no drift ('' otherwise)."""
-        why = row[measure].get("not_run", "") if isinstance(row[measure], dict) else ""
+    def apart(cell) -> str:
+        """Why a measure's `cell` was not made, where that is no drift ('' otherwise)."""
+        why = cell.get("not_run", "") if isinstance(cell, dict) else ""
         return why if any(reason in why for reason in _MAY_BE_APART) else ""
 
     old_rows, new_rows = {r["label"]: r for r in old["rows"]}, {r["label"]: r for r in new["rows"]}
@@ -716,22 +719,23 @@ def drift(old: dict, new: dict) -> tuple[list[str], list[str], int]:
     for label in sorted(set(old_rows) ^ set(new_rows)):
         drifted.append(f"{label}: a row only in the {'file' if label in old_rows else 'new scorecard'}")
     for label in (x for x in old_rows if x in new_rows):
-        for name, measure, cell in CHECKED_COLUMNS:
-            was, now = cell(old_rows[label]), cell(new_rows[label])
-            why = apart(old_rows[label], measure) or apart(new_rows[label], measure)
-            if why and masked(was) != masked(now):  # made in one only, or each not made for its own reason
+        for name, measure, render in CHECKED_COLUMNS:
+            before, after = old_rows[label][measure], new_rows[label][measure]
+            was, now = render(before), render(after)
+            if masked(was) == masked(now):
+                compared += 1
+            elif (why := apart(before) or apart(after)):  # made in one only, or each not made for its own reason
                 one_only.append(f"{label}, {name}: {why}")
-                continue
-            compared += 1
-            if masked(was) != masked(now):
+            else:
+                compared += 1
                 drifted.append(f"{label}, {name}: {was!r} in the file, {now!r} now")
     return drifted, one_only, compared
 
 
 def table_lines(data: dict) -> list[str]:
-    lines = ["| " + " | ".join(name for name, _ in COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
+    lines = ["| " + " | ".join(name for name, _, _ in COLUMNS) + " |", "|" + "---|" * len(COLUMNS)]
     for r in data["rows"]:
-        lines.append("| " + " | ".join(markdown_cell(f(r)) for _, f in COLUMNS) + " |")
+        lines.append("| " + " | ".join(markdown_cell(render(r[key])) for _, key, render in COLUMNS) + " |")
     return lines
 
 

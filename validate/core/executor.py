@@ -262,8 +262,7 @@ def _leave(conn) -> None:
     """End a worker asked to stop, without the interpreter's teardown: every result is sent
     and nothing of a task outlives it (each writes its files whole inside the task), while
     tearing down the engines a worker loaded (MuJoCo, Bullet, Drake, JAX) took ~1.3 s per
-    worker on the shared 2 cores, paid at every pool's close (stress's robustness reruns
-    open one pool per round)."""
+    worker on the shared 2 cores, paid at every pool's close."""
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()
