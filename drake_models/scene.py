@@ -36,8 +36,8 @@ same text, so what a user opens is what ran):
   ("isolator_y", the same spring k and damping c: the isolator is isotropic; a pendulum's puck
   under the plate, its friction isotropic) under a massless carriage on the x joint. The
   block leaves its planar joint for a free body (its four bottom corner spheres; a statue's
-  own shape is a free body already); a fixed base and the plate (square already) are as before. Without a second component the
-  scene is the one-component scene, unchanged.
+  own shape is a free body already); a fixed base and the plate (square already) are as
+  before. Without a second component the scene is the one-component scene, unchanged.
 
 Outputs follow model.md: u (m) is the base's joint position, θ the planar joint's angle;
 `simulate` returns a RawHistory, measured by the registry like every engine's. Extras, in
@@ -525,8 +525,8 @@ def _pendulum_puck(system: System, settings: Settings, puck) -> str:
     analytic.isolator_parts.pendulum_puck): MultibodyPlant has no joint dry friction, so it is a
     contact: a sphere of radius PUCK_HALF (the puck, its mass taken from the base's) on its own
     vertical prismatic joint `puck_z` under the plate, held down by `hold` on that joint (a constant
-    row of the ground-force source, _Built) onto a floor welded to the world (a box FLOOR_WIDTH wide), friction
-    coefficient F_b/W on both (Drake combines two equal μ to themselves), the point contact's
+    row of the ground-force source, _Built) onto a floor welded to the world (a box FLOOR_WIDTH
+    wide), friction coefficient F_b/W on both (Drake combines two equal μ to themselves), the point contact's
     stiffness and dissipation the block's. On one component and on a pair alike."""
     t = PLATE_THICKNESS
     mu = (puck.friction, puck.friction)
@@ -588,8 +588,8 @@ def scene_text(system: System, settings: Settings | None = None, *, transverse: 
     statue_shape = hull_contact.has_solid(system)
     free_block = transverse and not statue_shape
     if transverse:
-        require(system.fixed_base or system.isolator_kind in PLANE_ISOLATORS, "isolator", system.isolator_kind,
-                f"{' or '.join(PLANE_ISOLATORS)} or a fixed base with two horizontal components")
+        require(system.fixed_base or system.isolator_kind in ISOLATORS, "isolator", system.isolator_kind,
+                f"{' or '.join(ISOLATORS)} or a fixed base with two horizontal components")
         require(not hydro, "contact", settings.contact, "point with two horizontal components (the corner spheres)")
     if statue_shape:  # its own shape in the block's place, on a free body (drake_models.statue)
         require(not hydro, "contact", settings.contact, "point for a statue's own shape (its hull's vertices)")
@@ -607,9 +607,9 @@ def scene_text(system: System, settings: Settings | None = None, *, transverse: 
                                for name, sx in (("corner_pos", 1.0), ("corner_neg", -1.0)))
     # the isolator's spring and dashpot (a pendulum's k = W/R and c: isolator_parts), and a pendulum's
     # dry friction as a held puck on a floor (_pendulum_puck; None on the linear isolator)
-    k, c = (system.stiffness, system.damping) if system.fixed_base or system.isolator_kind == LINEAR else (
-        (lambda parts: (parts.stiffness, parts.damping))(isolator_parts(system)))
-    puck = None if system.fixed_base else pendulum_puck(system)
+    parts = None if system.fixed_base or system.isolator_kind == LINEAR else isolator_parts(system)
+    k, c = (system.stiffness, system.damping) if parts is None else (parts.stiffness, parts.damping)
+    puck = pendulum_puck(system)
     if system.fixed_base:
         base_joint = _WELD
     elif transverse:
@@ -676,7 +676,7 @@ class _Built:
             pd.Parser(plant).AddModelsFromString(text, "sdf")
         plant.mutable_gravity_field().set_gravity_vector([0.0, 0.0, -system.gravity])
         #: a pendulum's friction puck (_pendulum_puck), or None
-        self.puck = None if system.fixed_base else pendulum_puck(system)
+        self.puck = pendulum_puck(system)
         if settings.continuous and self.puck is not None:
             plant.set_stiction_tolerance(settings.isolator_stiction_tolerance)
         elif system.friction is not None and settings.continuous:
@@ -800,7 +800,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
                                   two_edges=TWO_EDGES, transverse=TRANSVERSE, isolators=ISOLATORS,
-                                  transverse_isolators=PLANE_ISOLATORS)
+                                  transverse_isolators=ISOLATORS)
     check_system(system, settings)
     # two components: the 'falling' rule reads θ, the tilt's projection on xz, and a body leaning
     # on a diagonal past the x edge's α may still stand; it is planar, so it never stops a 3-D run

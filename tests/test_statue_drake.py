@@ -73,8 +73,8 @@ def test_run_a_statue_on_drake_from_the_command_line(tmp_path):
     cone) refused in one line (exit 2); on a fixed base it runs."""
     base = [sys.executable, "-m", "isorock.validate.cli", "run", "--engine", "drake", "--statue-example", "bust",
             "--mass", "80"]
-    r = subprocess.run(base + ["--isolator", "ball-in-cone", "--slope", "0.1", "--motion",
-                               "sine:amp=0.5,freq=2,cycles=1"], capture_output=True, text=True, cwd=tmp_path, timeout=300)
+    cone = ["--isolator", "ball-in-cone", "--slope", "0.1", "--motion", "sine:amp=0.5,freq=2,cycles=1"]
+    r = subprocess.run(base + cone, capture_output=True, text=True, cwd=tmp_path, timeout=300)
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1 and "ball-in-cone" in r.stderr, r.stderr
     r = subprocess.run(base + ["--fixed-base", "--motion", "sine:amp=0.5,freq=2,cycles=1", "--duration", "1.0"],
                        capture_output=True, text=True, cwd=tmp_path, timeout=300)
