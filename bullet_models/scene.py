@@ -86,7 +86,7 @@ class Scene:
     #: a pendulum's friction puck under a pair (_pendulum_puck): the base's link 2, on its own
     #: vertical joint, and the force (N, on that joint) that holds it down; None otherwise
     puck_link: int | None = None
-    puck_load: float = 0.0
+    puck_hold: float = 0.0
 
     def pose(self):
         """(position, orientation) of the block's or statue's own frame (x, y, z, w)."""
@@ -135,7 +135,7 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
     c.setGravity(0.0, 0.0, -system.gravity)
     plate = c.createCollisionShape(p.GEOM_BOX, halfExtents=_plate_half_extents(system))
     top = [0.0, 0.0, -0.5 * PLATE_THICKNESS]  # the plate's top face is z = 0
-    puck_link, puck_load = None, 0.0
+    puck_link, puck_hold = None, 0.0
     if system.fixed_base:
         base = c.createMultiBody(baseMass=0.0, baseCollisionShapeIndex=plate, basePosition=top)
         plate_link = -1
@@ -178,7 +178,7 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
             c.changeDynamics(floor, -1, lateralFriction=1.0, restitution=0.0)  # Bullet takes the product
             for link in (-1, 0, 1):  # the floor meets the puck alone (the plate is 4 cm above it)
                 c.setCollisionFilterPair(base, floor, link, -1, 0)
-            puck_link, puck_load = 2, puck["load"]
+            puck_link, puck_hold = 2, puck["hold"]
     frame = None
     if hull_contact.has_solid(system):  # its own shape in the block's place (statue.py)
         block, frame = statue.build(c, p, system, theta0)
@@ -196,14 +196,14 @@ def build(client: BulletClient, system: System, settings: Settings, theta0: floa
                          activationState=p.ACTIVATION_STATE_DISABLE_SLEEPING,
                          contactProcessingThreshold=settings.contact_processing_threshold)
     return Scene(client=c, block=block, base=base, plate_link=plate_link, frame=frame, puck_link=puck_link,
-                 puck_load=puck_load)
+                 puck_hold=puck_hold)
 
 
 def _pendulum_puck(c, system) -> dict | None:
     """A pendulum's dry friction under a pair, the same in every direction (as MuJoCo's,
     mujoco_models/scene._pair_pendulum; its numbers analytic.isolator_parts.pendulum_puck): the
     base's motors hold each axis apart (a square, √2·μ·W along a diagonal), so the friction is a
-    contact, a light puck under the plate on its own vertical joint, held down (Scene.puck_load,
+    contact, a light puck under the plate on its own vertical joint, held down (Scene.puck_hold,
     a force on that joint, stepping.py) so that a floor pushes it up by W, on Bullet's friction
     cone. None on another isolator, or a pendulum without friction."""
     held = pendulum_puck(system)
@@ -211,7 +211,7 @@ def _pendulum_puck(c, system) -> dict | None:
         return None
     pos = [0.0, 0.0, -0.5 * PLATE_THICKNESS - PUCK_HALF]  # below the plate, in the plate's frame
     return dict(mass=held.mass, shape=c.createCollisionShape(p.GEOM_BOX, halfExtents=[PUCK_HALF] * 3), pos=pos,
-                floor_z=-PLATE_THICKNESS - 2 * PUCK_HALF, mu=held.friction, load=held.hold)
+                floor_z=-PLATE_THICKNESS - 2 * PUCK_HALF, mu=held.friction, hold=held.hold)
 
 
 def connect() -> BulletClient:

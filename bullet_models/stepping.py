@@ -206,7 +206,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: Se
                     udy_prev, side_y_prev = udy, side_y
                     motor(base, 1, torque, force=-(k * (uy + lead * udy) + c_dash * (udy + lead * uddy)))
                 if puck is not None:  # held down, so that the floor pushes it up by W
-                    motor(base, puck, torque, force=scene.puck_load)
+                    motor(base, puck, torque, force=scene.puck_hold)
             step()
             i += 1
         runtime = time.perf_counter() - start

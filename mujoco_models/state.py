@@ -46,7 +46,7 @@ class Layout:
         # floor pushes it up by the model's W = M·g, its own weight included
         puck = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_JOINT, "puck_z")
         self.puck_v = None if puck < 0 else model.jnt_dofadr[puck]
-        self.puck_load = 0.0 if puck < 0 else pendulum_puck(system).hold
+        self.puck_hold = 0.0 if puck < 0 else pendulum_puck(system).hold
         if self.free:
             jid = model.joint("block_free").id
             self.bq, self.bv = model.jnt_qposadr[jid], model.jnt_dofadr[jid]
@@ -90,7 +90,7 @@ class Layout:
         if self.slider_v is not None:
             f[:, self.slider_v] = -self.slider_mass * xg
         if self.puck_v is not None:
-            f[:, self.puck_v] = self.puck_load
+            f[:, self.puck_v] = self.puck_hold
         return f
 
     def histories(self, system: System, states: np.ndarray) -> dict:
