@@ -19,7 +19,13 @@ one joint of two translations (x and y, DART's TranslationalJoint2D) with the sa
 PAIR_FRICTION or more (the preset `pair`; below it the statue slips). Without a second component
 the scene is the one above, unchanged.
 
-What it carries: the linear isolator, a statue that cannot slip on its base (its friction is
+A friction pendulum or a ball in a bowl (isolator_parts: k = W/R, c, F_b = μ·W) is built on the
+same base joint: the spring a joint force set before each step, the slider the joint's Coulomb
+friction, under a pair bounded along the base's velocity or load (_Pendulum; docs/dart.md,
+"Pendulum isolators").
+
+What it carries: the linear isolator, the friction pendulum and the ball in a bowl (ISOLATORS, on
+one component and under a pair), a statue that cannot slip on its base (its friction is
 DART's high default, Settings.friction), horizontal ground motion (one component or a pair), a
 statue's own shape in the block's place (statue.py; Capabilities below: anything else is refused
 in one line). Measured in docs/dart.md; its limits in validate/core/tolerances.py.
@@ -55,8 +61,9 @@ SAMPLE_DT = 1e-3
 #: a statue's own shape (statue.py) is carried: Capabilities.two_edges says so, judged in
 #: docs/statues.md ("DART on the statue's hull": the bust and the obelisk within MuJoCo's statue rows)
 TWO_EDGES = True
-#: two horizontal components on a fixed base and the linear isolator: what Capabilities.transverse
-#: says, judged in docs/statues.md ("Two horizontal components", DART) by tests/test_two_components_dart.py
+#: two horizontal components on a fixed base, the linear isolator and the pendulums (ISOLATORS): what
+#: Capabilities.transverse says, judged in docs/statues.md ("Two horizontal components", DART) by
+#: tests/test_two_components_dart.py, the pendulums by tests/test_isolator_dart.py
 TRANSVERSE = True
 #: the least Settings.friction a pair runs at: the statue's hull (its vertex spheres) slips under two
 #: components below it, and its tilt then turns on μ and on the pair's direction against the world's
@@ -399,8 +406,8 @@ def ladder(quick: bool):
 ENGINE = EngineSpec(
     name="dart", label="DART", settings_type=Settings, simulate=simulate, ladder=ladder, settings_for=settings_for,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False, campaigns=False,
-                              isolators=ISOLATORS, transverse_isolators=ISOLATORS, kinetic_friction=False, statue_friction=False, vertical=False,
-                              two_edges=TWO_EDGES, transverse=TRANSVERSE),
+                              isolators=ISOLATORS, kinetic_friction=False, statue_friction=False, vertical=False,
+                              two_edges=TWO_EDGES, transverse=TRANSVERSE, transverse_isolators=ISOLATORS),
     presets={"default": Preset("a step of STEP_SHARE/p_eff (0.1 ms on the paper's block, following the body's size), "
                                "restitution 0, friction 1 (docs/dart.md)", Settings),
              "coarse": Preset("ten times the default's step (1 ms on the paper's block, following the body's size): "
