@@ -24,7 +24,9 @@ CONTACT_ISOLATORS = (LINEAR, BILINEAR, FRICTION_PENDULUM, BALL_IN_BOWL, DOUBLE_P
 #: linear one (the same k and c along x and y) and the pendulums whose only friction is the
 #: base's own (the friction pendulum, the ball in a bowl), its limit μ·W the same in every
 #: direction as a contact of a puck held down by W (MuJoCo's, PyBullet's and Drake's scenes; Drake
-#: builds the puck on one component too, having no joint dry friction); not a
+#: builds the puck on one component too, having no joint dry friction; DART, whose contact friction
+#: is a pyramid, bounds its joint's Coulomb friction along the base's velocity or load instead,
+#: dart_models._Pendulum); not a
 #: Jenkins element's yielding (the bearing, a double pendulum)
 PLANE_ISOLATORS = (LINEAR, FRICTION_PENDULUM, BALL_IN_BOWL)
 #: that puck: its mass as a share of the base's (taken from the base, which still moves m_b)

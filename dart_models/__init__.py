@@ -19,7 +19,13 @@ one joint of two translations (x and y, DART's TranslationalJoint2D) with the sa
 PAIR_FRICTION or more (the preset `pair`; below it the statue slips). Without a second component
 the scene is the one above, unchanged.
 
-What it carries: the linear isolator, a statue that cannot slip on its base (its friction is
+A friction pendulum or a ball in a bowl (isolator_parts: k = W/R, c, F_b = μ·W) is built on the
+same base joint: the spring a joint force set before each step, the slider the joint's Coulomb
+friction, under a pair bounded along the base's velocity or load (_Pendulum; docs/dart.md,
+"Pendulum isolators").
+
+What it carries: the linear isolator, the friction pendulum and the ball in a bowl (ISOLATORS, on
+one component and under a pair), a statue that cannot slip on its base (its friction is
 DART's high default, Settings.friction), horizontal ground motion (one component or a pair), a
 statue's own shape in the block's place (statue.py; Capabilities below: anything else is refused
 in one line). Measured in docs/dart.md; its limits in validate/core/tolerances.py.
@@ -37,6 +43,8 @@ from isorock.analytic import hull_contact, kinematics
 from isorock.analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, Capabilities, EngineSpec, Preset, contact_scale,
                                              run_inputs)
 from isorock.analytic.errors import InputError, import_extra
+from isorock.analytic.isolator_parts import PLANE_ISOLATORS, check_contact_isolator, isolator_parts
+from isorock.analytic.system import LINEAR
 from isorock.analytic.status import Status
 from isorock.analytic.system import paper_system
 from isorock.analytic.trajectory import RawHistory
@@ -53,8 +61,9 @@ SAMPLE_DT = 1e-3
 #: a statue's own shape (statue.py) is carried: Capabilities.two_edges says so, judged in
 #: docs/statues.md ("DART on the statue's hull": the bust and the obelisk within MuJoCo's statue rows)
 TWO_EDGES = True
-#: two horizontal components on a fixed base and the linear isolator: what Capabilities.transverse
-#: says, judged in docs/statues.md ("Two horizontal components", DART) by tests/test_two_components_dart.py
+#: two horizontal components on a fixed base, the linear isolator and the pendulums (ISOLATORS): what
+#: Capabilities.transverse says, judged in docs/statues.md ("Two horizontal components", DART) by
+#: tests/test_two_components_dart.py, the pendulums by tests/test_isolator_dart.py
 TRANSVERSE = True
 #: the least Settings.friction a pair runs at: the statue's hull (its vertex spheres) slips under two
 #: components below it, and its tilt then turns on μ and on the pair's direction against the world's
@@ -64,6 +73,16 @@ TRANSVERSE = True
 #: The block (a box on its four corners) held at μ 1 (its peak under a pair the same as at μ 3 to
 #: 4e-12): one rule for both keeps what a pair's settings mean the same whatever the body
 PAIR_FRICTION = 5.0
+#: The isolators DART carries (Capabilities.isolators), on one component and under a pair
+#: (Capabilities.transverse_isolators, the same three): the linear one, and the friction pendulum and
+#: the ball in a bowl (isolator_parts.PLANE_ISOLATORS): the pendulum's spring k = W/R and dashpot c on
+#: the base joint, its rigid slider μ·W the joint's own Coulomb friction (DART's
+#: JointCoulombFrictionConstraint, a stick solved in the same LCP as the contacts; _PendulumFriction).
+#: Not the bilinear bearing, the ball in a cone or the double pendulum: refused in one line.
+ISOLATORS = PLANE_ISOLATORS
+#: m/s (the system's): a base slower than this is taken as stuck by a pair's friction direction
+#: (_PendulumFriction), which then follows the load on the base instead of its velocity
+STUCK_SPEED = 1e-9
 
 
 #: s; DART's step on the paper's isolated block (p_eff 3.23/s), measured there (docs/dart.md)
@@ -173,13 +192,70 @@ def _pose(tilt: float, b: float, h: float, z0: float):
     return R, pivot + R @ np.array([-s * b, 0.0, h])
 
 
+class _Pendulum:
+    """A pendulum isolator's parts (isolator_parts: its spring k = W/R, dashpot c and rigid slider
+    F_b = μ·W) on the base joint, in DART's units (forces 1/stretch² of a newton).
+
+    The spring is a joint force −k·u set before each step, not DART's joint spring: DART steps a
+    joint spring implicitly, which damps a swing by ω·dt/2 of its amplitude per radian (the free
+    pendulum's Coulomb decay 2μ_f·R per half cycle measured 2.1e-3 too large at R 1.5 m, μ 0.01, 0.1 ms,
+    and 5.4e-4 at a quarter of the step), where the explicit force, DART's semi-implicit Euler, leaves
+    5e-6 (docs/dart.md, "Pendulum isolators"). The dashpot c stays the joint's damping (0 on these).
+
+    The slider is DART's joint Coulomb friction (JointCoulombFrictionConstraint: a stick solved in the
+    same LCP as the block's contacts). One component: F_b on the prismatic joint, set once: the
+    model's constant slip force. A pair (TranslationalJoint2D): DART bounds each dof's friction apart
+    (a square: √2·F_b along a diagonal, as MuJoCo's frictionloss on two joints; DART's contact
+    friction is a pyramid of two directions alike, and dartpy sets no contact's friction direction,
+    so a held puck, MuJoCo's and Drake's pair construction, would be no rounder here). So before each
+    step the bounds are F_b·|ê_x| and F_b·|ê_y| along a unit direction ê: the base's velocity while it
+    slides (faster than STUCK_SPEED), so that the friction is F_b against it, the model's isotropic
+    Coulomb force (ê a step behind); while it is stuck, the load that would move it with the block
+    riding on it, −(m + m_b)·a_g − k·u, so that it holds up to F_b along that load and slips there.
+    Along one fixed direction (a pulse turned by any angle) the bounds are exactly F_b along it."""
+
+    def __init__(self, system, joint, stretch: float):
+        parts = isolator_parts(system)
+        self.joint, self.stretch = joint, stretch
+        self.k, self.total = parts.stiffness, system.mass + system.base_mass
+        self.friction = parts.base_friction / stretch**2
+        self.dofs = joint.getNumDofs()
+        self.last = (1.0, 0.0)
+        for dof in range(self.dofs):
+            joint.setSpringStiffness(dof, 0.0)
+            joint.setDampingCoefficient(dof, parts.damping / stretch)
+        if self.dofs == 1 and self.friction > 0.0:
+            joint.setCoulombFriction(0, self.friction)
+
+    def direction(self, ax: float, ay: float):
+        """ê before a step whose ground acceleration is (ax, ay) (m/s²)."""
+        j, s = self.joint, self.stretch
+        vx, vy = j.getVelocity(0) * s, j.getVelocity(1) * s
+        v = math.hypot(vx, vy)
+        if v > STUCK_SPEED:
+            return vx / v, vy / v
+        lx, ly = -self.total * ax - self.k * j.getPosition(0), -self.total * ay - self.k * j.getPosition(1)
+        load = math.hypot(lx, ly)
+        return (lx / load, ly / load) if load > 0.0 else self.last
+
+    def before_step(self, ax: float, ay: float) -> None:
+        """The spring's force at the step's start; under a pair, the friction's bounds along ê."""
+        for dof in range(self.dofs):
+            self.joint.setForce(dof, -self.k * self.joint.getPosition(dof) / self.stretch**2)
+        if self.dofs == 2 and self.friction > 0.0:
+            self.last = ex, ey = self.direction(ax, ay)
+            self.joint.setCoulombFriction(0, self.friction * abs(ex))
+            self.joint.setCoulombFriction(1, self.friction * abs(ey))
+
+
 def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, progress=None) -> RawHistory:
     dart = import_extra("dartpy", "dart", "the engine 'dart'")
     # the step this system takes (Settings.for_system): the bounds below judge that one
     settings = (settings or Settings()).for_system(system)
     motion, duration = run_inputs(system, motion, duration, theta0, DEFAULT_IMPACT_THRESHOLD, settings=settings,
                                   two_edges=TWO_EDGES,  # a statue without its shape: hull_contact.check_shape, below
-                                  transverse=TRANSVERSE)  # a pair on any isolator but the linear one: refused there
+                                  transverse=TRANSVERSE, isolators=ISOLATORS, transverse_isolators=ISOLATORS)
+    check_contact_isolator(system, "dart")  # μ_f(v): refused in one line
     if system.friction is not None or motion.vertical is not None:  # said again for a direct caller
         raise InputError("system: engine 'dart' carries a statue that cannot slip, on level ground")
     hull_contact.check_shape(system, "DART")
@@ -221,6 +297,8 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
             joint.setSpringStiffness(dof, float(system.stiffness) / stretch**2)
             joint.setDampingCoefficient(dof, float(system.damping) / stretch)
         plate.setMass(float(system.base_mass))
+    # a pendulum's spring, dashpot and slider on the base joint (_Pendulum; None on the linear isolator)
+    pendulum = None if system.fixed_base or system.isolator_kind == LINEAR else _Pendulum(system, joint, stretch)
     below = dart.math.Isometry3()
     below.set_translation([0.0, 0.0, -0.5 * PLATE_THICKNESS])
     joint.setTransformFromParentBodyNode(below)  # the plate's top at z = 0
@@ -285,8 +363,10 @@ def simulate(system, motion=None, *, settings=None, duration=None, theta0=0.0, p
     y_at = motion.transverse.at if transverse else (lambda _t: 0.0)
     for i in range(1, n + 1):
         t = i * dt
-        world.setGravity([-float(motion.at(t - dt)) / stretch**2, -float(y_at(t - dt)) / stretch**2,
-                          -system.gravity / stretch**2])
+        ax, ay = float(motion.at(t - dt)), float(y_at(t - dt))
+        if pendulum is not None:
+            pendulum.before_step(ax, ay)
+        world.setGravity([-ax / stretch**2, -ay / stretch**2, -system.gravity / stretch**2])
         world.step()
         if i % every == 0 or i == n:
             rows[k] = row(min(t, duration))
@@ -326,8 +406,8 @@ def ladder(quick: bool):
 ENGINE = EngineSpec(
     name="dart", label="DART", settings_type=Settings, simulate=simulate, ladder=ladder, settings_for=settings_for,
     capabilities=Capabilities(isolated_base=True, past_alpha=True, batch=False, exact_impacts=False, campaigns=False,
-                              isolators=("linear",), kinetic_friction=False, statue_friction=False, vertical=False,
-                              two_edges=TWO_EDGES, transverse=TRANSVERSE),
+                              isolators=ISOLATORS, kinetic_friction=False, statue_friction=False, vertical=False,
+                              two_edges=TWO_EDGES, transverse=TRANSVERSE, transverse_isolators=ISOLATORS),
     presets={"default": Preset("a step of STEP_SHARE/p_eff (0.1 ms on the paper's block, following the body's size), "
                                "restitution 0, friction 1 (docs/dart.md)", Settings),
              "coarse": Preset("ten times the default's step (1 ms on the paper's block, following the body's size): "

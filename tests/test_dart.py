@@ -12,7 +12,7 @@ import pytest
 from isorock.analytic.coefficients import beta
 from isorock.analytic.errors import InputError
 from isorock.analytic.motion import load_motion
-from isorock.analytic.system import FrictionPendulum, System, paper_system
+from isorock.analytic.system import BilinearIsolator, System, paper_system
 from isorock.validate.core.compare import compare, exact_first_impact_time
 from isorock.validate.core.engines import get_engine
 from isorock.validate.core.tolerances import tolerance
@@ -72,10 +72,11 @@ def test_the_papers_pulses_as_the_analytic_engine(name):
 def test_registered_and_what_it_refuses_in_one_line():
     from isorock.dart_models import Settings
     engine = get_engine("dart")
-    assert engine.name == "dart" and engine.capabilities.isolators == ("linear",)
-    pendulum = System.with_isolator(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0,
-                                    isolator=FrictionPendulum(radius=1.0, friction_coefficient=0.1))
-    for system, says in ((pendulum, "friction-pendulum"), (paper_system().with_friction(0.5), "friction")):
+    # the pendulums are carried too (tests/test_isolator_dart.py); a bearing is refused
+    assert engine.name == "dart" and engine.capabilities.isolators == ("linear", "friction-pendulum", "ball-in-bowl")
+    bearing = System.with_isolator(height=2.0, width=0.7, mass=3800.0, base_mass=3800.0, isolator=BilinearIsolator(
+        stiffness=3e5, post_yield_ratio=0.5, yield_displacement=0.005))
+    for system, says in ((bearing, "isolator = bilinear"), (paper_system().with_friction(0.5), "friction")):
         with pytest.raises(InputError, match=says) as e:
             engine.simulate(system, None, duration=1.0)
         assert "\n" not in str(e.value)

@@ -6,12 +6,15 @@ the one-line refusals."""
 from __future__ import annotations
 
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 dart = pytest.importorskip("dartpy", reason="dartpy is not installed (the dart extra)")
 
 from isorock.analytic import hull_contact  # noqa: E402
+from isorock.analytic.system import BilinearIsolator  # noqa: E402
 from isorock.dart_models import ENGINE  # noqa: E402
 from isorock.dart_models import statue  # noqa: E402
 from isorock.validate.tools import statue_check as sc  # noqa: E402
@@ -45,7 +48,7 @@ def test_the_statue_is_a_free_body_with_its_inertia_and_a_sphere_on_each_hull_ve
 
 #: robust references at θmax/α 0.05 (docs/scripts/statue_engines.py): the two-edge bust on a fixed
 #: base (β 0.64 and 0.73, alternating) and the obelisk on the linear isolator
-CASES = [("bust", 1.0, "fixed"), ("obelisk", 3.0, "linear")]
+CASES = [("bust", 1.0, "fixed"), ("obelisk", 3.0, "linear"), ("obelisk", 3.0, "friction-pendulum")]
 
 
 @pytest.mark.parametrize("name,scale,base", CASES)
@@ -72,5 +75,6 @@ def test_free_rocking_on_each_edge_meets_its_closed_forms(side):
 
 def test_dart_refuses_what_it_does_not_carry_in_one_line():
     judge_refused("dart", SHAPELESS, "body: DART carries a statue's own shape")
-    _, system = sc.example("bust", 1.0, "friction-pendulum")  # DART carries the linear isolator only
-    judge_refused("dart", system, "linear isolator only")
+    _, system = sc.example("bust", 1.0, "linear")  # DART carries the linear isolator and the pendulums, not a bearing
+    judge_refused("dart", replace(system, isolator=BilinearIsolator(stiffness=3e5, post_yield_ratio=0.5,
+                                                                    yield_displacement=0.005)), "isolator = bilinear")

@@ -114,8 +114,8 @@ def test_run_reports_the_3d_numbers_for_dart(tmp_path, capsys):
 
 @pytest.mark.parametrize("engine, args, says", [
     ("dart", ["--fixed-base"], "friction = 1: engine 'dart' runs two horizontal components"),
-    ("dart:pair", ["--isolator", "friction-pendulum", "--radius", "1", "--friction-coefficient", "0.05",
-                   "--base-mass", "150"], "--isolator = 'friction-pendulum'"),
+    ("dart:pair", ["--isolator", "bilinear", "--stiffness", "1e5", "--post-yield-ratio", "0.1",
+                   "--yield-displacement", "0.01", "--base-mass", "150"], "--isolator = 'bilinear'"),
 ])
 def test_a_pair_dart_does_not_carry_is_one_line_and_exit_2(engine, args, says, capsys):
     code = main(["run", "--engine", engine, "--statue-example", "bust", "--mass", "80", *args,

@@ -184,7 +184,7 @@ def plan_runs(a, specs):
 def check_pair_engine(r, system) -> None:
     """One line, before any work, for an engine that does not run two horizontal components, or
     not on this isolator (Capabilities.transverse_isolators: the linear one, and in MuJoCo,
-    PyBullet and Drake the pendulums, whose friction in the plane their scenes make isotropic)."""
+    PyBullet, Drake and DART the pendulums, whose friction in the plane their scenes make isotropic)."""
     caps = r.engine.capabilities
     if not getattr(caps, "transverse", False):
         raise InputError(f"--engine = {r.label!r}: runs one horizontal component only; with two "

@@ -378,6 +378,37 @@ TOLERANCES: dict[tuple[str, str], Tolerance] = {
     ("dart", "out_of_plane"): Tolerance(
         1e-9, "as MuJoCo's: nothing pushes the symmetric scene out of its plane; measured 2e-17 rad (the block's "
               "lean along x under a component along y alone), the bust's |y| 3.5e-10 m"),
+    # the friction pendulum and the ball in a bowl: the spring W/R a joint force set before each step, the slider
+    # μ·W the base joint's Coulomb friction (under a pair, its bounds along the base's velocity or load:
+    # dart_models._Pendulum); measured by docs/scripts/dart_pendulum.py and tests/test_isolator_dart.py
+    # (docs/dart.md, "Pendulum isolators")
+    ("dart", "isolator_u_max_rel_error"): Tolerance(
+        2e-3, "DART's base peak against the exact model's: measured 8.8e-5 (a 0.4 g sine, the block at rest on R 1 m, "
+              "μ 0.05), 3.9e-5 (Kobe's first 12 s on R 2 m, μ 0.05), 1.0e-4 (a 0.6 g sine rocking the paper's block "
+              "13 times on R 0.5 m, μ 0.2), 4.0e-4 (Kobe on R 0.5 m, μ 0.2, where the base sticks and slips at the "
+              "uplift threshold), 5e-9 (a ball in a bowl R 1.5 m, μ_r 0.03), 1.9e-5 and 1.8e-4 (the first case under "
+              "a 0.2 m and a 10 m block); under a pair the pulse along 0° within 1.3e-12 of the run of one, along 45° "
+              "and 90° within 1.6e-7 of 0°"),
+    ("dart", "isolator_u_history"): Tolerance(
+        5e-3, "max |Δu| over u_max against the exact model: measured 1.3e-4, 2.7e-4, 4.5e-4 (rocking), 6.1e-5 (the "
+              "bowl), 7.3e-5 and 2.3e-4 at 0.2 m and 10 m (the cases of isolator_u_max_rel_error); 2.1e-3 at Kobe's "
+              "uplift threshold (the block lifts to 0.028α there)"),
+    ("dart", "isolator_theta_max_diff"): Tolerance(
+        5e-3, "θmax/α on a pendulum: measured −6e-5 (0.39976 against 0.39982, the 0.6 g sine rocking the paper's "
+              "block on R 0.5 m, μ 0.2), −5e-4 at Kobe's uplift threshold (0.0277 against 0.0282)"),
+    ("dart", "isolator_impacts_diff"): Tolerance(
+        1, "as MuJoCo's impacts_diff: measured 0 (13 against 13 rocking, 2 against 2 at Kobe's uplift threshold)"),
+    ("dart", "isolator_period_rel_error"): Tolerance(
+        3e-4, "the pendulum's half period against π√(R/g), the reversal read from u̇'s zero between 1 ms rows: "
+              "measured 9.9e-5 (the pendulum R 1.5 m, μ 0.01), 3.5e-5 (the bowl R 1 m, μ_r 0.01)"),
+    ("dart", "isolator_decay_rel_error"): Tolerance(
+        5e-4, "each peak 2μ_f·R below the last: the joint's Coulomb friction is μ·W while it slides, the spring an "
+              "explicit force (semi-implicit Euler keeps the swing's energy); measured 5.1e-6 (the pendulum), 3.2e-7 "
+              "(the bowl). DART's own joint spring, stepped implicitly, damps the swing by ω·dt/2 per radian: "
+              "2.1e-3 at 0.1 ms, 5.4e-4 at 25 µs"),
+    ("dart", "isolator_onset_time"): Tolerance(
+        2e-3, "asin(μ_f/A)/ω (s): rows every sample_interval (1 ms on the paper's block), the onset read to about "
+              "one; measured 0.61 ms (the stuck base moves 1e-15 m before it)"),
     ("drake", "beta_rel_error"): Tolerance(
         0.004, f"{_MODEL}: Hunt–Crossley k 1e10, accuracy 1e-3 gives β within 0.07% fixed / 0.23% "
                "isolated over θ0 = 0.3–0.8α; measured ≤ 0.14% on the first 4 impacts from 0.5α "
