@@ -44,9 +44,8 @@ from isorock.analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, Capabili
                                              run_inputs)
 from isorock.analytic.errors import InputError, import_extra
 from isorock.analytic.isolator_parts import PLANE_ISOLATORS, check_contact_isolator, isolator_parts
-from isorock.analytic.system import LINEAR
 from isorock.analytic.status import Status
-from isorock.analytic.system import paper_system
+from isorock.analytic.system import LINEAR, paper_system
 from isorock.analytic.trajectory import RawHistory
 
 from . import statue
@@ -77,11 +76,11 @@ PAIR_FRICTION = 5.0
 #: (Capabilities.transverse_isolators, the same three): the linear one, and the friction pendulum and
 #: the ball in a bowl (isolator_parts.PLANE_ISOLATORS): the pendulum's spring k = W/R and dashpot c on
 #: the base joint, its rigid slider μ·W the joint's own Coulomb friction (DART's
-#: JointCoulombFrictionConstraint, a stick solved in the same LCP as the contacts; _PendulumFriction).
+#: JointCoulombFrictionConstraint, a stick solved in the same LCP as the contacts; _Pendulum).
 #: Not the bilinear bearing, the ball in a cone or the double pendulum: refused in one line.
 ISOLATORS = PLANE_ISOLATORS
 #: m/s (the system's): a base slower than this is taken as stuck by a pair's friction direction
-#: (_PendulumFriction), which then follows the load on the base instead of its velocity
+#: (_Pendulum), which then follows the load on the base instead of its velocity
 STUCK_SPEED = 1e-9
 
 
