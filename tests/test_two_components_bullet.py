@@ -16,7 +16,7 @@ pytest.importorskip("trimesh")
 
 from test_two_components import (ALONG_Y, BUST_PAIR_ARGS, PENDULUMS, _statue_system, bust,  # noqa: E402,F401 (bust: a fixture)
                                  check_along_y, check_pendulum_isotropy, check_turned, check_zero_component,
-                                 run_reports_3d, turned_pair_runs)
+                                 run_reports_3d, turned_pair_runs, SLOW_TURNED_DURATION)
 
 from isorock.analytic import shape  # noqa: E402
 from isorock.analytic.motion import GroundMotion, load_motion  # noqa: E402
@@ -93,7 +93,8 @@ def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, 
     asymmetric at rest (docs/statues.md: out of plane 4e-5–2.4e-4), is further from rotation-invariant
     than MuJoCo's. 1e-2 of a peak of 0.19 α is 0.002 α, a tenth of the 0.02 α row the engines'
     peaks are judged by; the peak tilt/α itself within 0.005 α (measured ≤ 0.0007)."""
-    turned = turned_pair_runs(BULLET, bust, isolated, phi_deg, lambda first: Settings().for_system(first))
+    turned = turned_pair_runs(BULLET, bust, isolated, phi_deg, lambda first: Settings().for_system(first),
+                              duration=SLOW_TURNED_DURATION)
     check_turned(turned, phi_deg, history=1e-2, peak=0.005, turn_deg=1.0)
 
 
@@ -132,7 +133,7 @@ def test_turning_the_pair_and_the_statue_on_a_friction_pendulum_gives_the_same_t
     from rotation-invariant under the base's stick and slip (docs/statues.md)."""
     from test_two_components import FP_TURNED, FP_TURNED_PAIR
     turned = turned_pair_runs(BULLET, bust, FP_TURNED, 30.0, lambda first: Settings().for_system(first),
-                              pair=FP_TURNED_PAIR)
+                              duration=SLOW_TURNED_DURATION, pair=FP_TURNED_PAIR)
     assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
     assert abs(turned.three[1].tilt_max_over_alpha - turned.three[0].tilt_max_over_alpha) <= 0.005
     assert np.max(np.abs(turned.tilts[0] - turned.tilts[1])) <= 0.05 * np.max(turned.tilts[0])  # the same rocking
