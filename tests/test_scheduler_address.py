@@ -36,9 +36,10 @@ def _server(greeting: bytes | None):
     return srv
 
 
-@pytest.mark.parametrize("greeting", [None, b"HTTP/1.1 403 Forbidden\r\nContent-Length: 0\r\n\r\n"])
-def test_a_server_that_is_not_dask_is_refused_in_bounded_time(tmp_path, greeting):
-    srv = _server(greeting)
+def test_a_server_that_is_not_dask_is_refused_in_bounded_time(tmp_path):
+    """A service that greets with "HTTP/1.1 403", run as a user runs the command (a process of
+    its own, bounded by a hang guard): one line, exit 2, nothing written."""
+    srv = _server(b"HTTP/1.1 403 Forbidden\r\nContent-Length: 0\r\n\r\n")
     try:
         spec = write_spec(tmp_path, more="")
         address = "tcp://127.0.0.1:%d" % srv.getsockname()[1]
@@ -49,6 +50,25 @@ def test_a_server_that_is_not_dask_is_refused_in_bounded_time(tmp_path, greeting
         srv.close()
     assert out.returncode == 2, out.stderr
     assert out.stderr.count("\n") == 1 and "--scheduler" in out.stderr and "Dask scheduler" in out.stderr, out.stderr
+    assert "answered b'HTTP/1.1'" in out.stderr, out.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_server_that_says_nothing_is_refused_when_its_greeting_time_is_up(tmp_path, capsys, monkeypatch):
+    """An HTTP server waits for a request and says nothing: refused when GREETING_TIMEOUT is up
+    (10 s; here 0.3 s, so that the suite does not wait out the real one), in one line naming it."""
+    from isorock.validate.cli.main import main
+    from isorock.validate.core import executor
+    monkeypatch.setattr(executor, "GREETING_TIMEOUT", 0.3)
+    srv = _server(None)
+    try:
+        spec = write_spec(tmp_path, more="")
+        code = main(["sweep", str(spec), "--out", str(tmp_path / "out"), "--scheduler",
+                     "tcp://127.0.0.1:%d" % srv.getsockname()[1]])
+    finally:
+        srv.close()
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and "no Dask handshake within 0.3 s" in err, err
     assert not (tmp_path / "out").exists()
 
 

@@ -136,10 +136,12 @@ GREETING_TIMEOUT = 10.0
 MAX_GREETING = 1 << 20
 
 
-def check_scheduler(address: str, timeout: float = GREETING_TIMEOUT) -> None:
+def check_scheduler(address: str, timeout: float | None = None) -> None:
     """Refuse (InputError) an address that is not one, or a TCP server that does not
-    greet as a Dask scheduler does, within `timeout` s. Dask's own connect bounds the TCP
-    connect alone: an HTTP server, which waits for a request, held it for ever."""
+    greet as a Dask scheduler does, within `timeout` s (None: GREETING_TIMEOUT, read at the
+    call). Dask's own connect bounds the TCP connect alone: an HTTP server, which waits for
+    a request, held it for ever."""
+    timeout = GREETING_TIMEOUT if timeout is None else timeout
     def refuse(why):
         return InputError(f"--scheduler = {address!r}: must be a running Dask scheduler, e.g. "
                           f"tcp://host:8786 ({why})")
