@@ -5,8 +5,8 @@ Measurements behind every default: docs/bullet.md."""
 import math
 from dataclasses import replace
 
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
+from ..analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
+from ..analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
 
 from .scene import SCENE_FORMAT, build, connect, scene_text
 from .settings import Settings, settings_for, settings_for_timestep

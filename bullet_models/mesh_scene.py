@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from isorock.analytic.engine_protocol import BODY_OVERTURN_TILT as OVERTURN_TILT  # every hull scene's rule
+from ..analytic.engine_protocol import BODY_OVERTURN_TILT as OVERTURN_TILT  # every hull scene's rule
 
 from .scene import connect, p
 

@@ -14,10 +14,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from isorock.analytic.rest_phase import (F_LOW, LEAD_TIME, REST_RATE, REST_SPEED, REST_TILT, SETTLE_TIME,
+from ..analytic.rest_phase import (F_LOW, LEAD_TIME, REST_RATE, REST_SPEED, REST_TILT, SETTLE_TIME,
                                          first_hot, rest_states, takeover)
-from isorock.analytic import kinematics
-from isorock.analytic.system import System
+from ..analytic import kinematics
+from ..analytic.system import System
 
 
 #: s between two looks for rest while the contact scene is stepped.

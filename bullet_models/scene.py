@@ -57,10 +57,10 @@ with _c_output_silenced(fds=(1, 2)):
     import pybullet as p
     from pybullet_utils.bullet_client import BulletClient
 
-from isorock.analytic.errors import InputError
-from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.isolator_parts import PUCK_HALF, isolator_parts, pendulum_puck
-from isorock.analytic.system import LINEAR, System
+from ..analytic.errors import InputError
+from ..analytic import hull_contact, kinematics
+from ..analytic.isolator_parts import PUCK_HALF, isolator_parts, pendulum_puck
+from ..analytic.system import LINEAR, System
 
 from . import statue
 from .settings import Settings

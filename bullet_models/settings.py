@@ -12,10 +12,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from isorock.analytic.engine_protocol import contact_scale
-from isorock.analytic.errors import require, require_nonnegative_finite, require_positive_finite
-from isorock.analytic.isolator_parts import isolator_parts
-from isorock.analytic.system import LINEAR
+from ..analytic.engine_protocol import contact_scale
+from ..analytic.errors import require, require_nonnegative_finite, require_positive_finite
+from ..analytic.isolator_parts import isolator_parts
+from ..analytic.system import LINEAR
 
 #: s; the control step (ground motion, isolator force, output) a timestep given alone keeps:
 #: the physics step is what sets the accuracy, and sub-steps in C are cheaper than Python steps.

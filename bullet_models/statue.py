@@ -25,8 +25,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from isorock.analytic import hull_contact
-from isorock.analytic.system import System
+from ..analytic import hull_contact
+from ..analytic.system import System
 
 def _quaternion(rotation: np.ndarray) -> list[float]:
     """(x, y, z, w) of a proper rotation matrix."""

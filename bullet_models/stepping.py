@@ -24,14 +24,14 @@ from dataclasses import replace
 
 import numpy as np
 
-from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.engine_protocol import run_inputs
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS, check_contact_isolator, isolator_parts
-from isorock.analytic.rest_phase import stepped_throughout
-from isorock.analytic.status import Status
-from isorock.analytic.system import LINEAR, System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
+from ..analytic import hull_contact, kinematics
+from ..analytic.motion import GroundMotion
+from ..analytic.engine_protocol import run_inputs
+from ..analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS, check_contact_isolator, isolator_parts
+from ..analytic.rest_phase import stepped_throughout
+from ..analytic.status import Status
+from ..analytic.system import LINEAR, System
+from ..analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
 from .scene import build, connect, p, run_client
 from .rest import Rest

@@ -39,14 +39,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, Capabilities, EngineSpec, Preset, contact_scale,
+from ..analytic import hull_contact, kinematics
+from ..analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, Capabilities, EngineSpec, Preset, contact_scale,
                                              run_inputs)
-from isorock.analytic.errors import InputError, import_extra
-from isorock.analytic.isolator_parts import PLANE_ISOLATORS, check_contact_isolator, isolator_parts
-from isorock.analytic.status import Status
-from isorock.analytic.system import LINEAR, paper_system
-from isorock.analytic.trajectory import RawHistory
+from ..analytic.errors import InputError, import_extra
+from ..analytic.isolator_parts import PLANE_ISOLATORS, check_contact_isolator, isolator_parts
+from ..analytic.status import Status
+from ..analytic.system import LINEAR, paper_system
+from ..analytic.trajectory import RawHistory
 
 from . import statue
 

@@ -21,8 +21,8 @@ import math
 
 import numpy as np
 
-from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.system import System
+from ..analytic import hull_contact, kinematics
+from ..analytic.system import System
 
 def plate_size(system: System) -> float:
     """Side (m) of the square plate: past the hull and where an overturned statue lands."""

@@ -8,7 +8,7 @@ vertices on a free body) in the block's place; measurements in docs/drake.md and
 import math
 from dataclasses import replace
 
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
+from ..analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
 
 from .scene import (ISOLATORS, PRESETS, SCENE_FORMAT, TRANSVERSE, TWO_EDGES, Settings, check_system, preset, scene_text,
                     settings_for, settings_for_timestep, simulate, sphere_geometry_beta,

@@ -21,7 +21,7 @@ import time
 import numpy as np
 import pydrake.all as pd
 
-from isorock.analytic.engine_protocol import BODY_OVERTURN_TILT as OVERTURN_TILT  # every hull scene's rule
+from ..analytic.engine_protocol import BODY_OVERTURN_TILT as OVERTURN_TILT  # every hull scene's rule
 
 FRICTION = 0.5
 TIMESTEP = 1e-3

@@ -85,15 +85,15 @@ try:
 except ImportError as exc:  # an optional extra; the registry and the report skip an engine that cannot import
     raise ImportError(f"the drake engine needs pydrake ({exc}): pip install 'isorock[drake]'") from exc
 
-from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.errors import InputError, require, require_positive_finite
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.engine_protocol import check_friction, contact_friction, run_inputs
-from isorock.analytic.isolator_parts import (PLANE_ISOLATORS, PUCK_HALF, check_contact_isolator, isolator_parts,
+from ..analytic import hull_contact, kinematics
+from ..analytic.errors import InputError, require, require_positive_finite
+from ..analytic.motion import GroundMotion
+from ..analytic.engine_protocol import check_friction, contact_friction, run_inputs
+from ..analytic.isolator_parts import (PLANE_ISOLATORS, PUCK_HALF, check_contact_isolator, isolator_parts,
                                              pendulum_puck)
-from isorock.analytic.status import Status
-from isorock.analytic.system import LINEAR, System, paper_system
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
+from ..analytic.status import Status
+from ..analytic.system import LINEAR, System, paper_system
+from ..analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory, counted_sign_changes
 
 from . import statue
 

@@ -35,9 +35,9 @@ import math
 
 import numpy as np
 
-from isorock.analytic import hull_contact, kinematics
-from isorock.analytic.system import System
-from isorock.analytic.trajectory import RawHistory
+from ..analytic import hull_contact, kinematics
+from ..analytic.system import System
+from ..analytic.trajectory import RawHistory
 
 from .mesh_scene import _hull_obj  # the shake-table scene's writer: one for both
 

@@ -6,8 +6,8 @@ Measurements behind every default: docs/mujoco.md."""
 import math
 from dataclasses import replace
 
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
+from ..analytic.engine_protocol import Capabilities, EngineSpec, Preset, Tuning
+from ..analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
 
 from .scene import SCENE_FORMAT, build_model, check_representable, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep

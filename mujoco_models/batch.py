@@ -15,12 +15,12 @@ from dataclasses import dataclass, replace
 import mujoco
 import numpy as np
 
-from isorock.analytic.engine_protocol import run_inputs
-from isorock.analytic.errors import require
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.status import Status
-from isorock.analytic.system import System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
+from ..analytic.engine_protocol import run_inputs
+from ..analytic.errors import require
+from ..analytic.motion import GroundMotion
+from ..analytic.status import Status
+from ..analytic.system import System
+from ..analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
 from .scene import build_model
 from .settings import Settings

@@ -12,9 +12,9 @@ import mujoco
 import numpy as np
 from mujoco import rollout
 
-from isorock.analytic import kinematics
-from isorock.analytic.status import Status
-from isorock.analytic.trajectory import RawHistory
+from ..analytic import kinematics
+from ..analytic.status import Status
+from ..analytic.trajectory import RawHistory
 
 from .scene import scene_text
 from .settings import Settings

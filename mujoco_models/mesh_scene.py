@@ -24,7 +24,7 @@ FRICTION = 0.5
 TIMESTEP = 1e-3
 SOLREF = (0.004, 1.0)
 SOLIMP = (0.9, 0.95, 0.001)
-from isorock.analytic.engine_protocol import BODY_OVERTURN_TILT as OVERTURN_TILT  # every hull scene's rule
+from ..analytic.engine_protocol import BODY_OVERTURN_TILT as OVERTURN_TILT  # every hull scene's rule
 
 
 def _fmt(v) -> str:

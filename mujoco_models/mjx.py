@@ -20,12 +20,12 @@ import warnings
 
 import numpy as np
 
-from isorock.analytic.errors import import_extra
-from isorock.analytic.kernel_cache import writable_cache_dir
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.system import System
-from isorock.analytic.trajectory import RawHistory
-from isorock.analytic.engine_protocol import Capabilities, EngineSpec, Preset
+from ..analytic.errors import import_extra
+from ..analytic.kernel_cache import writable_cache_dir
+from ..analytic.motion import GroundMotion
+from ..analytic.system import System
+from ..analytic.trajectory import RawHistory
+from ..analytic.engine_protocol import Capabilities, EngineSpec, Preset
 
 from . import batch, ladder  # ladder: MuJoCo's work-precision ladder, the same scene, the same timesteps
 from .batch import ISOLATORS

@@ -31,9 +31,9 @@ import numpy as np
 from mujoco import rollout
 
 # the shared rules (thresholds, lead and settle times, "at rest"): one home for every engine
-from isorock.analytic.rest_phase import (F_HIGH, F_LOW, LEAD_TIME, REST_RATE, REST_SPEED, REST_TILT,
+from ..analytic.rest_phase import (F_HIGH, F_LOW, LEAD_TIME, REST_RATE, REST_SPEED, REST_TILT,
                                          SETTLE_TIME, first_hot, linear_steps, rest_states, takeover)
-from isorock.analytic.system import System
+from ..analytic.system import System
 
 from .state import fresh_data
 

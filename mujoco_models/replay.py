@@ -3,8 +3,8 @@ so that a frame is set by u and θ alone (the block pivoting on its corner, ridi
 base). `isorock view` reaches it through the registry (its replay_scene facet, validate/tools/view.py)."""
 from __future__ import annotations
 
-from isorock.analytic import kinematics
-from isorock.analytic.system import System
+from ..analytic import kinematics
+from ..analytic.system import System
 
 from . import build_model
 from .settings import Settings

@@ -14,11 +14,11 @@ from pathlib import Path
 
 import mujoco
 
-from isorock.analytic import kinematics
-from isorock.analytic.engine_protocol import contact_friction
-from isorock.analytic.errors import require
-from isorock.analytic.isolator_parts import PLANE_ISOLATORS, PUCK_HALF, isolator_parts, pendulum_puck
-from isorock.analytic.system import LINEAR, System
+from ..analytic import kinematics
+from ..analytic.engine_protocol import contact_friction
+from ..analytic.errors import require
+from ..analytic.isolator_parts import PLANE_ISOLATORS, PUCK_HALF, isolator_parts, pendulum_puck
+from ..analytic.system import LINEAR, System
 
 from .settings import Settings
 

@@ -9,9 +9,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from isorock.analytic.engine_protocol import contact_scale
-from isorock.analytic.errors import InputError, require, require_positive_finite
-from isorock.analytic.system import paper_system
+from ..analytic.engine_protocol import contact_scale
+from ..analytic.errors import InputError, require, require_positive_finite
+from ..analytic.system import paper_system
 
 INTEGRATORS = ("Euler", "implicit", "implicitfast", "RK4")
 CONES = ("pyramidal", "elliptic")

@@ -12,12 +12,12 @@ from contextlib import contextmanager
 import mujoco
 import numpy as np
 
-from isorock.analytic import kinematics
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.isolator_parts import pendulum_puck
-from isorock.analytic.rest_phase import BLOCK
-from isorock.analytic.system import System
-from isorock.analytic.trajectory import RawHistory
+from ..analytic import kinematics
+from ..analytic.motion import GroundMotion
+from ..analytic.isolator_parts import pendulum_puck
+from ..analytic.rest_phase import BLOCK
+from ..analytic.system import System
+from ..analytic.trajectory import RawHistory
 
 ENGINE = "mujoco"
 

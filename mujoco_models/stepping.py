@@ -29,16 +29,16 @@ import mujoco
 import numpy as np
 from mujoco import rollout
 
-from isorock.analytic import kinematics
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.engine_protocol import run_inputs
-from isorock.analytic.errors import require
-from isorock.analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS, check_contact_isolator
-from isorock.analytic.limits import RunBudget
-from isorock.analytic.rest_phase import stepped_throughout
-from isorock.analytic.status import Status
-from isorock.analytic.system import LINEAR, System
-from isorock.analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
+from ..analytic import kinematics
+from ..analytic.motion import GroundMotion
+from ..analytic.engine_protocol import run_inputs
+from ..analytic.errors import require
+from ..analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS, check_contact_isolator
+from ..analytic.limits import RunBudget
+from ..analytic.rest_phase import stepped_throughout
+from ..analytic.status import Status
+from ..analytic.system import LINEAR, System
+from ..analytic.trajectory import DEFAULT_IMPACT_THRESHOLD, RawHistory
 
 from .event_resolved import run_event_resolved
 from .scene import build_model

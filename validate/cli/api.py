@@ -25,8 +25,8 @@ import numbers
 import re
 from dataclasses import dataclass
 
-from isorock.analytic.errors import InputError, import_extra, path_value
-from isorock.analytic.limits import check_workers
+from ...analytic.errors import InputError, import_extra, path_value
+from ...analytic.limits import check_workers
 from ..core.executor import exit_if_bootstrapping
 from ..io.output import check_folder
 from ..io.progress import Progress

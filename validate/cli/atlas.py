@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import math
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_workers
+from ...analytic.errors import InputError
+from ...analytic.limits import check_workers
 from .run import engine_labels
 from ..core.engines import get_engine
 from ..io.output import check_folder

@@ -3,9 +3,9 @@ from __future__ import annotations
 
 import sys
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_workers
-from isorock.analytic.system import paper_system
+from ...analytic.errors import InputError
+from ...analytic.limits import check_workers
+from ...analytic.system import paper_system
 from .options import (ENGINE_OPTIONS, SYSTEM_KEYS, add_engine_options, add_system_options,
                       announce_cost, engine_settings_from_args, system_from_options, whole_number)
 from ..core.engines import get_engine

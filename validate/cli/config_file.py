@@ -17,7 +17,7 @@ from typing import Annotated
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, ValidationError, create_model, field_validator
 
-from isorock.analytic.errors import InputError
+from ...analytic.errors import InputError
 from ..core.engines import check_settings_table
 from ..io import keys
 from ..io.schema import Positive, field_type, read_toml

@@ -9,10 +9,10 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
-from isorock.analytic.engines import unbuilt_kernels
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import available_cores
-from isorock.analytic.system import BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, System
+from ...analytic.engines import unbuilt_kernels
+from ...analytic.errors import InputError
+from ...analytic.limits import available_cores
+from ...analytic.system import BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, System
 from ..core.estimate import estimate_s as estimate_run_s
 from .config_file import read_config
 from .options import ISOLATOR_KEYS, add_statue_options, number, statue_body

@@ -9,7 +9,7 @@ from __future__ import annotations
 import csv
 import math
 
-from isorock.analytic.errors import InputError
+from ...analytic.errors import InputError
 from ..io.provenance import provenance
 from .options import announce_cost
 from ..io.output import Outputs, to_json

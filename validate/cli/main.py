@@ -30,10 +30,10 @@ import os
 import signal
 import sys
 
-from isorock.analytic import coefficients as co
-from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
-from isorock.analytic.errors import InputError
-from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
+from ...analytic import coefficients as co
+from ...analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
+from ...analytic.errors import InputError
+from ...analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
 from ..core.engines import ALL_ENGINES, get_engine
 from ..io.output import Outputs, Terminated, signal_received, signals_end_cleanly
 from .options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,

@@ -11,10 +11,10 @@ import tomllib
 from dataclasses import replace
 from types import SimpleNamespace
 
-from isorock.analytic.errors import InputError
-from isorock.analytic import limits
-from isorock.analytic.limits import check_period
-from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, BallInBowl, BallInCone, BilinearIsolator,
+from ...analytic.errors import InputError
+from ...analytic import limits
+from ...analytic.limits import check_period
+from ...analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, BallInBowl, BallInCone, BilinearIsolator,
                                      DOUBLE_PENDULUM, DoubleFrictionPendulum, FRICTION_PENDULUM, FrictionPendulum,
                                      ISOLATOR_KINDS, LINEAR, PlanarBody, System)
 from ..core.engines import check_settings_table, choose, describe_settings, table_overrides
@@ -216,7 +216,7 @@ def statue_body(a, names: dict = STATUE_OPTIONS, *, slip: str = "statue_friction
     gives the statue's sliding friction μ_s (refused with a mesh: the sliding model takes the block
     alone): run's and validate's --statue-friction, design's --friction (run's --friction is an
     engine's contact coefficient, which a hull takes as the block does)."""
-    from isorock.analytic import shape  # lazy: NumPy and SciPy; every command loads this module
+    from ...analytic import shape  # lazy: NumPy and SciPy; every command loads this module
     path, example = getattr(a, "statue", None), getattr(a, "statue_example", None)
     if path is None and example is None:
         for name in ("unit", "density", "azimuth"):
@@ -238,7 +238,7 @@ def statue_body(a, names: dict = STATUE_OPTIONS, *, slip: str = "statue_friction
 
 def statue_azimuth(a, standing, names: dict = STATUE_OPTIONS) -> float:
     """The shaking direction (rad) of a statue at rest: --azimuth, or the one it tips first."""
-    from isorock.analytic import shape  # lazy: NumPy and SciPy; every command loads this module
+    from ...analytic import shape  # lazy: NumPy and SciPy; every command loads this module
     return shape.shaking_direction(standing, a.azimuth, names=names)
 
 
@@ -377,7 +377,7 @@ def transverse_asked(a) -> bool:
 def _with_transverse(a, m):
     """`m` with the second horizontal component the options name (--motion-transverse or the
     --pair's second), or `m` as it is without them."""
-    from isorock.analytic.motion import load_motion  # lazy: NumPy; every command loads this module
+    from ...analytic.motion import load_motion  # lazy: NumPy; every command loads this module
     spec, pair = getattr(a, "motion_transverse", None), getattr(a, "pair", None)
     if (spec is not None or pair is not None) and getattr(a, "vertical", None) is not None:
         raise InputError(f"--vertical = {a.vertical!r}: with two horizontal components is not built yet (its planar "
@@ -410,7 +410,7 @@ def add_units_option(g) -> None:
 
 def motion_from_args(a):
     """The motion the options describe: read, then scaled by --scale, or to --pga / --pgv."""
-    from isorock.analytic.motion import load_motion  # lazy: NumPy; every command loads this module
+    from ...analytic.motion import load_motion  # lazy: NumPy; every command loads this module
     targets = [(k, getattr(a, k, None)) for k in ("pga", "pgv") if getattr(a, k, None) is not None]
     if len(targets) > 1 or (targets and a.scale != 1.0):
         given = ", ".join(f"--{k} {v:g}" for k, v in targets) + (f", --scale {a.scale:g}" if a.scale != 1.0 else "")

@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 import textwrap
 
-from isorock.analytic.errors import InputError
+from ...analytic.errors import InputError
 from ..core.engines import ALIASES, DISTINCT_ENGINES, get_engine, presets_of
 from ..io.output import to_json
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 import argparse
 import sys
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_workers
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
+from ...analytic.errors import InputError
+from ...analytic.limits import check_workers
+from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from .config_file import check_damping_ratio, read_config
 from .options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
                       add_system_options, add_units_option, check_tables_run, engine_tables, number,

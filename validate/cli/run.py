@@ -20,9 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import BudgetExceeded, check_resample
-from isorock.analytic.system import LINEAR
+from ...analytic.errors import InputError
+from ...analytic.limits import BudgetExceeded, check_resample
+from ...analytic.system import LINEAR
 from ..io.provenance import provenance
 from .options import (announce_cost, budget_stopped, check_tables_run, engine_tables,
                       motion_from_args, run_budget, settings_dict, statue_azimuth, statue_body,

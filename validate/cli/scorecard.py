@@ -30,8 +30,8 @@ from dataclasses import dataclass
 from datetime import datetime, timezone
 from shlex import quote
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_workers
+from ...analytic.errors import InputError
+from ...analytic.limits import check_workers
 from .atlas import expand
 from ..core.engines import DISTINCT_ENGINES, ENGINE_NAMES, engine_label, get_engine, presets_of
 from ..core.estimate import SPEEDS

@@ -10,10 +10,10 @@ from __future__ import annotations
 import math
 import sys
 
-from isorock.analytic import shape
-from isorock.analytic.errors import InputError
-from isorock.analytic.motion import load_motion
-from isorock.analytic.shape import EXAMPLES, UNITS
+from ...analytic import shape
+from ...analytic.errors import InputError
+from ...analytic.motion import load_motion
+from ...analytic.shape import EXAMPLES, UNITS
 from .options import number
 from ..io import keys
 from ..io.output import Outputs, to_json

@@ -6,8 +6,8 @@ import io
 import time
 from pathlib import Path
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_workers
+from ...analytic.errors import InputError
+from ...analytic.limits import check_workers
 from ..core.engines import get_engine
 from ..io.output import check_folder, to_json, write_folder_atomic
 from ..io.progress import Progress

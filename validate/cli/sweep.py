@@ -7,7 +7,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from isorock.analytic.limits import available_cores, check_workers
+from ...analytic.limits import available_cores, check_workers
 from ..io.output import Terminated, signal_received
 from ..tools.campaign.run import run_campaign
 from ..tools.campaign.spec import load_spec

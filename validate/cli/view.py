@@ -5,10 +5,10 @@ import os
 import sys
 from pathlib import Path
 
-from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import BudgetExceeded
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
+from ...analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
+from ...analytic.errors import InputError
+from ...analytic.limits import BudgetExceeded
+from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from .options import (add_budget_option, add_engine_options, add_motion_options, add_system_options,
                       announce_cost, budget_stopped, motion_from_args, run_budget, system_from_args)
 from .run import load_engines, parse_engines

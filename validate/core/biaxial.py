@@ -19,9 +19,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from isorock.analytic import shape
-from isorock.analytic.kinematics import LYING, LYING_SLACK
-from isorock.analytic.system import PlanarBody
+from ...analytic import shape
+from ...analytic.kinematics import LYING, LYING_SLACK
+from ...analytic.system import PlanarBody
 from .engines import get_engine
 
 #: The tilt direction is read only where the total tilt exceeds this fraction of the statue's

@@ -14,10 +14,10 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_acceleration
-from isorock.analytic.motion import GroundMotion, Pulse, load_motion
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, STANDARD_GRAVITY, System
+from ...analytic.errors import InputError
+from ...analytic.limits import check_acceleration
+from ...analytic.motion import GroundMotion, Pulse, load_motion
+from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, STANDARD_GRAVITY, System
 
 
 @dataclass(frozen=True)

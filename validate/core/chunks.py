@@ -24,9 +24,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from isorock.analytic import limits
-from isorock.analytic.limits import available_cores
-from isorock.analytic.system import paper_system
+from ...analytic import limits
+from ...analytic.limits import available_cores
+from ...analytic.system import paper_system
 
 from .cases import Case, motion_of, record_digest
 from .engines import EngineChoice, choose, get_engine, runs_here
@@ -107,7 +107,7 @@ def run_chunk(task: Chunk, threads: int | None = 1) -> list[dict]:
 
 def _run_batch(task: Chunk, threads) -> list[dict]:
 
-    from isorock.analytic.fast import simulate_batch  # lazy: numba and the kernel, in the worker that runs the batch
+    from ...analytic.fast import simulate_batch  # lazy: numba and the kernel, in the worker that runs the batch
     settings = task.setting.settings()
     if task.overturn_rule is not None:
         settings = replace(settings, overturn=task.overturn_rule)

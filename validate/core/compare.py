@@ -14,8 +14,8 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.integrate import quad
 
-from isorock.analytic.system import System
-from isorock.analytic.trajectory import Trajectory
+from ...analytic.system import System
+from ...analytic.trajectory import Trajectory
 from .measure import REST_FRACTION, beta_errors, mode_sequence, slide_onset
 from .tolerances import limit
 

@@ -18,13 +18,13 @@ from dataclasses import MISSING, asdict, dataclass, field, fields, is_dataclass,
 
 from typing import TYPE_CHECKING
 
-from isorock.analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, EngineSpec, check_body, check_friction,
+from ...analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, EngineSpec, check_body, check_friction,
                                               check_isolator_kind, declare_facet)
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import BudgetExceeded, RunBudget, check_budget, check_settings
+from ...analytic.errors import InputError
+from ...analytic.limits import BudgetExceeded, RunBudget, check_budget, check_settings
 
 if TYPE_CHECKING:
-    from isorock.analytic.trajectory import Trajectory
+    from ...analytic.trajectory import Trajectory
 
 
 ENGINE_MODULES = {
@@ -195,8 +195,8 @@ class Engine:
         checked=True: the inputs come from a Plan (core.plan.make_plan), which checked that this
         engine carries them; they are not checked again here."""
 
-        from isorock.analytic.overturning import PAST_ALPHA  # lazy: NumPy; every command loads the registry
-        from isorock.analytic.trajectory import RawHistory
+        from ...analytic.overturning import PAST_ALPHA  # lazy: NumPy; every command loads the registry
+        from ...analytic.trajectory import RawHistory
         from . import measure
         if not checked:
             self.check_run(system, motion)
@@ -221,7 +221,7 @@ class Engine:
         else:
             out = self.spec.simulate(system, motion, **kwargs)
         if isinstance(out, RawHistory):
-            from isorock.analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
+            from ...analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
             out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
                                   window=contact_window,
                                   overturn_rule=overturn_rule or PAST_ALPHA, effective_beta=effective_beta)
@@ -233,8 +233,8 @@ class Engine:
         Trajectory, or the exception it raised. An engine with a batch path
         (its simulate_many facet, BATCH: MuJoCo's, `threads` runs at a time) runs them
         together, each exactly as alone; any other runs them one by one."""
-        from isorock.analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
-        from isorock.analytic.overturning import PAST_ALPHA
+        from ...analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
+        from ...analytic.overturning import PAST_ALPHA
         from . import measure
         runs = list(runs)
         if budget_s is not None:
@@ -405,7 +405,7 @@ def check_plugin_run(name: str, out, *, exact_impacts: bool):
     dict, NaN or time running backwards were measured, or a traceback)."""
     import numpy as np  # lazy: NumPy; every command loads the registry
 
-    from isorock.analytic.trajectory import RawHistory, Trajectory
+    from ...analytic.trajectory import RawHistory, Trajectory
     where = f"engine {name!r} (its package's {PLUGINS.get(name, name)})"
     kinds = (RawHistory, Trajectory) if exact_impacts else (RawHistory,)
     if not isinstance(out, kinds):

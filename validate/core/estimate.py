@@ -8,7 +8,7 @@ Each engine's speed is its measured simulated seconds per wall second on a rocki
 """
 from __future__ import annotations
 
-from isorock.analytic import limits
+from ...analytic import limits
 
 #: simulated seconds per wall second of one run on one core, with the block rocking
 #: (impacts are what is slow), rounded down: free rocking of the paper's block for 10 s from

@@ -29,9 +29,9 @@ from multiprocessing import resource_tracker
 from multiprocessing.connection import wait
 from urllib.parse import urlsplit
 
-from isorock.analytic.errors import InputError
-from isorock.analytic import limits
-from isorock.analytic.limits import available_cores
+from ...analytic.errors import InputError
+from ...analytic import limits
+from ...analytic.limits import available_cores
 
 def default_workers() -> int:
     """Processes for a command's contact runs (validate's, atlas's and calibrate's worker

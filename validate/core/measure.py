@@ -21,17 +21,17 @@ import math
 
 import numpy as np
 
-from isorock.analytic import isolator_map
-from isorock.analytic.coefficients import beta as beta_closed_form, beta2 as beta2_closed_form, edge_impact
-from isorock.analytic.hybrid import map_to_impact
-from isorock.analytic.isolator_map import (MAPPED, PENDULUMS, image_after_impact, pendulum_forward, phase_at,
+from ...analytic import isolator_map
+from ...analytic.coefficients import beta as beta_closed_form, beta2 as beta2_closed_form, edge_impact
+from ...analytic.hybrid import map_to_impact
+from ...analytic.isolator_map import (MAPPED, PENDULUMS, image_after_impact, pendulum_forward, phase_at,
                                            reads_slider)
-from isorock.analytic.kinematics import LYING, LYING_SLACK, plate_edge
-from isorock.analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.status import Status
-from isorock.analytic.system import LINEAR, System
-from isorock.analytic.trajectory import (DEFAULT_IMPACT_THRESHOLD, SLIDING_FRACTION, Impact, RawHistory, Trajectory,
+from ...analytic.kinematics import LYING, LYING_SLACK, plate_edge
+from ...analytic.overturning import OVERTURN_RULES, PAST_ALPHA, judge_overturning
+from ...analytic.motion import GroundMotion
+from ...analytic.status import Status
+from ...analytic.system import LINEAR, System
+from ...analytic.trajectory import (DEFAULT_IMPACT_THRESHOLD, SLIDING_FRACTION, Impact, RawHistory, Trajectory,
                                         first_passage, half_cycles)
 
 #: How far (s) before and after a sign change the states are taken: well outside the

@@ -18,10 +18,10 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass
 
-from isorock.analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
-from isorock.analytic.errors import InputError, python_number
-from isorock.analytic.limits import BudgetExceeded
-from isorock.analytic.system import System
+from ...analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
+from ...analytic.errors import InputError, python_number
+from ...analytic.limits import BudgetExceeded
+from ...analytic.system import System
 
 from .engines import REFERENCE, Engine, canonical, choose, get_engine, settings_used
 
@@ -81,7 +81,7 @@ def make_plan(system, motion, runs, *, duration: float | None = None, theta0: fl
     first_run: the compiled engine takes the SciPy reference where its kernel is not built yet
     and the run is short (analytic.engines.first_run_reference, said on stderr): what `isorock
     run` asks, so that a first run starts at once."""
-    from isorock.analytic.motion import GroundMotion  # lazy: NumPy; isorock.simulate's module stays light
+    from ...analytic.motion import GroundMotion  # lazy: NumPy; isorock.simulate's module stays light
     if not isinstance(system, System):
         raise InputError(f"system = {type(system).__name__}: must be an isorock System (System.fixed, "
                          "System.isolated, System.with_isolator)")
@@ -110,7 +110,7 @@ def make_plan(system, motion, runs, *, duration: float | None = None, theta0: fl
 
 
 def _first_run(r: EngineRun, system, motion, duration) -> EngineRun:
-    from isorock.analytic.engines import first_run_reference  # lazy: NumPy; isorock.simulate's module stays light
+    from ...analytic.engines import first_run_reference  # lazy: NumPy; isorock.simulate's module stays light
     why = first_run_reference(system, motion, duration) if r.engine.name == REFERENCE else None
     if not why:
         return r

@@ -9,9 +9,9 @@ they are not in core.compare, which only compares trajectories it is given (issu
 """
 from __future__ import annotations
 
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.system import System
-from isorock.analytic.trajectory import Trajectory
+from ...analytic.motion import GroundMotion
+from ...analytic.system import System
+from ...analytic.trajectory import Trajectory
 from .compare import agreement, horizon_units
 from .engines import REFERENCE, get_engine
 from .tolerances import limit

@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 from functools import partial
 from typing import Any
 
-from isorock.analytic import limits
-from isorock.analytic.errors import InputError
+from ...analytic import limits
+from ...analytic.errors import InputError
 from .engines import resolve, runs_here
 from .executor import STUCK_AFTER_S, Executor
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, System, paper_system
+from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD, System, paper_system
 
 from .cases import Case, _load, block_system, synthetic_record
 

@@ -67,7 +67,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from isorock.analytic.errors import InputError
+from ...analytic.errors import InputError
 from .engines import PLUGINS, get_engine
 from .verdict import AGREES, DISAGREES
 

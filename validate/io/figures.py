@@ -15,8 +15,8 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from isorock.analytic.coefficients import beta, beta2, beta_housner
-from isorock.analytic.system import STANDARD_GRAVITY
+from ...analytic.coefficients import beta, beta2, beta_housner
+from ...analytic.system import STANDARD_GRAVITY
 from ..core.compare import COMPARE_DT
 from ..core.engines import ALL_ENGINES, REFERENCE, engine_label
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from isorock.analytic.system import ISOLATOR_KINDS
+from ...analytic.system import ISOLATOR_KINDS
 
 #: what a key's value may be: a file refuses anything else when it is read (io/schema.field_type);
 #: an option takes any number, and the model's own checks say what is allowed

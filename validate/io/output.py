@@ -32,7 +32,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 
-from isorock.analytic.errors import InputError
+from ...analytic.errors import InputError
 
 #: the file inside every folder isorock writes: it marks the folder as replaceable
 MARKER = ".isorock-output"

@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from isorock.analytic.system import STANDARD_GRAVITY
+from ...analytic.system import STANDARD_GRAVITY
 from ..core.compare import COMPARE_DT
 from .figures import DPI, style
 from .naming import describe_motion, describe_system

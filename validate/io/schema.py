@@ -12,7 +12,7 @@ from typing import Annotated, Literal
 
 from pydantic import BeforeValidator, StrictBool
 
-from isorock.analytic.errors import InputError
+from ...analytic.errors import InputError
 from . import keys
 
 # --- the file, bounded before it is parsed ---------------------------------------------------

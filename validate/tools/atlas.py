@@ -31,10 +31,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isorock.analytic.coefficients import beta
-from isorock.analytic.errors import InputError
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, System, paper_system
+from ...analytic.coefficients import beta
+from ...analytic.errors import InputError
+from ...analytic.motion import GroundMotion
+from ...analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, System, paper_system
 from ..core.cases import block_system
 from ..core.chunks import worker_pool
 from ..core.compare import exact_first_impact_time

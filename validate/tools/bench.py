@@ -18,12 +18,12 @@ import time
 
 import numpy as np
 
-from isorock.analytic import limits, paper_system
-from isorock.analytic.engine_protocol import declare_facet
-from isorock.analytic.errors import InputError
-from isorock.analytic.fast import compare_on_grid, simulate_fast
-from isorock.analytic.hybrid import AnalyticSettings, simulate as reference_simulate
-from isorock.analytic.motion import load_motion
+from ...analytic import limits, paper_system
+from ...analytic.engine_protocol import declare_facet
+from ...analytic.errors import InputError
+from ...analytic.fast import compare_on_grid, simulate_fast
+from ...analytic.hybrid import AnalyticSettings, simulate as reference_simulate
+from ...analytic.motion import load_motion
 from ..core.compare import compare
 from ..core.engines import campaign_engines, canonical, get_engine, resolve, settings_used
 from ..core.scenarios import KOBE, Scenario, bench_scenarios

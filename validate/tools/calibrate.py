@@ -37,10 +37,10 @@ import numpy as np
 from scipy.optimize import minimize
 from scipy.stats import qmc
 
-from isorock.analytic import limits
-from isorock.analytic.engine_protocol import declare_facet
-from isorock.analytic.errors import InputError
-from isorock.analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
+from ...analytic import limits
+from ...analytic.engine_protocol import declare_facet
+from ...analytic.errors import InputError
+from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from ..core.cases import Case as _Case
 from ..core.chunks import worker_pool
 from ..core.engines import get_engine

@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from isorock.analytic.errors import InputError, require
-from isorock.analytic.system import System
+from ...analytic.errors import InputError, require
+from ...analytic.system import System
 from ..core.cases import Case
 from ..core.chunks import run_cases
 from ..core.engines import REFERENCE, choose as engine_setting

@@ -4,7 +4,7 @@ numerical example"). Only the report reads it.
 """
 from __future__ import annotations
 
-from isorock.analytic.motion import GroundMotion
+from ...analytic.motion import GroundMotion
 from ..core.engines import REFERENCE
 
 #: The paper's θmax/α for the Kobe JMA N-S record (Figure 5).

@@ -15,7 +15,7 @@ import math
 from dataclasses import fields
 from pathlib import Path
 
-from isorock.analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD
+from ...analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD
 from ..core.engines import REFERENCE, describe_settings
 from ..core.measure import mode_sequence, slide_onset
 from ..core.tolerances import has_tolerance, limit, tolerance

@@ -25,11 +25,11 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.analytic.errors import InputError, require
-from isorock.analytic.limits import check_settings
-from isorock.analytic.motion import GroundMotion, load_motion
-from isorock.analytic.system import System, paper_system
-from isorock.analytic.trajectory import SLIDING_FRACTION
+from ...analytic.errors import InputError, require
+from ...analytic.limits import check_settings
+from ...analytic.motion import GroundMotion, load_motion
+from ...analytic.system import System, paper_system
+from ...analytic.trajectory import SLIDING_FRACTION
 from ..core.chunks import worker_pool
 from ..core.compare import Comparison, compare, exact_first_impact_time, horizon_units
 from ..core.estimate import estimate_line

@@ -22,10 +22,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from isorock.analytic import shape
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.errors import require
-from isorock.analytic.system import FrictionPendulum, PlanarBody, System
+from ...analytic import shape
+from ...analytic.motion import GroundMotion
+from ...analytic.errors import require
+from ...analytic.system import FrictionPendulum, PlanarBody, System
 from ..core.probes import reference_sensitivity
 from ..core.engines import REFERENCE, get_engine
 from ..core.measure import beta_errors

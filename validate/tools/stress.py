@@ -37,9 +37,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from isorock.analytic.coefficients import no_bounce_slenderness
-from isorock.analytic.errors import InputError
-from isorock.analytic.kinematics import LYING
+from ...analytic.coefficients import no_bounce_slenderness
+from ...analytic.errors import InputError
+from ...analytic.kinematics import LYING
 from ..core.cases import with_vertical_spec
 from ..core.chunks import worker_pool
 from ..core.engines import ENGINE_NAMES, REFERENCE, campaign_engines, get_engine

@@ -23,9 +23,9 @@ import time
 import numpy as np
 from PIL import Image, ImageDraw
 
-from isorock.analytic.engine_protocol import declare_facet
-from isorock.analytic.errors import InputError
-from isorock.analytic.system import PAPER_BLOCK
+from ...analytic.engine_protocol import declare_facet
+from ...analytic.errors import InputError
+from ...analytic.system import PAPER_BLOCK
 from ..core.engines import get_engine
 from ..core.scenarios import ROBUST_SINE
 from ..io.output import write_atomic

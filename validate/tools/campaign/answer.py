@@ -6,10 +6,10 @@ from __future__ import annotations
 import numbers
 from dataclasses import dataclass
 
-from isorock.analytic.errors import InputError, import_extra, path_value, python_number
-from isorock.analytic.limits import check_workers
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.system import LINEAR, PAPER_BLOCK
+from ....analytic.errors import InputError, import_extra, path_value, python_number
+from ....analytic.limits import check_workers
+from ....analytic.motion import GroundMotion
+from ....analytic.system import LINEAR, PAPER_BLOCK
 from ...io.output import Outputs
 from .design import (DEFAULT_GRIDS, DEFAULT_LEVELS, DEFAULT_TAIL, FAMILIES, Design, Hazard, Statue, check_axis,
                      check_decision, check_engines_carry, check_family_runs, check_points, check_size, check_with,

@@ -27,13 +27,13 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from isorock.analytic.errors import InputError, real_number
-from isorock.analytic.fast import simulate_batch
-from isorock.analytic.limits import check_acceleration, check_duration, check_isolator, check_period
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.rest_scales import rest_phases
-from isorock.analytic.shape import along_directions, weakest_direction
-from isorock.analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, BallInBowl, BallInCone,
+from ....analytic.errors import InputError, real_number
+from ....analytic.fast import simulate_batch
+from ....analytic.limits import check_acceleration, check_duration, check_isolator, check_period
+from ....analytic.motion import GroundMotion
+from ....analytic.rest_scales import rest_phases
+from ....analytic.shape import along_directions, weakest_direction
+from ....analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, BallInBowl, BallInCone,
                                      FrictionPendulum, PlanarBody, System)
 from ...core.cases import Case, _LazyScaled, record_factor
 from ...core.chunks import run_cases

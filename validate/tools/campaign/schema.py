@@ -20,7 +20,7 @@ from typing import Annotated, Any, Literal
 from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, StrictInt, StrictStr, ValidationError,
                       model_validator)
 
-from isorock.analytic.errors import InputError
+from ....analytic.errors import InputError
 from ...core.engines import ALL_ENGINES, check_settings_table
 from ...io import keys
 from ...io.schema import NonNegative, Positive, number as _number

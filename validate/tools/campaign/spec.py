@@ -19,11 +19,11 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from isorock.analytic import shape
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_acceleration, check_duration, check_isolator
-from isorock.analytic.motion import PULSES, UNITS
-from isorock.analytic.system import MAX_STATUE_FRICTION, PlanarBody, System
+from ....analytic import shape
+from ....analytic.errors import InputError
+from ....analytic.limits import check_acceleration, check_duration, check_isolator
+from ....analytic.motion import PULSES, UNITS
+from ....analytic.system import MAX_STATUE_FRICTION, PlanarBody, System
 from ...core.cases import Case, build_case, build_system, pulse_for
 from ...core.chunks import ANALYTIC_CHUNK, CONTACT_CHUNK
 from ...core.engines import ALL_ENGINES, EngineChoice, check_carries, choose, get_engine

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.system import PlanarBody, System
+from ....analytic.motion import GroundMotion
+from ....analytic.system import PlanarBody, System
 from ...core.engines import get_engine
 
 

@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.limits import check_acceleration
-from isorock.analytic.system import STANDARD_GRAVITY
+from ....analytic.errors import InputError
+from ....analytic.limits import check_acceleration
+from ....analytic.system import STANDARD_GRAVITY
 
 #: Units of the table acceleration this reader knows, as a header states them → m/s².
 ACCEL_UNITS = {"g": STANDARD_GRAVITY, "m/s2": 1.0, "m/s^2": 1.0, "gal": 0.01, "cm/s2": 0.01}

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from isorock.analytic.errors import InputError
+from ....analytic.errors import InputError
 
 from . import data, processing, scores, study
 

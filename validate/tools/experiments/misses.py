@@ -27,11 +27,11 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.analytic.errors import InputError
-from isorock.analytic.fast import simulate_batch
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.status import Status
-from isorock.analytic.system import MAX_STATUE_FRICTION
+from ....analytic.errors import InputError
+from ....analytic.fast import simulate_batch
+from ....analytic.motion import GroundMotion
+from ....analytic.status import Status
+from ....analytic.system import MAX_STATUE_FRICTION
 from . import data, processing, study
 
 #: the friction coefficients run (module doc: the data's simulation's 0.3–0.5 and 0.8)

@@ -22,7 +22,7 @@ import math
 import numpy as np
 from scipy import signal
 
-from isorock.analytic.errors import InputError
+from ....analytic.errors import InputError
 
 STEPS = ("offset", "drift", "highpass", "lowpass", "trim")
 DEFAULT_STEPS = ("offset", "drift", "lowpass", "trim")

@@ -11,9 +11,9 @@ import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from isorock.analytic import shape
-from isorock.analytic.errors import InputError
-from isorock.analytic.shape import RestingBody, mass_properties
+from ....analytic import shape
+from ....analytic.errors import InputError
+from ....analytic.shape import RestingBody, mass_properties
 
 #: The specimens' files and the data's placement (the data folder's README: the original
 #: repository's config files). Orientation quaternion (x, y, z, w) applied to the mesh.

@@ -32,11 +32,11 @@ from pathlib import Path
 
 import numpy as np
 
-from isorock.analytic.engine_protocol import declare_facet
-from isorock.analytic.errors import InputError
-from isorock.analytic.fast import simulate_batch
-from isorock.analytic.motion import GroundMotion
-from isorock.analytic.system import System
+from ....analytic.engine_protocol import declare_facet
+from ....analytic.errors import InputError
+from ....analytic.fast import simulate_batch
+from ....analytic.motion import GroundMotion
+from ....analytic.system import System
 from ...core.engines import get_engine
 from ...core.scenarios import shared_folder
 from . import asymmetric, data, processing, scores, specimen
