@@ -373,7 +373,7 @@ def sphere_geometry_first_impact_time(system: System, theta0: float, radius: flo
 
 _SDF = """<?xml version="1.0"?>
 <!-- isorock: {what} on {base_kind} base for Drake (pydrake Parser, SDFormat with drake: extensions).
-     Written by isorock.drake_models.scene for H = {H:g} m, B = {B:g} m, m = {m:g} kg, m_b = {mb:g} kg.
+     Written by isorock.drake_models.scene for H = {H:g} m, B = {B:g} m, m = {m:g} kg, m_b = {base_mass:g} kg{plate}.
      Plant settings that SDFormat cannot hold (simulate() applies them):
        {plant}
      Ground motion: apply -m*xg''(t) to the {body_x} and -m_b*xg''(t) to the isolator joint
@@ -638,6 +638,8 @@ def scene_text(system: System, settings: Settings | None = None, *, transverse: 
         if puck is None else f"a {system.isolator_kind} (k = {k:.6g} N/m, c = {c:.6g} N s/m, its dry friction "
         f"a puck held down on a floor: {puck.friction:.6g} x W = {puck.load:.6g} N)",
         H=system.height, B=system.width, D=2 * d, m=m, mb=mb, h=h, rot=repr(-math.pi / 2),
+        base_mass=system.base_mass,
+        plate="" if puck is None else f" (the plate {mb:g} kg, the puck {puck.mass:g} kg)",
         plant=_plant_description(settings), settings=listed,
         plate_z=-t / 2, W=w, T=t, bixx=mb * (w * w + t * t) / 12, biyy=mb * (w * w + t * t) / 12,
         bizz=mb * w * w / 6, plate_props=_props(settings, mu, hydro="rigid" if hydro else None),
