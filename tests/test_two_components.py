@@ -210,18 +210,21 @@ BUST_PAIR_ARGS = ["--statue-example", "bust", "--mass", "80", "--fixed-base", "-
                   "--motion-transverse", "sine:amp=0.63,freq=1.6,cycles=1", "--duration", "3"]
 
 
-def check_turned(turned, phi_deg: float, *, history: float, peak: float, turn_deg: float,
-                 travel: float = 1e-3) -> None:
-    """turned_pair_runs' two runs judged by one engine's bounds: the total tilt's history within
-    `history` of its peak, the peak tilt/α within `peak` (α), the direction at the peak turned by φ
-    within `turn_deg`, and on the isolator the base's travel within `travel` of its own peak."""
+def check_turned(turned, phi_deg: float, engine: str) -> None:
+    """turned_pair_runs' two runs judged by one engine's rows of the one table (pair_turned_*: what
+    `isorock validate` under a pair judges, validate/core/turned_pair.py), computed here from the
+    runs apart from that module: the total tilt's history within its row of its peak, the peak tilt/α
+    within its row (α), the direction at the peak turned by φ within its row (°), and on the isolator
+    the base's travel within its row of its own peak."""
+    def row(metric):
+        return tolerance(engine, f"pair_turned_{metric}").limit
     if turned.travel is not None:
-        assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= travel * np.max(turned.travel[0])
+        assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= row("travel") * np.max(turned.travel[0])
     tilts, three = turned.tilts, turned.three
-    assert np.max(np.abs(tilts[0] - tilts[1])) <= history * np.max(tilts[0])
-    assert abs(three[1].tilt_max_over_alpha - three[0].tilt_max_over_alpha) <= peak
+    assert np.max(np.abs(tilts[0] - tilts[1])) <= row("tilt_history") * np.max(tilts[0])
+    assert abs(three[1].tilt_max_over_alpha - three[0].tilt_max_over_alpha) <= row("tilt_max_diff")
     turn = (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360
-    assert min(turn, 360 - turn) < turn_deg
+    assert min(turn, 360 - turn) < row("direction_deg")
 
 
 def run_reports_3d(argv, tmp_path, capsys, engine: str) -> dict:
@@ -252,13 +255,7 @@ def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, 
     runs (Settings of the first system)."""
     turned = turned_pair_runs(MUJOCO, bust, isolated, phi_deg,
                               lambda first: Settings().for_system(first, TURNED_DURATION))
-    if isolated:
-        assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
-    tilts, three = turned.tilts, turned.three
-    assert np.max(np.abs(tilts[0] - tilts[1])) <= 1e-3 * np.max(tilts[0])
-    assert three[1].tilt_max_over_alpha == pytest.approx(three[0].tilt_max_over_alpha, rel=1e-3)
-    assert (three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360 == pytest.approx(
-        0, abs=0.5) or abs((three[1].direction_at_max_deg - three[0].direction_at_max_deg + phi_deg) % 360 - 360) < 0.5
+    check_turned(turned, phi_deg, "mujoco")
 
 
 def test_a_pair_turned_is_the_same_vector():
@@ -471,8 +468,7 @@ FP_TURNED_PAIR = _record("sine:amp=1.5,freq=2.5,cycles=1").with_transverse(_reco
 def test_turning_the_pair_and_the_statue_on_a_friction_pendulum_gives_the_same_tilt(bust):
     """As on the linear isolator (above), on a friction pendulum (R 0.5 m, μ 0.2: stiff enough that
     the bust rocks, to 0.23 α): the bust's total tilt and the base's travel are scalars of the
-    statue's frame, the pendulum isotropic; the same bounds as on the linear isolator."""
+    statue's frame, the pendulum isotropic; MuJoCo's rows of the table, as on the linear isolator."""
     turned = turned_pair_runs(MUJOCO, bust, FP_TURNED, 30.0,
                               lambda first: Settings().for_system(first, TURNED_DURATION), pair=FP_TURNED_PAIR)
-    assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
-    assert np.max(np.abs(turned.tilts[0] - turned.tilts[1])) <= 1e-3 * np.max(turned.tilts[0])
+    check_turned(turned, 30.0, "mujoco")

@@ -86,16 +86,16 @@ def test_the_block_shaken_along_y_alone_rocks_as_the_exact_model_along_y(system,
 @pytest.mark.parametrize("isolated, phi_deg", [(False, 30.0), (False, 200.0), (True, 30.0)],
                          ids=["fixed-30", "fixed-200", "linear-30"])
 def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt(bust, isolated, phi_deg):
-    """As MuJoCo's test, by a looser bound: the total tilt's history within 1e-2 of its peak, and
-    on the isotropic isolator the base's travel √(u² + u_y²) within 1e-3 of its own. Measured 4.0e-3
+    """As MuJoCo's test, by PyBullet's looser rows (pair_turned_*): the total tilt's history within 2e-2
+    of its peak, and on the isotropic isolator the base's travel √(u² + u_y²) within 1e-3 of its own. Measured 4.0e-3
     (fixed, 30°), 3.7e-3 (fixed, 200°) and 6.8e-3 (linear, 30°) in tilt, 2e-4 in travel (MuJoCo:
     ≤ 1.2e-5): Bullet's sequential-impulse solver, its hull's contacts on the axis-aligned plate
     asymmetric at rest (docs/statues.md: out of plane 4e-5–2.4e-4), is further from rotation-invariant
-    than MuJoCo's. 1e-2 of a peak of 0.19 α is 0.002 α, a tenth of the 0.02 α row the engines'
+    than MuJoCo's. 2e-2 of a peak of 0.19 α is 0.004 α, a fifth of the 0.02 α row the engines'
     peaks are judged by; the peak tilt/α itself within 0.005 α (measured ≤ 0.0007)."""
     turned = turned_pair_runs(BULLET, bust, isolated, phi_deg, lambda first: Settings().for_system(first),
                               duration=SLOW_TURNED_DURATION)
-    check_turned(turned, phi_deg, history=1e-2, peak=0.005, turn_deg=1.0)
+    check_turned(turned, phi_deg, "bullet")
 
 
 # --- the command ------------------------------------------------------------------------------
@@ -126,14 +126,12 @@ def test_a_pendulums_friction_under_a_pair_is_the_same_in_every_direction(isolat
 
 
 def test_turning_the_pair_and_the_statue_on_a_friction_pendulum_gives_the_same_tilt(bust):
-    """MuJoCo's friction pendulum case (R 0.5 m, μ 0.2, the bust rocking to 0.21 α) turned by 30°:
-    the base's travel within 1e-3 of its peak and the peak tilt/α within 0.005 α, the linear
-    isolator's bounds (measured 3.8e-4 and 2.6e-4 α). The tilt's history is not held to its 1e-2
-    here: measured 1.7e-2 of the peak (the linear isolator's: 6.8e-3), Bullet's contacts further
-    from rotation-invariant under the base's stick and slip (docs/statues.md)."""
+    """MuJoCo's friction pendulum case (R 0.5 m, μ 0.2, the bust rocking to 0.21 α) turned by 30°,
+    by PyBullet's rows of the table (pair_turned_*): measured the base's travel within 3.8e-4 of its
+    peak, the peak tilt/α within 2.6e-4 α, the tilt's history within 1.7e-2 of its peak (the linear
+    isolator's: 6.8e-3; its row's 2e-2 is set by this case), Bullet's contacts further from
+    rotation-invariant under the base's stick and slip (docs/statues.md)."""
     from test_two_components import FP_TURNED, FP_TURNED_PAIR
     turned = turned_pair_runs(BULLET, bust, FP_TURNED, 30.0, lambda first: Settings().for_system(first),
                               duration=SLOW_TURNED_DURATION, pair=FP_TURNED_PAIR)
-    assert np.max(np.abs(turned.travel[0] - turned.travel[1])) <= 1e-3 * np.max(turned.travel[0])
-    assert abs(turned.three[1].tilt_max_over_alpha - turned.three[0].tilt_max_over_alpha) <= 0.005
-    assert np.max(np.abs(turned.tilts[0] - turned.tilts[1])) <= 0.05 * np.max(turned.tilts[0])  # the same rocking
+    check_turned(turned, 30.0, "bullet")

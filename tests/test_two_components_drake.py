@@ -151,7 +151,7 @@ def test_turning_the_pair_and_the_statue_by_one_angle_gives_the_same_tilt_on_the
     on the fixed base at 200° the history parts by 0.19 of its peak at 1e-4 late in the rocking (a
     small, twisting phase after 0.85 s; the peaks agree within 0.0002 α) and by 5.4e-3 at 1e-5."""
     turned = turned_pair_runs(DRAKE, bust, True, 30.0, lambda first: Settings().for_system(first), duration=1.2)
-    check_turned(turned, 30.0, history=2e-2, peak=0.005, turn_deg=1.0)
+    check_turned(turned, 30.0, "drake")
 
 
 # --- the command ------------------------------------------------------------------------------

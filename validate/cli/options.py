@@ -303,6 +303,13 @@ def system_from_options(a, defaults: dict | None = None, statue: dict | None = N
     required=False)`), over `defaults` (a TOML [system] table) and `statue` (a TOML [statue]
     table: mesh, example, unit, density, azimuth; the options win); None when none is given,
     for the command's own default system."""
+    given = system_options(a, defaults, statue)
+    return None if given is None else system_from_args(given[0], statue_names=given[1])
+
+
+def system_options(a, defaults: dict | None = None, statue: dict | None = None):
+    """(the options and tables merged, as system_from_args and statue_body read them; the names
+    a statue's inputs go by in errors) of system_from_options, or None when none is given."""
     values = {k: (defaults or {}).get(k) for k in SYSTEM_KEYS}
     for k in SYSTEM_KEYS:
         v = getattr(a, k, None)
@@ -334,7 +341,7 @@ def system_from_options(a, defaults: dict | None = None, statue: dict | None = N
         names["source"] = "its mesh (statue.mesh = FILE) or an example (statue.example = NAME)"
     if getattr(a, "mass", None) in (None, False) and (defaults or {}).get("mass") is not None:
         names["mass"] = "system.mass"
-    return system_from_args(SimpleNamespace(**values, **mesh), statue_names=names)
+    return SimpleNamespace(**values, **mesh), names
 
 
 def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:

@@ -13,9 +13,10 @@ from ...analytic.errors import InputError
 from ...analytic.limits import check_workers
 from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from .config_file import check_damping_ratio, read_config
+from . import pair_report
 from .options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
-                      add_system_options, add_units_option, check_tables_run, engine_tables, number,
-                      system_from_options)
+                      add_system_options, add_transverse_options, add_units_option, check_tables_run, engine_tables,
+                      number, system_from_options, transverse_asked)
 from .run import engine_labels
 from ..core.engines import ENGINE_NAMES, resolve
 from ..core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
@@ -75,6 +76,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     add_isolator_options(p, in_file=True)  # every isolator kind, as `run` takes it (docs/isolators.md)
     add_statue_options(p)  # its mesh instead of H × B: the engines that carry it judged on it (docs/statues.md)
     add_engine_options(p)
+    add_transverse_options(p)  # a record pair: each engine that runs it judged on turning it (pair_report.py)
     p.set_defaults(func=run)
     return p
 
@@ -103,17 +105,37 @@ def _read_config(path) -> dict:
     return read_config(path)
 
 
+def engine_overrides(args, config: dict, engines) -> dict:
+    """table → settings of the engines: the --config file's [settings.ENGINE] tables, and over them
+    table by table the command line's (--set and the engine options)."""
+    overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
+    given = engine_tables(args)
+    check_tables_run(given, engines)
+    for table, values in given.items():
+        if values:  # "*": a setting on the command line applies to every engine that has it
+            overrides[table] = {**overrides.get(table, {}), **values}
+    return overrides
+
+
+def _pair_report(args) -> int:
+    """validate under a record pair: the options read as report_config reads them (the engines
+    without the analytic reference: the exact model is planar, beside each engine, unjudged)."""
+    config = _read_config(args.config) if args.config else {}
+    engines = tuple(engine_labels(args.engines)) if args.engines else pair_report.DEFAULT_PAIR_ENGINES
+    overrides = engine_overrides(args, config, engines)
+    system = system_from_options(args, config.get("system"), config.get("statue"))
+    if system is not None:
+        check_damping_ratio(system)
+    duration = args.duration if args.duration is not None else config.get("duration")
+    return pair_report.run(args, config, engines=engines, overrides=overrides, system=system, duration=duration)
+
+
 def report_config(args):
     """The validate options `args` (the parser's namespace) and the --config file they name,
     checked and merged into the report's ReportConfig, before any run."""
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
-    overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
-    given = engine_tables(args)  # the command line's settings, over the file's table by table
-    check_tables_run(given, engines)
-    for table, values in given.items():
-        if values:  # "*": a setting on the command line applies to every engine that has it
-            overrides[table] = {**overrides.get(table, {}), **values}
+    overrides = engine_overrides(args, config, engines)
     if args.workers is not None:
         check_workers("workers", args.workers)
     report = ReportConfig(motions=tuple(args.motion or config.get("motions") or DEFAULT_MOTIONS), engines=engines,
@@ -136,6 +158,8 @@ def report_config(args):
 
 def run(args) -> int:
     from ..tools.report_render import verdict, write_report  # lazy: matplotlib, once the runs are done
+    if transverse_asked(args):  # a record pair: its own report (pair_report.py)
+        return _pair_report(args)
     check_folder(args.out)  # a folder we may not write is refused before the runs, not after
     report = report_config(args)
     bars = []  # made by the report once it knows how many runs it makes

@@ -61,6 +61,11 @@ Metrics (units):
     history_vs_mujoco              max |Δθ|/α (and |Δu|/u_max) of a batched port of MuJoCo (MJX, MuJoCo Warp)
                                    against MuJoCo C stepping the same scene throughout
     batch_vs_alone                 max |Δθ| (rad) of a run stepped in a batch against the same run alone
+    pair_turned_tilt_history       a record pair and the statue turned together by one angle (core/turned_pair.py,
+                                   an exact symmetry): max |Δ total tilt| over the peak total tilt
+    pair_turned_tilt_max_diff      the same two runs: |Δ peak tilt/α| (α of the edge it leans towards)
+    pair_turned_direction_deg      the same two runs: the direction it leaned at its peak, turned by the angle (°)
+    pair_turned_travel             the same two runs on an isolator: max |Δ √(u² + u_y²)| over its peak
 """
 from __future__ import annotations
 
@@ -485,6 +490,39 @@ TOLERANCES.update({(port, m): Tolerance(t.limit, f"as MuJoCo's ({label} steps it
                    if e == "mujoco" and (port, m) not in TOLERANCES and m in ("beta_rel_error", "beta2_abs_error", "first_impact_time_rel_error",
                                               "theta_max_diff", "impacts_diff", "u_max_rel_error", "first_uplift_diff",
                                               "overturn_agree", "beta_rel_error_per_impact")})
+
+# --- a record pair and the statue turned together by one angle (core/turned_pair.py): the same ground
+# acceleration in the statue's own frame, so an exact symmetry of the physics; the scenes meet it to the
+# roundoff of a hull on an axis-aligned plate in a turned frame, grown through the impacts (MuJoCo), or to
+# their contact's anisotropy or their integrator's error control (the others). Measured on the bust under
+# the tests' sine pairs, turned by 30° and 200° on a fixed base and 30° on the linear isolator
+# (tests/test_two_components*.py: TURNED_DURATION, SLOW_TURNED_DURATION; Drake over 1.2 s)
+_TURNED = {
+    "mujoco": (1e-3, "measured 1.2e-5 (fixed, 30°), 7e-6 (fixed, 200°), 1.8e-6 (linear, 30°), 8.7e-5 on the friction "
+                     "pendulum R 0.5 m, μ 0.2 (its stick–slip); the hull's contacts differ by roundoff in the turned "
+                     "frame (1e-12 on a quarter turn) and that grows through the impacts",
+               1e-3, "measured ≤ 2.1e-7 α", 0.5, "measured ≤ 3.2e-5°", 1e-3,
+               "measured 4.7e-8 (linear), 3.6e-6 (friction pendulum)"),
+    "bullet": (2e-2, "measured 4.0e-3 (fixed, 30°), 3.7e-3 (fixed, 200°), 6.8e-3 (linear, 30°), 1.7e-2 on the friction "
+                     "pendulum: Bullet's sequential-impulse solver, its hull's contacts on the axis-aligned plate "
+                     "asymmetric at rest (out of plane 4e-5–2.4e-4), is further from rotation-invariant than MuJoCo's",
+               5e-3, "measured ≤ 6.8e-4 α; a quarter of the 0.02 α row single histories are judged by", 1.0,
+               "measured ≤ 0.15° (0.033° on the friction pendulum)", 1e-3, "measured 2.0e-4 (linear), 3.8e-4 (friction "
+                                                                            "pendulum)"),
+    "drake": (2e-2, "measured 1.04e-2 (linear, 30°, 1.2 s): Radau3's error control (accuracy 1e-4) picks other steps "
+                    "in the turned frame, so the runs differ by the integrator's error grown through the impacts "
+                    "(5.4e-3 at accuracy 1e-5)",
+              5e-3, "measured 1.1e-3 α; a quarter of the 0.02 α row", 1.0, "measured 0.02°", 1e-3,
+              "measured 3.7e-4"),
+    "dart": (1e-2, "measured 3.0e-3 (fixed, 30°), 8.1e-4 (fixed, 200°), 1.4e-3 (linear, 30°) at the pair's friction 5 "
+                   "(dart:pair): DART's LCP friction pyramid lies along the world's x and y, so the turned scene is "
+                   "not the same problem to roundoff; at μ 1 the bust slips and this fails (42% of the peak at 30°)",
+             1e-3, "measured ≤ 6.7e-6 α", 0.5, "measured ≤ 5.4e-4°", 1e-3, "measured 3.2e-5"),
+}
+TOLERANCES.update({(engine, metric): Tolerance(limit, reason)
+                   for engine, (h, hr, p, pr, d, dr, t, tr) in _TURNED.items()
+                   for metric, limit, reason in (("pair_turned_tilt_history", h, hr), ("pair_turned_tilt_max_diff", p, pr),
+                                                 ("pair_turned_direction_deg", d, dr), ("pair_turned_travel", t, tr))})
 
 #: A single history is checked against the analytic model only when the analytic
 #: θmax/α moves less than this (in units of α) under a ±1% change of PGA and its
