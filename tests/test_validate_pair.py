@@ -121,3 +121,15 @@ def test_a_pair_without_a_system_is_one_line(tmp_path, capsys):
                  "--out", str(tmp_path / "rep")])
     err = capsys.readouterr().err
     assert code == 2 and "system:" in err and err.count("\n") == 1, err
+
+
+def test_isorock_report_takes_a_pair_as_the_command_does(tmp_path):
+    """The notebook API: the same pair's validation returned (and written where `out` is given),
+    never the one-component report with the second component dropped."""
+    import isorock
+    v = isorock.report(statue_example="bust", mass=80, fixed_base=True, motion="sine:amp=0.7,freq=2,cycles=1",
+                       motion_transverse="sine:amp=0.63,freq=1.6,cycles=1", engines=["mujoco"],
+                       out=str(tmp_path / "rep"))
+    assert v.passed and v.verdict.startswith("Result: all 3 checks passed") and "pair turned 30°" in v.checks()["scenario"][0]
+    assert json.loads((tmp_path / "rep" / "metrics.json").read_text())["verdict"] == v.verdict
+    assert set(v.results) == {"mujoco"} and v.results["mujoco"].turn_deg == turned_pair.TURN_DEG

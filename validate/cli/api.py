@@ -31,7 +31,7 @@ from ..core.executor import exit_if_bootstrapping
 from ..io.output import check_folder
 from ..io.progress import Progress
 from .main import build_parser
-from .options import run_budget
+from .options import run_budget, transverse_asked
 
 
 def _parser(command: str) -> argparse.ArgumentParser:
@@ -162,6 +162,8 @@ def report(*, out: str | None = None, progress: bool = False, **options) -> Vali
     a = _parse("validate", options)
     if out is not None:
         check_folder(out)
+    if transverse_asked(a):  # a record pair: the pair's validation (pair_report.py), as the command makes it
+        return _pair_report(a, out)
     try:
         config = report_config(a)
     except InputError as e:
@@ -177,6 +179,18 @@ def report(*, out: str | None = None, progress: bool = False, **options) -> Vali
     if out is not None:
         write_report(results, out)
     return Validation(verdict(results), not results.failed, metrics(results), results)
+
+
+def _pair_report(a, out) -> "Validation":
+    from . import pair_report  # lazy: each entry point its own modules
+    from .report import pair_inputs
+    try:
+        metrics, results = pair_report.build(a, **pair_inputs(a))
+    except InputError as e:
+        raise InputError(_keywords(str(e))) from None
+    if out is not None:
+        pair_report.write(metrics, out)
+    return Validation(metrics["verdict"], not any(c["status"] == "fail" for c in metrics["checks"]), metrics, results)
 
 
 def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, products: bool = True,

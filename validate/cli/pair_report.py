@@ -16,7 +16,7 @@ from ...analytic.limits import RUN_BUDGET_S
 from ..core import biaxial, turned_pair
 from ..core.engines import get_engine, table_overrides
 from ..core.plan import engine_run, make_plan
-from ..io.output import check_folder, to_json, write_folder_atomic
+from ..io.output import to_json, write_folder_atomic
 from .options import announce_cost, motion_from_args, statue_azimuth, statue_body, system_options
 
 #: the engines judged when --engines is not given: validate's defaults that run a pair
@@ -79,10 +79,11 @@ def _settled(labels, system, motion, overrides_for, duration):
     return make_plan(system, motion, runs, duration=duration), skipped
 
 
-def run(args, config: dict, *, engines, overrides: dict, system, duration) -> int:
-    """The pair's validation: `engines` the labels asked, `overrides` table → settings (validate's
-    --set, engine options and [settings.ENGINE] tables), `system` the System the options give."""
-    check_folder(args.out)  # a folder we may not write is refused before the runs
+def build(args, config: dict, *, engines, overrides: dict, system, duration) -> tuple[dict, dict]:
+    """(what metrics.json holds, label → turned_pair.TurnedRuns or the error of an engine that did
+    not run) of the pair's validation: `engines` the labels asked, `overrides` table → settings
+    (validate's --set, engine options and [settings.ENGINE] tables), `system` the System the options
+    give. The command writes the first; isorock.report returns both."""
     motion = pair_motion(args, config)
     if system is None:
         raise InputError("system: with a record pair, give the statue (--statue or --statue-example) or the block "
@@ -101,20 +102,29 @@ def run(args, config: dict, *, engines, overrides: dict, system, duration) -> in
     skipped.update({k: str(r).splitlines()[0] for k, r in results.items() if k not in ran})
     three = biaxial.two_components({k: r.first for k, r in ran.items()}, system, motion, body, azimuth, plan.duration)
     checks = [c for r in ran.values() for c in r.checks]
-    failed = [c for c in checks if c.status == "fail"]
     judged = list(ran)
     verdict = pair_verdict(checks, turn, judged, skipped)
     metrics = {"verdict": verdict, "motion": motion.describe(), "system": system.describe(), "turn_deg": turn,
                "azimuth_deg": math.degrees(azimuth) % 360.0,
                "checks": [c.as_dict() for c in checks], "not_run": skipped, "two_components": three}
+    return metrics, results
 
+
+def run(args, **inputs) -> int:
+    """The command: the report written (report.md, metrics.json, whole or absent), the verdict last."""
+    metrics, _ = build(args, **inputs)
+    write(metrics, args.out)
+    print(f"wrote {args.out}/report.md, metrics.json")
+    print(metrics["verdict"])
+    return 1 if any(c["status"] == "fail" for c in metrics["checks"]) else 0
+
+
+def write(metrics: dict, out) -> None:
+    """report.md and metrics.json into `out`, whole or absent (write_folder_atomic)."""
     def fill(tmp):
         (tmp / "report.md").write_text(render(metrics), encoding="utf-8")
         (tmp / "metrics.json").write_text(to_json(metrics) + "\n", encoding="utf-8")
-    write_folder_atomic(args.out, fill)
-    print(f"wrote {args.out}/report.md, metrics.json")
-    print(verdict)
-    return 1 if failed else 0
+    write_folder_atomic(out, fill)
 
 
 def pair_verdict(checks, turn: float, judged, skipped: dict) -> str:

@@ -118,7 +118,13 @@ def engine_overrides(args, config: dict, engines) -> dict:
 
 
 def _pair_report(args) -> int:
-    """validate under a record pair: the options read as report_config reads them (the engines
+    """validate under a record pair (pair_report.py)."""
+    check_folder(args.out)  # a folder we may not write is refused before the runs
+    return pair_report.run(args, **pair_inputs(args))
+
+
+def pair_inputs(args) -> dict:
+    """The options of validate under a record pair read as report_config reads them (the engines
     without the analytic reference: the exact model is planar, beside each engine, unjudged)."""
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines)) if args.engines else pair_report.DEFAULT_PAIR_ENGINES
@@ -127,7 +133,7 @@ def _pair_report(args) -> int:
     if system is not None:
         check_damping_ratio(system)
     duration = args.duration if args.duration is not None else config.get("duration")
-    return pair_report.run(args, config, engines=engines, overrides=overrides, system=system, duration=duration)
+    return dict(config=config, engines=engines, overrides=overrides, system=system, duration=duration)
 
 
 def report_config(args):
