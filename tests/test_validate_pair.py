@@ -107,6 +107,9 @@ def test_a_pair_that_rocks_nothing_tests_nothing_and_says_so(tmp_path, capsys):
       "sine:amp=0.5,freq=2"], "--motion = ["),
     (["--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "sine:amp=0.5,freq=2", "--engines", "analytic"],
      "--engines = analytic: none runs this pair"),
+    (["--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "sine:amp=0.5,freq=2", "--scales", "1,2,3"],
+     "--scales: validate with a record pair runs no ensemble"),
+    (["--motion", "sine:amp=0.5,freq=2", "--motion-transverse", "sine:amp=0.5,freq=2", "--quick"], "--quick:"),
 ])
 def test_bad_pair_input_is_one_line_and_exit_2(tmp_path, capsys, args, says):
     code = main(["validate", "--statue-example", "bust", "--mass", "80", "--fixed-base", *args,

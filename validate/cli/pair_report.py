@@ -53,7 +53,7 @@ def shaken(args, config: dict, system) -> tuple:
     return standing, statue_azimuth(given, standing, names)
 
 
-def _settled(labels, system, motion, overrides_for, duration):
+def _settled(labels, system, motion, overrides_for, duration, overturn_rule=None):
     """(the plan of the engines that run this pair, label → the one line why each other does not)."""
     runs, skipped = [], {}
     for label in labels:
@@ -67,7 +67,8 @@ def _settled(labels, system, motion, overrides_for, duration):
                               if engine.capabilities.exact_impacts else "runs one horizontal component only")
             continue
         try:
-            make_plan(system, motion, [engine_run(label, overrides_for(label))], duration=duration)
+            make_plan(system, motion, [engine_run(label, overrides_for(label))], duration=duration,
+                      overturn_rule=overturn_rule)
         except InputError as e:  # its own one line (DART below its pair friction, an isolator it does not carry)
             skipped[label] = str(e)
             continue
@@ -76,7 +77,7 @@ def _settled(labels, system, motion, overrides_for, duration):
         raise InputError(f"--engines = {', '.join(labels)}: none runs this pair ("
                          + "; ".join(f"{k}: {v}" for k, v in skipped.items())
                          + "); engines 'mujoco', 'bullet', 'drake' and 'dart:pair' run two horizontal components")
-    return make_plan(system, motion, runs, duration=duration), skipped
+    return make_plan(system, motion, runs, duration=duration, overturn_rule=overturn_rule), skipped
 
 
 def build(args, config: dict, *, engines, overrides: dict, system, duration) -> tuple[dict, dict]:
@@ -84,13 +85,19 @@ def build(args, config: dict, *, engines, overrides: dict, system, duration) -> 
     not run) of the pair's validation: `engines` the labels asked, `overrides` table → settings
     (validate's --set, engine options and [settings.ENGINE] tables), `system` the System the options
     give. The command writes the first; isorock.report returns both."""
+    for option, given in (("--quick", args.quick or bool(config.get("quick"))), ("--scales", args.scales is not None),
+                          ("--workers", args.workers is not None)):
+        if given:  # they shape the one-component report's ensembles and pool: said, never dropped unsaid
+            raise InputError(f"{option}: validate with a record pair runs no ensemble and no worker pool (each engine's "
+                             "three runs, here); leave it out")
     motion = pair_motion(args, config)
     if system is None:
         raise InputError("system: with a record pair, give the statue (--statue or --statue-example) or the block "
                          "(--height, --width, --mass) and its base; validate's paper block is for one component")
     body, azimuth = shaken(args, config, system)
     duration = duration if duration is not None else motion.last_time + TAIL
-    plan, skipped = _settled(engines, system, motion, lambda label: table_overrides(overrides, label), duration)
+    plan, skipped = _settled(engines, system, motion, lambda label: table_overrides(overrides, label), duration,
+                             args.overturn)
     turn = turned_pair.TURN_DEG if system.body is not None else turned_pair.QUARTER_TURN
     # each engine runs twice; each run stops at the run budget (limits.RUN_BUDGET_S), said before
     announce_cost("validate", {r.label: 2 * plan.duration for r in plan.runs}, RUN_BUDGET_S, quiet=args.quiet)
