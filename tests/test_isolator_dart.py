@@ -6,7 +6,8 @@ history and peak, θmax/α and counted impacts (engine "analytic"); the closed f
 (half period π√(R/g), Coulomb decay 2μ_f·R per half cycle) and of the stick–slip onset asin(μ_f/A)/ω
 (tests/test_isolator_engines.py's measures); the isotropy of a pair (the same pulse along 0°, 45°,
 90°); and counterfactuals that show the isotropy and decay oracles can fail. The other non-linear
-isolators stay refused in one line. Short motions: every run here costs a few seconds at most."""
+isolators stay refused in one line (tests/test_isolator_refusals.py). Short motions: every run here costs a few
+seconds at most."""
 from __future__ import annotations
 
 import functools
@@ -24,12 +25,9 @@ from test_isolator_engines import measure_onset, measure_pendulum_free  # noqa: 
 from test_two_components import STILL_BLOCK, SLIDING_PULSE, _travels, check_pendulum_isotropy  # noqa: E402
 
 import isorock.dart_models as dart_models  # noqa: E402
-from isorock.analytic.errors import InputError  # noqa: E402
 from isorock.analytic.isolator_parts import isolator_parts  # noqa: E402
 from isorock.analytic.motion import load_motion  # noqa: E402
-from isorock.analytic.system import (BallInBowl, BallInCone, BilinearIsolator, DoubleFrictionPendulum,  # noqa: E402
-                                     FrictionPendulum, System)
-from isorock.validate.cli.main import main  # noqa: E402
+from isorock.analytic.system import BallInBowl, FrictionPendulum, System  # noqa: E402
 from isorock.validate.core.engines import get_engine  # noqa: E402
 from isorock.validate.core.tolerances import tolerance  # noqa: E402
 
@@ -171,28 +169,3 @@ def test_a_friction_bounded_on_each_axis_apart_would_fail_that(monkeypatch):
     system = System.with_isolator(**STILL_BLOCK, isolator=PENDULUM)
     (along_x, _), (diagonal, _) = _travels(system, (0.0, 45.0), duration=1.6, engine=DART_PAIR)
     assert diagonal / along_x - 1 < -0.05
-
-
-@pytest.mark.parametrize("isolator, named", [
-    (BilinearIsolator(stiffness=3e5, post_yield_ratio=0.5, yield_displacement=0.005), "isolator = bilinear"),
-    (BallInCone(slope=0.1, rolling_resistance=0.01), "isolator = ball-in-cone"),
-    (DoubleFrictionPendulum(1.0, 0.03, 1.0, 0.06), "isolator = double-friction-pendulum"),
-    (FrictionPendulum(radius=1.0, friction_coefficient=0.05, friction_max=0.1, friction_rate=20.0),
-     "friction_rate"),
-], ids=["bilinear", "ball-in-cone", "double-pendulum", "friction-rate"])
-def test_dart_refuses_the_other_isolators_in_one_line(isolator, named):
-    system = System.with_isolator(**STILL_BLOCK, isolator=isolator)
-    with pytest.raises(InputError, match=named) as e:
-        DART.simulate(system, load_motion(SLIDING_PULSE), duration=1.0)
-    assert "\n" not in str(e.value)
-
-
-def test_the_command_refuses_them_in_one_line_exit_2(capsys):
-    block = ["--height", "2.0", "--width", "0.7", "--mass", "1000", "--base-mass", "1000", "--engine", "dart"]
-    for args, named in ((["--isolator", "bilinear", "--stiffness", "1e5", "--post-yield-ratio", "0.1",
-                          "--yield-displacement", "0.01"], "isolator = bilinear"),
-                        (["--isolator", "ball-in-cone", "--slope", "0.1", "--rolling-resistance", "0.01"],
-                         "isolator = ball-in-cone")):
-        code = main(["run", *block, *args, "--motion", "sine:amp=0.3,freq=1,cycles=1"])
-        err = capsys.readouterr().err.strip()
-        assert code == 2 and len(err.splitlines()) == 1 and named in err, err

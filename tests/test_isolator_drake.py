@@ -3,7 +3,8 @@ puck"): the pendulum's dry friction μ·W is a light puck's point contact under 
 on a floor (drake_models/scene.py _pendulum_puck), as MuJoCo's and PyBullet's under a pair. Judged
 against oracles Drake does not compute: the exact model's base history and peak (engine "analytic"),
 the isotropy of the pendulum in the plane (the same pulse along 0°, 45°, 90°), and a counterfactual
-that shows the isotropy oracle can fail. The other non-linear isolators stay refused in one line.
+that shows the isotropy oracle can fail. The other non-linear isolators stay refused in one line
+(tests/test_isolator_refusals.py).
 Drake's runs cost ~1 s each here: short pulses, short tails."""
 from __future__ import annotations
 
@@ -14,15 +15,12 @@ pd = pytest.importorskip("pydrake.all", reason="pydrake is not installed (the dr
 pytest.importorskip("mujoco")  # the helpers' module needs it
 pytest.importorskip("trimesh")
 
-from test_two_components import STILL_BLOCK, SLIDING_PULSE, _record, _travels, check_pendulum_isotropy  # noqa: E402
+from test_two_components import STILL_BLOCK, SLIDING_PULSE, _travels, check_pendulum_isotropy  # noqa: E402
 
-from isorock.analytic.errors import InputError  # noqa: E402
 from isorock.analytic.isolator_parts import PUCK_MASS_SHARE, isolator_parts, pendulum_puck  # noqa: E402
 from isorock.analytic.motion import load_motion  # noqa: E402
-from isorock.analytic.system import (BallInBowl, BallInCone, BilinearIsolator, DoubleFrictionPendulum,  # noqa: E402
-                                     FrictionPendulum, System, paper_system)
+from isorock.analytic.system import BallInBowl, FrictionPendulum, System, paper_system  # noqa: E402
 from isorock.drake_models import Settings, scene  # noqa: E402
-from isorock.validate.cli.main import main  # noqa: E402
 from isorock.validate.core.engines import get_engine  # noqa: E402
 from isorock.validate.core.tolerances import tolerance  # noqa: E402
 
@@ -145,28 +143,3 @@ def test_a_stiffer_spring_along_y_would_fail_that(monkeypatch):
     system = System.with_isolator(**STILL_BLOCK, isolator=PENDULUM)
     (along_x, _), (along_y, _) = _travels(system, (0.0, 90.0), duration=2.0, engine=DRAKE)
     assert abs(along_y / along_x - 1) > 1e-2
-
-
-@pytest.mark.parametrize("isolator, named", [
-    (BilinearIsolator(stiffness=3e5, post_yield_ratio=0.5, yield_displacement=0.005), "isolator = bilinear"),
-    (BallInCone(slope=0.1, rolling_resistance=0.01), "isolator = ball-in-cone"),
-    (DoubleFrictionPendulum(1.0, 0.03, 1.0, 0.06), "isolator = double-friction-pendulum"),
-    (FrictionPendulum(radius=1.0, friction_coefficient=0.05, friction_max=0.1, friction_rate=20.0),
-     "friction_rate"),
-], ids=["bilinear", "ball-in-cone", "double-pendulum", "friction-rate"])
-def test_drake_refuses_the_other_isolators_in_one_line(isolator, named):
-    system = System.with_isolator(**STILL_BLOCK, isolator=isolator)
-    with pytest.raises(InputError, match=named) as e:
-        DRAKE.simulate(system, load_motion(SLIDING_PULSE), duration=1.0)
-    assert "\n" not in str(e.value)
-
-
-def test_the_command_refuses_them_in_one_line_exit_2(capsys):
-    block = ["--height", "2.0", "--width", "0.7", "--mass", "1000", "--base-mass", "1000", "--engine", "drake"]
-    for args, named in ((["--isolator", "bilinear", "--stiffness", "1e5", "--post-yield-ratio", "0.1",
-                          "--yield-displacement", "0.01"], "isolator = bilinear"),
-                        (["--isolator", "ball-in-cone", "--slope", "0.1", "--rolling-resistance", "0.01"],
-                         "isolator = ball-in-cone")):
-        code = main(["run", *block, *args, "--motion", "sine:amp=0.3,freq=1,cycles=1"])
-        err = capsys.readouterr().err.strip()
-        assert code == 2 and len(err.splitlines()) == 1 and named in err, err
