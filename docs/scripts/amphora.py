@@ -15,7 +15,8 @@ r_f = 5 cm, a 96-gon (trimesh's revolve). Four questions, each a table:
    registry's measure): the hull on the free joint (the project's scene); the same hull on
    planar joints (slide x, slide z, hinge y: no motion out of the plane); the hull's
    footprint vertices as spheres of radius 0.2 mm (scene.CORNER_RADIUS) on the free joint, in
-   place of the mesh-box pair (a contact set mirror-symmetric about the shaking plane); the
+   place of the mesh-box pair, each sphere's bottom on its vertex (a contact set mirror-symmetric
+   about the shaking plane); the
    foot with 384 and 1024 sections; the azimuth at a vertex of the 96-gon; the contact 4×
    stiffer (time constant, step and impedance width ÷ 4); the centre of mass 0.1 mm or 1 mm
    off the axis (an imperfection); the bust and the obelisk (straight edges) with the same
@@ -111,12 +112,9 @@ def variant_xml(system: System, settings: Settings, contact: str) -> str:
         pair = contact_el.find("pair")
         h, r = system.body.centre_height, CORNER_RADIUS
         feet = [v for v in system.body.solid.vertices if abs(v[2] + h) < 1e-9]
-        cx, cy = np.mean([v[0] for v in feet]), np.mean([v[1] for v in feet])
-        for k, (x, y, z) in enumerate(feet):  # inscribed: r inside the rim and above the sole
-            rho = math.hypot(x - cx, y - cy)
-            s = (rho - r) / rho
+        for k, (x, y, z) in enumerate(feet):  # its bottom on the vertex (Drake's statue): the levers kept
             ET.SubElement(block, "geom", name=f"foot{k}", type="sphere", size=repr(r), mass="0",
-                          pos=_fmt(cx + (x - cx) * s, cy + (y - cy) * s, z + r))
+                          pos=_fmt(x, y, z + r))
             p = ET.SubElement(contact_el, "pair", dict(pair.attrib))
             p.set("name", f"foot{k}")
             p.set("geom1", f"foot{k}")
