@@ -16,15 +16,14 @@ r_f = 5 cm, a 96-gon (trimesh's revolve). Four questions, each a table:
    planar joints (slide x, slide z, hinge y: no motion out of the plane); the hull's
    footprint vertices as spheres of radius 0.2 mm (scene.CORNER_RADIUS) on the free joint, in
    place of the mesh-box pair, each sphere's bottom on its vertex (a contact set mirror-symmetric
-   about the shaking plane); the
-   foot with 384 and 1024 sections; the azimuth at a vertex of the 96-gon; the contact 4×
-   stiffer (time constant, step and impedance width ÷ 4); the centre of mass 0.1 mm or 1 mm
+   about the shaking plane); the foot with 384 and 1024 sections; the azimuth at a vertex of
+   the 96-gon; the contact 4× stiffer (time constant, step and impedance width ÷ 4); the centre of mass 0.1 mm or 1 mm
    off the axis (an imperfection); the bust and the obelisk (straight edges) with the same
    imperfection; the box of the amphora's two edges (no mesh) on planar joints; with --drake,
    Drake's statue (a sphere at every hull vertex on a free body), as built and 0.1 mm off axis;
 3. the pulse of docs/scripts/statue_engines.py (exact θmax/α 0.05, validate.tools.statue_check)
    at 0.5×, 1× and 3× on the three bases, for the hull on the free joint, on planar joints, and
-   the footprint's spheres on the free joint (and ×4 stiffer with --stiff 4).
+   the footprint's spheres on the free joint at each --stiff factor (1 and 4: 105 s; 16: 215 s).
 
     python docs/scripts/amphora.py [--parts closed,free,pulse] [--stiff 1,4] [--target 0.05] [--drake]
 """
