@@ -23,7 +23,7 @@ r_f = 5 cm, a 96-gon (trimesh's revolve). Four questions, each a table:
    Drake's statue (a sphere at every hull vertex on a free body), as built and 0.1 mm off axis;
 3. the pulse of docs/scripts/statue_engines.py (exact θmax/α 0.05, validate.tools.statue_check)
    at 0.5×, 1× and 3× on the three bases, for the hull on the free joint, on planar joints, and
-   the footprint's spheres on the free joint at each --stiff factor (1 and 4: 105 s; 16: 215 s).
+   the footprint's spheres on the free joint at each --stiff factor (1 and 4: 75 s; 16 alone: 215 s).
 
     python docs/scripts/amphora.py [--parts closed,free,pulse] [--stiff 1,4] [--target 0.05] [--drake]
 """
