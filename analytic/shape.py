@@ -376,6 +376,12 @@ def _stacked(*parts):
     return np.vstack(verts), np.vstack(faces)
 
 
+#: the example amphora's profile, (radius, z) in m from the axis at the bottom to the axis at the
+#: top: a round foot of radius 5 cm, 2 cm high, under a jar 0.6 m tall
+AMPHORA_PROFILE = ((0.0, 0.0), (0.05, 0.0), (0.05, 0.02), (0.03, 0.06), (0.16, 0.25), (0.17, 0.33), (0.10, 0.48),
+                   (0.06, 0.52), (0.08, 0.60), (0.0, 0.60))
+
+
 def example_statue(name: str) -> tuple[np.ndarray, np.ndarray]:
     """(vertices in m, faces) of an example statue made by code, standing on z = 0: "bust" (a
     revolved head and shoulders, 0.45 m, on a square plinth block 0.24 m wide and 0.15 m high,
@@ -389,8 +395,7 @@ def example_statue(name: str) -> tuple[np.ndarray, np.ndarray]:
         head_v, head_f = _revolved(profile)
         return _stacked(plinth, (head_v + [0.04, 0.0, 0.0], head_f))  # it leans forward, as busts do
     if name == "amphora":
-        return _revolved([(0.0, 0.0), (0.05, 0.0), (0.05, 0.02), (0.03, 0.06), (0.16, 0.25), (0.17, 0.33), (0.10, 0.48),
-                          (0.06, 0.52), (0.08, 0.60), (0.0, 0.60)])
+        return _revolved(AMPHORA_PROFILE)
     if name == "obelisk":
         return hull_mesh([[x, y, 0.0] for x in (-0.2, 0.2) for y in (-0.2, 0.2)]
                           + [[x, y, 1.8] for x in (-0.13, 0.13) for y in (-0.13, 0.13)] + [[0.0, 0.0, 2.0]])
