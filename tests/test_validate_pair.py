@@ -42,6 +42,7 @@ def test_mujoco_passes_the_turned_pair_and_the_report_says_what_was_not_run(tmp_
     assert {c["metric"] for c in m["checks"]} == set(turned_pair.METRICS) - {"pair_turned_travel"}  # a fixed base
     report = (tmp_path / "rep" / "report.md").read_text()
     assert m["verdict"] in report.splitlines()[2] and "exact planar model, second component alone along y" in report
+    assert "](pair.png)" in report and (tmp_path / "rep" / "pair.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert m["two_components"]["mujoco"]["cannot_capture"] in report
 
 

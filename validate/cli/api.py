@@ -190,6 +190,7 @@ def _pair_report(a, out) -> "Validation":
         raise InputError(_keywords(str(e))) from None
     if out is not None:
         pair_report.write(metrics, out)
+    metrics = {k: v for k, v in metrics.items() if k != "figure"}  # what metrics.json holds
     return Validation(metrics["verdict"], not any(c["status"] == "fail" for c in metrics["checks"]), metrics, results)
 
 

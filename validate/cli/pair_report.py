@@ -15,10 +15,13 @@ from ...analytic.errors import InputError
 from ...analytic.limits import RUN_BUDGET_S
 from ..core import biaxial, turned_pair
 from ..core.engines import get_engine, table_overrides
+from ..core.tolerances import tolerance
 from ..core.plan import engine_run, make_plan
 from ..io.output import to_json, write_folder_atomic
 from .options import announce_cost, motion_from_args, statue_azimuth, statue_body, system_options
 
+#: the report's figure (figures.turned_pair): what the report shows before its tables
+FIGURE = "pair.png"
 #: the engines judged when --engines is not given: validate's defaults that run a pair
 DEFAULT_PAIR_ENGINES = ("mujoco", "bullet")
 #: s simulated after the pair ends (--duration otherwise): the runs part in the first impacts (measured: every
@@ -108,17 +111,27 @@ def build(args, config: dict, *, engines, overrides: dict, system, duration) -> 
     # an engine that refused the pair as it ran, or ran past its budget: not run, its one line said
     skipped.update({k: str(r).splitlines()[0] for k, r in results.items() if k not in ran})
     three = biaxial.two_components({k: r.first for k, r in ran.items()}, system, motion, body, azimuth, plan.duration)
+    planar = biaxial.planar_runs(system, motion, body if system.body is not None else None, azimuth,
+                                 duration=plan.duration)  # for the figure: the exact model along each component
     checks = [c for r in ran.values() for c in r.checks]
     judged = list(ran)
     verdict = pair_verdict(checks, turn, judged, skipped)
     metrics = {"verdict": verdict, "motion": motion.describe(), "system": system.describe(), "turn_deg": turn,
                "azimuth_deg": math.degrees(azimuth) % 360.0,
                "checks": [c.as_dict() for c in checks], "not_run": skipped, "two_components": three}
-    return metrics, results
+    least = biaxial.alpha_table(body, azimuth)[1]
+    limits = {label: tolerance(label, "pair_turned_tilt_history").limit for label in ran}
+
+    def draw(path):
+        from ..io import figures  # lazy: matplotlib, once the runs are done
+        figures.turned_pair(motion, ran, planar, limits, least, path,
+                            title=f"{motion.name}: each engine as given and turned {turn:g}° with the statue")
+    return dict(metrics, figure=draw), results
 
 
 def run(args, **inputs) -> int:
-    """The command: the report written (report.md, metrics.json, whole or absent), the verdict last."""
+    """The command: the report written (report.md, pair.png, metrics.json, whole or absent), the
+    verdict last."""
     metrics, _ = build(args, **inputs)
     write(metrics, args.out)
     print(f"wrote {args.out}/report.md, metrics.json")
@@ -127,10 +140,14 @@ def run(args, **inputs) -> int:
 
 
 def write(metrics: dict, out) -> None:
-    """report.md and metrics.json into `out`, whole or absent (write_folder_atomic)."""
+    """report.md, its figure pair.png and metrics.json into `out`, whole or absent
+    (write_folder_atomic); `metrics` as build returns it (its `figure` draws the PNG)."""
+    data = {k: v for k, v in metrics.items() if k != "figure"}
+
     def fill(tmp):
-        (tmp / "report.md").write_text(render(metrics), encoding="utf-8")
-        (tmp / "metrics.json").write_text(to_json(metrics) + "\n", encoding="utf-8")
+        metrics["figure"](tmp / FIGURE)
+        (tmp / "report.md").write_text(render(data), encoding="utf-8")
+        (tmp / "metrics.json").write_text(to_json(data) + "\n", encoding="utf-8")
     write_folder_atomic(out, fill)
 
 
@@ -163,8 +180,8 @@ def render(m: dict) -> str:
              f"direction along x {m['azimuth_deg']:.0f}°. Each engine ran the pair twice: as given, and with the pair "
              f"and the statue turned together by {m['turn_deg']:g}°, the same ground acceleration in the statue's own "
              "frame (an exact symmetry of the physics). Each difference is judged by the engine's own row of the one "
-             "tolerance table.", "",
-             "| engine | check | value | limit | status | why this limit |", "|---|---|---:|---:|---|---|"]
+             "tolerance table.", "", f"![each engine as given and turned, their difference against its limit]({FIGURE})",
+             "", "| engine | check | value | limit | status | why this limit |", "|---|---|---:|---:|---|---|"]
     for c in m["checks"]:
         value = "—" if c["value"] is None else f"{c['value']:.3g}"
         lines.append(f"| {c['engine']} | {c['metric']} | {value} | {c['limit']:g} | {c['status']} | {c['reason']} |")

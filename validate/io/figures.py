@@ -6,6 +6,8 @@ no global pyplot state or display is involved.
                        rocking window, u or θ̇ with its difference
     beta_per_impact    effective β error of each engine per impact index, with tolerances
     ensemble           θmax/α against the PGA scale factor, and each engine − analytic
+    turned_pair        a record pair: each engine's total tilt as given and turned with the statue,
+                       their difference against its limit, and the planar model along each component
 """
 from __future__ import annotations
 
@@ -17,6 +19,7 @@ from matplotlib.figure import Figure
 
 from ...analytic.coefficients import beta, beta2, beta_housner
 from ...analytic.system import STANDARD_GRAVITY
+from ..core import biaxial
 from ..core.compare import COMPARE_DT
 from ..core.engines import ALL_ENGINES, REFERENCE, engine_label
 
@@ -267,3 +270,62 @@ def ensemble_figure(ensembles, *, bands: dict | None = None, reference: str = RE
                  fontsize=10)
     FigureCanvasAgg(fig)
     return fig
+
+
+def turned_pair(motion, runs: dict, planar: dict, limits: dict, least_alpha: float, path, *, title: str) -> None:
+    """A record pair judged by turning it with the statue (core/turned_pair.py), every engine:
+    the two ground components; each engine's total tilt over the statue's least α as given (solid)
+    and turned (dashed), with the exact planar model along each component alone (grey, unjudged);
+    the turned run's difference |Δ tilt| over the peak against the engine's limit (its row of the
+    table, dashed), log scale, where the engines part; and the base's travel √(u² + u_y²), or on a
+    fixed base the direction each leans. `runs`: label → TurnedRuns; `planar`: 'x'/'y' → Trajectory;
+    `limits`: label → the history row's limit; `least_alpha`: the statue's least α (rad)."""
+    fig = Figure(figsize=(11, 8))
+    axes = fig.subplots(2, 2)
+    t_end = max([r.first.t[-1] for r in runs.values()] + [1e-3])
+    grid = np.linspace(0.0, t_end, 2000)
+    ax = axes[0, 0]
+    ax.plot(grid, motion(grid) / STANDARD_GRAVITY, color="tab:gray", lw=0.8, label="ẍg (along x)")
+    ax.plot(grid, motion.transverse(grid) / STANDARD_GRAVITY, color="tab:olive", lw=0.8, label="ÿg (along y)")
+    ax.set(ylabel="g", title="the two ground components")
+    ax.legend(fontsize=8, loc="upper right")
+    fixed = next(iter(runs.values())).first.system.fixed_base if runs else True
+    for label, r in runs.items():
+        st = style(label)
+        tilts = []
+        for tr, ls, which in ((r.first, "-", "as given"), (r.turned, "--", f"turned {r.turn_deg:g}°")):
+            tilt, direction, _ = biaxial.tilt_twist(tr.extras["orientation"])
+            tilts.append(tilt)
+            axes[0, 1].plot(tr.t, tilt / least_alpha, color=st["color"], ls=ls, lw=1, label=f"{st['label']}, {which}")
+            if fixed:
+                axes[1, 1].plot(tr.t, np.degrees(direction) % 360, color=st["color"], ls="none", marker=".",
+                                ms=1, label=f"{st['label']}, {which}")
+            else:
+                axes[1, 1].plot(tr.t, 100 * np.hypot(tr.u, tr.extras["u_y"]), color=st["color"], ls=ls, lw=1,
+                                label=f"{st['label']}, {which}")
+        n = min(t.size for t in tilts)
+        diff = np.abs(tilts[0][:n] - tilts[1][:n]) / max(float(np.max(tilts[0][:n])), 1e-300)
+        axes[1, 0].semilogy(r.first.t[:n], np.maximum(diff, 1e-16), color=st["color"], lw=1, label=st["label"])
+        if label in limits:
+            axes[1, 0].axhline(limits[label], color=st["color"], ls="--", lw=1,
+                               label=f"{st['label']} limit {limits[label]:g}")
+    for key, ls in (("x", "-"), ("y", ":")):
+        tr = planar.get(key)
+        if tr is not None:
+            axes[0, 1].plot(tr.t, np.abs(tr.theta) / tr.system.alpha, color="0.45", ls=ls, lw=0.9,
+                            label=f"exact planar, {key} alone (|θ|/α of its edge)")
+    axes[0, 1].set(ylabel="total tilt / least α", title="total tilt: as given (solid) and turned (dashed)")
+    axes[0, 1].legend(fontsize=7, loc="upper right")
+    axes[1, 0].set(ylabel="|Δ tilt| / peak tilt", title="the turned run's difference, and each engine's limit")
+    axes[1, 0].legend(fontsize=7, loc="lower right")
+    if fixed:
+        axes[1, 1].set(ylabel="lean direction (° from x)", title="where it leans (the turned run's: φ less)")
+    else:
+        axes[1, 1].set(ylabel="√(u² + u_y²) (cm)", title="the base's travel")
+    for ax in axes.ravel():
+        ax.grid(alpha=0.3)
+    for ax in axes[1]:
+        ax.set_xlabel("t (s)")
+    fig.suptitle(title, fontsize=11)
+    fig.tight_layout()
+    _save(fig, path)
