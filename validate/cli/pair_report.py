@@ -2,8 +2,8 @@
 issue 36): every engine that runs two horizontal components judged on the one exact oracle they
 meet there, turning the pair and the statue together (core/turned_pair.py), with the 3-D measures
 of each and the exact planar model along each component beside them, unjudged (what it cannot
-capture said in words). DIR/report.md and DIR/metrics.json, whole or absent; the verdict is the
-last line on stdout; exit 1 when a check failed.
+capture said in words). DIR/report.md, its figure DIR/pair.png and DIR/metrics.json, whole or
+absent; the verdict is the last line on stdout; exit 1 when a check failed.
 """
 from __future__ import annotations
 
@@ -15,8 +15,8 @@ from ...analytic.errors import InputError
 from ...analytic.limits import RUN_BUDGET_S
 from ..core import biaxial, turned_pair
 from ..core.engines import get_engine, table_overrides
-from ..core.tolerances import tolerance
 from ..core.plan import engine_run, make_plan
+from ..core.tolerances import tolerance
 from ..io.output import to_json, write_folder_atomic
 from .options import announce_cost, motion_from_args, statue_azimuth, statue_body, system_options
 
@@ -25,9 +25,9 @@ FIGURE = "pair.png"
 #: the engines judged when --engines is not given: validate's defaults that run a pair
 DEFAULT_PAIR_ENGINES = ("mujoco", "bullet")
 #: s simulated after the pair ends (--duration otherwise): the runs part in the first impacts (measured: every
-#: turned check the same at 2 s as at 4 s on the tests' pulses, which end by 0.45 s), and each engine runs twice
+#: turned check the same at 2 s as at 4 s on the tests' pulses, which end by 0.45 s), and each engine runs three
+#: times (turned_pair.turned_runs)
 TAIL = 2.0
-
 
 
 def pair_motion(args, config: dict):
@@ -102,8 +102,9 @@ def build(args, config: dict, *, engines, overrides: dict, system, duration) -> 
     plan, skipped = _settled(engines, system, motion, lambda label: table_overrides(overrides, label), duration,
                              args.overturn)
     turn = turned_pair.TURN_DEG if system.body is not None else turned_pair.QUARTER_TURN
-    # each engine runs twice; each run stops at the run budget (limits.RUN_BUDGET_S), said before
-    announce_cost("validate", {r.label: 2 * plan.duration for r in plan.runs}, RUN_BUDGET_S, quiet=args.quiet)
+    # each engine runs three times (as given, turned, the probe); each run stops at the run budget
+    # (limits.RUN_BUDGET_S), said before
+    announce_cost("validate", {r.label: 3 * plan.duration for r in plan.runs}, RUN_BUDGET_S, quiet=args.quiet)
     results = turned_pair.turned_runs(
         plan, body, azimuth, turn, budget_s=RUN_BUDGET_S,
         on_start=None if args.quiet else (lambda label: print(f"{label} …", file=sys.stderr, flush=True)))
@@ -134,7 +135,7 @@ def run(args, **inputs) -> int:
     verdict last."""
     metrics, _ = build(args, **inputs)
     write(metrics, args.out)
-    print(f"wrote {args.out}/report.md, metrics.json")
+    print(f"wrote {args.out}/report.md, {FIGURE}, metrics.json")
     print(metrics["verdict"])
     return 1 if any(c["status"] == "fail" for c in metrics["checks"]) else 0
 

@@ -7,7 +7,7 @@ its peak over α, the direction it leans (turned by φ) and, on an isotropic iso
 travel √(u² + u_y²) are the same. An engine whose contact or friction is not rotation-invariant
 (a friction pyramid along the world's axes, a square of joint frictions) parts there, whatever
 the exact planar model says. Each engine is judged by its own rows of the one table
-(core/tolerances.py: pair_turned_*), its two runs at the settings of the first (the same steps).
+(core/tolerances.py: pair_turned_*), its runs at the settings of the first (the same steps).
 
 The statue's mesh turns with the pair; the block has no mesh its scenes can turn (they build it
 along the world's axes), so it is turned by a quarter turn, under which its square footprint is
