@@ -137,3 +137,14 @@ def test_isorock_report_takes_a_pair_as_the_command_does(tmp_path):
     assert v.passed and v.verdict.startswith("Result: all 3 checks passed") and "pair turned 30°" in v.checks()["scenario"][0]
     assert json.loads((tmp_path / "rep" / "metrics.json").read_text())["verdict"] == v.verdict
     assert set(v.results) == {"mujoco"} and v.results["mujoco"].turn_deg == turned_pair.TURN_DEG
+
+
+def test_an_engine_without_rows_is_reported_unjudged_not_refused(bust_runs):
+    """A plugin engine that runs a pair but brings no pair_turned_* rows: its numbers are reported and
+    skipped with the reason (tolerances.unjudged), never an error after its runs, never a pass."""
+    from isorock.analytic import shape
+    standing = shape.standing(*shape.example_statue("bust"), mass=80.0)
+    runs = turned_pair.judge("someones-engine", bust_runs.first, bust_runs.turned, bust_runs.probe, standing,
+                             shape.weakest_direction(standing)[0], turned_pair.TURN_DEG)
+    assert {c.status for c in runs.checks} == {"skip"} and all("no tolerance" in c.note for c in runs.checks)
+    assert [c.value for c in runs.checks] == [c.value for c in bust_runs.checks]

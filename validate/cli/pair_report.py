@@ -16,7 +16,7 @@ from ...analytic.limits import RUN_BUDGET_S
 from ..core import biaxial, turned_pair
 from ..core.engines import get_engine, table_overrides
 from ..core.plan import engine_run, make_plan
-from ..core.tolerances import tolerance
+from ..core.tolerances import has_tolerance, tolerance
 from ..io.output import to_json, write_folder_atomic
 from .options import announce_cost, motion_from_args, statue_azimuth, statue_body, system_options
 
@@ -121,7 +121,8 @@ def build(args, config: dict, *, engines, overrides: dict, system, duration) -> 
                "azimuth_deg": math.degrees(azimuth) % 360.0,
                "checks": [c.as_dict() for c in checks], "not_run": skipped, "two_components": three}
     least = biaxial.alpha_table(body, azimuth)[1]
-    limits = {label: tolerance(label, "pair_turned_tilt_history").limit for label in ran}
+    limits = {label: tolerance(label, turned_pair.HISTORY).limit for label in ran  # an engine without the row: none drawn
+              if has_tolerance(label, turned_pair.HISTORY)}
 
     def draw(path):
         from ..io import figures  # lazy: matplotlib, once the runs are done
