@@ -111,9 +111,11 @@ def build(args, config: dict, *, engines, overrides: dict, system, duration) -> 
     ran = {k: r for k, r in results.items() if isinstance(r, turned_pair.TurnedRuns)}
     # an engine that refused the pair as it ran, or ran past its budget: not run, its one line said
     skipped.update({k: str(r).splitlines()[0] for k, r in results.items() if k not in ran})
-    three = biaxial.two_components({k: r.first for k, r in ran.items()}, system, motion, body, azimuth, plan.duration)
+    # the exact model along each component alone: beside each engine in words, and in the figure
     planar = biaxial.planar_runs(system, motion, body if system.body is not None else None, azimuth,
-                                 duration=plan.duration)  # for the figure: the exact model along each component
+                                 duration=plan.duration)
+    three = biaxial.two_components({k: r.first for k, r in ran.items()}, system, motion, body, azimuth, plan.duration,
+                                   planar=planar)
     checks = [c for r in ran.values() for c in r.checks]
     judged = list(ran)
     verdict = pair_verdict(checks, turn, judged, skipped)

@@ -195,14 +195,16 @@ def compare_3d(three: Measures3D, planar: dict) -> dict:
             "planar_overturned": planar_over}
 
 
-def two_components(runs: dict, system, motion, body: shape.RestingBody, azimuth: float, duration: float) -> dict:
+def two_components(runs: dict, system, motion, body: shape.RestingBody, azimuth: float, duration: float, *,
+                   planar: dict | None = None) -> dict:
     """label → compare_3d of each engine's run of the pair (`runs`: label → Trajectory whose
     extras hold its orientation), against the exact model along each component alone (run
-    once for all of them). `body`: the statue at rest (or box_body's block); `azimuth` (rad):
-    the statue's direction along the first component."""
+    once for all of them; `planar`: planar_runs' where the caller has them). `body`: the statue at
+    rest (or box_body's block); `azimuth` (rad): the statue's direction along the first component."""
     alpha, least = alpha_table(body, azimuth)
-    planar = {k: planar_numbers(tr) for k, tr in planar_runs(system, motion, body if system.body is not None else None,
-                                                            azimuth, duration=duration).items()}
+    if planar is None:
+        planar = planar_runs(system, motion, body if system.body is not None else None, azimuth, duration=duration)
+    planar = {k: planar_numbers(tr) for k, tr in planar.items()}
     out = {}
     for label, tr in runs.items():
         three = measure_3d(tr.t, tr.extras["orientation"], alpha, least, u_y=tr.extras.get("u_y"))
