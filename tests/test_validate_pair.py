@@ -66,16 +66,14 @@ def test_the_differences_are_the_runs_own(bust_runs):
 @pytest.fixture(scope="module")
 def bust_runs():
     """turned_pair's runs of MuJoCo on the bust's pair, from Python values (its module's API)."""
-    from dataclasses import replace
+    from test_two_components import _statue_system
 
     from isorock.analytic import shape
     from isorock.analytic.motion import load_motion
-    from isorock.analytic.system import PlanarBody, System
     from isorock.validate.core.plan import make_plan
     standing = shape.standing(*shape.example_statue("bust"), mass=80.0)
     azimuth = shape.weakest_direction(standing)[0]
-    body = PlanarBody.from_resting(standing.along(azimuth))
-    system = replace(System.fixed(**body.box, mass=80.0), body=body)
+    system = _statue_system(standing, azimuth, False)
     pair = load_motion("sine:amp=0.7,freq=2,cycles=1").with_transverse(load_motion("sine:amp=0.63,freq=1.6,cycles=1"))
     plan = make_plan(system, pair, [("mujoco", None)], duration=2.0)
     return turned_pair.turned_runs(plan, standing, azimuth, turned_pair.TURN_DEG)["mujoco"]

@@ -18,7 +18,7 @@ from ..core.engines import get_engine, table_overrides
 from ..core.plan import engine_run, make_plan
 from ..core.tolerances import has_tolerance, tolerance
 from ..io.output import to_json, write_folder_atomic
-from .options import announce_cost, motion_from_args, statue_azimuth, statue_body, system_options
+from .options import announce_cost, motion_from_args
 
 #: the report's figure (figures.turned_pair): what the report shows before its tables
 FIGURE = "pair.png"
@@ -46,16 +46,6 @@ def pair_motion(args, config: dict):
     return motion_from_args(one)
 
 
-def shaken(args, config: dict, system) -> tuple:
-    """(the body at rest, the azimuth in rad) the 3-D measures read: the statue's mesh along its
-    shaking direction, or the block H × B on its square footprint along 0 (run's shaken_body)."""
-    if system.body is None:
-        return biaxial.box_body(system.height, system.width, system.width, system.mass), 0.0
-    given, names = system_options(args, config.get("system"), config.get("statue"))
-    standing, _ = statue_body(given, names)
-    return standing, statue_azimuth(given, standing, names)
-
-
 def _settled(labels, system, motion, overrides_for, duration, overturn_rule=None):
     """(the plan of the engines that run this pair, label → the one line why each other does not)."""
     runs, skipped = [], {}
@@ -70,12 +60,12 @@ def _settled(labels, system, motion, overrides_for, duration, overturn_rule=None
                               if engine.capabilities.exact_impacts else "runs one horizontal component only")
             continue
         try:
-            make_plan(system, motion, [engine_run(label, overrides_for(label))], duration=duration,
-                      overturn_rule=overturn_rule)
+            run = engine_run(label, overrides_for(label))
+            make_plan(system, motion, [run], duration=duration, overturn_rule=overturn_rule)
         except InputError as e:  # its own one line (DART below its pair friction, an isolator it does not carry)
             skipped[label] = str(e)
             continue
-        runs.append(engine_run(label, overrides_for(label)))
+        runs.append(run)
     if not runs:
         raise InputError(f"--engines = {', '.join(labels)}: none runs this pair ("
                          + "; ".join(f"{k}: {v}" for k, v in skipped.items())
@@ -83,11 +73,12 @@ def _settled(labels, system, motion, overrides_for, duration, overturn_rule=None
     return make_plan(system, motion, runs, duration=duration, overturn_rule=overturn_rule), skipped
 
 
-def build(args, config: dict, *, engines, overrides: dict, system, duration) -> tuple[dict, dict]:
+def build(args, config: dict, *, engines, overrides: dict, system, shaken, duration) -> tuple[dict, dict]:
     """(what metrics.json holds, label → turned_pair.TurnedRuns or the error of an engine that did
     not run) of the pair's validation: `engines` the labels asked, `overrides` table → settings
     (validate's --set, engine options and [settings.ENGINE] tables), `system` the System the options
-    give. The command writes the first; isorock.report returns both."""
+    give, `shaken` its body at rest and azimuth (run.shaken_body). The command writes the first;
+    isorock.report returns both."""
     for option, given in (("--quick", args.quick or bool(config.get("quick"))), ("--scales", args.scales is not None),
                           ("--workers", args.workers is not None)):
         if given:  # they shape the one-component report's ensembles and pool: said, never dropped unsaid
@@ -97,7 +88,7 @@ def build(args, config: dict, *, engines, overrides: dict, system, duration) -> 
     if system is None:
         raise InputError("system: with a record pair, give the statue (--statue or --statue-example) or the block "
                          "(--height, --width, --mass) and its base; validate's paper block is for one component")
-    body, azimuth = shaken(args, config, system)
+    body, azimuth = shaken
     duration = duration if duration is not None else motion.last_time + TAIL
     plan, skipped = _settled(engines, system, motion, lambda label: table_overrides(overrides, label), duration,
                              args.overturn)

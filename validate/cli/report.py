@@ -16,8 +16,8 @@ from .config_file import check_damping_ratio, read_config
 from . import pair_report
 from .options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
                       add_system_options, add_transverse_options, add_units_option, check_tables_run, engine_tables,
-                      number, system_from_options, transverse_asked)
-from .run import engine_labels
+                      number, statue_body, system_from_args, system_from_options, system_options, transverse_asked)
+from .run import engine_labels, shaken_body
 from ..core.engines import ENGINE_NAMES, resolve
 from ..core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
 from ..io import keys
@@ -129,11 +129,17 @@ def pair_inputs(args) -> dict:
     config = _read_config(args.config) if args.config else {}
     engines = tuple(engine_labels(args.engines)) if args.engines else pair_report.DEFAULT_PAIR_ENGINES
     overrides = engine_overrides(args, config, engines)
-    system = system_from_options(args, config.get("system"), config.get("statue"))
-    if system is not None:
+    system = shaken = None
+    given = system_options(args, config.get("system"), config.get("statue"))
+    if given is not None:
+        # a statue's mesh read once: the System's two edges, and the body the 3-D measures read
+        options, names = given
+        statue = statue_body(options, names)
+        system = system_from_args(options, statue_names=names, statue=statue)
         check_damping_ratio(system)
+        shaken = shaken_body(options, system, statue, names)
     duration = args.duration if args.duration is not None else config.get("duration")
-    return dict(config=config, engines=engines, overrides=overrides, system=system, duration=duration)
+    return dict(config=config, engines=engines, overrides=overrides, system=system, shaken=shaken, duration=duration)
 
 
 def report_config(args):

@@ -24,7 +24,7 @@ from ...analytic.errors import InputError
 from ...analytic.limits import BudgetExceeded, check_resample
 from ...analytic.system import LINEAR
 from ..io.provenance import provenance
-from .options import (announce_cost, budget_stopped, check_tables_run, engine_tables,
+from .options import (STATUE_OPTIONS, announce_cost, budget_stopped, check_tables_run, engine_tables,
                       motion_from_args, run_budget, settings_dict, statue_azimuth, statue_body,
                       system_from_args, transverse_asked)
 from ..core.biaxial import box_body, render, two_components
@@ -197,16 +197,17 @@ def check_pair_engine(r, system) -> None:
                          "), or give --fixed-base")
 
 
-def shaken_body(a, system, statue) -> tuple:
+def shaken_body(a, system, statue, names: dict = STATUE_OPTIONS) -> tuple:
     """(the body at rest, the azimuth in rad) of a run with two components: the statue's mesh
     (`statue`, statue_body's (resting, body), along --azimuth or the direction it tips first), or
-    the block H × B × D of MuJoCo's scene along 0."""
+    the block H × B × D of MuJoCo's scene along 0. `names`: how a statue's inputs are spelled in
+    errors (statue_body's)."""
     # the contact scenes' block stands on a square footprint (MuJoCo's and Drake's DEPTH_FRACTION 1, PyBullet's
     # 2b × 2b box, DART's DEPTH_RATIO 1)
     if system.body is None:
         return box_body(system.height, system.width, system.width, system.mass), 0.0
     standing = statue[0]
-    return standing, statue_azimuth(a, standing)
+    return standing, statue_azimuth(a, standing, names)
 
 
 def simulate_plan(plan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:

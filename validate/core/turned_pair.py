@@ -99,16 +99,16 @@ def judge(label: str, first, turned, probe, body, azimuth: float, turn_deg: floa
     than the history's limit (otherwise it is chaotic there: a difference of roundoff between the
     scenes would grow as large, and the turned run could not tell the engine's own)."""
     turn = math.radians(turn_deg)
-    three = tuple(biaxial.measure_3d(tr.t, tr.extras["orientation"], *biaxial.alpha_table(body, az),
-                                     u_y=tr.extras.get("u_y"))
-                  for tr, az in ((first, azimuth), (turned, azimuth + turn)))
-    tilts = [biaxial.tilt_twist(tr.extras["orientation"])[0] for tr in (first, turned, probe)]
+    # α(direction) at each run's own azimuth, each tabulated once (a tipping-edge search a degree)
+    tables = (biaxial.alpha_table(body, azimuth), biaxial.alpha_table(body, azimuth + turn))
+    three = tuple(biaxial.measure_3d(tr.t, tr.extras["orientation"], *table, u_y=tr.extras.get("u_y"))
+                  for tr, table in zip((first, turned), tables))
+    (tilt, direction, _), *others = (biaxial.tilt_twist(tr.extras["orientation"]) for tr in (first, turned, probe))
+    tilts = [tilt, *(angles[0] for angles in others)]
     scenario = f"pair turned {turn_deg:g}°"
     n = min(t.size for t in tilts)
     if three[0].overturned:  # the histories while it rocks: up to its first passing α (a fall is no rocking)
-        alpha, _ = biaxial.alpha_table(body, azimuth)
-        tilt, direction, _ = biaxial.tilt_twist(first.extras["orientation"])
-        n = min(n, int(np.argmax(tilt / alpha(direction) > 1.0)) or n)
+        n = min(n, int(np.argmax(tilt / tables[0][0](direction) > 1.0)) or n)
     peak = float(np.max(tilts[0][:n]))
     grown = float(np.max(np.abs(tilts[0][:n] - tilts[2][:n]))) / peak if peak > 0 else 0.0
     lean = (three[1].direction_at_max_deg - three[0].direction_at_max_deg + turn_deg) % 360.0
