@@ -7,7 +7,6 @@ from __future__ import annotations
 import argparse
 import re
 import sys
-import tomllib
 from dataclasses import replace
 from types import SimpleNamespace
 
@@ -20,6 +19,7 @@ from ...analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, BallInBowl
 from ..core.engines import check_settings_table, choose, describe_settings, table_overrides
 from ..core.estimate import estimate_line
 from ..io import keys
+from ..io.keys import Default, given  # noqa: F401 — importable from here as before
 
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
@@ -78,16 +78,6 @@ def _floats(n_min, n_max, name):
             raise argparse.ArgumentTypeError(f"{name} = {text!r}: must have {n_min}–{n_max} numbers")
         return values
     return parse
-
-
-class Default(float):
-    """A number the parser filled in, not the user's: a command that takes a statue's mesh
-    (--statue) refuses the block's --height and --width given with it, and can tell them apart."""
-
-
-def given(value) -> bool:
-    """Whether an option's value is the user's (not None, not a Default)."""
-    return value is not None and not isinstance(value, Default)
 
 
 def add_key_option(g, key: keys.Key, **override) -> None:
@@ -480,8 +470,8 @@ def add_engine_options(p: argparse.ArgumentParser) -> None:
                         "given. The settings used, those that followed included, are in the --json output")
     g.add_argument("--solref", type=_floats(2, 2, "solref"), help="mujoco: contact solref 'timeconst,dampratio'")
     g.add_argument("--solimp", type=_floats(3, 5, "solimp"), help="mujoco: contact solimp 'dmin,dmax,width[,mid,power]'")
-    g.add_argument("--cone", choices=("pyramidal", "elliptic"), help="mujoco: friction cone")
-    g.add_argument("--integrator", choices=("Euler", "implicit", "implicitfast", "RK4"), help="mujoco: integrator")
+    g.add_argument("--cone", choices=keys.CONES, help="mujoco: friction cone")
+    g.add_argument("--integrator", choices=keys.INTEGRATORS, help="mujoco: integrator")
     g.add_argument("--friction", type=number, help="mujoco, bullet, dart: block–base friction coefficient")
     g.add_argument("--noslip", type=whole_number, dest="noslip", metavar="N", help="mujoco: noslip iterations")
     g.add_argument("--solver-iterations", type=whole_number, help="bullet: constraint solver iterations")
@@ -501,7 +491,7 @@ def add_engine_options(p: argparse.ArgumentParser) -> None:
                         "as a TOML value (a number, true/false, [a, b]) or else as a word. Repeatable, e.g. "
                         "--set drake.accuracy=1e-5 --set mujoco.integrator=RK4; the options above are its "
                         "shorthands, checked by the same schema as a --config file's [settings.ENGINE] tables")
-    g.add_argument("--overturn", choices=("past-alpha", "alpha"),
+    g.add_argument("--overturn", choices=keys.OVERTURN_RULES,
                    help="the overturning rule (model.md, 'Past α'), for every engine: past-alpha (default: the "
                         "block has overturned when |θ| reaches π/2 or the run ends with |θ| > α) or alpha "
                         "(conservative: once |θ| reaches α)")
@@ -510,21 +500,13 @@ def add_engine_options(p: argparse.ArgumentParser) -> None:
 def setting_assignment(text: str) -> tuple[str, str, object]:
     """argparse type of --set: "[ENGINE.]KEY=VALUE" → (table, key, value), the table "*" where
     no engine is named; checked by the one schema of engine settings
-    (core.engines.check_settings_table), as a --config file's tables are."""
-    target, eq, raw = text.partition("=")
-    table, dot, key = target.strip().rpartition(".")
-    table, key = (table if dot else "*"), key.strip()
-    if not eq or not key or not raw.strip():
-        raise argparse.ArgumentTypeError(f"{text!r}: must be KEY=VALUE or ENGINE.KEY=VALUE (e.g. drake.accuracy=1e-5)")
+    (core.engines.check_settings_table), as a --config file's tables are (io.options.setting_from_text,
+    which isorock.run's set_settings keyword takes too)."""
+    from ..io.options import setting_from_text  # lazy: pydantic, only where --set is given
     try:
-        value = tomllib.loads(f"v = {raw.strip()}")["v"]
-    except tomllib.TOMLDecodeError:
-        value = raw.strip()  # a word, written without TOML's quotes
-    try:
-        check_settings_table(table, {key: value})
+        return setting_from_text(text)
     except ValueError as e:
-        raise argparse.ArgumentTypeError(f"{text!r}: {e}") from None
-    return table, key, value
+        raise argparse.ArgumentTypeError(str(e)) from None
 
 
 def engine_tables(a) -> dict[str, dict]:

@@ -32,6 +32,7 @@ from ..core.compare import compare
 from ..core.engines import choose, get_engine, resolve, table_overrides
 from ..core.plan import EngineRun, make_plan, run_plan
 from ..io.naming import cell, describe_motion
+from ..io.options import RunOptions
 from ..io.output import Outputs, to_json
 
 
@@ -219,7 +220,9 @@ def simulate_plan(plan, a, *, announce: bool = False, budget: float | None = Non
 
 
 def cmd_run(a) -> int:
-    """One or several engines on one system and motion; exit 1 when any run failed."""
+    """One or several engines on one system and motion; exit 1 when any run failed. `a`: the
+    parser's namespace, read into the typed RunOptions that isorock.run builds from keywords."""
+    a = RunOptions.from_namespace(a)
     specs = parse_engines(engine_asked(a))
     several = len(specs) > 1
     with Outputs() as outputs:

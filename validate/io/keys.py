@@ -25,6 +25,20 @@ KINDS = (POSITIVE, NON_NEGATIVE, BOOL, CHOICE)
 UNITS = ("m/s2", "g", "gal", "cm/s2")
 #: a record file's formats, as analytic.motion.FORMATS names them (likewise)
 FORMATS = ("at2", "jma", "csv")
+#: the words of the engine options that are choices (--cone, --integrator) and of --overturn
+CONES = ("pyramidal", "elliptic")
+INTEGRATORS = ("Euler", "implicit", "implicitfast", "RK4")
+OVERTURN_RULES = ("past-alpha", "alpha")
+
+
+class Default(float):
+    """A number the command filled in, not the user's: a command that takes a statue's mesh
+    (--statue) refuses the block's --height and --width given with it, and can tell them apart."""
+
+
+def given(value) -> bool:
+    """Whether an option's value is the user's (not None, not a Default)."""
+    return value is not None and not isinstance(value, Default)
 
 
 @dataclass(frozen=True)
