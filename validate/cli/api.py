@@ -29,10 +29,10 @@ from dataclasses import dataclass
 from ...analytic.errors import InputError, import_extra, path_value
 from ...analytic.limits import check_workers
 from ..core.executor import exit_if_bootstrapping
+from ..io.inputs import engine_asked, parse_engines, plan_runs, run_budget, simulate_plan, transverse_asked
 from ..io.options import RunOptions, ValidateOptions
 from ..io.output import check_folder
 from ..io.progress import Progress
-from .options import run_budget, transverse_asked
 
 
 def _path(key: str, value, *, optional: bool = True):
@@ -58,14 +58,14 @@ def run(**options):
     fixed_base, motion, units, scale, pga, pgv, duration, theta0_over_alpha, timestep, …),
     without its output options (json, csv, plot: the Trajectory has to_dataframe() and
     to_csv())."""
-    from .run import engine_asked, parse_engines, plan_runs, simulate_plan  # lazy: each entry point its own modules
+    from .options import read_pair  # the campaign's record pairs (--pair), which only this floor imports
     for key in ("json", "csv", "csv_dt", "plot", "quiet"):
         if key in options:
             raise InputError(f"{key}: an output of the command; isorock.run returns the Trajectory "
                              "(its to_dataframe(), to_csv(), summary())")
     a = RunOptions.from_keywords("run", options)
     try:
-        plan, _ = plan_runs(a, parse_engines(engine_asked(a)))
+        plan, _ = plan_runs(a, parse_engines(engine_asked(a)), read_pair=read_pair)
     except InputError as e:
         raise InputError(_keywords(str(e))) from None
     runs, _ = simulate_plan(plan, a, budget=run_budget(a))  # each run within --budget, as the command's

@@ -93,7 +93,7 @@ SYSTEM = _by_name(
 )
 
 #: a non-linear isolator and its parameters (add_isolator_options; docs/isolators.md). Which
-#: keys each kind takes is checked where the System is made (options._isolator_from_args), so
+#: keys each kind takes is checked where the System is made (io/inputs._isolator_from_args), so
 #: a file and the options are refused in the same words
 ISOLATOR = _by_name(
     Key("isolator", CHOICE, "the isolator under the base (default: %(default)s; bilinear: --stiffness/--period set "
