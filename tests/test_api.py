@@ -225,3 +225,107 @@ def test_simulate_takes_python_values_and_its_runs_are_the_engines_own():
         with pytest.raises(InputError) as e:
             isorock.simulate(**{"system": block, "motion": motion, **kwargs})
         assert field in str(e.value) and "\n" not in str(e.value), (kwargs, str(e.value))
+
+
+# --- the typed options (issue 35): the keyword route and the command line's build one value ------
+
+from isorock.validate.io.options import RunOptions, ValidateOptions  # noqa: E402
+
+
+def _subparser(command):
+    """The command's own argparse parser (the oracle: what the command line reads)."""
+    import argparse
+    from isorock.validate.cli.main import build_parser
+    top = build_parser(command)
+    return next(a for a in top._actions if isinstance(a, argparse._SubParsersAction)).choices[command]
+
+
+def _types(options):
+    return {k: type(v) for k, v in options}
+
+
+def test_the_api_module_reads_no_command_line():
+    """isorock.run/report build typed options from keywords: api.py imports neither argparse nor
+    the command line's parser (cli/main.py), at any depth (every import, by Python's ast)."""
+    from pathlib import Path
+    from test_architecture import ROOT, imports
+    path = Path(ROOT / "validate/cli/api.py")
+    modules = [m for _, m in imports(path, "validate.cli")]
+    assert modules and not [m for m in modules if m == "argparse" or m.startswith("argparse.")
+                            or m.startswith("isorock.validate.cli.main")], modules
+
+
+@pytest.mark.parametrize("model, command, keywords, argv", [
+    (RunOptions, "run", dict(height=np.float64(0.6), width=0.2, mass=80, base_mass=np.int64(150), period=2,
+                             damping_ratio=0.15, motion=SINE, pga=np.float64(0.5)),
+     ["--height", "0.6", "--width", "0.2", "--mass", "80", "--base-mass", "150", "--period", "2",
+      "--damping-ratio", "0.15", "--motion", SINE, "--pga", "0.5"]),
+    (RunOptions, "run", dict(engine="mujoco", fixed_base=True, solref=(0.02, 1), solimp=[0.9, 0.95, 0.001],
+                             noslip=np.int64(3), integrator="RK4", quiet=True),
+     ["--engine", "mujoco", "--fixed-base", "--solref", "0.02,1", "--solimp", "0.9,0.95,0.001", "--noslip", "3",
+      "--integrator", "RK4", "--quiet"]),
+    (RunOptions, "run", dict(set_settings=["mujoco.integrator=RK4", "timestep=1e-4"], isolator="bilinear",
+                             stiffness=1e5, post_yield_ratio=0.1, yield_displacement=0.01, theta0_over_alpha=-0.2),
+     ["--set", "mujoco.integrator=RK4", "--set", "timestep=1e-4", "--isolator", "bilinear", "--stiffness", "1e5",
+      "--post-yield-ratio", "0.1", "--yield-displacement", "0.01", "--theta0", "-0.2"]),
+    (RunOptions, "run", dict(), []),
+    (ValidateOptions, "validate", dict(quick=True, engines=["analytic", "mujoco:fast"], motion=[SINE, "ricker:amp=0.3,freq=2"],
+                                       pga=np.float64(0.5), workers=np.int64(2), overturn="alpha"),
+     ["--quick", "--engines", "analytic", "mujoco:fast", "--motion", SINE, "--motion", "ricker:amp=0.3,freq=2",
+      "--pga", "0.5", "--workers", "2", "--overturn", "alpha"]),
+    (ValidateOptions, "validate", dict(motion=SINE, engines="analytic", height=2.0, width=0.7, mass=10,
+                                       fixed_base=True, scales="1,2,3"),
+     ["--motion", SINE, "--engines", "analytic", "--height", "2", "--width", "0.7", "--mass", "10", "--fixed-base",
+      "--scales", "1,2,3"]),
+])
+def test_keywords_and_the_command_line_give_one_typed_value(model, command, keywords, argv):
+    """The oracle: the argv through the command's real parser, read into the typed value as the
+    command reads it; the keywords (NumPy numbers, a pair, a triple, flags, lists) give the same
+    value, field by field, a default (the paper's block: io.keys.Default) kept a default."""
+    want = model.from_namespace(_subparser(command).parse_args(argv))
+    got = model.from_keywords(command, keywords)
+    assert got == want
+    assert _types(got) == _types(want)
+
+
+def test_the_typed_values_fields_are_the_commands_options_with_their_defaults():
+    """Declared twice (the parser for --help, the typed value for both routes), held equal."""
+    for model, command in ((RunOptions, "run"), (ValidateOptions, "validate")):
+        actions = {a.dest: a for a in _subparser(command)._actions if a.dest != "help"}
+        assert set(actions) == set(model.model_fields), command
+        for dest, action in actions.items():
+            default = model.model_fields[dest].default
+            assert default == action.default and type(default) is type(action.default), (command, dest)
+
+
+@pytest.mark.parametrize("call, keywords, line", [
+    ("run", dict(height="2.0"), "height = '2.0': must be a number, not a string"),
+    ("run", dict(fixed_base="yes"), "fixed_base = 'yes': must be True or False"),
+    ("run", dict(pga=True), "pga = True: must be a number (a boolean is not a number)"),
+    ("run", dict(solref="0.02,1"), "solref = '0.02,1': must be a sequence of 2–2 numbers, e.g. (0.02, 1)"),
+    ("run", dict(solimp=(0.9,)), "solimp = (0.9,): must have 3–5 numbers"),
+    ("run", dict(noslip=2.5), "noslip = 2.5: must be a whole number"),
+    ("run", dict(cone="round"), "cone = 'round': must be one of pyramidal, elliptic"),
+    ("run", dict(motion=""), "motion = '': an empty value; give one, or leave it out for its default"),
+    ("report", dict(quick="yes"), "quick = 'yes': must be True or False"),
+    ("report", dict(engines=[]), "engines = []: must give one or more (leave it out for the defaults)"),
+    ("report", dict(workers="2"), "workers = '2': must be a whole number"),
+])
+def test_a_bad_keyword_type_is_one_line_naming_the_keyword(call, keywords, line):
+    with pytest.raises(InputError) as e:
+        getattr(isorock, call)(**keywords)
+    assert str(e.value) == line
+
+
+def test_the_command_line_hands_the_typed_value_on(monkeypatch):
+    """`isorock run` reads its namespace into RunOptions and hands that to the readers isorock.run
+    calls (plan_runs), not the namespace."""
+    from isorock.validate.cli import run as run_module
+    seen = []
+
+    def plan_runs(a, specs):
+        seen.append(a)
+        raise InputError("stop")
+    monkeypatch.setattr(run_module, "plan_runs", plan_runs)
+    assert main(["run", "--fixed-base", "--solref", "0.02,1", "--quiet"]) == 2
+    assert seen == [RunOptions.from_keywords("run", dict(fixed_base=True, solref=(0.02, 1), quiet=True))]

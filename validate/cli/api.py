@@ -6,88 +6,33 @@ pandas DataFrames) instead of files and printed tables.
 Each keyword is the command's option with dashes as underscores (`base_mass=150`,
 `pga=0.5`, `engine="analytic,mujoco:fast"`, `timestep=2.5e-4`); a flag is True or False
 (`fixed_base=True`, `quick=True`); a list is given as a list (`motion=[...]` for
-validate, `engines=[...]`). The keywords are turned into the command's arguments and read by
-the command's own parser and checks, so a value the command refuses is refused here, as
-an InputError (a ValueError) with the command's one line: the two cannot drift apart.
+validate, `engines=[...]`), a pair or a triple as a tuple (`solref=(0.02, 1)`); a number is any
+real number (NumPy's too), never a string. The keywords are read into the command's typed
+options (io/options.py: RunOptions, ValidateOptions), the value the command line reads its
+parsed arguments into too, and both hand it to the same functions: a value the command refuses
+is refused here, as an InputError (a ValueError) with the command's one line, its options
+named as keywords.
 
     import isorock
     tr = isorock.run(engine="analytic", height=0.6, width=0.2, mass=80, base_mass=150,
                      period=2.0, damping_ratio=0.15, motion="sine:amp=0.3,freq=2,cycles=2", pga=0.5)
     tr.theta_max_over_alpha, tr.to_dataframe()
 
-It sits on the command line's floor (it reads the commands' parsers): nothing below
-imports it.
+It sits on the command line's floor (it calls the commands' functions, never their parsers):
+nothing below imports it.
 """
 from __future__ import annotations
 
-import argparse
-import numbers
 import re
 from dataclasses import dataclass
 
 from ...analytic.errors import InputError, import_extra, path_value
 from ...analytic.limits import check_workers
 from ..core.executor import exit_if_bootstrapping
+from ..io.inputs import engine_asked, parse_engines, plan_runs, run_budget, simulate_plan, transverse_asked
+from ..io.options import RunOptions, ValidateOptions
 from ..io.output import check_folder
 from ..io.progress import Progress
-from .main import build_parser
-from .options import run_budget, transverse_asked
-
-
-def _parser(command: str) -> argparse.ArgumentParser:
-    """The command's own parser, raising InputError (the command's one line) instead of
-    printing it and exiting."""
-    def refuse(status=0, message=None):
-        text = (message or "").strip().split(": error: ", 1)[-1].replace(f" (see isorock {command} --help)", "")
-        # the options as the keywords they are here: --base-mass → base_mass
-        raise InputError(_keywords(text))
-    top = build_parser(command)
-    sub = next(a for a in top._actions if isinstance(a, argparse._SubParsersAction)).choices[command]
-    sub.exit = refuse
-    return sub
-
-
-def _argv(parser: argparse.ArgumentParser, name: str, kwargs: dict, positional: tuple = ()) -> list[str]:
-    """Keyword arguments as the command's arguments: an unknown keyword is named with the
-    keywords there are."""
-    actions = {a.dest: a for a in parser._actions if a.option_strings and a.dest != "help"}
-    argv = [str(p) for p in positional]
-    for key, value in kwargs.items():
-        action = actions.get(key)
-        if action is None:
-            raise InputError(f"{key}: not an option of isorock.{name} (its options: {', '.join(sorted(actions))})")
-        flag = next(o for o in action.option_strings if o.startswith("--"))
-        if value is None:
-            continue
-        if isinstance(action, (argparse._StoreTrueAction, argparse._StoreFalseAction)):
-            if not isinstance(value, bool):
-                raise InputError(f"{key} = {value!r}: must be True or False")
-            if value != action.default:
-                argv.append(flag)
-            continue
-        values = list(value) if isinstance(value, (list, tuple)) else [value]
-        text = [_text(v) for v in values]
-        if isinstance(action, argparse._AppendAction):
-            for t in text:
-                argv += [flag, t]
-        elif action.nargs in ("+", "*"):
-            argv += [flag, *text]
-        else:  # a pair or triple (solref, solimp) is one comma-separated value on the command line
-            argv += [flag, ",".join(text)]
-    return argv
-
-
-def _text(value) -> str:
-    """A keyword's value as the command line would spell it. Any real number (NumPy's,
-    a Fraction, a Decimal) as its float's repr, exact and parseable: NumPy 2's own repr,
-    np.float64(0.6), was refused as 'not a number'; a 0-d array as its item."""
-    if hasattr(value, "ndim") and getattr(value, "ndim", None) == 0:
-        value = value.item()
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        return str(value)
-    if isinstance(value, numbers.Integral):
-        return str(int(value))
-    return repr(float(value))
 
 
 def _path(key: str, value, *, optional: bool = True):
@@ -106,11 +51,6 @@ def _keywords(text: str) -> str:
     return re.sub(r"--([a-z][a-z0-9-]*)", lambda m: m.group(1).replace("-", "_"), text)
 
 
-def _parse(command: str, kwargs: dict, positional: tuple = ()) -> argparse.Namespace:
-    parser = _parser(command)
-    return parser.parse_args(_argv(parser, command, kwargs, positional))
-
-
 def run(**options):
     """One simulation, as `isorock run` runs it: the Trajectory (several engines,
     `engine="analytic,mujoco"`: a dict label → Trajectory, in the order given). Keywords:
@@ -118,14 +58,14 @@ def run(**options):
     fixed_base, motion, units, scale, pga, pgv, duration, theta0_over_alpha, timestep, …),
     without its output options (json, csv, plot: the Trajectory has to_dataframe() and
     to_csv())."""
-    from .run import engine_asked, parse_engines, plan_runs, simulate_plan  # lazy: each entry point its own modules
+    from .options import read_pair  # the campaign's record pairs (--pair), which only this floor imports
     for key in ("json", "csv", "csv_dt", "plot", "quiet"):
         if key in options:
             raise InputError(f"{key}: an output of the command; isorock.run returns the Trajectory "
                              "(its to_dataframe(), to_csv(), summary())")
-    a = _parse("run", options)
+    a = RunOptions.from_keywords("run", options)
     try:
-        plan, _ = plan_runs(a, parse_engines(engine_asked(a)))
+        plan, _ = plan_runs(a, parse_engines(engine_asked(a)), read_pair=read_pair)
     except InputError as e:
         raise InputError(_keywords(str(e))) from None
     runs, _ = simulate_plan(plan, a, budget=run_budget(a))  # each run within --budget, as the command's
@@ -156,10 +96,8 @@ def report(*, out: str | None = None, progress: bool = False, **options) -> Vali
     from .report import report_config  # lazy: each entry point loads its own command's modules (matplotlib here)
     from ..tools.report_render import metrics, verdict, write_report
     from ..tools.report_run import build
-    if "motion" in options and isinstance(options["motion"], str):
-        options["motion"] = [options["motion"]]
     out, progress = _path("out", out), _flag("progress", progress)
-    a = _parse("validate", options)
+    a = ValidateOptions.from_keywords("validate", options)
     if out is not None:
         check_folder(out)
     if transverse_asked(a):  # a record pair: the pair's validation (pair_report.py), as the command makes it

@@ -20,7 +20,7 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, Validat
 from ...analytic.errors import InputError
 from ..core.engines import check_settings_table
 from ..io import keys
-from ..io.schema import Positive, field_type, read_toml
+from ..io.schema import Positive, describe, field_type, read_toml  # noqa: F401 — describe: importable from here
 
 #: ξ of an isolator this command runs: below 1 (underdamped), as `isorock sweep` takes
 #: it; ξ = 1e6 made the report's search for the uplift scale run for ever (issue 24)
@@ -106,30 +106,6 @@ class ConfigFile(_Strict):
                 raise ValueError(f"[settings.{table}]{msg[len(table) + 1:]}" if msg.startswith(f"{table}:")
                                  else f"[settings.{table}] {msg}") from None
         return tables
-
-
-def _where(loc) -> str:
-    return ".".join(str(p) for p in loc)
-
-
-def describe(e: ValidationError, prefix: str = "config key") -> InputError:
-    """The first error of a pydantic ValidationError as the project's one line."""
-    err = e.errors(include_url=False)[0]
-    key, value, kind = _where(err["loc"]), err.get("input"), err["type"]
-    msg = err["msg"].removeprefix("Value error, ")
-    if kind == "extra_forbidden":
-        return InputError(f"{prefix} {key}: not known")
-    if kind == "missing":
-        return InputError(f"{prefix} {key}: missing")
-    if kind in ("dict_type", "model_type"):
-        return InputError(f"{prefix} {key} = {value!r}: must be a table")
-    if kind == "literal_error":
-        return InputError(f"{prefix} {key} = {value!r}: {msg.replace('Input should be', 'must be')}")
-    if kind == "bool_type":
-        return InputError(f"{prefix} {key} = {value!r}: must be true or false")
-    if key.startswith("settings") and msg.startswith("[settings."):
-        return InputError(f"config {msg}")
-    return InputError(f"{prefix} {key} = {value!r}: {msg}")
 
 
 def read_config(path) -> dict:

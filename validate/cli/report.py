@@ -21,11 +21,11 @@ from .run import engine_labels, shaken_body
 from ..core.engines import ENGINE_NAMES, resolve
 from ..core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
 from ..io import keys
+from ..io.options import DEFAULT_OUT, ValidateOptions
 from ..io.output import check_folder
 from ..io.progress import Progress
 from ..tools.report_run import ReportConfig, build
 
-DEFAULT_OUT = "isorock-report"
 #: ensemble bounds: steps each run every engine on every motion; a factor of 100 turns
 #: the paper's 0.83 g Kobe record into 83 g, far past overturning
 MAX_SCALE_STEPS = 200
@@ -169,7 +169,10 @@ def report_config(args):
 
 
 def run(args) -> int:
+    """`isorock validate`: the parser's namespace read into the typed ValidateOptions that
+    isorock.report builds from keywords, then the report."""
     from ..tools.report_render import verdict, write_report  # lazy: matplotlib, once the runs are done
+    args = ValidateOptions.from_namespace(args)
     if transverse_asked(args):  # a record pair: its own report (pair_report.py)
         return _pair_report(args)
     check_folder(args.out)  # a folder we may not write is refused before the runs, not after

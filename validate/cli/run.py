@@ -15,79 +15,28 @@ output (its JSON fields, its CSV) is unchanged.
 from __future__ import annotations
 
 import sys
-from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
 
 from ...analytic.errors import InputError
 from ...analytic.limits import BudgetExceeded, check_resample
-from ...analytic.system import LINEAR
 from ..io.provenance import provenance
-from .options import (STATUE_OPTIONS, announce_cost, budget_stopped, check_tables_run, engine_tables,
-                      motion_from_args, run_budget, settings_dict, statue_azimuth, statue_body,
-                      system_from_args, transverse_asked)
-from ..core.biaxial import box_body, render, two_components
+from .options import announce_cost, budget_stopped, read_pair, run_budget, settings_dict
+from ..core.biaxial import render, two_components
 from ..core.compare import compare
-from ..core.engines import choose, get_engine, resolve, table_overrides
-from ..core.plan import EngineRun, make_plan, run_plan
+from ..io import inputs
+# the options read into a Plan, below the command line (io/inputs.py): importable from here as before
+from ..io.inputs import (check_pair_engine, engine_asked, engine_labels, load_engines, parse_engines,  # noqa: F401
+                         shaken_body, simulate_plan, spec_label)
 from ..io.naming import cell, describe_motion
+from ..io.options import RunOptions
 from ..io.output import Outputs, to_json
 
 
-def parse_engines(text: str) -> list[tuple[str, str | None]]:
-    """'analytic,mujoco:fast' → [('analytic', None), ('mujoco', 'fast')]; names are
-    checked by the registry when the engine is loaded."""
-    out = []
-    for item in (s.strip() for s in str(text).split(",")):
-        if not item:
-            raise InputError(f"engine = {text!r}: must be comma-separated engine names (ENGINE or ENGINE:PRESET)")
-        name, _, preset = item.partition(":")
-        out.append((name.strip(), preset.strip() or None))
-    if len(set(out)) != len(out):
-        raise InputError(f"engine = {text!r}: must name each engine (and preset) once")
-    return out
-
-
-def spec_label(name: str, preset: str | None) -> str:
-    return name if preset is None else f"{name}:{preset}"
-
-
-def engine_labels(items) -> list[str]:
-    """`--engines` as bench and atlas take it (each item ENGINE or ENGINE:PRESET, space- or
-    comma-separated, as validate takes it) → labels, each checked before any work: an
-    unknown engine or preset is an InputError naming it and what is allowed. An engine
-    that cannot be imported here is kept; the command reports it as not run."""
-    # "analytic, mujoco" arrives as the items "analytic," and "mujoco": an item's own
-    # leading or trailing comma separates, it does not name an empty engine
-    specs = parse_engines(",".join(str(item).strip().strip(",") for item in items))
-    for name, preset in specs:
-        try:
-            resolve(spec_label(name, preset))
-        except ImportError:
-            pass
-    return [spec_label(name, preset) for name, preset in specs]
-
-
-def load_engines(specs, a) -> list[tuple[str, object, object]]:
-    """(label, Engine, Settings) for each spec, through the registry's one engine choice
-    (core.engines.choose): the preset or the defaults, with the engine options given that
-    the engine has. An engine option that none of the engines has is an error (it would
-    silently do nothing); a bad value is named as its option."""
-    tables = engine_tables(a)
-    engines = [(spec_label(n, p), get_engine(n)) for n, p in specs]
-    check_tables_run(tables, [label for label, _ in engines])
-    unused = sorted(set(tables["*"]) - {f.name for _, e in engines for f in fields(e.Settings)})
-    if unused:
-        names = ", ".join("--" + k.replace("_", "-") for k in unused)
-        raise InputError(f"{names}: not a setting of engine {', '.join(label for label, _ in engines)}")
-    out = []
-    for label, engine in engines:
-        try:
-            out.append((label, engine, choose(label, table_overrides(tables, label)).settings()))
-        except InputError as e:
-            raise InputError(str(e).replace("_", "-")) from None
-    return out
+def plan_runs(a, specs):
+    """The run options' Plan (io.inputs.plan_runs, --pair read by the command line's read_pair)."""
+    return inputs.plan_runs(a, specs, read_pair=read_pair)
 
 
 def _file_suffix(path, label: str) -> Path:
@@ -142,84 +91,10 @@ def comparison_table(runs: dict, comparisons: dict) -> str:
     return "\n".join(lines)
 
 
-def _progress(quiet):
-    if quiet or not sys.stderr.isatty():
-        return None
-
-    def report(t, total):
-        print(f"\r  t = {t:8.2f} / {total:.2f} s", end="", file=sys.stderr, flush=True)
-    return report
-
-
-def engine_asked(a) -> str:
-    """--engine as given, or the default: the compiled kernel, which carries every isolator
-    the model has (docs/isolators.md); with two horizontal components, MuJoCo, the engine
-    that carries them."""
-    if a.engine is not None:
-        return a.engine
-    return "mujoco" if transverse_asked(a) else "analytic"
-
-
-def plan_runs(a, specs):
-    """The run options `a` (the parser's namespace) read into Python values, and the one Plan
-    of them (core.plan.make_plan: every check made there once, before any work)."""
-    runs = [EngineRun(label, engine, settings) for label, engine, settings in load_engines(specs, a)]
-    statue = statue_body(a)  # a statue's mesh read once: the System's two edges, and the 3-D measures' body
-    system, motion = system_from_args(a, statue=statue), motion_from_args(a)
-    # two components: the body shaken and its direction for the 3-D measures, its isolator checked
-    # first; an engine that runs one component named as the option names it
-    for r in runs:
-        if motion.transverse is not None:
-            check_pair_engine(r, system)
-    shaken = None if motion.transverse is None else shaken_body(a, system, statue)
-    if not (abs(a.theta0_over_alpha) < 1):
-        raise InputError(f"theta0_over_alpha = {a.theta0_over_alpha!r}: must be a fraction of α between -1 and 1")
-    # a fraction of the α of the edge it tilts onto (a statue's two edges differ)
-    theta0 = a.theta0_over_alpha * system.edge_alpha(1 if a.theta0_over_alpha >= 0 else -1)
-    plan = make_plan(system, motion, runs, duration=a.duration, theta0=theta0, impact_threshold=a.impact_threshold,
-                     overturn_rule=a.overturn, first_run=True)
-    return plan, shaken
-
-
-def check_pair_engine(r, system) -> None:
-    """One line, before any work, for an engine that does not run two horizontal components, or
-    not on this isolator (Capabilities.transverse_isolators: the linear one, and in MuJoCo,
-    PyBullet, Drake and DART the pendulums, whose friction in the plane their scenes make isotropic)."""
-    caps = r.engine.capabilities
-    if not getattr(caps, "transverse", False):
-        raise InputError(f"--engine = {r.label!r}: runs one horizontal component only; with two "
-                         "(--motion-transverse, --pair) the engine is mujoco, bullet, drake or dart")
-    kinds = getattr(caps, "transverse_isolators", (LINEAR,))
-    if not system.fixed_base and system.isolator_kind not in kinds:
-        raise InputError(f"--isolator = {system.isolator_kind!r}: with two horizontal components (--motion-transverse, "
-                         f"--pair) engine {r.label!r} carries {' or '.join(kinds)} (the same k and c along x and y"
-                         f"{'' if kinds == (LINEAR,) else '; a pendulum with its friction the same in every direction'}"
-                         "), or give --fixed-base")
-
-
-def shaken_body(a, system, statue, names: dict = STATUE_OPTIONS) -> tuple:
-    """(the body at rest, the azimuth in rad) of a run with two components: the statue's mesh
-    (`statue`, statue_body's (resting, body), along --azimuth or the direction it tips first), or
-    the block H × B × D of MuJoCo's scene along 0. `names`: how a statue's inputs are spelled in
-    errors (statue_body's)."""
-    # the contact scenes' block stands on a square footprint (MuJoCo's and Drake's DEPTH_FRACTION 1, PyBullet's
-    # 2b × 2b box, DART's DEPTH_RATIO 1)
-    if system.body is None:
-        return box_body(system.height, system.width, system.width, system.mass), 0.0
-    standing = statue[0]
-    return standing, statue_azimuth(a, standing, names)
-
-
-def simulate_plan(plan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:
-    """(label → Trajectory, label → Settings used), in the order the engines were given;
-    each run within `budget` s (core.plan.run_plan)."""
-    runs = run_plan(plan, progress=_progress(getattr(a, "quiet", True)), budget_s=budget,
-                    on_start=(lambda label: print(f"\r{label} …", file=sys.stderr)) if announce else None)
-    return runs, {r.label: r.settings for r in plan.runs}
-
-
 def cmd_run(a) -> int:
-    """One or several engines on one system and motion; exit 1 when any run failed."""
+    """One or several engines on one system and motion; exit 1 when any run failed. `a`: the
+    parser's namespace, read into the typed RunOptions that isorock.run builds from keywords."""
+    a = RunOptions.from_namespace(a)
     specs = parse_engines(engine_asked(a))
     several = len(specs) > 1
     with Outputs() as outputs:

@@ -2,9 +2,9 @@
 
 Each key is a `Key`: its name (the System's field, the argparse dest and the TOML key
 alike), its kind, its unit, its help text and its option's spelling. Every surface is
-made from these declarations: `validate`'s and `run`'s options (cli/options.py), a
---config file's [system] table and motion keys (cli/config_file.py, through
-io/schema.field_type), and the element checks of a campaign's grid axes that are the
+made from these declarations: `validate`'s and `run`'s options (cli/options.py; their typed
+values, io/options.py), a --config file's [system] table and motion keys (cli/config_file.py,
+through io/schema.field_type), and the element checks of a campaign's grid axes that are the
 same keys (campaign/schema.py). A key added here appears in all of them.
 
 Plain data: building a parser imports this without pydantic or NumPy.
@@ -25,6 +25,20 @@ KINDS = (POSITIVE, NON_NEGATIVE, BOOL, CHOICE)
 UNITS = ("m/s2", "g", "gal", "cm/s2")
 #: a record file's formats, as analytic.motion.FORMATS names them (likewise)
 FORMATS = ("at2", "jma", "csv")
+#: the words of the engine options that are choices (--cone, --integrator) and of --overturn
+CONES = ("pyramidal", "elliptic")
+INTEGRATORS = ("Euler", "implicit", "implicitfast", "RK4")
+OVERTURN_RULES = ("past-alpha", "alpha")
+
+
+class Default(float):
+    """A number the command filled in, not the user's: a command that takes a statue's mesh
+    (--statue) refuses the block's --height and --width given with it, and can tell them apart."""
+
+
+def given(value) -> bool:
+    """Whether an option's value is the user's (not None, not a Default)."""
+    return value is not None and not isinstance(value, Default)
 
 
 @dataclass(frozen=True)
@@ -79,7 +93,7 @@ SYSTEM = _by_name(
 )
 
 #: a non-linear isolator and its parameters (add_isolator_options; docs/isolators.md). Which
-#: keys each kind takes is checked where the System is made (options._isolator_from_args), so
+#: keys each kind takes is checked where the System is made (io/inputs._isolator_from_args), so
 #: a file and the options are refused in the same words
 ISOLATOR = _by_name(
     Key("isolator", CHOICE, "the isolator under the base (default: %(default)s; bilinear: --stiffness/--period set "

@@ -10,7 +10,7 @@ import re
 import tomllib
 from typing import Annotated, Literal
 
-from pydantic import BeforeValidator, StrictBool
+from pydantic import BeforeValidator, StrictBool, ValidationError
 
 from ...analytic.errors import InputError
 from . import keys
@@ -137,5 +137,34 @@ def field_type(key: keys.Key):
     return {keys.POSITIVE: Positive, keys.NON_NEGATIVE: NonNegative, keys.BOOL: StrictBool}[key.kind] | None
 
 
-__all__ = ["number", "Positive", "NonNegative", "field_type", "parse_toml", "read_toml", "MAX_TOML_BYTES",
+# --- a validation error as one line --------------------------------------------------------
+
+
+def _where(loc) -> str:
+    return ".".join(str(p) for p in loc)
+
+
+def describe(e: ValidationError, prefix: str = "config key") -> InputError:
+    """The first error of a pydantic ValidationError as the project's one line: the key after
+    `prefix` ("config key system.height = true: …"; with prefix "" the key alone, as the notebook
+    API names its keywords: "height = 'abc': …")."""
+    err = e.errors(include_url=False)[0]
+    key, value, kind = _where(err["loc"]), err.get("input"), err["type"]
+    msg = err["msg"].removeprefix("Value error, ")
+    named = f"{prefix} {key}" if prefix else key
+    if kind == "extra_forbidden":
+        return InputError(f"{named}: not known")
+    if kind == "missing":
+        return InputError(f"{named}: missing")
+    if kind in ("dict_type", "model_type"):
+        return InputError(f"{named} = {value!r}: must be a table")
+    if kind == "literal_error":
+        return InputError(f"{named} = {value!r}: {msg.replace('Input should be', 'must be')}")
+    if kind == "bool_type":
+        return InputError(f"{named} = {value!r}: must be true or false")
+    if key.startswith("settings") and msg.startswith("[settings."):
+        return InputError(f"config {msg}")
+    return InputError(f"{named} = {value!r}: {msg}")
+
+__all__ = ["describe", "number", "Positive", "NonNegative", "field_type", "parse_toml", "read_toml", "MAX_TOML_BYTES",
            "MAX_TOML_DEPTH", "MAX_KEY_PARTS", "MAX_TOML_WORD"]
