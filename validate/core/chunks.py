@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...analytic import limits
+from ...analytic import fast, limits
 from ...analytic.limits import available_cores
 from ...analytic.system import paper_system
 
@@ -106,8 +106,6 @@ def run_chunk(task: Chunk, threads: int | None = 1) -> list[dict]:
 
 
 def _run_batch(task: Chunk, threads) -> list[dict]:
-
-    from ...analytic.fast import simulate_batch  # lazy: numba and the kernel, in the worker that runs the batch
     settings = task.setting.settings()
     if task.overturn_rule is not None:
         settings = replace(settings, overturn=task.overturn_rule)
