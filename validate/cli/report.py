@@ -23,6 +23,7 @@ from ..core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
 from ..io import keys
 from ..io.output import check_folder
 from ..io.progress import Progress
+from ..tools.report_render import verdict, write_report
 from ..tools.report_run import ReportConfig, build
 
 DEFAULT_OUT = "isorock-report"
@@ -169,7 +170,6 @@ def report_config(args):
 
 
 def run(args) -> int:
-    from ..tools.report_render import verdict, write_report  # lazy: matplotlib, once the runs are done
     if transverse_asked(args):  # a record pair: its own report (pair_report.py)
         return _pair_report(args)
     check_folder(args.out)  # a folder we may not write is refused before the runs, not after
