@@ -4,7 +4,7 @@ same model on SciPy's DOP853 (analytic.hybrid), which the kernel is tested again
 import numbers
 import os
 
-from . import kernel_cache
+from . import fast, hybrid, kernel_cache, slide_fast
 from .engine_protocol import Capabilities, EngineSpec, Preset
 from .motion import GroundMotion
 from .settings import AnalyticSettings as Settings
@@ -27,21 +27,17 @@ def ladder(quick: bool):
 
 def simulate(system, motion=None, *, progress=None, **kwargs):
     """The compiled kernel: a whole run takes milliseconds, so there is no progress to report."""
-    from .fast import simulate_fast  # lazy: the registry loads this spec; numba and the kernels load on a run
-    return simulate_fast(system, motion, **kwargs)
+    return fast.simulate_fast(system, motion, **kwargs)
 
 
 def simulate_reference(system, motion=None, **kwargs):
-    from .hybrid import simulate as reference  # lazy: SciPy's integrator only for the reference preset
-    return reference(system, motion, **kwargs)
+    return hybrid.simulate(system, motion, **kwargs)
 
 
 def _kernel_of(system, motion):
     """The compiled kernel a run of `system` under `motion` calls: the sliding model's, the
     linear one (fixed base, linear isolator) or the non-linear isolators'."""
-    from . import fast  # lazy: numba and the kernels load on a run, not with the spec
     if needs_contact_model(system, motion):
-        from . import slide_fast  # lazy: numba and the kernels load on a run, not with the spec
         return slide_fast._run
     return fast._integrate if system.fixed_base or system.isolator is None else fast._integrate_iso
 

@@ -1700,7 +1700,7 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
                                   impact_threshold)
     odt = settings.output_dt if output_dt is None else require_positive_finite("output_dt", output_dt)
     if needs_contact_model(system, motion):  # the statue may slip, or the ground heaves: docs/sliding.md
-        from . import slide_fast  # here, not at the top: slide_fast imports this one
+        from . import slide_fast  # lazy: an import cycle, slide_fast imports this module
         return slide_fast.simulate(system, motion, replace(settings, output_dt=odt), duration, theta0, theta_dot0,
                                    u0, u_dot0, impact_threshold, ENGINE)
     kernel, sp, ip, n_y = _kernel_for(system, settings)
@@ -1876,7 +1876,7 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
 
 def _contact_rows(systems, motions, case_sys, case_mot, T, th0, cases, impact_threshold, settings, workers):
     """(case, row) of the cases that need the sliding model, on threads over its GIL-free kernel."""
-    from . import slide_fast  # here, not at the top: slide_fast imports this one
+    from . import slide_fast  # lazy: an import cycle, slide_fast imports this module
 
     def one(c):
         i, j = int(case_sys[c]), int(case_mot[c])

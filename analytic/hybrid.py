@@ -88,7 +88,7 @@ def simulate(system: System, motion: GroundMotion | None = None, *, settings: An
                                   theta_dot0=theta_dot0, u0=u0, u_dot0=u_dot0, isolators=ISOLATOR_KINDS,
                                   two_edges=True)
     if needs_contact_model(system, motion):  # the statue may slip, or the ground heaves: docs/sliding.md
-        from .slide_hybrid import simulate as simulate_sliding  # here, not at the top: slide_hybrid imports this one
+        from .slide_hybrid import simulate as simulate_sliding  # lazy: an import cycle, slide_hybrid imports this module
         return simulate_sliding(system, motion, settings, duration, progress, impact_threshold, theta0, theta_dot0,
                                 u0, u_dot0)
     integrator = _Integrator if system.fixed_base or system.isolator is None else _IsolatorIntegrator

@@ -17,7 +17,10 @@ import subprocess
 import sys
 import time
 
+import numpy as np
+
 from . import kernel_cache
+from .motion import GroundMotion, load_motion
 from .system import FrictionPendulum, System, paper_system
 
 #: the kernels, by the name kernel_cache and its estimates use, in the two groups `build` runs side by side
@@ -30,20 +33,17 @@ BUDGET_S = 900.0
 
 def dispatcher(name: str):
     """The compiled function named `name` (one of KERNELS)."""
-    from . import fast, rest_scales, slide_fast  # lazy: numba and the kernels, loaded in the build process only
+    from . import fast, rest_scales, slide_fast  # lazy: numba and the kernels, in the build processes only
     return {"_integrate": fast._integrate, "_integrate_iso": fast._integrate_iso, "_run": slide_fast._run,
             "_rest_pass": rest_scales._rest_pass}[name]
 
 
 def _warm(name: str) -> None:
     """Make one call that needs kernel `name`, as a command makes it (it builds the kernel)."""
-    import numpy as np  # lazy: the build process's warm-up only
-
-    from .fast import simulate_fast
-    from .motion import GroundMotion, load_motion
+    from .fast import simulate_fast  # lazy: numba and the kernels, loaded in the build processes only
     record = GroundMotion.from_array(np.array([0.0, 0.5, -0.5, 0.0]), dt=0.02, units="g")
     if name == "_rest_pass":
-        from .rest_scales import rest_phases
+        from .rest_scales import rest_phases  # lazy: as simulate_fast above
         rest_phases([paper_system()], [record], [[1.0]], [0.1], workers=1)
         return
     system = {"_integrate": paper_system(),

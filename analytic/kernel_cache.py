@@ -34,6 +34,8 @@ import threading
 import time
 import warnings
 
+import numpy as np
+
 _HERE = os.path.dirname(os.path.abspath(__file__))
 #: the sources compiled into the kernel: a change to any of them invalidates the cache
 KERNEL_SOURCES = tuple(os.path.join(_HERE, f) for f in ("fast.py", "physics.py"))
@@ -252,13 +254,12 @@ def ahead_of_time(signature):
 def _stamp(dispatcher) -> str:
     import llvmlite.binding as llvm  # lazy: the cache stamp only; a cache check loads no numba
     import numba
-    import numpy
     h = hashlib.sha256()
     for path in KERNEL_SOURCES:
         with open(path, "rb") as f:
             h.update(f.read())
     h.update(str(_aot_exports[dispatcher]).encode())
-    for part in (numba.__version__, numpy.__version__, sys.version, platform.machine(),
+    for part in (numba.__version__, np.__version__, sys.version, platform.machine(),
                  llvm.get_host_cpu_name(), llvm.get_host_cpu_features().flatten()):
         h.update(part.encode())
     return h.hexdigest()[:16]
@@ -320,7 +321,7 @@ def _pycc():
     ImportError here, before any build is announced, and the JIT kernel serves."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # numba.pycc's pending-deprecation notice
-        from numba.pycc import CC
+        from numba.pycc import CC  # lazy: numba.pycc, for an ahead-of-time build only
         from numba.pycc import compiler as pycc_compiler
     return CC, pycc_compiler
 
@@ -409,7 +410,7 @@ def is_ready(dispatcher) -> bool:
         return False
     # the one signature call_kernel calls with: every array writable (an older cache may hold
     # read-only flavours only, which a call no longer matches)
-    from numba.core.types import Array
+    from numba.core.types import Array  # lazy: numba, where a cache index was read
     return any(all(t.mutable for t in key[0] if isinstance(t, Array)) for key in index)
 
 
@@ -480,7 +481,7 @@ def _build_lock(folder: str | None, name: str):
     its holder dies. Where there is none (no fcntl, an unwritable folder) builds may run
     side by side, each leaving a whole file (_build_module)."""
     try:
-        import fcntl  # here, not at the top: POSIX only
+        import fcntl  # lazy: POSIX only
         handle = open(os.path.join(folder, f".{name}.lock"), "a")  # noqa: SIM115 - held across the yield
     except (ImportError, OSError, TypeError):
         yield
@@ -519,7 +520,6 @@ def _try_lock(fcntl, handle) -> bool:
 def c_writable(a):
     """a, or a C-contiguous writable copy of an array that is not: the one flavour of array every
     kernel is compiled for."""
-    import numpy as np  # lazy: this module is loaded to check a cache, which needs no NumPy
     if isinstance(a, np.ndarray):
         if a.flags.c_contiguous and a.flags.writeable:
             return a

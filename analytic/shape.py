@@ -30,6 +30,7 @@ import numpy as np
 from scipy.spatial import ConvexHull
 
 from .errors import InputError, import_extra, python_number
+from .fast import simulate_batch
 from .system import PlanarBody, STANDARD_GRAVITY, System
 
 #: Hull faces whose planes agree to this (unit normal, and offset in m) are one face.
@@ -334,7 +335,6 @@ def overturning_by_azimuth(body: RestingBody, motion, *, azimuths: int = SWEEP_A
     (None: none up to the last). Rocking is not monotone in amplitude: the lowest level that
     overturns, not a boundary above which all do. One batch of the compiled kernel
     (fast.simulate_batch). {azimuth_deg, overturning_pga_g, worst: (azimuth_deg, pga_g)}."""
-    from .fast import simulate_batch  # lazy: numba and the kernel, for the overturning scan only
     angles = [2.0 * math.pi * k / azimuths for k in range(azimuths)]
     systems = along_directions(body, angles)
     motions = [motion.scaled_to_pga(level) for level in levels]

@@ -34,6 +34,7 @@ from .kernel_cache import cached_jit, call_kernel
 from .fast import _A, _B, _C, _D, _E3, _E5
 from .limits import energy_balance_failure
 from .overturning import describe, theta_max_over_alpha
+from .slide_hybrid import _WHY
 from .status import Status
 from .trajectory import EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
@@ -1142,7 +1143,6 @@ def _message(system, settings, r):
 
 
 def _ending(system, settings, r):
-    from .slide_hybrid import _WHY  # lazy: slide_hybrid loads SciPy, for a run that failed only
     status, why, t, t_alpha, verdict, pz, theta_end, events = r[:8]
     if why == STOP_INTEGRATION:
         return Status.FAILED, f"integration failed at t = {t:.6g} s: Required step size is less than spacing between numbers."

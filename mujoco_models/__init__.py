@@ -12,6 +12,7 @@ from ..analytic.isolator_parts import CONTACT_ISOLATORS, PLANE_ISOLATORS
 from .scene import SCENE_FORMAT, build_model, check_representable, scene_text
 from .settings import Settings, event_resolved_settings, settings_for, settings_for_timestep
 from .stepping import run_model, simulate, simulate_many, step_cost
+from .replay import replay_scene
 from . import mesh_scene  # the rock's hull on a free joint, for measured shake-table tests
 
 
@@ -53,7 +54,6 @@ TUNING = Tuning(
 
 
 def _replay_scene(system):
-    from .replay import replay_scene  # here, not at the top: replay imports this package's build_model
     return replay_scene(system)
 
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from ..analytic import kinematics
 from ..analytic.system import System
 
-from . import build_model
+from .scene import build_model
 from .settings import Settings
 from .state import Layout
 

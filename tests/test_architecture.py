@@ -271,3 +271,98 @@ def test_compare_only_compares():
     calls = {n.func.attr if isinstance(n.func, ast.Attribute) else getattr(n.func, "id", "")
              for n in ast.walk(tree) if isinstance(n, ast.Call)}
     assert not {c for c in calls if "simulate" in c}
+
+
+# --- issue 35: imports at the module's top; one inside a function says why it waits -------------
+
+#: the word a reason for an import inside a function starts with (`# lazy: matplotlib, only with --plot`)
+LAZY = "lazy"
+
+
+def unexplained_inner_imports(text: str) -> list[tuple[int, str]]:
+    """(line, statement) of each import statement inside a function (at any depth: methods,
+    nested functions, `try`/`with`/`if` blocks) whose reason is not written beside it: a
+    comment holding "lazy" on its own line(s) or the line above. An import right after one
+    that has its reason (the next statement of the same block) shares it, so that
+    `import matplotlib  # lazy: …` covers the `from matplotlib… import …` lines under it.
+    Module-level imports, and the command dispatch (validate/cli/main.py imports a command's
+    module by name, with importlib), are not import statements inside a function."""
+    import io
+    import tokenize
+    lines = text.splitlines()
+    comments: dict[int, str] = {}
+    for tok in tokenize.generate_tokens(io.StringIO(text).readline):
+        if tok.type == tokenize.COMMENT:
+            comments[tok.start[0]] = tok.string
+    said = lambda n: LAZY in comments.get(n, "").lower()  # noqa: E731
+    bad = []
+    for fn in ast.walk(ast.parse(text)):
+        if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        for block in ast.walk(fn):
+            for field in ("body", "orelse", "finalbody", "handlers"):
+                body = getattr(block, field, None)
+                if not isinstance(body, list):
+                    continue
+                explained = False
+                for stmt in body:
+                    if not isinstance(stmt, (ast.Import, ast.ImportFrom)):
+                        explained = False
+                        continue
+                    explained = explained or any(said(n) for n in range(stmt.lineno - 1, stmt.end_lineno + 1))
+                    if not explained:
+                        bad.append((stmt.lineno, lines[stmt.lineno - 1].strip()))
+    return sorted(set(bad))
+
+
+def test_every_import_inside_a_function_says_why_it_waits():
+    """Issue 35: imports stand at the top of their module; one inside a function is there for
+    a reason written beside it (`# lazy: …`): an import cycle, a heavy package off a light
+    command's path (`isorock --help`, `isorock beta`, `import isorock.analytic`), an optional
+    extra, a platform's module."""
+    bad = [f"{path.relative_to(ROOT)}:{line}: {stmt}"
+           for package in FLOORS for path in files_of(package)
+           for line, stmt in unexplained_inner_imports(path.read_text())]
+    assert not bad, "imports inside a function without a `# lazy: why` comment:\n" + "\n".join(bad)
+
+
+INNER = '''\
+import numpy as np  # the top: no reason needed
+
+
+def drawn(path):
+    import matplotlib  # lazy: matplotlib, only with --plot
+    from matplotlib.figure import Figure
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return Figure, plt
+
+
+def waits():
+    # lazy: an import cycle, b imports this module
+    from . import b
+    try:
+        from . import c
+    except ImportError:
+        pass
+    return b, c
+
+
+class Engine:
+    def run(self):
+        from .fast import simulate  # noqa: F401
+        s = """lazy inside a string is no reason"""
+        from .hybrid import simulate as reference
+        return s, reference
+'''
+
+
+def test_the_inner_import_rule_fails_on_an_import_without_its_reason():
+    """The rule itself, on source text: the imports that wait without a written reason are
+    found (after a statement that is not an import, in a try block, in a method, after a
+    string that says "lazy"), and those with a reason, or under one that has it, are not."""
+    assert unexplained_inner_imports(INNER) == [
+        (8, "import matplotlib.pyplot as plt"), (16, "from . import c"),
+        (24, "from .fast import simulate  # noqa: F401"), (26, "from .hybrid import simulate as reference")]
+    planted = INNER.replace("from . import c", "from . import c  # lazy: an optional extra")
+    assert (16, "from . import c  # lazy: an optional extra") not in unexplained_inner_imports(planted)

@@ -17,6 +17,7 @@ from ..core import biaxial, turned_pair
 from ..core.engines import get_engine, table_overrides
 from ..core.plan import engine_run, make_plan
 from ..core.tolerances import has_tolerance, tolerance
+from ..io import figures
 from ..io.output import to_json, write_folder_atomic
 from .options import announce_cost, motion_from_args
 
@@ -118,7 +119,6 @@ def build(args, config: dict, *, engines, overrides: dict, system, shaken, durat
               if has_tolerance(label, turned_pair.HISTORY)}
 
     def draw(path):
-        from ..io import figures  # lazy: matplotlib, once the runs are done
         figures.turned_pair(motion, ran, planar, limits, least, path,
                             title=f"{motion.name}: each engine as given and turned {turn:g}° with the statue")
     return dict(metrics, figure=draw), results

@@ -24,6 +24,7 @@ from ..io import keys
 from ..io.options import DEFAULT_OUT, ValidateOptions
 from ..io.output import check_folder
 from ..io.progress import Progress
+from ..tools.report_render import verdict, write_report
 from ..tools.report_run import ReportConfig, build
 
 #: ensemble bounds: steps each run every engine on every motion; a factor of 100 turns
@@ -171,7 +172,6 @@ def report_config(args):
 def run(args) -> int:
     """`isorock validate`: the parser's namespace read into the typed ValidateOptions that
     isorock.report builds from keywords, then the report."""
-    from ..tools.report_render import verdict, write_report  # lazy: matplotlib, once the runs are done
     args = ValidateOptions.from_namespace(args)
     if transverse_asked(args):  # a record pair: its own report (pair_report.py)
         return _pair_report(args)

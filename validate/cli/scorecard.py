@@ -43,6 +43,7 @@ from ..io.provenance import provenance
 from ..tools.atlas import RUN_BUDGET, Grid, build as atlas_build, distinct, reference
 from ..tools.bench import BATCH_RUNS, BATCH_THREADS, speed_goals
 from ..tools.experiments import data, processing, study
+from ..tools.report_render import engine_verdicts
 from ..tools.report_run import ReportConfig, build as report_build
 from ..tools.stress import NOT_CARRIED, NOT_FAILED, drawn_cases, edge_cases, engine_agreement, run_stress as stress_run
 
@@ -520,7 +521,6 @@ def run_atlas(labels, effort, grid, *, clock, workers, quiet) -> dict:
 
 
 def run_validate(labels, effort, grid, *, clock, workers, quiet) -> dict:
-    from ..tools.report_render import engine_verdicts
     names = [label.partition(":")[0] for label in labels]
     engines = ("analytic",) + tuple(n for n in names if n != "analytic")
     kwargs = {} if effort.validate_motions is None else {"motions": effort.validate_motions}

@@ -112,7 +112,7 @@ def sweep_verdict(d: dict) -> str:
 def polar_plot(s: dict, label: str, path) -> None:
     import matplotlib  # lazy: matplotlib only with --plot
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: as matplotlib above
     grid = s["uplift_by_azimuth"]
     theta = [math.radians(a) for a in grid["azimuth_deg"]] + [0.0]
     r = grid["uplift_g"] + grid["uplift_g"][:1]

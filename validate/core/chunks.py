@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ...analytic import limits
+from ...analytic import fast, limits
 from ...analytic.limits import available_cores
 from ...analytic.system import paper_system
 
@@ -106,17 +106,15 @@ def run_chunk(task: Chunk, threads: int | None = 1) -> list[dict]:
 
 
 def _run_batch(task: Chunk, threads) -> list[dict]:
-
-    from ...analytic.fast import simulate_batch  # lazy: numba and the kernel, in the worker that runs the batch
     settings = task.setting.settings()
     if task.overturn_rule is not None:
         settings = replace(settings, overturn=task.overturn_rule)
     cases = task.cases
     start = time.perf_counter()
-    out = simulate_batch([c.system for c in cases], [motion_of(c) for c in cases],
-                         duration=np.array([c.duration for c in cases]),
-                         theta0=np.array([c.theta0 for c in cases]), settings=settings,
-                         workers=threads)
+    out = fast.simulate_batch([c.system for c in cases], [motion_of(c) for c in cases],
+                              duration=np.array([c.duration for c in cases]),
+                              theta0=np.array([c.theta0 for c in cases]), settings=settings,
+                              workers=threads)
     per_case = (time.perf_counter() - start) / len(cases)
     return [{**case_inputs(case), "engine": task.setting.engine, "setting": task.setting.label,
              **row_of_batch(case, r), "runtime_s": per_case} for case, r in zip(cases, out)]

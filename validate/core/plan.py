@@ -19,8 +19,10 @@ import sys
 from dataclasses import dataclass
 
 from ...analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
+from ...analytic.engines import first_run_reference
 from ...analytic.errors import InputError, python_number
 from ...analytic.limits import BudgetExceeded
+from ...analytic.motion import GroundMotion
 from ...analytic.system import System
 
 from .engines import REFERENCE, Engine, canonical, choose, get_engine, settings_used
@@ -81,7 +83,6 @@ def make_plan(system, motion, runs, *, duration: float | None = None, theta0: fl
     first_run: the compiled engine takes the SciPy reference where its kernel is not built yet
     and the run is short (analytic.engines.first_run_reference, said on stderr): what `isorock
     run` asks, so that a first run starts at once."""
-    from ...analytic.motion import GroundMotion  # lazy: NumPy; isorock.simulate's module stays light
     if not isinstance(system, System):
         raise InputError(f"system = {type(system).__name__}: must be an isorock System (System.fixed, "
                          "System.isolated, System.with_isolator)")
@@ -110,7 +111,6 @@ def make_plan(system, motion, runs, *, duration: float | None = None, theta0: fl
 
 
 def _first_run(r: EngineRun, system, motion, duration) -> EngineRun:
-    from ...analytic.engines import first_run_reference  # lazy: NumPy; isorock.simulate's module stays light
     why = first_run_reference(system, motion, duration) if r.engine.name == REFERENCE else None
     if not why:
         return r

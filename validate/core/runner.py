@@ -16,6 +16,7 @@ from typing import Any
 
 from ...analytic import limits
 from ...analytic.errors import InputError
+from .chunks import worker_pool
 from .engines import resolve, runs_here
 from .executor import STUCK_AFTER_S, Executor
 
@@ -58,7 +59,6 @@ def run_tasks(tasks: list[Task], *, client=None, workers: int = 1, executor=None
     error) (default: run_task, a Trajectory); one that measures its result where it ran
     (a row instead of a history) must be picklable, a module-level function or a
     functools.partial of one."""
-    from .chunks import worker_pool  # lazy: NumPy, for runs in worker processes only
     out = {}
     own = None
     if executor is None:

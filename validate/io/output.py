@@ -44,7 +44,7 @@ TERMINATING_SIGNALS = (signal.SIGTERM, signal.SIGHUP)
 
 def _clean(obj):
     """JSON-safe: NumPy scalars to Python, NaN/inf to None (JSON has neither)."""
-    import numpy as np  # here, not at the top: every command loads this module, `beta` needs no NumPy
+    import numpy as np  # lazy: every command loads this module, `beta` needs no NumPy
 
     if isinstance(obj, dict):
         return {str(k): _clean(v) for k, v in obj.items()}

@@ -49,6 +49,7 @@ from ..core.verdict import rate_verdict
 from ..io.output import to_json, write_folder_atomic
 from ..io.progress import bar_of
 from ..io.provenance import provenance
+from .atlas_figures import error_map, pareto
 from .report_run import beta_impacts
 
 #: Mass ratios are μ = m/m_b (model.md's); 0 is a fixed base. The grid is issue 12's
@@ -768,8 +769,6 @@ def file_stem(label: str) -> str:
 
 def write(atlas: dict, out: str, *, quick: bool) -> None:
     """The whole folder, or nothing (validate.io.output)."""
-
-    from .atlas_figures import error_map, pareto  # lazy: matplotlib, for the figures only
 
     def fill(tmp):
         (tmp / "atlas.md").write_text(markdown(atlas, quick=quick), encoding="utf-8")

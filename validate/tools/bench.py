@@ -387,7 +387,7 @@ def markdown(rows, extra) -> str:
 def plot(rows, path) -> None:
     import matplotlib  # lazy: matplotlib only for the plot
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: as matplotlib above
     floor = 1e-16  # exact agreement cannot sit on a log axis: drawn at the floor
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
     for (metric, ax, title) in (("beta_error_max", axes[0], "effective β error (free rocking)"),

@@ -110,7 +110,7 @@ def frames(traj, dt: float):
 
 
 def _camera(system):
-    import mujoco  # here, not at the top: mujoco reads MUJOCO_GL when first imported, set by the command first
+    import mujoco  # lazy: mujoco reads MUJOCO_GL when first imported, set by the command first
     cam = mujoco.MjvCamera()
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
     cam.lookat[:] = (0.0, 0.0, system.h)
@@ -128,7 +128,7 @@ def _prepare(scene, system) -> None:
     """Shadows and reflections off; the ground drawn under the plate, with a mark at
     x = 0, so the base's motion relative to the ground is seen (the scene's world frame
     is the ground, which the MuJoCo scene does not draw)."""
-    import mujoco  # here, not at the top: mujoco reads MUJOCO_GL when first imported, set by the command first
+    import mujoco  # lazy: mujoco reads MUJOCO_GL when first imported, set by the command first
     for name in _OFF:
         scene.flags[getattr(mujoco.mjtRndFlag, name)] = 0
     half = system.b + system.height
@@ -144,7 +144,7 @@ def _prepare(scene, system) -> None:
 
 
 def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], title: str) -> None:
-    import mujoco  # here, not at the top: mujoco reads MUJOCO_GL when first imported, set by the command first
+    import mujoco  # lazy: mujoco reads MUJOCO_GL when first imported, set by the command first
     system = traj.system
     shots = frames(traj, speed / fps)  # too many frames is bad input, refused before any rendering
     model, pose = replay_scene(system)
@@ -175,7 +175,7 @@ def write_gif(traj, path, *, fps: float, speed: float, size: tuple[int, int], ti
 def replay_in_viewer(traj, *, speed: float) -> int:
     """The run in MuJoCo's interactive viewer, in real time × speed; the window stays
     open on the last frame until it is closed."""
-    import mujoco  # as in write_gif: after the command has set MUJOCO_GL
+    import mujoco  # lazy: as in write_gif, after the command has set MUJOCO_GL
     import mujoco.viewer
     system = traj.system
     dt = 1 / 60  # the window's frame interval, s

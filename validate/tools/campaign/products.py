@@ -307,7 +307,7 @@ def fragility_plot(fits):
 
 
 def fragility_figure(fits, path: Path) -> None:
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: matplotlib, for the figures only
     fig = fragility_plot(fits)
     fig.savefig(path, dpi=130)
     plt.close(fig)
@@ -397,7 +397,7 @@ def agreement_plot(maps):
     nothing to judge hatched grey (NOT_APPLICABLE), apart from 0."""
     import matplotlib  # lazy: matplotlib, for the figures only
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: as matplotlib above
     from matplotlib.patches import Patch, Rectangle
     fig, axes = plt.subplots(2, len(maps), figsize=(4.6 * len(maps), 8.0), squeeze=False, layout="constrained")
     for j, m in enumerate(maps):
@@ -417,7 +417,7 @@ def agreement_plot(maps):
 
 
 def agreement_figure(maps, path: Path) -> None:
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: matplotlib, for the figures only
     fig = agreement_plot(maps)
     fig.savefig(path, dpi=130)
     plt.close(fig)

@@ -21,6 +21,7 @@ from ...core.executor import client_for, close_client, execute
 from ...core.summary import rows_to_table, sort_table
 from ...io.output import write_atomic, write_text
 from ...io.progress import bar_of, logged
+from . import products as products_module  # `products` is run_campaign's flag
 from .parts import part_problem, read_parts, write_part
 from .records import load_suite
 from .spec import CampaignSpec, check_limits, load_spec
@@ -142,8 +143,6 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
         write_text(out / "campaign.toml", Path(spec.source).read_text(encoding="utf-8"))
     made = []
     if products:
-        from .products import write_products  # lazy: products loads scipy.stats (~0.3 s), for a sweep that draws
-
         # drawing takes its own while after the bar reached 100%: a line of its own, so that
         # a finished bar and a silent terminal do not read as a hang
         if progress:
@@ -151,7 +150,7 @@ def run_campaign(spec, out=None, *, client=None, workers: int = 0, scheduler: st
             print(f"isorock sweep: drawing the figures and summary of {table.num_rows} rows…", file=sys.stderr,
                   flush=True)
         try:
-            made = write_products(table, out, spec)
+            made = products_module.write_products(table, out, spec)
             if progress:
                 print(f"isorock sweep: drew {len(made)} products in {time.perf_counter() - start:.0f} s",
                       file=sys.stderr, flush=True)

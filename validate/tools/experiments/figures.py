@@ -21,7 +21,7 @@ def _predictions(result, s):
 def error_figure(result, path) -> None:
     import matplotlib  # lazy: matplotlib, for the figure only
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # lazy: as matplotlib above
     tests = result["tests"]
     pga = np.array([result["outcomes"][t]["pga"] for t in tests])
     ratio = np.array([result["outcomes"][t]["pgv_over_pga"] for t in tests])
