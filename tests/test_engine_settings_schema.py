@@ -13,7 +13,7 @@ import pytest
 
 from isorock.validate.tools.campaign.schema import check_campaign
 from isorock.analytic.errors import InputError
-from isorock.validate.cli.config_file import read_config
+from isorock.validate.io.config_file import read_config
 from isorock.validate.cli.main import build_parser, main
 from isorock.validate.cli.options import engine_tables, setting_assignment
 from isorock.validate.core.engines import ALL_ENGINES, choose, get_engine, table_overrides

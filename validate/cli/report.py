@@ -12,7 +12,7 @@ import sys
 from ...analytic.errors import InputError
 from ...analytic.limits import check_workers
 from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
-from .config_file import check_damping_ratio, read_config
+from ..io.config_file import check_damping_ratio, read_config
 from . import pair_report
 from .options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
                       add_system_options, add_transverse_options, add_units_option, check_tables_run, engine_tables,
