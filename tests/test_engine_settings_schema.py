@@ -110,7 +110,7 @@ def test_set_reaches_the_engine_it_names_and_only_it():
 
 def test_set_over_the_config_file_table_by_table(tmp_path):
     """validate: the file's [settings.mujoco] timestep, and --set mujoco.timestep over it."""
-    from isorock.validate.cli.report import report_config
+    from isorock.validate.tools.report_config import report_config
     cfg = tmp_path / "c.toml"
     cfg.write_text("[settings.mujoco]\ntimestep = 1e-3\nintegrator = \"RK4\"\n")
     a = build_parser("validate").parse_args(["validate", "--config", str(cfg), "--engines", "analytic", "mujoco",

@@ -4,6 +4,11 @@ meet there, turning the pair and the statue together (core/turned_pair.py), with
 of each and the exact planar model along each component beside them, unjudged (what it cannot
 capture said in words). DIR/report.md, its figure DIR/pair.png and DIR/metrics.json, whole or
 absent; the verdict is the last line on stdout; exit 1 when a check failed.
+
+Below the command line (issue 35): `pair_inputs` reads the options, `build` runs and judges,
+`write` writes; `isorock validate` (cli/pair_report.py prints) and `isorock.report` call them
+alike. A --pair SUITE:ID is read by the reader the caller hands in (`read_pair`: the campaign's
+records, which only the command line's floor imports).
 """
 from __future__ import annotations
 
@@ -15,10 +20,14 @@ from ...analytic.errors import InputError
 from ...analytic.limits import RUN_BUDGET_S
 from ..core import biaxial, turned_pair
 from ..core.engines import get_engine, table_overrides
+from ..core.estimate import announce_cost
 from ..core.plan import engine_run, make_plan
 from ..core.tolerances import has_tolerance, tolerance
+from ..io.config_file import check_damping_ratio
+from ..io.inputs import (engine_labels, motion_from_args, shaken_body, statue_body, system_from_args,
+                         system_options)
 from ..io.output import to_json, write_folder_atomic
-from .options import announce_cost, motion_from_args
+from .report_config import config_of, engine_overrides
 
 #: the report's figure (figures.turned_pair): what the report shows before its tables
 FIGURE = "pair.png"
@@ -30,9 +39,9 @@ DEFAULT_PAIR_ENGINES = ("mujoco", "bullet")
 TAIL = 2.0
 
 
-def pair_motion(args, config: dict):
-    """The pair the options name: --pair, or one --motion (the first component) with
-    --motion-transverse; scaled to --pga or --pgv as validate scales its motions."""
+def pair_motion(args, config: dict, read_pair=None):
+    """The pair the options name: --pair (read by read_pair), or one --motion (the first component)
+    with --motion-transverse; scaled to --pga or --pgv as validate scales its motions."""
     motions = list(args.motion or config.get("motions") or [])
     if args.pair is None and len(motions) != 1:
         raise InputError(f"--motion = {motions!r}: with --motion-transverse, give one --motion (the first component, "
@@ -43,7 +52,27 @@ def pair_motion(args, config: dict):
                              pair=args.pair, vertical=None)
     if args.pga is None and args.pgv is None:
         one.pga, one.pgv = config.get("pga"), config.get("pgv")
-    return motion_from_args(one)
+    return motion_from_args(one, read_pair=read_pair)
+
+
+def pair_inputs(args) -> dict:
+    """The options of validate under a record pair read as report_config reads them (the engines
+    without the analytic reference: the exact model is planar, beside each engine, unjudged):
+    build's keywords."""
+    config = config_of(args)
+    engines = tuple(engine_labels(args.engines)) if args.engines else DEFAULT_PAIR_ENGINES
+    overrides = engine_overrides(args, config, engines)
+    system = shaken = None
+    given = system_options(args, config.get("system"), config.get("statue"))
+    if given is not None:
+        # a statue's mesh read once: the System's two edges, and the body the 3-D measures read
+        options, names = given
+        statue = statue_body(options, names)
+        system = system_from_args(options, statue_names=names, statue=statue)
+        check_damping_ratio(system)
+        shaken = shaken_body(options, system, statue, names)
+    duration = args.duration if args.duration is not None else config.get("duration")
+    return dict(config=config, engines=engines, overrides=overrides, system=system, shaken=shaken, duration=duration)
 
 
 def _settled(labels, system, motion, overrides_for, duration, overturn_rule=None):
@@ -73,18 +102,20 @@ def _settled(labels, system, motion, overrides_for, duration, overturn_rule=None
     return make_plan(system, motion, runs, duration=duration, overturn_rule=overturn_rule), skipped
 
 
-def build(args, config: dict, *, engines, overrides: dict, system, shaken, duration) -> tuple[dict, dict]:
+def build(args, config: dict, *, engines, overrides: dict, system, shaken, duration,
+          read_pair=None) -> tuple[dict, dict]:
     """(what metrics.json holds, label → turned_pair.TurnedRuns or the error of an engine that did
     not run) of the pair's validation: `engines` the labels asked, `overrides` table → settings
     (validate's --set, engine options and [settings.ENGINE] tables), `system` the System the options
-    give, `shaken` its body at rest and azimuth (run.shaken_body). The command writes the first;
-    isorock.report returns both."""
+    give, `shaken` its body at rest and azimuth (io.inputs.shaken_body), as pair_inputs reads them;
+    `read_pair` the reader of --pair SUITE:ID. The command writes the first; isorock.report returns
+    both."""
     for option, given in (("--quick", args.quick or bool(config.get("quick"))), ("--scales", args.scales is not None),
                           ("--workers", args.workers is not None)):
         if given:  # they shape the one-component report's ensembles and pool: said, never dropped unsaid
             raise InputError(f"{option}: validate with a record pair runs no ensemble and no worker pool (each engine's "
                              "three runs, here); leave it out")
-    motion = pair_motion(args, config)
+    motion = pair_motion(args, config, read_pair)
     if system is None:
         raise InputError("system: with a record pair, give the statue (--statue or --statue-example) or the block "
                          "(--height, --width, --mass) and its base; validate's paper block is for one component")
@@ -122,16 +153,6 @@ def build(args, config: dict, *, engines, overrides: dict, system, shaken, durat
         figures.turned_pair(motion, ran, planar, limits, least, path,
                             title=f"{motion.name}: each engine as given and turned {turn:g}° with the statue")
     return dict(metrics, figure=draw), results
-
-
-def run(args, **inputs) -> int:
-    """The command: the report written (report.md, pair.png, metrics.json, whole or absent), the
-    verdict last."""
-    metrics, _ = build(args, **inputs)
-    write(metrics, args.out)
-    print(f"wrote {args.out}/report.md, {FIGURE}, metrics.json")
-    print(metrics["verdict"])
-    return 1 if any(c["status"] == "fail" for c in metrics["checks"]) else 0
 
 
 def write(metrics: dict, out) -> None:
