@@ -51,7 +51,7 @@ def test_invalid_utf8_is_one_line(tmp_path, capsys):
 
 
 def test_a_good_config_reads_back_as_written(tmp_path):
-    from isorock.validate.cli.config_file import read_config
+    from isorock.validate.io.config_file import read_config
     cfg = tmp_path / "c.toml"
     cfg.write_bytes(("\ufeff" + 'engines = ["analytic", "mujoco:fast"]\nquick = true\nduration = 3\n' + PAPER
                      + "[settings.mujoco]\ntimestep = 1e-3\n").encode())

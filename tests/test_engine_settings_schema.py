@@ -13,7 +13,7 @@ import pytest
 
 from isorock.validate.tools.campaign.schema import check_campaign
 from isorock.analytic.errors import InputError
-from isorock.validate.cli.config_file import read_config
+from isorock.validate.io.config_file import read_config
 from isorock.validate.cli.main import build_parser, main
 from isorock.validate.cli.options import engine_tables, setting_assignment
 from isorock.validate.core.engines import ALL_ENGINES, choose, get_engine, table_overrides
@@ -110,7 +110,7 @@ def test_set_reaches_the_engine_it_names_and_only_it():
 
 def test_set_over_the_config_file_table_by_table(tmp_path):
     """validate: the file's [settings.mujoco] timestep, and --set mujoco.timestep over it."""
-    from isorock.validate.cli.report import report_config
+    from isorock.validate.tools.report_config import report_config
     cfg = tmp_path / "c.toml"
     cfg.write_text("[settings.mujoco]\ntimestep = 1e-3\nintegrator = \"RK4\"\n")
     a = build_parser("validate").parse_args(["validate", "--config", str(cfg), "--engines", "analytic", "mujoco",

@@ -11,7 +11,7 @@ import pytest
 from isorock.analytic.errors import InputError
 from isorock.analytic.system import (PAPER_BLOCK, BallInBowl, BallInCone, BilinearIsolator, DoubleFrictionPendulum,
                                      FrictionPendulum, System)
-from isorock.validate.cli.config_file import SystemTable, read_config
+from isorock.validate.io.config_file import SystemTable, read_config
 from isorock.validate.cli.main import build_parser, main
 from isorock.validate.cli.options import SYSTEM_KEYS, system_from_args, system_from_options
 
@@ -35,7 +35,7 @@ def test_the_files_other_keys_are_validate_options_too():
     duration, quick) are validate's options by the same names (`motions` lists what --motion gives
     one at a time), and its tables are the system, the statue and the engines' settings (--set): a key
     added to the file and not to the options, or the reverse, fails here."""
-    from isorock.validate.cli.config_file import ConfigFile
+    from isorock.validate.io.config_file import ConfigFile
     options = set(vars(build_parser("validate").parse_args(["validate"])))
     tables = {"system": "height", "statue": "statue", "settings": "set_settings", "motions": "motion"}
     for key in ConfigFile.model_fields:
@@ -268,7 +268,7 @@ keys.SYSTEM["plinth_height"] = keys.Key("plinth_height", keys.POSITIVE, "the pli
 # and an existing key's kind changed: the campaign's axis of it follows
 keys.SYSTEM["mass"] = dataclasses.replace(keys.SYSTEM["mass"], kind=keys.NON_NEGATIVE)
 from pydantic import ValidationError
-from isorock.validate.cli.config_file import ConfigFile, SystemTable, describe
+from isorock.validate.io.config_file import ConfigFile, SystemTable, describe
 from isorock.validate.cli.main import build_parser
 from isorock.validate.cli.options import SYSTEM_KEYS
 from isorock.validate.tools.campaign.schema import check_campaign

@@ -53,7 +53,7 @@ HOSTILE_TOML = [
 
 def _readers():
     from isorock.validate.tools.campaign.spec import load_spec
-    from isorock.validate.cli.config_file import read_config
+    from isorock.validate.io.config_file import read_config
     return {"config": read_config, "campaign": load_spec}
 
 

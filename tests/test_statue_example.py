@@ -6,7 +6,7 @@ import json
 import re
 from pathlib import Path
 
-from isorock.validate.cli.config_file import ConfigFile, StatueTable, SystemTable, read_config
+from isorock.validate.io.config_file import ConfigFile, StatueTable, SystemTable, read_config
 from isorock.validate.cli.main import main
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "statue.toml"

@@ -1,4 +1,4 @@
-"""`isorock validate` under a record pair (issue 36; validate/cli/pair_report.py): each engine that
+"""`isorock validate` under a record pair (issue 36; validate/tools/pair_report.py): each engine that
 runs two horizontal components judged on turning the pair and the statue together, an exact
 symmetry of the physics (the same ground acceleration in the statue's own frame), by its own
 pair_turned_* rows of the one table. The oracle is that symmetry: a wrong turn (the statue left

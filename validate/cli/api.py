@@ -18,8 +18,10 @@ named as keywords.
                      period=2.0, damping_ratio=0.15, motion="sine:amp=0.3,freq=2,cycles=2", pga=0.5)
     tr.theta_max_over_alpha, tr.to_dataframe()
 
-It sits on the command line's floor (it calls the commands' functions, never their parsers):
-nothing below imports it.
+It sits on the command line's floor, above the tools it calls (the campaign's among them, which
+only this floor imports), and imports no module of the command line: `isorock validate` and
+`isorock.report` call the same functions below it (io/inputs.py, tools/report_config.py,
+tools/pair_report.py), never one another (issue 35). Nothing below imports it.
 """
 from __future__ import annotations
 
@@ -58,7 +60,7 @@ def run(**options):
     fixed_base, motion, units, scale, pga, pgv, duration, theta0_over_alpha, timestep, …),
     without its output options (json, csv, plot: the Trajectory has to_dataframe() and
     to_csv())."""
-    from .options import read_pair  # the campaign's record pairs (--pair), which only this floor imports
+    from ..tools.campaign.records import fema_pair as read_pair  # lazy: NumPy; the campaign's record pairs (--pair)
     for key in ("json", "csv", "csv_dt", "plot", "quiet"):
         if key in options:
             raise InputError(f"{key}: an output of the command; isorock.run returns the Trajectory "
@@ -93,14 +95,14 @@ def report(*, out: str | None = None, progress: bool = False, **options) -> Vali
     folder `out` too where one is given (the command's rules: a new or empty folder, or
     an earlier report's). Keywords: `isorock validate`'s options (config, motion (a list),
     engines (a list), quick, duration, pga, pgv, system and engine options)."""
-    from .report import report_config  # lazy: each entry point loads its own command's modules (matplotlib here)
+    from ..tools.report_config import report_config  # lazy: each entry point its own modules (matplotlib here)
     from ..tools.report_render import metrics, verdict, write_report
     from ..tools.report_run import build
     out, progress = _path("out", out), _flag("progress", progress)
     a = ValidateOptions.from_keywords("validate", options)
     if out is not None:
         check_folder(out)
-    if transverse_asked(a):  # a record pair: the pair's validation (pair_report.py), as the command makes it
+    if transverse_asked(a):  # a record pair: the pair's validation (tools/pair_report.py), as the command makes it
         return _pair_report(a, out)
     try:
         config = report_config(a)
@@ -120,10 +122,10 @@ def report(*, out: str | None = None, progress: bool = False, **options) -> Vali
 
 
 def _pair_report(a, out) -> "Validation":
-    from . import pair_report  # lazy: each entry point its own modules
-    from .report import pair_inputs
+    from ..tools import pair_report  # lazy: each entry point its own modules
+    from ..tools.campaign.records import fema_pair as read_pair  # the campaign's record pairs (--pair)
     try:
-        metrics, results = pair_report.build(a, **pair_inputs(a))
+        metrics, results = pair_report.build(a, **pair_report.pair_inputs(a), read_pair=read_pair)
     except InputError as e:
         raise InputError(_keywords(str(e))) from None
     if out is not None:

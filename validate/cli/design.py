@@ -14,7 +14,7 @@ from ...analytic.errors import InputError
 from ...analytic.limits import available_cores
 from ...analytic.system import BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, System
 from ..core.estimate import estimate_s as estimate_run_s
-from .config_file import read_config
+from ..io.config_file import read_config
 from .options import ISOLATOR_KEYS, add_statue_options, number, statue_body
 from ..io import keys
 from ..io.output import Outputs

@@ -10,7 +10,7 @@ import sys
 
 from ...analytic import limits
 from ...analytic.system import LINEAR
-from ..core.estimate import estimate_line
+from ..core.estimate import announce_cost  # noqa: F401 — importable from here as before
 from ..io import inputs, keys
 from ..io.keys import Default, given  # noqa: F401 — given: importable from here as before
 # what the options describe (a System, a motion, engine settings): read below the command line
@@ -183,14 +183,6 @@ def add_budget_option(p: argparse.ArgumentParser) -> None:
     p.add_argument("--budget", type=number, default=limits.RUN_BUDGET_S, metavar="S",
                    help="wall-clock seconds each run may take: past it the run stops, nothing is written and "
                         "the command exits 1 (default: %(default)g)")
-
-
-def announce_cost(command: str, simulated: dict[str, float], budget_s: float | None = None, quiet: bool = False, *,
-                  workers: int = 1, speeds: dict | None = None, basis: str | None = None) -> None:
-    """The cost estimate of a long command on stderr, before its work (core.estimate)."""
-    line = estimate_line(simulated, workers=workers, command=command, budget_s=budget_s, speeds=speeds, basis=basis)
-    if line and not quiet:
-        print(line, file=sys.stderr, flush=True)
 
 
 def budget_stopped(command: str, label: str, error) -> int:

@@ -9,28 +9,21 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ...analytic.errors import InputError
-from ...analytic.limits import check_workers
 from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
-from .config_file import check_damping_ratio, read_config
 from . import pair_report
 from .options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
-                      add_system_options, add_transverse_options, add_units_option, check_tables_run, engine_tables,
-                      number, statue_body, system_from_args, system_from_options, system_options, transverse_asked)
-from .run import engine_labels, shaken_body
-from ..core.engines import ENGINE_NAMES, resolve
+                      add_system_options, add_transverse_options, add_units_option, number, transverse_asked)
+from ..core.engines import ENGINE_NAMES
 from ..core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
 from ..io import keys
 from ..io.options import DEFAULT_OUT, ValidateOptions
 from ..io.output import check_folder
 from ..io.progress import Progress
+# the options read into what the report runs, below the command line, as isorock.report reads them
+from ..tools.pair_report import pair_inputs
+from ..tools.report_config import report_config
 from ..tools.report_render import verdict, write_report
-from ..tools.report_run import ReportConfig, build
-
-#: ensemble bounds: steps each run every engine on every motion; a factor of 100 turns
-#: the paper's 0.83 g Kobe record into 83 g, far past overturning
-MAX_SCALE_STEPS = 200
-MAX_SCALE = 100.0
+from ..tools.report_run import build
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
@@ -82,91 +75,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     return p
 
 
-def _scales(text):
-    if text is None:
-        return None
-    parts = text.split(",")
-    try:
-        if len(parts) != 3:
-            raise ValueError
-        first, last, steps = float(parts[0]), float(parts[1]), float(parts[2])
-    except ValueError:
-        raise InputError(f"scales = {text!r}: must be FIRST,LAST,STEPS, e.g. 0.25,1.5,21") from None
-    if steps != int(steps) or not 1 <= steps <= MAX_SCALE_STEPS:
-        raise InputError(f"scales = {text!r}: STEPS must be a whole number from 1 to {MAX_SCALE_STEPS} "
-                         "(MAX_SCALE_STEPS: each step runs every engine on every motion)")
-    for name, x in (("FIRST", first), ("LAST", last)):
-        if not 0 < x <= MAX_SCALE:
-            raise InputError(f"scales = {text!r}: {name} = {x:g} must be a positive factor of the PGA, "
-                             f"at most {MAX_SCALE:g} (MAX_SCALE)")
-    return first, last, int(steps)
-
-
-def _read_config(path) -> dict:
-    return read_config(path)
-
-
-def engine_overrides(args, config: dict, engines) -> dict:
-    """table → settings of the engines: the --config file's [settings.ENGINE] tables, and over them
-    table by table the command line's (--set and the engine options)."""
-    overrides = {str(k): dict(v) for k, v in config.get("settings", {}).items()}
-    given = engine_tables(args)
-    check_tables_run(given, engines)
-    for table, values in given.items():
-        if values:  # "*": a setting on the command line applies to every engine that has it
-            overrides[table] = {**overrides.get(table, {}), **values}
-    return overrides
-
-
 def _pair_report(args) -> int:
-    """validate under a record pair (pair_report.py)."""
+    """validate under a record pair (tools/pair_report.py; cli/pair_report.py prints)."""
     check_folder(args.out)  # a folder we may not write is refused before the runs
     return pair_report.run(args, **pair_inputs(args))
-
-
-def pair_inputs(args) -> dict:
-    """The options of validate under a record pair read as report_config reads them (the engines
-    without the analytic reference: the exact model is planar, beside each engine, unjudged)."""
-    config = _read_config(args.config) if args.config else {}
-    engines = tuple(engine_labels(args.engines)) if args.engines else pair_report.DEFAULT_PAIR_ENGINES
-    overrides = engine_overrides(args, config, engines)
-    system = shaken = None
-    given = system_options(args, config.get("system"), config.get("statue"))
-    if given is not None:
-        # a statue's mesh read once: the System's two edges, and the body the 3-D measures read
-        options, names = given
-        statue = statue_body(options, names)
-        system = system_from_args(options, statue_names=names, statue=statue)
-        check_damping_ratio(system)
-        shaken = shaken_body(options, system, statue, names)
-    duration = args.duration if args.duration is not None else config.get("duration")
-    return dict(config=config, engines=engines, overrides=overrides, system=system, shaken=shaken, duration=duration)
-
-
-def report_config(args):
-    """The validate options `args` (the parser's namespace) and the --config file they name,
-    checked and merged into the report's ReportConfig, before any run."""
-    config = _read_config(args.config) if args.config else {}
-    engines = tuple(engine_labels(args.engines or config.get("engines") or ENGINE_NAMES))
-    overrides = engine_overrides(args, config, engines)
-    if args.workers is not None:
-        check_workers("workers", args.workers)
-    report = ReportConfig(motions=tuple(args.motion or config.get("motions") or DEFAULT_MOTIONS), engines=engines,
-                          quick=args.quick or bool(config.get("quick")),
-                          duration=args.duration if args.duration is not None else config.get("duration"),
-                          scales=_scales(args.scales), format=args.format or config.get("format"),
-                          units=args.units or config.get("units"), system=system_from_options(args, config.get("system"), config.get("statue")),
-                          overrides=overrides, workers=args.workers, overturn_rule=args.overturn,
-                          # a target on the command line wins over the file's, whichever it names
-                          **({"pga": args.pga, "pgv": args.pgv} if args.pga is not None or args.pgv is not None
-                             else {"pga": config.get("pga"), "pgv": config.get("pgv")}))
-    check_damping_ratio(report.system)
-    for name in report.engines:  # an unknown setting or preset is bad input before anything runs
-        try:
-            resolve(name, report.overrides_for(name))
-        except ImportError:
-            pass  # reported as a skipped engine
-    return report
 
 
 def run(args) -> int:

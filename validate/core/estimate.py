@@ -8,6 +8,8 @@ Each engine's speed is its measured simulated seconds per wall second on a rocki
 """
 from __future__ import annotations
 
+import sys
+
 from ...analytic import limits
 
 #: simulated seconds per wall second of one run on one core, with the block rocking
@@ -63,3 +65,12 @@ def estimate_line(simulated: dict[str, float], workers: int = 1, command: str = 
     return (f"{command}: about {sum(simulated.values()):.0f} simulated s in all; at most ≈ {wall / 60:.0f} min "
             f"on {workers} worker{'s' if workers != 1 else ''} (mostly {slowest}, ≈ {speed:g} simulated s per wall s "
             f"{basis})" + (f"; each run stops at its budget of {budget_s:g} s wall time" if budget_s else ""))
+
+
+def announce_cost(command: str, simulated: dict[str, float], budget_s: float | None = None, quiet: bool = False, *,
+                  workers: int = 1, speeds: dict | None = None, basis: str | None = None) -> None:
+    """The cost estimate of a long command on stderr, before its work (estimate_line): the
+    commands' and the tools' that run under them (validate under a record pair)."""
+    line = estimate_line(simulated, workers=workers, command=command, budget_s=budget_s, speeds=speeds, basis=basis)
+    if line and not quiet:
+        print(line, file=sys.stderr, flush=True)

@@ -3,7 +3,7 @@
 Each key is a `Key`: its name (the System's field, the argparse dest and the TOML key
 alike), its kind, its unit, its help text and its option's spelling. Every surface is
 made from these declarations: `validate`'s and `run`'s options (cli/options.py; their typed
-values, io/options.py), a --config file's [system] table and motion keys (cli/config_file.py,
+values, io/options.py), a --config file's [system] table and motion keys (io/config_file.py,
 through io/schema.field_type), and the element checks of a campaign's grid axes that are the
 same keys (campaign/schema.py). A key added here appears in all of them.
 

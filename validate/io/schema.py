@@ -1,7 +1,7 @@
 """What the schemas of the files users write share (`validate --config`, `design --config`,
 a campaign file): the file read and bounded before a parser sees it (`read_toml`), and a
 TOML number read strictly, so that `true` is never 1.0 and "10" never 10. One home, for
-the command line's config schema (cli/config_file.py) and the campaign's
+the config schema of `isorock validate` and `isorock.report` (io/config_file.py) and the campaign's
 (campaign/schema.py) alike."""
 from __future__ import annotations
 

@@ -8,7 +8,8 @@ the key as the user wrote it, the value, and what is allowed:
     config key system.height = true: must be a number (a boolean is not a number)
 
 `read_config(path)` returns the keys the file gives (a dict; absent keys absent), as
-`isorock validate` reads them.
+`isorock validate` and `isorock.report(config=...)` read them (and `isorock design`), below the
+command line (issue 35).
 """
 from __future__ import annotations
 
@@ -19,8 +20,8 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, StrictBool, Validat
 
 from ...analytic.errors import InputError
 from ..core.engines import check_settings_table
-from ..io import keys
-from ..io.schema import Positive, describe, field_type, read_toml  # noqa: F401 — describe: importable from here
+from . import keys
+from .schema import Positive, describe, field_type, read_toml  # noqa: F401 — describe: importable from here
 
 #: ξ of an isolator this command runs: below 1 (underdamped), as `isorock sweep` takes
 #: it; ξ = 1e6 made the report's search for the uplift scale run for ever (issue 24)
