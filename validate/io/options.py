@@ -9,7 +9,7 @@ the engine settings, the run's plan, the report's config) read either. Two route
     RunOptions.from_keywords("run", kwargs)   # isorock.run(**kwargs): Python values
 
 Both go through the same checks, which take what a notebook passes: a number is any real
-number (an int, NumPy's np.float64(0.6), a Fraction; never a bool or a string), a pair or a
+number (an int, NumPy's np.float64(0.6), a Fraction, a Decimal; never a bool or a string), a pair or a
 triple (solref, solimp) a sequence of numbers, a flag True or False, a list option
 (validate's motion and engines, set_settings) a list or one string, a choice one of its
 words, a text (a spec, a file: a path-like too) not empty. `--set`'s assignments are checked
@@ -24,6 +24,7 @@ defaults equal to these fields'.
 """
 from __future__ import annotations
 
+import decimal
 import numbers
 import os
 import tomllib
@@ -61,7 +62,7 @@ def _real(v):
         raise ValueError("must be a number (a boolean is not a number)")
     if isinstance(v, str):
         raise ValueError("must be a number, not a string")
-    if not isinstance(v, numbers.Real):
+    if not isinstance(v, (numbers.Real, decimal.Decimal)):  # a Decimal is no numbers.Real, yet a number
         raise ValueError("must be a number")
     try:
         return float(v)
