@@ -121,6 +121,22 @@ def test_a_campaign_as_a_dataframe(tmp_path):
         isorock.sweep(spec, workers=-1)
 
 
+def test_a_campaign_given_as_a_value_is_the_files_campaign(tmp_path, monkeypatch):
+    """The campaign as a value (issue 35): the file's tables as tomllib reads them give the file's
+    table, row for row (the oracle: the file's own run); a bad key is the file's one line."""
+    import tomllib
+    from test_campaign import write_spec
+    spec = write_spec(tmp_path, more="")
+    monkeypatch.chdir(spec.parent)  # the value's relative paths are the current folder's, as the file's are its own
+    tables = tomllib.loads(spec.read_text())
+    from test_campaign import comparable
+    from_file, from_value = isorock.sweep(spec, products=False), isorock.sweep(tables, products=False)
+    assert from_file.table.num_rows == 18 and comparable(from_value.table) == comparable(from_file.table)
+    with pytest.raises(InputError, match=r"^colour: unknown key") as e:
+        isorock.sweep(dict(tables, colour="red"))
+    assert "\n" not in str(e.value)
+
+
 SCRIPT = """
 import isorock
 r = isorock.sweep({spec!r}, out={out!r}, workers=2, products=False)

@@ -26,7 +26,9 @@ tools/pair_report.py), never one another (issue 35). Nothing below imports it.
 from __future__ import annotations
 
 import re
+
 from dataclasses import dataclass
+from pathlib import Path
 
 from ...analytic.errors import InputError, import_extra, path_value
 from ...analytic.limits import check_workers
@@ -136,14 +138,20 @@ def _pair_report(a, out) -> "Validation":
 
 def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, products: bool = True,
           progress: bool = False):
-    """A campaign (a TOML file's path), as `isorock sweep` runs it: the CampaignResult
-    (`.to_dataframe()`, `.table` the pyarrow table, `.out` the folder). workers = 0 runs
+    """A campaign, as `isorock sweep` runs it: the CampaignResult (`.to_dataframe()`, `.table`
+    the pyarrow table, `.out` the folder). `spec`: a TOML file's path; or the campaign as a value,
+    a dict of the file's tables as Python's tomllib reads them (checked by the same schema, its
+    relative paths from the current folder), or a CampaignSpec already checked. workers = 0 runs
     serially in this process (the default here: a notebook needs nothing more); N > 0
     starts a local Dask cluster of N processes, which a script must call under
     `if __name__ == "__main__":` (said in one line where it is not)."""
     from ..tools.campaign.run import run_campaign  # lazy: each entry point its own modules
-    from ..tools.campaign.spec import load_spec
-    spec, out = _path("spec", spec, optional=False), _path("out", out)
+    from ..tools.campaign.spec import CampaignSpec, load_spec, parse_spec
+    if isinstance(spec, dict):  # the campaign as a value: the file's schema, before any work
+        spec = parse_spec(spec, Path.cwd() / "campaign.toml")
+    elif not isinstance(spec, CampaignSpec):
+        spec = load_spec(_path("spec", spec, optional=False))
+    out = _path("out", out)
     products, progress = _flag("products", products), _flag("progress", progress)
     check_workers("workers", workers, serial=True)
     if scheduler is not None and not (isinstance(scheduler, str) and scheduler.strip()):
@@ -153,7 +161,7 @@ def sweep(spec, *, out=None, workers: int = 0, scheduler: str | None = None, pro
         # cluster then fails to start, and the except below says what to do in one line
         exit_if_bootstrapping()
     try:
-        return run_campaign(load_spec(spec), out, workers=workers, scheduler=scheduler, products=products,
+        return run_campaign(spec, out, workers=workers, scheduler=scheduler, products=products,
                             progress=progress)
     except RuntimeError as e:
         # the workers could not start: in a script without a __main__ guard each one stopped
