@@ -164,12 +164,6 @@ def cmd_beta(a) -> int:
     return 0
 
 
-
-
-
-
-
-
 def cmd_scene(a) -> int:
     with Outputs() as outputs:
         # a model file is kept and edited: a file of that name is not replaced (as calibrate's
