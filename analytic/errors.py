@@ -1,10 +1,24 @@
 """The one error type for bad input, so the CLI can turn it into exit code 2."""
 import importlib
 import os
+import reprlib
 
 
 class InputError(ValueError):
     """Bad input from a user: names the field, the value and what is allowed."""
+
+
+#: how a value is shown in an error's one line: a list or table of any length as its first
+#: items and "...", a long string as its ends (a grid of a million numbers was a 7.9 MB line)
+_SHOWN = reprlib.Repr()
+_SHOWN.maxlist = _SHOWN.maxtuple = _SHOWN.maxdict = _SHOWN.maxset = 6
+_SHOWN.maxstring = _SHOWN.maxother = 400  # a file's path whole
+_SHOWN.maxlevel = 3
+
+
+def shown(value) -> str:
+    """`value` as an error's one line shows it: its repr, bounded (reprlib)."""
+    return _SHOWN.repr(value)
 
 
 def require(condition: bool, field: str, value, allowed: str) -> None:

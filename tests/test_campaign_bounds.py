@@ -100,3 +100,25 @@ def test_an_engine_refusing_a_system_of_the_grid_is_refused_when_the_file_is_rea
     with pytest.raises(InputError) as e:
         load_spec(spec)
     assert f"engines[1]" in str(e.value) and f"{field} =" in str(e.value), str(e.value)
+
+
+@pytest.mark.parametrize("route", ["file", "value"])
+def test_a_long_value_is_named_in_a_short_line(tmp_path, route):
+    """A bad value in a grid of 100,001 numbers (a file within the read bound, or the campaign as a
+    value from Python) is one short line naming the key and what is allowed, not an echo of the
+    whole list (it was a 7.9 MB line for a million numbers)."""
+    import isorock
+    heights = list(range(100_001))  # 0 is the bad one: a height must be positive
+    text = (f"[systems]\nheight = {heights}\nwidth = 0.2\nmass = 80.0\nbase = [\"fixed\"]\n"
+            "[motions]\ntype = \"pulse\"\n[engines]\nnames = [\"analytic\"]\n")
+    path = tmp_path / "long.toml"
+    path.write_text(text)
+    with pytest.raises(InputError) as e:
+        if route == "file":
+            load_spec(path)
+        else:
+            import tomllib
+            isorock.sweep(tomllib.loads(text), products=False)
+    line = str(e.value)
+    assert "\n" not in line and len(line) < 400, (len(line), line[:300])
+    assert line.startswith("systems.height") and "positive" in line

@@ -12,7 +12,7 @@ from typing import Annotated, Literal
 
 from pydantic import BeforeValidator, StrictBool, ValidationError
 
-from ...analytic.errors import InputError
+from ...analytic.errors import InputError, shown
 from . import keys
 
 # --- the file, bounded before it is parsed ---------------------------------------------------
@@ -157,14 +157,14 @@ def describe(e: ValidationError, prefix: str = "config key") -> InputError:
     if kind == "missing":
         return InputError(f"{named}: missing")
     if kind in ("dict_type", "model_type"):
-        return InputError(f"{named} = {value!r}: must be a table")
+        return InputError(f"{named} = {shown(value)}: must be a table")
     if kind == "literal_error":
-        return InputError(f"{named} = {value!r}: {msg.replace('Input should be', 'must be')}")
+        return InputError(f"{named} = {shown(value)}: {msg.replace('Input should be', 'must be')}")
     if kind == "bool_type":
-        return InputError(f"{named} = {value!r}: must be true or false")
+        return InputError(f"{named} = {shown(value)}: must be true or false")
     if key.startswith("settings") and msg.startswith("[settings."):
         return InputError(f"config {msg}")
-    return InputError(f"{named} = {value!r}: {msg}")
+    return InputError(f"{named} = {shown(value)}: {msg}")
 
 __all__ = ["describe", "number", "Positive", "NonNegative", "field_type", "parse_toml", "read_toml", "MAX_TOML_BYTES",
            "MAX_TOML_DEPTH", "MAX_KEY_PARTS", "MAX_TOML_WORD"]

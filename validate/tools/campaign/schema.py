@@ -20,7 +20,7 @@ from typing import Annotated, Any, Literal
 from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, StrictBool, StrictInt, StrictStr, ValidationError,
                       model_validator)
 
-from ....analytic.errors import InputError
+from ....analytic.errors import InputError, shown
 from ...core.engines import ALL_ENGINES, check_settings_table
 from ...io import keys
 from ...io.schema import NonNegative, Positive, number as _number
@@ -277,12 +277,12 @@ def check_campaign(data: dict) -> None:
         if kind == "missing":
             raise InputError(f"{key}: missing (see docs/campaigns.md)") from None
         if kind in ("model_type", "dict_type", "model_attributes_type"):
-            raise InputError(f"{key} = {value!r}: must be a table") from None
+            raise InputError(f"{key} = {shown(value)}: must be a table") from None
         if kind in ("list_type",):
-            raise InputError(f"{key} = {value!r}: must be a list of tables ([[{key}]])") from None
+            raise InputError(f"{key} = {shown(value)}: must be a list of tables ([[{key}]])") from None
         if kind == "too_short":
             raise InputError(f"{key}: must have one or more entries") from None
         msg = msg.replace("Input should be", "must be")
         if value is None or (isinstance(value, dict) and kind == "value_error"):
             raise InputError(f"{key}: {msg}") from None
-        raise InputError(f"{key} = {value!r}: {msg}") from None
+        raise InputError(f"{key} = {shown(value)}: {msg}") from None

@@ -20,7 +20,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ....analytic import shape
-from ....analytic.errors import InputError
+from ....analytic.errors import InputError, shown
 from ....analytic.limits import check_acceleration, check_duration, check_isolator
 from ....analytic.motion import PULSES, UNITS
 from ....analytic.system import MAX_STATUE_FRICTION, PlanarBody, System
@@ -50,7 +50,7 @@ _TOP_KEYS = {"campaign", "systems", "motions", "engines", "duration", "products"
 
 
 def _where(key, value, allowed):
-    return InputError(f"{key} = {value!r}: must be {allowed}")
+    return InputError(f"{key} = {shown(value)}: must be {allowed}")
 
 
 def _number(key, value, *, positive=True, allow_zero=False) -> float:
