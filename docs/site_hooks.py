@@ -19,7 +19,8 @@ ROOT = Path(__file__).resolve().parent.parent
 #: core, the campaigns (README, "From Python")
 REFERENCE = ("isorock", "isorock.analytic", "isorock.analytic.system", "isorock.analytic.motion", "isorock.analytic.shape",
              "isorock.analytic.trajectory", "isorock.analytic.coefficients", "isorock.validate.core", "isorock.validate.core.engines",
-             "isorock.validate.core.measure", "isorock.validate.core.tolerances", "isorock.validate.cli.api",
+             "isorock.validate.core.measure", "isorock.validate.core.plan", "isorock.validate.core.tolerances",
+             "isorock.validate.io.options", "isorock.validate.cli.api",
              "isorock.validate.tools.campaign")
 
 # a link to a file of the repository that is not a page (an example, a script, a folder): the
