@@ -14,18 +14,18 @@ import dataclasses
 import importlib
 import math
 from dataclasses import MISSING, asdict, dataclass, field, fields, is_dataclass, replace
-from typing import TYPE_CHECKING
 
 from ...analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, EngineSpec, check_body, check_friction,
                                               check_isolator_kind, declare_facet)
 from ...analytic.errors import InputError
 from ...analytic.limits import BudgetExceeded, RunBudget, check_budget, check_settings
+from ...analytic.motion import GroundMotion
+from ...analytic.overturning import PAST_ALPHA
+from ...analytic.trajectory import RawHistory, Trajectory
+from . import measure
 # the registry's names (validate/core/registry.py, light): importable from here as before
 from .registry import (ALIASES, ALL_ENGINES, CONTACT_ENGINES, DISTINCT_ENGINES, ENGINE_MODULES, ENGINE_NAMES,  # noqa: F401
                        PLUGIN_GROUP, PLUGINS, PLUGINS_REFUSED, REFERENCE, _plugins, canonical)
-
-if TYPE_CHECKING:
-    from ...analytic.trajectory import Trajectory
 
 
 #: the facets the registry itself uses (engine_protocol.Facet)
@@ -132,9 +132,6 @@ class Engine:
         checked=True: the inputs come from a Plan (core.plan.make_plan), which checked that this
         engine carries them; they are not checked again here."""
 
-        from ...analytic.overturning import PAST_ALPHA  # lazy: NumPy; every command loads the registry
-        from ...analytic.trajectory import RawHistory
-        from . import measure
         if not checked:
             self.check_run(system, motion)
         if settings is None:
@@ -158,7 +155,6 @@ class Engine:
         else:
             out = self.spec.simulate(system, motion, **kwargs)
         if isinstance(out, RawHistory):
-            from ...analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
             out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
                                   window=contact_window,
                                   overturn_rule=overturn_rule or PAST_ALPHA, effective_beta=effective_beta)
@@ -170,9 +166,6 @@ class Engine:
         Trajectory, or the exception it raised. An engine with a batch path
         (its simulate_many facet, BATCH: MuJoCo's, `threads` runs at a time) runs them
         together, each exactly as alone; any other runs them one by one."""
-        from ...analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
-        from ...analytic.overturning import PAST_ALPHA
-        from . import measure
         runs = list(runs)
         if budget_s is not None:
             check_budget(budget_s)
@@ -342,7 +335,6 @@ def check_plugin_run(name: str, out, *, exact_impacts: bool):
     dict, NaN or time running backwards were measured, or a traceback)."""
     import numpy as np  # lazy: NumPy; every command loads the registry
 
-    from ...analytic.trajectory import RawHistory, Trajectory
     where = f"engine {name!r} (its package's {PLUGINS.get(name, name)})"
     kinds = (RawHistory, Trajectory) if exact_impacts else (RawHistory,)
     if not isinstance(out, kinds):
