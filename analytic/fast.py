@@ -64,9 +64,7 @@ numba's JIT needs to start; the JIT kernel is the fallback where no C compiler i
 """
 from __future__ import annotations
 
-import importlib.util
 import math
-import os
 import threading
 import time
 import types
@@ -90,8 +88,10 @@ except ImportError as e:  # pragma: no cover - numba is a declared dependency
 from . import physics
 from .errors import InputError, require, require_positive_finite
 from .kernel_cache import ahead_of_time, cached_jit, call_kernel
+from .dop853 import _A, _B, _C, _D, _E3, _E5
 from .limits import available_cores, energy_balance_failure
 from .overturning import describe, theta_max_over_alpha
+from . import slide_fast
 from .settings import AnalyticSettings
 from .motion import GroundMotion
 from .engine_protocol import check_isolator_kind, run_inputs
@@ -101,31 +101,6 @@ from .system import ISOLATOR_KINDS, System
 from .trajectory import DEFAULT_IMPACT_THRESHOLD, EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
 ENGINE = "analytic"
-
-
-
-def _dop853_coefficients():
-    """SciPy's DOP853 tableau module, loaded from its file: importing it by name would
-    first import all of scipy.integrate (~0.3 s of a new process's start)."""
-    spec = importlib.util.find_spec("scipy")
-    path = os.path.join(os.path.dirname(spec.origin), "integrate", "_ivp", "dop853_coefficients.py")
-    if not os.path.exists(path):  # pragma: no cover - a SciPy that moved it
-        from scipy.integrate._ivp import dop853_coefficients  # lazy: only where SciPy moved the file read above
-        return dop853_coefficients
-    spec = importlib.util.spec_from_file_location("_isorock_dop853_coefficients", path)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-_dop = _dop853_coefficients()
-# DOP853 tableau, exactly SciPy's (which is Hairer's)
-_A = np.ascontiguousarray(_dop.A, dtype=np.float64)  # (16, 16), rows 13-15 for dense output
-_B = np.ascontiguousarray(_dop.B, dtype=np.float64)
-_C = np.ascontiguousarray(_dop.C, dtype=np.float64)
-_E3 = np.ascontiguousarray(_dop.E3, dtype=np.float64)
-_E5 = np.ascontiguousarray(_dop.E5, dtype=np.float64)
-_D = np.ascontiguousarray(_dop.D, dtype=np.float64)
 
 
 def _nonzero_rows(a):
@@ -1700,7 +1675,6 @@ def simulate_fast(system: System, motion: GroundMotion | None = None, *,
                                   impact_threshold)
     odt = settings.output_dt if output_dt is None else require_positive_finite("output_dt", output_dt)
     if needs_contact_model(system, motion):  # the statue may slip, or the ground heaves: docs/sliding.md
-        from . import slide_fast  # lazy: an import cycle, slide_fast imports this module
         return slide_fast.simulate(system, motion, replace(settings, output_dt=odt), duration, theta0, theta_dot0,
                                    u0, u_dot0, impact_threshold, ENGINE)
     kernel, sp, ip, n_y = _kernel_for(system, settings)
@@ -1876,8 +1850,6 @@ def simulate_batch(systems, motions=None, *, duration, theta0=0.0,
 
 def _contact_rows(systems, motions, case_sys, case_mot, T, th0, cases, impact_threshold, settings, workers):
     """(case, row) of the cases that need the sliding model, on threads over its GIL-free kernel."""
-    from . import slide_fast  # lazy: an import cycle, slide_fast imports this module
-
     def one(c):
         i, j = int(case_sys[c]), int(case_mot[c])
         try:

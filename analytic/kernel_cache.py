@@ -38,16 +38,16 @@ import numpy as np
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
 #: the sources compiled into the kernel: a change to any of them invalidates the cache
-KERNEL_SOURCES = tuple(os.path.join(_HERE, f) for f in ("fast.py", "physics.py"))
+KERNEL_SOURCES = tuple(os.path.join(_HERE, f) for f in ("fast.py", "physics.py", "dop853.py"))
 #: every kernel file and the sources compiled into its kernels: the sliding model's kernel
-#: (analytic/slide_fast.py) compiles slide_physics.py and physics.py, and fast.py's tableau; design's
+#: (analytic/slide_fast.py) compiles slide_physics.py and physics.py, and dop853.py's tableau; design's
 #: rest pass (analytic/rest_scales.py) fast.py's compiled physics. A file missing here is stamped by
 #: numba with its own source only, and keeps running the physics it was first compiled with
 #: (tests/test_kernel_cache.py holds every @cached_jit file to this table).
 KERNEL_FILES = {KERNEL_SOURCES[0]: KERNEL_SOURCES,
                 os.path.join(_HERE, "slide_fast.py"): tuple(os.path.join(_HERE, f) for f in
                                                             ("slide_fast.py", "slide_physics.py", "physics.py",
-                                                             "fast.py")),
+                                                             "dop853.py")),
                 os.path.join(_HERE, "rest_scales.py"): tuple(os.path.join(_HERE, f) for f in
                                                              ("rest_scales.py", "fast.py", "physics.py"))}
 

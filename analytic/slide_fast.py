@@ -31,10 +31,9 @@ from numba import njit
 from . import physics
 from . import slide_physics as sl
 from .kernel_cache import cached_jit, call_kernel
-from .fast import _A, _B, _C, _D, _E3, _E5
+from .dop853 import _A, _B, _C, _D, _E3, _E5
 from .limits import energy_balance_failure
 from .overturning import describe, theta_max_over_alpha
-from .slide_hybrid import _WHY
 from .status import Status
 from .trajectory import EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
@@ -1151,7 +1150,7 @@ def _ending(system, settings, r):
                                f"(P_z = {pz:.3g} N·s; docs/sliding.md, \"Impact\")")
     if why != STOP_NONE:
         where = " (at the start)" if events == 0 and t == 0.0 else ""
-        return Status.OUTSIDE_MODEL, f"the model stops at t = {t:.6g} s{where}: {_WHY[why]}"
+        return Status.OUTSIDE_MODEL, f"the model stops at t = {t:.6g} s{where}: {sl.STOP_WHY[why]}"
     if status == _EVENT_LIMIT:
         return Status.EVENT_LIMIT, f"stopped after {settings.max_events} events at t = {t:.6g} s (max_events)"
     if status == _OVERTURNED:

@@ -1,5 +1,5 @@
 """The reference path of a statue that may slip on its base, or of a ground motion with a
-vertical component (docs/sliding.md): the hybrid model's driver (analytic.hybrid) with the
+vertical component (docs/sliding.md): the hybrid model's driver (analytic.integrators) with the
 four contact modes of analytic.slide_physics, on the fixed base and on every isolator.
 
 A run's mode is the rocking corner (0 flat, ±1) as in the no-slip model, and the contact's
@@ -25,7 +25,7 @@ import numpy as np
 
 from . import physics
 from . import slide_physics as sl
-from .hybrid import D, S_LOSS, TH, THD, U, UD, W, StopRun, _event, _IsolatorIntegrator
+from .integrators import D, S_LOSS, TH, THD, U, UD, W, StopRun, _event, _IsolatorIntegrator
 from .status import Status
 from .trajectory import EnergyLog, Impact, Trajectory, cumulative_impact_loss
 
@@ -33,14 +33,9 @@ from .trajectory import EnergyLog, Impact, Trajectory, cumulative_impact_loss
 X, XD, FL = 7, 8, 9
 N_STATE = 10
 
-_WHY = {sl.FLIGHT: "free flight (the base's normal force on the block fell to zero: g + üv ≤ 0, or the block "
-                   "is thrown off its pivot), which the model does not carry",
-        sl.PAINLEVE: "Coulomb friction admits no consistent contact mode here (a Painlevé paradox: the slide-rock "
-                     "equations' effective inertia is not positive)"}
-
 
 def stop(why: int, t: float, what: str = "") -> StopRun:
-    return StopRun(Status.OUTSIDE_MODEL, f"the model stops at t = {t:.6g} s{what}: {_WHY[why]}", t)
+    return StopRun(Status.OUTSIDE_MODEL, f"the model stops at t = {t:.6g} s{what}: {sl.STOP_WHY[why]}", t)
 
 
 class SlidingIntegrator(_IsolatorIntegrator):

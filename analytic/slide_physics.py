@@ -45,6 +45,11 @@ NO_MODE = 9
 #: flight, which the model does not carry), or Coulomb friction admits no solution (a
 #: Painlevé paradox: the slide-rock equations' denominator is not positive)
 FLIGHT, PAINLEVE = 1, 2
+#: the stop message's reason for each
+STOP_WHY = {FLIGHT: "free flight (the base's normal force on the block fell to zero: g + üv ≤ 0, or the block "
+                    "is thrown off its pivot), which the model does not carry",
+            PAINLEVE: "Coulomb friction admits no consistent contact mode here (a Painlevé paradox: the slide-rock "
+                      "equations' effective inertia is not positive)"}
 
 
 def needs_contact_model(system, motion) -> bool:

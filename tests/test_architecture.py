@@ -62,8 +62,8 @@ def package_of(module: str) -> str | None:
 #: a module named in a string: an import by name (importlib.import_module, __import__, the
 #: registry's ENGINE_MODULES, the command line's EXTRA_COMMANDS): "isorock.pkg.mod[:ATTR]"
 BY_NAME = re.compile(r"isorock\.[A-Za-z_][\w.]*(?::\w+)?")
-#: the one module that may name the engine packages: the registry (validate/core/engines.py)
-REGISTRY = Path("validate/core/engines.py")
+#: the one module that may name the engine packages: the registry's names (validate/core/registry.py)
+REGISTRY = Path("validate/core/registry.py")
 
 
 def imports(path: Path, package: str, text: str | None = None) -> list[tuple[int, str]]:

@@ -15,7 +15,8 @@ from isorock.validate.tools.campaign.schema import check_campaign
 from isorock.analytic.errors import InputError
 from isorock.validate.io.config_file import read_config
 from isorock.validate.cli.main import build_parser, main
-from isorock.validate.cli.options import engine_tables, setting_assignment
+from isorock.validate.cli.options import setting_assignment
+from isorock.validate.io.inputs import engine_tables
 from isorock.validate.core.engines import ALL_ENGINES, choose, get_engine, table_overrides
 
 

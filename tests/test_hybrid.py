@@ -222,10 +222,10 @@ def test_below_no_bounce_slenderness_rocking_ends_at_first_impact():
 
 
 def test_an_integrator_failure_is_a_status_not_a_traceback(monkeypatch):
-    import isorock.analytic.hybrid as hybrid
+    import isorock.analytic.integrators as integrators  # the driver's integrators: analytic.hybrid's
 
     def broken(*args, **kwargs):
         raise ValueError("f(a) and f(b) must have different signs")
-    monkeypatch.setattr(hybrid, "solve_ivp", broken)
+    monkeypatch.setattr(integrators, "solve_ivp", broken)
     tr = simulate(FIXED, None, theta0=0.3 * FIXED.alpha, duration=1.0)
     assert tr.status == "failed" and "different signs" in tr.message

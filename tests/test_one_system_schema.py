@@ -13,7 +13,7 @@ from isorock.analytic.system import (PAPER_BLOCK, BallInBowl, BallInCone, Biline
                                      FrictionPendulum, System)
 from isorock.validate.io.config_file import SystemTable, read_config
 from isorock.validate.cli.main import build_parser, main
-from isorock.validate.cli.options import SYSTEM_KEYS, system_from_args, system_from_options
+from isorock.validate.io.inputs import SYSTEM_KEYS, system_from_args, system_from_options
 
 BLOCK = dict(height=1.2, width=0.3, mass=250.0, base_mass=500.0)
 FP_FILE = ("[system]\nheight = 1.2\nwidth = 0.3\nmass = 250\nbase_mass = 500\nisolator = \"friction-pendulum\"\n"
@@ -270,7 +270,7 @@ keys.SYSTEM["mass"] = dataclasses.replace(keys.SYSTEM["mass"], kind=keys.NON_NEG
 from pydantic import ValidationError
 from isorock.validate.io.config_file import ConfigFile, SystemTable, describe
 from isorock.validate.cli.main import build_parser
-from isorock.validate.cli.options import SYSTEM_KEYS
+from isorock.validate.io.inputs import SYSTEM_KEYS
 from isorock.validate.tools.campaign.schema import check_campaign
 out = {"keys": list(SYSTEM_KEYS), "fields": list(SystemTable.model_fields)}
 parser = build_parser("validate")

@@ -15,7 +15,8 @@ from ...analytic.limits import available_cores
 from ...analytic.system import BALL_IN_CONE, FRICTION_PENDULUM, LINEAR, PAPER_BLOCK, System
 from ..core.estimate import estimate_s as estimate_run_s
 from ..io.config_file import read_config
-from .options import ISOLATOR_KEYS, add_statue_options, number, statue_body
+from .options import ISOLATOR_KEYS, add_statue_options, number
+from ..io.inputs import statue_body
 from ..io import keys
 from ..io.output import Outputs
 from ..io.progress import Progress
@@ -159,7 +160,7 @@ def read_design_config(a) -> dict:
 
 def statue_from_args(a, config: dict, mesh=None):
     """The Statue the options (over a --config file's [system] table) describe; the paper's
-    block when none is given. `mesh`: options.statue_body's (the statue at rest, its two edges)
+    block when none is given. `mesh`: inputs.statue_body's (the statue at rest, its two edges)
     of --statue FILE or --statue-example NAME."""
     table = config.get("system", {})
     if mesh is not None:

@@ -34,11 +34,10 @@ from ...analytic import coefficients as co
 from ...analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from ...analytic.errors import InputError
 from ...analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
-from ..core.engines import ALL_ENGINES, get_engine
+from ..core.registry import ALL_ENGINES
 from ..io.output import Outputs, Terminated, signal_received, signals_end_cleanly
 from .options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,
-                      add_motion_options, add_statue_options, add_system_options,
-                      add_transverse_options, engine_settings_from_args, number, system_from_args)
+                      add_motion_options, add_statue_options, add_system_options, add_transverse_options, number)
 
 #: Subcommands that live in their own modules (each has add_parser(subparsers)), with
 #: their one-line help. Only the module of the command being run is imported, so a
@@ -132,7 +131,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     add_system_options(p, defaults=PAPER_BLOCK)
     p.add_argument("--out", required=True, metavar="FILE", help="where to write the model file ('-': standard output)")
     add_engine_options(p)
-    p.set_defaults(func=cmd_scene)
+    p.set_defaults(func=_command("isorock.validate.cli.scene", "cmd_scene"))
 
     for name, (module, help_) in EXTRA_COMMANDS.items():
         if command != name:  # listed (top-level help, another command), its module not imported
@@ -164,42 +163,8 @@ def cmd_beta(a) -> int:
     return 0
 
 
-def cmd_scene(a) -> int:
-    with Outputs() as outputs:
-        # a model file is kept and edited: a file of that name is not replaced (as calibrate's
-        # preset); standard output, a device or a pipe are written as streams
-        regular = a.out != "-" and (os.path.isfile(a.out) or not os.path.lexists(a.out))
-        out = outputs.file("out", a.out, exclusive=regular)
-        engine = get_engine(a.engine)
-        if not engine.has_scene:
-            raise InputError(f"engine = {a.engine!r}: has no model file to write (those that do: "
-                             f"{', '.join(_engines_with_scenes())})")
-        system = system_from_args(a, default_isolator=(PAPER_PERIOD, PAPER_DAMPING_RATIO))
-        settings = engine_settings_from_args(engine, a)
-        out.write_text(engine.scene_text(system, settings))
-        outputs.commit()
-    if a.out == "-":
-        return 0
-    kind, suffix = engine.scene_format
-    if not str(a.out).lower().endswith(suffix):
-        print(f"note: {a.engine} scenes are {kind} files ({suffix}); {a.out} holds {kind}", file=sys.stderr)
-    print(a.out)
-    return 0
-
-
 def _registered():
     return ALL_ENGINES
-
-
-def _engines_with_scenes():
-    out = []
-    for name in ALL_ENGINES:
-        try:
-            if get_engine(name).has_scene:
-                out.append(name)
-        except ImportError:
-            continue
-    return out
 
 
 def _stopped(code: int, *, as_process: bool) -> int:

@@ -1,7 +1,9 @@
-"""The command line's shared vocabulary: one parser class with model.md's one-line errors,
-the options every command spells alike (the system, the motion, the engine settings) and
-what they mean (a System, a GroundMotion, an engine choice). Every command module builds
-its options from here, so `--height` or `--timestep` means one thing everywhere."""
+"""The command line's shared vocabulary: one parser class with model.md's one-line errors and
+the options every command spells alike (the system, the motion, the engine settings). Every
+command module builds its options from here, so `--height` or `--timestep` means one thing
+everywhere; what they mean (a System, a GroundMotion, an engine choice) is read in io/inputs.py
+(cli/readers.py: a motion with --pair), which the commands import: building a parser loads
+no NumPy (`isorock beta`, `isorock --help`)."""
 from __future__ import annotations
 
 import argparse
@@ -11,14 +13,8 @@ import sys
 from ...analytic import limits
 from ...analytic.system import LINEAR
 from ..core.estimate import announce_cost  # noqa: F401 — importable from here as before
-from ..io import inputs, keys
-from ..io.keys import Default, given  # noqa: F401 — given: importable from here as before
-# what the options describe (a System, a motion, engine settings): read below the command line
-# (io/inputs.py), by `isorock run` and `isorock.run` alike; importable from here as before
-from ..io.inputs import (ENGINE_OPTIONS, ISOLATOR_KEYS, STATUE_KEYS, STATUE_OPTIONS, SYSTEM_KEYS,  # noqa: F401
-                         check_tables_run, engine_overrides, engine_settings_from_args, engine_tables, run_budget,
-                         settings_dict, statue_azimuth, statue_body, system_from_args, system_from_options,
-                         system_options, transverse_asked)
+from ..io import keys
+from ..io.keys import ISOLATOR_KEYS, Default, given  # noqa: F401 — given: importable from here as before
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -126,18 +122,6 @@ def add_statue_options(p: argparse.ArgumentParser) -> None:
     g.add_argument("--density", type=number, help="the statue's density, kg/m³, instead of --mass")
     g.add_argument("--azimuth", type=number, help="the shaking direction, degrees from the mesh's x towards y "
                    "(default: the direction it tips first)")
-
-
-def read_pair(text: str):
-    """--pair SUITE:ID → its two horizontal components (the campaign's records, which only the
-    command line's floor may import): the reader the command line hands io.inputs."""
-    from ..tools.campaign.records import fema_pair  # lazy: NumPy; every command loads this module
-    return fema_pair(text)
-
-
-def motion_from_args(a):
-    """The motion the options describe (io.inputs.motion_from_args, --pair read by read_pair)."""
-    return inputs.motion_from_args(a, read_pair=read_pair)
 
 
 def add_motion_options(p: argparse.ArgumentParser, *, default="none") -> None:

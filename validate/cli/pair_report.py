@@ -2,12 +2,12 @@
 issue 36), the command: tools/pair_report.py reads the options, runs and judges the engines and
 writes DIR/report.md, DIR/pair.png and DIR/metrics.json (whole or absent); this prints where, and
 the verdict last on stdout; exit 1 when a check failed. A --pair is read by the command line's
-reader (options.read_pair: the campaign's records).
+reader (readers.read_pair: the campaign's records).
 """
 from __future__ import annotations
 
 from ..tools.pair_report import FIGURE, build, write
-from .options import read_pair
+from .readers import read_pair
 
 
 def run(args, **inputs) -> int:

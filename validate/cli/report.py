@@ -12,7 +12,8 @@ import sys
 from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from . import pair_report
 from .options import (add_engine_options, add_isolator_options, add_key_option, add_statue_options,
-                      add_system_options, add_transverse_options, add_units_option, number, transverse_asked)
+                      add_system_options, add_transverse_options, add_units_option, number)
+from ..io.inputs import transverse_asked
 from ..core.engines import ENGINE_NAMES
 from ..core.scenarios import RECORD_WINDOW, REPORT_MOTIONS as DEFAULT_MOTIONS
 from ..io import keys

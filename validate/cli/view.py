@@ -10,7 +10,9 @@ from ...analytic.errors import InputError
 from ...analytic.limits import BudgetExceeded
 from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
 from .options import (add_budget_option, add_engine_options, add_motion_options, add_system_options,
-                      announce_cost, budget_stopped, motion_from_args, run_budget, system_from_args)
+                      announce_cost, budget_stopped)
+from .readers import motion_from_args
+from ..io.inputs import run_budget, system_from_args
 from .run import load_engines, parse_engines
 from ..core.engines import settings_used
 from ..tools import view as tool

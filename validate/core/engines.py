@@ -12,43 +12,21 @@ from __future__ import annotations
 
 import dataclasses
 import importlib
-import importlib.metadata
 import math
 from dataclasses import MISSING, asdict, dataclass, field, fields, is_dataclass, replace
-
-from typing import TYPE_CHECKING
 
 from ...analytic.engine_protocol import (DEFAULT_IMPACT_THRESHOLD, EngineSpec, check_body, check_friction,
                                               check_isolator_kind, declare_facet)
 from ...analytic.errors import InputError
 from ...analytic.limits import BudgetExceeded, RunBudget, check_budget, check_settings
+from ...analytic.motion import GroundMotion
+from ...analytic.overturning import PAST_ALPHA
+from ...analytic.trajectory import RawHistory, Trajectory
+from . import measure
+# the registry's names (validate/core/registry.py, light): importable from here as before
+from .registry import (ALIASES, ALL_ENGINES, CONTACT_ENGINES, DISTINCT_ENGINES, ENGINE_MODULES, ENGINE_NAMES,  # noqa: F401
+                       PLUGIN_GROUP, PLUGINS, PLUGINS_REFUSED, REFERENCE, _plugins, canonical)
 
-if TYPE_CHECKING:
-    from ...analytic.trajectory import Trajectory
-
-
-ENGINE_MODULES = {
-    # the analytic model, compiled (analytic.fast); its SciPy reference path, which the
-    # compiled kernel is tested against, is "analytic-reference"
-    "analytic": "isorock.analytic.engines:ENGINE",
-    "analytic-reference": "isorock.analytic.engines:REFERENCE_ENGINE",
-    "mujoco": "isorock.mujoco_models",
-    "bullet": "isorock.bullet_models",
-    # Drake's point contact: an independent, slower formulation, asked for by name (docs/drake.md)
-    "drake": "isorock.drake_models",
-    # MuJoCo's JAX port on MuJoCo's own scene (optional: the mjx extra; docs/mjx.md)
-    "mjx": "isorock.mujoco_models.mjx:ENGINE",
-    # MuJoCo Warp, MuJoCo's port to NVIDIA Warp, on MuJoCo's own scene (optional: the mjwarp extra; docs/mjwarp.md)
-    "mjwarp": "isorock.mujoco_models.mjwarp:ENGINE",
-    # DART's contact and constraint solver (optional: the dart extra; docs/dart.md)
-    "dart": "isorock.dart_models:ENGINE",
-    # the former name of the compiled engine, kept so that nothing breaks
-    "analytic-fast": "isorock.analytic.engines:ENGINE",
-}
-#: The entry-point group an installed package registers an engine under (issue 37): in its
-#: pyproject.toml, `[project.entry-points."isorock.engines"] NAME = "package.module:ENGINE"`,
-#: ENGINE an EngineSpec whose `name` is NAME (docs/plugins.md; examples/isorock-engine-example).
-PLUGIN_GROUP = "isorock.engines"
 
 #: the facets the registry itself uses (engine_protocol.Facet)
 BATCH = declare_facet("simulate_many", "the registry (Engine.simulate_many: campaigns, ensembles, bench's batch)",
@@ -58,47 +36,6 @@ BATCH = declare_facet("simulate_many", "the registry (Engine.simulate_many: camp
 SCENE_TEXT = declare_facet("scene_text", "isorock scene, validate's scene files",
                            "(system, settings) → the text of the model file a user can open")
 SCENE_FORMAT = declare_facet("scene_format", "isorock scene", "(format name, file suffix) of scene_text's file")
-
-
-def _plugins() -> tuple[dict, dict]:
-    """(name → "module:ATTRIBUTE", name → why it is not registered) of the engines installed
-    packages declare. A name a built-in engine has is never taken (said, not silently)."""
-    found, refused = {}, {}
-    for ep in importlib.metadata.entry_points(group=PLUGIN_GROUP):
-        if ep.name in ENGINE_MODULES:
-            refused[ep.name] = (f"{ep.value} (from {ep.dist.name if ep.dist else 'a package'}) names the built-in "
-                                f"engine {ep.name!r}: not registered")
-        elif ep.name in found:
-            refused[ep.name] = f"declared twice ({found[ep.name]}, {ep.value}): not registered"
-        elif not ep.name or ":" in ep.name or "," in ep.name or " " in ep.name:
-            refused[ep.name] = f"{ep.value}: an engine's name has no ':', ',' or space: not registered"
-        else:
-            found[ep.name] = ep.value
-    for name in refused:
-        found.pop(name, None)
-    return found, refused
-
-
-#: the engines installed packages register (PLUGIN_GROUP), and those refused with the reason
-PLUGINS, PLUGINS_REFUSED = _plugins()
-ENGINE_MODULES.update(PLUGINS)
-#: The engine every other is compared with.
-REFERENCE = "analytic"
-#: The engines every report and comparison loops over: the reference and the contact engines.
-ENGINE_NAMES = ("analytic", "mujoco", "bullet")
-CONTACT_ENGINES = tuple(n for n in ENGINE_NAMES if n != REFERENCE)
-#: Every engine that can be asked for by name, former names included.
-ALL_ENGINES = tuple(ENGINE_MODULES)
-#: Former names: each runs the engine it names, so no tool runs it as an engine of its own.
-ALIASES = {"analytic-fast": "analytic"}
-#: Every engine once (bench and stress run them all; `isorock presets` lists them).
-DISTINCT_ENGINES = tuple(n for n in ENGINE_MODULES if n not in ALIASES)
-
-
-def canonical(label: str) -> str:
-    """ENGINE[:PRESET] with a former engine name replaced by the engine's own."""
-    name, sep, preset = str(label).partition(":")
-    return ALIASES.get(name, name) + sep + preset
 
 
 @dataclass(frozen=True)
@@ -195,9 +132,6 @@ class Engine:
         checked=True: the inputs come from a Plan (core.plan.make_plan), which checked that this
         engine carries them; they are not checked again here."""
 
-        from ...analytic.overturning import PAST_ALPHA  # lazy: NumPy; every command loads the registry
-        from ...analytic.trajectory import RawHistory
-        from . import measure
         if not checked:
             self.check_run(system, motion)
         if settings is None:
@@ -221,7 +155,6 @@ class Engine:
         else:
             out = self.spec.simulate(system, motion, **kwargs)
         if isinstance(out, RawHistory):
-            from ...analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
             out = measure.measure(out, motion or GroundMotion.zero(), impact_threshold=impact_threshold,
                                   window=contact_window,
                                   overturn_rule=overturn_rule or PAST_ALPHA, effective_beta=effective_beta)
@@ -233,9 +166,6 @@ class Engine:
         Trajectory, or the exception it raised. An engine with a batch path
         (its simulate_many facet, BATCH: MuJoCo's, `threads` runs at a time) runs them
         together, each exactly as alone; any other runs them one by one."""
-        from ...analytic.motion import GroundMotion  # lazy: NumPy; every command loads the registry
-        from ...analytic.overturning import PAST_ALPHA
-        from . import measure
         runs = list(runs)
         if budget_s is not None:
             check_budget(budget_s)
@@ -405,7 +335,6 @@ def check_plugin_run(name: str, out, *, exact_impacts: bool):
     dict, NaN or time running backwards were measured, or a traceback)."""
     import numpy as np  # lazy: NumPy; every command loads the registry
 
-    from ...analytic.trajectory import RawHistory, Trajectory
     where = f"engine {name!r} (its package's {PLUGINS.get(name, name)})"
     kinds = (RawHistory, Trajectory) if exact_impacts else (RawHistory,)
     if not isinstance(out, kinds):

@@ -10,7 +10,7 @@ them as its keywords (base_mass).
 
 A record pair (--pair SUITE:ID) is read by the campaign's records (validate/tools/campaign), a
 floor above: the caller hands its reader in (`read_pair`); the command line's is
-cli.options.read_pair.
+cli.readers.read_pair.
 """
 from __future__ import annotations
 
@@ -18,23 +18,23 @@ import sys
 from dataclasses import fields, replace
 from types import SimpleNamespace
 
+from ...analytic import shape
 from ...analytic.errors import InputError
 from ...analytic.limits import check_period
+from ...analytic.motion import load_motion
 from ...analytic.system import (BALL_IN_BOWL, BALL_IN_CONE, BILINEAR, LINEAR, BallInBowl, BallInCone,
                                 BilinearIsolator, DOUBLE_PENDULUM, DoubleFrictionPendulum, FRICTION_PENDULUM,
                                 FrictionPendulum, ISOLATOR_KINDS, PlanarBody, System)
+from ..core.biaxial import box_body
 from ..core.engines import choose, describe_settings, get_engine, resolve, table_overrides
+from ..core.plan import EngineRun, make_plan, run_plan
 from . import keys
-from .keys import given
+from .keys import ISOLATOR_KEYS, given  # noqa: F401 — ISOLATOR_KEYS: importable from here as before
 
 
 #: Engine options: CLI dest → the field of the engine's Settings it sets.
 ENGINE_OPTIONS = ("timestep", "solref", "solimp", "cone", "integrator", "friction", "noslip",
                   "solver_iterations", "substeps", "rtol", "atol", "rest_velocity", "max_step")
-
-
-#: the options of a non-linear isolator (add_isolator_options), argparse dests
-ISOLATOR_KEYS = tuple(k for k in keys.ISOLATOR if k != "isolator")
 
 
 def _isolator_from_args(a, common):
@@ -105,7 +105,6 @@ def statue_body(a, names: dict = STATUE_OPTIONS, *, slip: str = "statue_friction
     gives the statue's sliding friction μ_s (refused with a mesh: the sliding model takes the block
     alone): run's and validate's --statue-friction, design's --friction (run's --friction is an
     engine's contact coefficient, which a hull takes as the block does)."""
-    from ...analytic import shape  # lazy: NumPy and SciPy; every command loads this module
     path, example = getattr(a, "statue", None), getattr(a, "statue_example", None)
     if path is None and example is None:
         for name in ("unit", "density", "azimuth"):
@@ -127,7 +126,6 @@ def statue_body(a, names: dict = STATUE_OPTIONS, *, slip: str = "statue_friction
 
 def statue_azimuth(a, standing, names: dict = STATUE_OPTIONS) -> float:
     """The shaking direction (rad) of a statue at rest: --azimuth, or the one it tips first."""
-    from ...analytic import shape  # lazy: NumPy and SciPy; every command loads this module
     return shape.shaking_direction(standing, a.azimuth, names=names)
 
 
@@ -241,7 +239,6 @@ def transverse_asked(a) -> bool:
 def _with_transverse(a, m, read_pair=None):
     """`m` with the second horizontal component the options name (--motion-transverse or the
     --pair's second), or `m` as it is without them."""
-    from ...analytic.motion import load_motion  # lazy: NumPy; every command loads this module
     spec, pair = getattr(a, "motion_transverse", None), getattr(a, "pair", None)
     if (spec is not None or pair is not None) and getattr(a, "vertical", None) is not None:
         raise InputError(f"--vertical = {a.vertical!r}: with two horizontal components is not built yet (its planar "
@@ -272,7 +269,6 @@ def _with_transverse(a, m, read_pair=None):
 def motion_from_args(a, *, read_pair=None):
     """The motion the options describe: read, then scaled by --scale, or to --pga / --pgv.
     read_pair(SUITE:ID) → (along x, along y): the reader of --pair (the caller's: a floor above)."""
-    from ...analytic.motion import load_motion  # lazy: NumPy; every command loads this module
     targets = [(k, getattr(a, k, None)) for k in ("pga", "pgv") if getattr(a, k, None) is not None]
     if len(targets) > 1 or (targets and a.scale != 1.0):
         given = ", ".join(f"--{k} {v:g}" for k, v in targets) + (f", --scale {a.scale:g}" if a.scale != 1.0 else "")
@@ -423,7 +419,6 @@ def plan_runs(a, specs, *, read_pair=None):
     """The run options `a` (RunOptions, or the parser's namespace) read into Python values, and the one Plan
     of them (core.plan.make_plan: every check made there once, before any work). read_pair:
     motion_from_args's."""
-    from ..core.plan import EngineRun, make_plan  # lazy: NumPy; every command loads this module
     runs = [EngineRun(label, engine, settings) for label, engine, settings in load_engines(specs, a)]
     statue = statue_body(a)  # a statue's mesh read once: the System's two edges, and the 3-D measures' body
     system, motion = system_from_args(a, statue=statue), motion_from_args(a, read_pair=read_pair)
@@ -466,7 +461,6 @@ def shaken_body(a, system, statue, names: dict = STATUE_OPTIONS) -> tuple:
     # the contact scenes' block stands on a square footprint (MuJoCo's and Drake's DEPTH_FRACTION 1, PyBullet's
     # 2b × 2b box, DART's DEPTH_RATIO 1)
     if system.body is None:
-        from ..core.biaxial import box_body  # lazy: NumPy; every command loads this module
         return box_body(system.height, system.width, system.width, system.mass), 0.0
     standing = statue[0]
     return standing, statue_azimuth(a, standing, names)
@@ -475,7 +469,6 @@ def shaken_body(a, system, statue, names: dict = STATUE_OPTIONS) -> tuple:
 def simulate_plan(plan, a, *, announce: bool = False, budget: float | None = None) -> tuple[dict, dict]:
     """(label → Trajectory, label → Settings used), in the order the engines were given;
     each run within `budget` s (core.plan.run_plan)."""
-    from ..core.plan import run_plan  # lazy: NumPy; every command loads this module
     runs = run_plan(plan, progress=_progress(getattr(a, "quiet", True)), budget_s=budget,
                     on_start=(lambda label: print(f"\r{label} …", file=sys.stderr)) if announce else None)
     return runs, {r.label: r.settings for r in plan.runs}

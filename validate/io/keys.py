@@ -116,6 +116,8 @@ ISOLATOR = _by_name(
     Key("friction_coefficient_2", NON_NEGATIVE,
         "double-friction-pendulum: μ2, surface 2's friction (--friction-coefficient is μ1)"),
 )
+#: the options of a non-linear isolator (add_isolator_options), argparse dests
+ISOLATOR_KEYS = tuple(k for k in ISOLATOR if k != "isolator")
 
 #: a record's units and format, and the peak it is scaled to (add_motion_options; a --config
 #: file's keys of the same names)
