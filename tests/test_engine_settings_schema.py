@@ -102,7 +102,7 @@ def test_set_reaches_the_engine_it_names_and_only_it():
                                         "--set", "mujoco.solref=[0.01, 1]"])
     tables = engine_tables(a)
     assert tables == {"*": {"timestep": 2e-4, "rtol": 1e-9}, "mujoco": {"integrator": "RK4", "solref": (0.01, 1)}}
-    from isorock.validate.cli.run import load_engines
+    from isorock.validate.io.inputs import load_engines
     got = {label: settings for label, _, settings in load_engines([("analytic", None), ("mujoco", None)], a)}
     assert got["mujoco"].integrator == "RK4" and got["mujoco"].solref == (0.01, 1) and got["mujoco"].timestep == 2e-4
     assert got["analytic"].rtol == 1e-9

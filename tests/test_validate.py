@@ -254,7 +254,7 @@ def test_validate_bad_input_exits_2_and_writes_nothing(tmp_path, capsys, bad):
 def test_engines_are_read_alike_by_every_command():
     """validate, bench and atlas take --engines through one parser (run_cli.engine_labels):
     items space- or comma-separated, a comma left at an item's end as in 'analytic, mujoco'."""
-    from isorock.validate.cli.run import engine_labels
+    from isorock.validate.io.inputs import engine_labels
     want = ["analytic", "mujoco:fast", "bullet"]
     assert engine_labels(["analytic,", "mujoco:fast", "bullet"]) == want
     assert engine_labels(["analytic,mujoco:fast,bullet"]) == want

@@ -26,7 +26,6 @@ tools/pair_report.py), never one another (issue 35). Nothing below imports it.
 from __future__ import annotations
 
 import re
-
 from dataclasses import dataclass
 from pathlib import Path
 

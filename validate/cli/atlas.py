@@ -5,7 +5,7 @@ import math
 
 from ...analytic.errors import InputError
 from ...analytic.limits import check_workers
-from .run import engine_labels
+from ..io.inputs import engine_labels
 from ..core.engines import get_engine
 from ..io.output import check_folder
 from ..io.progress import Progress

@@ -6,7 +6,7 @@ import io
 import time
 from pathlib import Path
 
-from .run import engine_labels
+from ..io.inputs import engine_labels
 from ..core.engines import ALL_ENGINES
 from ..io.output import check_folder, to_json, write_folder_atomic
 from ..tools import bench as tool

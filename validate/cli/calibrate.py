@@ -6,7 +6,8 @@ import sys
 from ...analytic.errors import InputError
 from ...analytic.limits import check_workers
 from ...analytic.system import paper_system
-from .options import add_engine_options, add_system_options, announce_cost, whole_number
+from ..core.estimate import announce_cost
+from .options import add_engine_options, add_system_options, whole_number
 from ..io.inputs import ENGINE_OPTIONS, SYSTEM_KEYS, engine_settings_from_args, system_from_options
 from ..core.engines import get_engine
 from ..core.executor import default_workers

@@ -11,7 +11,7 @@ import math
 
 from ...analytic.errors import InputError
 from ..io.provenance import provenance
-from .options import announce_cost
+from ..core.estimate import announce_cost
 from ..io.output import Outputs, to_json
 from ..io.progress import Progress
 from ..tools.experiments import data, fitted, misses, processing, study

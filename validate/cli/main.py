@@ -33,9 +33,9 @@ import sys
 from ...analytic import coefficients as co
 from ...analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
 from ...analytic.errors import InputError
-from ...analytic.system import PAPER_BLOCK, PAPER_DAMPING_RATIO, PAPER_PERIOD, PAPER_TEXT
+from ...analytic.system import PAPER_BLOCK, PAPER_TEXT
 from ..core.registry import ALL_ENGINES
-from ..io.output import Outputs, Terminated, signal_received, signals_end_cleanly
+from ..io.output import Terminated, signal_received, signals_end_cleanly
 from .options import (OneLineParser, add_budget_option, add_engine_options, add_isolator_options,
                       add_motion_options, add_statue_options, add_system_options, add_transverse_options, number)
 

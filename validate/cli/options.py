@@ -12,9 +12,8 @@ import sys
 
 from ...analytic import limits
 from ...analytic.system import LINEAR
-from ..core.estimate import announce_cost  # noqa: F401 — importable from here as before
 from ..io import keys
-from ..io.keys import ISOLATOR_KEYS, Default, given  # noqa: F401 — given: importable from here as before
+from ..io.keys import ISOLATOR_KEYS, Default
 
 
 class OneLineParser(argparse.ArgumentParser):

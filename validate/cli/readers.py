@@ -4,13 +4,8 @@ The commands that read a motion import it from here; building the parser does no
 from __future__ import annotations
 
 from ..io import inputs
-from ..tools.campaign.records import fema_pair
-
-
-def read_pair(text: str):
-    """--pair SUITE:ID → its two horizontal components (the campaign's records, which only the
-    command line's floor may import): the reader the command line hands io.inputs."""
-    return fema_pair(text)
+# --pair SUITE:ID → its two horizontal components: the reader the command line hands io.inputs
+from ..tools.campaign.records import fema_pair as read_pair
 
 
 def motion_from_args(a):

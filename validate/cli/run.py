@@ -22,14 +22,14 @@ import numpy as np
 from ...analytic.errors import InputError
 from ...analytic.limits import BudgetExceeded, check_resample
 from ..io.provenance import provenance
-from .options import announce_cost, budget_stopped
+from .options import budget_stopped
 from .readers import read_pair
 from ..core.biaxial import render, two_components
 from ..core.compare import compare
+from ..core.estimate import announce_cost
 from ..io import inputs
-# the options read into a Plan, below the command line (io/inputs.py): importable from here as before
-from ..io.inputs import (check_pair_engine, engine_asked, engine_labels, load_engines, parse_engines,  # noqa: F401
-                         run_budget, settings_dict, shaken_body, simulate_plan, spec_label)
+# the options read into a Plan, below the command line (io/inputs.py)
+from ..io.inputs import engine_asked, parse_engines, run_budget, settings_dict, simulate_plan, spec_label
 from ..io.naming import cell, describe_motion
 from ..io.options import RunOptions
 from ..io.output import Outputs, to_json

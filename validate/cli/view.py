@@ -9,11 +9,11 @@ from ...analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD, run_inputs
 from ...analytic.errors import InputError
 from ...analytic.limits import BudgetExceeded
 from ...analytic.system import PAPER_DAMPING_RATIO, PAPER_PERIOD
+from ..core.estimate import announce_cost
 from .options import (add_budget_option, add_engine_options, add_motion_options, add_system_options,
-                      announce_cost, budget_stopped)
+                      budget_stopped)
 from .readers import motion_from_args
-from ..io.inputs import run_budget, system_from_args
-from .run import load_engines, parse_engines
+from ..io.inputs import load_engines, parse_engines, run_budget, system_from_args
 from ..core.engines import settings_used
 from ..tools import view as tool
 from ..tools.view import (DEFAULT_MOTION, DEFAULT_OUT, OFFSCREEN_BACKENDS, PAPER, _size,

@@ -24,7 +24,6 @@ defaults equal to these fields'.
 """
 from __future__ import annotations
 
-import decimal
 import numbers
 import os
 import tomllib
@@ -35,7 +34,7 @@ from pydantic import BaseModel, ConfigDict, PlainValidator, ValidationError, cre
 
 from ...analytic import limits
 from ...analytic.engine_protocol import DEFAULT_IMPACT_THRESHOLD
-from ...analytic.errors import InputError
+from ...analytic.errors import InputError, python_number
 from ...analytic.system import LINEAR, PAPER_BLOCK
 from ..core.engines import check_settings_table
 from . import keys
@@ -57,17 +56,19 @@ def _scalar(v):
 
 
 def _real(v):
+    """A number given from Python as its float, by the project's one rule of it
+    (analytic.errors.python_number: NumPy's scalars, a Fraction, a Decimal; no text), its
+    refusals worded for a keyword."""
     v = _scalar(v)
     if isinstance(v, bool):
         raise ValueError("must be a number (a boolean is not a number)")
     if isinstance(v, str):
         raise ValueError("must be a number, not a string")
-    if not isinstance(v, (numbers.Real, decimal.Decimal)):  # a Decimal is no numbers.Real, yet a number
-        raise ValueError("must be a number")
     try:
-        return float(v)
-    except OverflowError:
-        raise ValueError("must be a number within a float's range") from None
+        return python_number("", v)
+    except InputError:  # a real number refused is one past a float's range (an int of 400 digits)
+        raise ValueError("must be a number within a float's range" if isinstance(v, numbers.Real)
+                         else "must be a number") from None
 
 
 def number(v):
