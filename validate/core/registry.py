@@ -31,6 +31,7 @@ ENGINE_MODULES = {
 #: ENGINE an EngineSpec whose `name` is NAME (docs/plugins.md; examples/isorock-engine-example).
 PLUGIN_GROUP = "isorock.engines"
 
+
 def _plugins() -> tuple[dict, dict]:
     """(name → "module:ATTRIBUTE", name → why it is not registered) of the engines installed
     packages declare. A name a built-in engine has is never taken (said, not silently)."""

@@ -45,9 +45,9 @@ def _grid(*, zero: bool = False):
                     except ValueError as e:
                         raise ValueError(f"{k}: {e}") from None
             if "num" in v and (isinstance(v["num"], bool) or not isinstance(v["num"], int)):
-                raise ValueError(f"num = {v['num']!r}: must be a whole number")
+                raise ValueError(f"num = {shown(v['num'])}: must be a whole number")
             if "log" in v and not isinstance(v["log"], bool):
-                raise ValueError(f"log = {v['log']!r}: must be true or false")
+                raise ValueError(f"log = {shown(v['log'])}: must be true or false")
             return v
         if isinstance(v, list):
             if not v:
@@ -57,7 +57,7 @@ def _grid(*, zero: bool = False):
                 try:
                     xs.append(_number(x, positive=not zero))
                 except ValueError as e:
-                    raise ValueError(f"item {i} ({x!r}) {e}") from None
+                    raise ValueError(f"item {i} ({shown(x)}) {e}") from None
             if len(set(xs)) != len(xs):
                 dup = next(x for x in xs if xs.count(x) > 1)
                 raise ValueError(f"lists {dup:g} twice (each value once: a repeat runs its cases twice)")
@@ -75,7 +75,7 @@ def _words(allowed):
             raise ValueError(f"must be one or more of {', '.join(allowed)}")
         for x in items:
             if not isinstance(x, str) or x not in allowed:
-                raise ValueError(f"must be one of {', '.join(allowed)} (or a list of them), not {x!r}")
+                raise ValueError(f"must be one of {', '.join(allowed)} (or a list of them), not {shown(x)}")
         if len(set(items)) != len(items):
             raise ValueError("lists a value twice (each once: a repeat runs its cases twice)")
         return v
@@ -168,7 +168,7 @@ class Systems(_Strict):
             lo, hi = MASS_RATIO_RANGE
             for x in values:
                 if x is not None and not lo <= float(x) <= hi:
-                    raise ValueError(f"mass_ratio = {x!r}: must be from {lo:g} to {hi:g} (m/m_b, "
+                    raise ValueError(f"mass_ratio = {shown(x)}: must be from {lo:g} to {hi:g} (m/m_b, "
                                      "MASS_RATIO_RANGE)")
         return self
 
